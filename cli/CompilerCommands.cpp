@@ -1,0 +1,373 @@
+// `tidepool expand`, `validate` and `stats`: flags → options → library calls → print → exit code.
+#include <unistd.h>
+
+#include <cctype>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "tidepool/AtomicFile.h"
+#include "tidepool/GlslValidator.h"
+#include "tidepool/Manifest.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+
+namespace tidepool::cli {
+namespace {
+
+struct CompilerOptions {
+    std::string config = "variants.yaml";
+    bool json = false;
+    std::string out;
+    std::uint64_t max_variants = 0;  // 0: the file's own limit (default 4096)
+    int jobs = 0;                    // 0: one per core
+    std::vector<std::string> files;  // validate: plain shader files
+    std::string stage;               // validate: force the stage of plain files
+    std::vector<std::string> defines;
+};
+
+void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
+    for (const Diagnostic& d : diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+}
+
+// The configuration and its expansion, or the exit code that explains why there is none.
+struct LoadedMatrix {
+    std::optional<VariantConfig> config;
+    ExpansionResult expansion;
+    int exit_code = kExitOk;
+};
+
+LoadedMatrix LoadAndExpand(const CompilerOptions& options) {
+    LoadedMatrix loaded;
+    ConfigResult config = LoadVariantConfig(options.config);
+    PrintDiagnostics(config.diagnostics);
+    if (!config.config) {
+        loaded.exit_code = kExitUsage;
+        return loaded;
+    }
+    ExpansionOptions expansion_options;
+    expansion_options.max_variants =
+            options.max_variants != 0 ? options.max_variants : config.config->max_variants;
+    loaded.expansion = ExpandVariants(*config.config, expansion_options);
+    PrintDiagnostics(loaded.expansion.diagnostics);
+    if (HasErrors(loaded.expansion.diagnostics)) {
+        loaded.exit_code = kExitUsage;
+        return loaded;
+    }
+    loaded.config = std::move(config.config);
+    return loaded;
+}
+
+int DefaultJobs() {
+    const unsigned cores = std::thread::hardware_concurrency();
+    return cores == 0 ? 1 : static_cast<int>(cores);
+}
+
+std::string SafeFileName(const std::string& id) {
+    std::string name;
+    for (char c : id) {
+        name += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '.';
+    }
+    return name;
+}
+
+// Replaces `dir` with a fully written `staging` folder, so a failed run leaves no half output.
+std::string PublishFolder(const std::filesystem::path& staging, const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::path old;
+    if (std::filesystem::exists(dir, ec)) {
+        if (!std::filesystem::exists(dir / "manifest.json", ec) &&
+            !std::filesystem::is_empty(dir, ec)) {
+            std::filesystem::remove_all(staging, ec);
+            return fmt::format("{}: exists and was not written by tidepool (no manifest.json); "
+                               "choose another --out folder",
+                               dir.string());
+        }
+        old = dir.string() + fmt::format(".old.{}", ::getpid());
+        std::filesystem::rename(dir, old, ec);
+        if (ec) {
+            std::filesystem::remove_all(staging, ec);
+            return fmt::format("{}: cannot replace: {}", dir.string(), ec.message());
+        }
+    }
+    std::filesystem::rename(staging, dir, ec);
+    if (ec) {
+        return fmt::format("{}: cannot create: {}", dir.string(), ec.message());
+    }
+    if (!old.empty()) {
+        std::filesystem::remove_all(old, ec);
+    }
+    return {};
+}
+
+int RunExpand(const CompilerOptions& options) {
+    LoadedMatrix loaded = LoadAndExpand(options);
+    if (!loaded.config) {
+        return loaded.exit_code;
+    }
+    const VariantConfig& config = *loaded.config;
+    const nlohmann::json manifest = BuildManifest(config, loaded.expansion, nullptr);
+    if (options.json) {
+        std::printf("%s\n", manifest.dump(2).c_str());
+    } else {
+        for (const Variant& variant : loaded.expansion.variants) {
+            std::printf("%s\n", variant.Id().c_str());
+        }
+        for (const PrunedCombination& p : loaded.expansion.pruned) {
+            std::printf("pruned %s  (%s, %s:%d)\n", p.combination.Id().c_str(), p.rule.c_str(),
+                        p.where.file.c_str(), p.where.line);
+        }
+        std::printf("%zu variants, %zu pruned combinations\n", loaded.expansion.variants.size(),
+                    loaded.expansion.pruned.size());
+    }
+    if (options.out.empty()) {
+        return kExitOk;
+    }
+    // Every variant's stage sources exactly as a GL driver receives them, plus the manifest.
+    const std::filesystem::path dir(options.out);
+    const std::filesystem::path staging =
+            dir.parent_path() / fmt::format(".{}.staging.{}", dir.filename().string(), ::getpid());
+    std::map<std::string, std::string> sources;  // path → text, read once
+    for (GlslTarget target : config.targets) {
+        for (const Variant& variant : loaded.expansion.variants) {
+            const ProgramConfig* program = config.FindProgram(variant.program);
+            for (Stage stage : {Stage::kVertex, Stage::kFragment}) {
+                const std::string& path =
+                        stage == Stage::kVertex ? program->vertex_path : program->fragment_path;
+                if (sources.count(path) == 0) {
+                    std::ifstream in(config.Resolve(path), std::ios::binary);
+                    std::ostringstream text;
+                    text << in.rdbuf();
+                    if (!in) {
+                        std::fprintf(stderr, "%s: error: cannot read shader file\n", path.c_str());
+                        std::error_code ec;
+                        std::filesystem::remove_all(staging, ec);
+                        return kExitUsage;
+                    }
+                    sources[path] = text.str();
+                }
+                const std::filesystem::path file =
+                        staging / TargetName(target) / variant.program /
+                        fmt::format("{}.{}", SafeFileName(variant.Id()),
+                                    stage == Stage::kVertex ? "vert" : "frag");
+                const std::string error = WriteFileAtomically(
+                        file, AssembleDriverSource(sources[path], variant.defines, stage, target));
+                if (!error.empty()) {
+                    std::fprintf(stderr, "error: %s\n", error.c_str());
+                    std::error_code ec;
+                    std::filesystem::remove_all(staging, ec);
+                    return kExitUsage;
+                }
+            }
+        }
+    }
+    std::string error = WriteFileAtomically(staging / "manifest.json", manifest.dump(2) + "\n");
+    if (error.empty()) {
+        error = PublishFolder(staging, dir);
+    }
+    if (!error.empty()) {
+        std::fprintf(stderr, "error: %s\n", error.c_str());
+        return kExitUsage;
+    }
+    if (!options.json) {
+        std::printf("wrote %s/<target>/<program>/<variant>.vert|.frag and %s/manifest.json\n",
+                    options.out.c_str(), options.out.c_str());
+    }
+    return kExitOk;
+}
+
+int RunValidateFiles(const CompilerOptions& options) {
+    std::vector<ShaderFile> files;
+    for (const std::string& path : options.files) {
+        ShaderFile file{path, Stage::kVertex};
+        if (options.stage == "vert" || options.stage == "vertex") {
+            file.stage = Stage::kVertex;
+        } else if (options.stage == "frag" || options.stage == "fragment") {
+            file.stage = Stage::kFragment;
+        } else if (!StageFromExtension(path, &file.stage)) {
+            std::fprintf(stderr,
+                         "%s: error: cannot tell the stage from the extension; use .vert/.vsh, "
+                         ".frag/.fsh or --stage vert|frag\n",
+                         path.c_str());
+            return kExitUsage;
+        }
+        if (!std::filesystem::is_regular_file(path)) {
+            std::fprintf(stderr, "%s: error: no such shader file\n", path.c_str());
+            return kExitUsage;
+        }
+        files.push_back(file);
+    }
+    const ValidationReport report = ValidateShaderFiles(files, options.defines);
+    int errors = 0;
+    nlohmann::json json = nlohmann::json::array();
+    for (const VariantVerdict& verdict : report.verdicts) {
+        PrintDiagnostics(verdict.diagnostics);
+        errors += verdict.valid ? 0 : 1;
+        nlohmann::json diagnostics = nlohmann::json::array();
+        for (const Diagnostic& d : verdict.diagnostics) {
+            diagnostics.push_back(ToJson(d));
+        }
+        json.push_back({{"files", verdict.variant.program},
+                        {"valid", verdict.valid},
+                        {"diagnostics", diagnostics}});
+    }
+    if (options.json) {
+        std::printf("%s\n", json.dump(2).c_str());
+    } else {
+        std::printf("%zu file(s): %s\n", files.size(), errors == 0 ? "valid" : "INVALID");
+    }
+    return errors == 0 ? kExitOk : kExitShaderErrors;
+}
+
+int RunValidate(const CompilerOptions& options) {
+    if (!options.files.empty()) {
+        return RunValidateFiles(options);
+    }
+    LoadedMatrix loaded = LoadAndExpand(options);
+    if (!loaded.config) {
+        return loaded.exit_code;
+    }
+    const VariantConfig& config = *loaded.config;
+    ValidationOptions validation_options;
+    validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+    validation_options.targets = config.targets;
+    const ValidationReport report =
+            ValidateVariants(config, loaded.expansion.variants, validation_options);
+    PrintDiagnostics(report.diagnostics);
+    for (const VariantVerdict& verdict : report.verdicts) {
+        PrintDiagnostics(verdict.diagnostics);
+    }
+    const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
+    if (!options.out.empty()) {
+        const std::string error = WriteFileAtomically(
+                std::filesystem::path(options.out) / "manifest.json", manifest.dump(2) + "\n");
+        if (!error.empty()) {
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+            return kExitUsage;
+        }
+    }
+    const int invalid = report.InvalidCount();
+    if (options.json) {
+        std::printf("%s\n", manifest.dump(2).c_str());
+    } else {
+        std::printf("%zu variants (%zu pruned combinations) x %zu target(s): %d stage slots -> "
+                    "%zu distinct stage programs (%d shared), %d links; %s\n",
+                    loaded.expansion.variants.size(), loaded.expansion.pruned.size(),
+                    config.targets.size(), report.stage_slots, report.stage_programs.size(),
+                    report.SharedStageSlots(), report.links,
+                    invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid).c_str());
+    }
+    return invalid == 0 && !HasErrors(report.diagnostics) ? kExitOk : kExitShaderErrors;
+}
+
+int RunStats(const CompilerOptions& options) {
+    LoadedMatrix loaded = LoadAndExpand(options);
+    if (!loaded.config) {
+        return loaded.exit_code;
+    }
+    const VariantConfig& config = *loaded.config;
+    ValidationOptions validation_options;
+    validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+    validation_options.targets = {GlslTarget::kEs100};
+    const ValidationReport report =
+            ValidateVariants(config, loaded.expansion.variants, validation_options);
+    std::map<std::string, const StageProgram*> programs;
+    for (const StageProgram& program : report.stage_programs) {
+        programs[program.file + "|" + program.hash] = &program;
+    }
+    nlohmann::json json = nlohmann::json::array();
+    if (!options.json) {
+        std::printf("%-62s %6s %6s %5s %4s %4s %5s %9s\n", "variant", "vs.ops", "fs.ops",
+                    "tex", "pow", "norm", "brnch", "fs.paths");
+    }
+    int invalid = 0;
+    for (const VariantVerdict& verdict : report.verdicts) {
+        const ProgramConfig* program = config.FindProgram(verdict.variant.program);
+        const StageProgram* vs = programs[program->vertex_path + "|" + verdict.vertex_hash];
+        const StageProgram* fs = programs[program->fragment_path + "|" + verdict.fragment_hash];
+        if (!verdict.valid || vs == nullptr || fs == nullptr) {
+            PrintDiagnostics(verdict.diagnostics);
+            ++invalid;
+            continue;
+        }
+        auto builtin = [](const StageCost& cost, const char* name) {
+            auto it = cost.builtin_calls.find(name);
+            return it == cost.builtin_calls.end() ? 0 : it->second;
+        };
+        const StageCost& v = vs->cost;
+        const StageCost& f = fs->cost;
+        json.push_back({{"id", verdict.variant.Id()},
+                        {"vertex", ToJson(v)},
+                        {"fragment", ToJson(f)}});
+        if (!options.json) {
+            std::printf("%-62s %6d %6d %5d %4d %4d %5d %4d-%-4d\n", verdict.variant.Id().c_str(),
+                        v.TotalOps(), f.TotalOps(), v.texture_samples + f.texture_samples,
+                        builtin(v, "pow") + builtin(f, "pow"),
+                        builtin(v, "normalize") + builtin(f, "normalize"),
+                        v.branches + f.branches, f.shortest_path_ops, f.longest_path_ops);
+        }
+    }
+    if (options.json) {
+        std::printf("%s\n", json.dump(2).c_str());
+    }
+    return invalid == 0 ? kExitOk : kExitShaderErrors;
+}
+
+void AddCommonFlags(CLI::App* command, CompilerOptions& options) {
+    command->add_option("--config", options.config, "variant matrix file")
+            ->capture_default_str();
+    command->add_flag("--json", options.json, "print JSON instead of text");
+    command->add_option("--max-variants", options.max_variants,
+                        "refuse matrices with more combinations than this (default: the file's "
+                        "max_variants, 4096)");
+}
+
+}  // namespace
+
+void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
+    // The options live as long as the app: CLI11 writes into them during parse.
+    static CompilerOptions expand_options;
+    static CompilerOptions validate_options;
+    static CompilerOptions stats_options;
+
+    CLI::App* expand = app.add_subcommand(
+            "expand", "List every variant and every pruned combination with the rule that "
+                      "pruned it; with --out, write each variant's driver-ready sources");
+    AddCommonFlags(expand, expand_options);
+    expand->add_option("--out", expand_options.out,
+                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json");
+    expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });
+
+    CLI::App* validate = app.add_subcommand(
+            "validate", "Validate every variant with glslang (stages and linked programs), or "
+                        "the shader FILEs given");
+    AddCommonFlags(validate, validate_options);
+    validate->add_option("files", validate_options.files,
+                         "plain shader files (.vert/.vsh, .frag/.fsh); a vertex and a fragment "
+                         "file given together are linked");
+    validate->add_option("--stage", validate_options.stage, "stage of plain files: vert or frag")
+            ->check(CLI::IsMember({"vert", "frag", "vertex", "fragment"}));
+    validate->add_option("-D,--define", validate_options.defines, "define for plain files");
+    validate->add_option("-j,--jobs", validate_options.jobs, "worker threads (default: cores)");
+    validate->add_option("--out", validate_options.out, "folder to write manifest.json into");
+    validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
+
+    CLI::App* stats = app.add_subcommand(
+            "stats", "Static cost of every variant from glslang's tree: ops, texture samples, "
+                     "pow/normalize calls, branches, shortest and longest fragment path");
+    AddCommonFlags(stats, stats_options);
+    stats->add_option("-j,--jobs", stats_options.jobs, "worker threads (default: cores)");
+    stats->callback([&exit_code] { exit_code = RunStats(stats_options); });
+}
+
+}  // namespace tidepool::cli

@@ -1,0 +1,81 @@
+// Validation of variants (and of plain shader files) as GLSL ES with glslang used as a library:
+// every distinct stage program is parsed once, every program is linked.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "tidepool/Diagnostic.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/StaticCost.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+
+namespace tidepool {
+
+/// How to validate.
+struct ValidationOptions {
+    int jobs = 1;                                       // worker threads
+    std::vector<GlslTarget> targets = {GlslTarget::kEs100};
+};
+
+/// One distinct stage program: all variants whose preprocessed stage source is identical share it.
+struct StageProgram {
+    Stage stage = Stage::kVertex;
+    GlslTarget target = GlslTarget::kEs100;
+    std::string file;                   // as the user named it
+    std::string hash;                   // 16 hex digits of a 64-bit FNV-1a over the preprocessed text
+    std::vector<std::string> defines;   // the defines of the first variant that produced it
+    std::vector<std::string> variants;  // ids of every variant that uses it
+    bool valid = false;
+    std::vector<Diagnostic> diagnostics;
+    StageCost cost;
+};
+
+/// The verdict on one variant for one target: both stages and the link.
+struct VariantVerdict {
+    Variant variant;
+    GlslTarget target = GlslTarget::kEs100;
+    std::string vertex_hash;
+    std::string fragment_hash;
+    bool valid = false;
+    std::vector<Diagnostic> diagnostics;  // stage and link messages, tagged with this variant's id
+};
+
+/// Everything validation found.
+struct ValidationReport {
+    std::vector<VariantVerdict> verdicts;      // in the order of the variants given, per target
+    std::vector<StageProgram> stage_programs;  // distinct programs, vertex and fragment
+    int stage_slots = 0;                       // variants × targets × 2 stages
+    int links = 0;                             // distinct (vertex, fragment) pairs linked
+    std::vector<Diagnostic> diagnostics;       // problems not tied to a variant (unreadable files)
+
+    /// How many stage slots reused a program another variant already had.
+    int SharedStageSlots() const { return stage_slots - static_cast<int>(stage_programs.size()); }
+    /// Number of verdicts that are invalid.
+    int InvalidCount() const;
+};
+
+/// Validates every variant of `config` for every target in `options`; stage errors and link
+/// errors become diagnostics at the user's file and line, tagged with the variant id. Fails only
+/// through its diagnostics (an unreadable shader file makes the variants using it invalid).
+ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
+                                  const ValidationOptions& options);
+
+/// A shader file named on the command line.
+struct ShaderFile {
+    std::string path;
+    Stage stage = Stage::kVertex;
+};
+
+/// Validates plain shader files: each is parsed (the GLSL ES version comes from its own `#version`
+/// line, 100 when it has none; a desktop version is an error) and, when a vertex and a fragment
+/// file are given, the two are linked. Each file is one "variant" named after the file.
+ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
+                                     const std::vector<std::string>& defines);
+
+/// The stage a file's extension implies (.vert/.vsh → vertex, .frag/.fsh → fragment); false when
+/// the extension says nothing.
+bool StageFromExtension(const std::string& path, Stage* stage);
+
+}  // namespace tidepool

@@ -1,0 +1,26 @@
+// The manifest: every variant with its defines, stage hashes, verdict, diagnostics and static
+// cost, as versioned JSON (schema "tidepool.manifest", version 1; README.md documents it).
+#pragma once
+
+#include <nlohmann/json.hpp>
+
+#include "tidepool/Diagnostic.h"
+#include "tidepool/GlslValidator.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+
+namespace tidepool {
+
+/// The schema name and version written into every manifest.
+inline constexpr const char* kManifestSchema = "tidepool.manifest";
+inline constexpr int kManifestVersion = 1;
+
+/// A diagnostic as a JSON object {severity, file, line, column, message, variant}.
+nlohmann::json ToJson(const Diagnostic& diagnostic);
+
+/// Builds the manifest; `validation` may be null (then verdicts and costs are left out, as for
+/// `tidepool expand`).
+nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult& expansion,
+                             const ValidationReport* validation);
+
+}  // namespace tidepool

@@ -1,0 +1,285 @@
+#include "GlslangSession.h"
+
+#include <algorithm>
+#include <mutex>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wsign-conversion"
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wpedantic"
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#pragma GCC diagnostic pop
+
+namespace tidepool {
+
+StageParse::StageParse() = default;
+StageParse::StageParse(StageParse&&) noexcept = default;
+StageParse& StageParse::operator=(StageParse&&) noexcept = default;
+StageParse::~StageParse() = default;
+
+void EnsureGlslangInitialized() {
+    // glslang's process-wide tables are built once and never torn down: worker threads may still
+    // use them when main returns, and FinalizeProcess would race with them.
+    static std::once_flag once;
+    std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+namespace {
+
+EShLanguage Language(Stage stage) {
+    return stage == Stage::kVertex ? EShLangVertex : EShLangFragment;
+}
+
+// What glslang is given for one stage: the text (with the version line possibly rewritten in
+// place, which keeps the line count), the preamble and the default version.
+struct PreparedStage {
+    std::string text;
+    std::string preamble;
+    int default_version = 100;
+    bool force_version = false;
+    std::vector<Diagnostic> diagnostics;  // a desktop #version, found before glslang runs
+};
+
+std::string Es300Preamble(Stage stage) {
+    if (stage == Stage::kVertex) {
+        return "#define attribute in\n#define varying out\n#define texture2D texture\n"
+               "#define textureCube texture\n";
+    }
+    return "#define varying in\n#define texture2D texture\n#define textureCube texture\n"
+           "out highp vec4 tp_FragColor;\n#define gl_FragColor tp_FragColor\n";
+}
+
+PreparedStage Prepare(const GlslangStageInput& input) {
+    PreparedStage prepared;
+    prepared.text = input.text;
+    const std::string version_line = FindVersionLine(input.text);
+    int version = 100;
+    bool es = true;
+    if (!version_line.empty()) {
+        std::istringstream words(version_line.substr(std::string("#version").size()));
+        std::string profile;
+        words >> version >> profile;
+        es = version == 100 || profile == "es";
+        if (!es) {
+            prepared.diagnostics.push_back(MakeError(
+                    input.file, 1, 1,
+                    fmt::format("'{}' is desktop GLSL; tidepool validates GLSL ES: use "
+                                "'#version 100' or '#version 300 es'",
+                                version_line)));
+        }
+    }
+    if (input.target == GlslTarget::kEs300 && version == 100) {
+        // Compile the 1.00 file as 3.00 without moving a line: rewrite its first line in place.
+        if (!version_line.empty()) {
+            const std::size_t end = prepared.text.find('\n');
+            prepared.text.replace(0, end, "#version 300 es");
+        } else {
+            prepared.force_version = true;
+        }
+        prepared.default_version = 300;
+        prepared.preamble = Es300Preamble(input.stage);
+    } else {
+        prepared.default_version = version;
+    }
+    prepared.preamble += DefinePreamble(input.defines);
+    return prepared;
+}
+
+
+std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
+                                             const PreparedStage& prepared,
+                                             const char* const* text) {
+    auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
+    shader->setStrings(text, 1);
+    shader->setPreamble(prepared.preamble.c_str());
+    return shader;
+}
+
+constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
+
+}  // namespace
+
+PreprocessResult PreprocessStage(const GlslangStageInput& input) {
+    EnsureGlslangInitialized();
+    const PreparedStage prepared = Prepare(input);
+    const char* text = prepared.text.c_str();
+    auto shader = MakeShader(input, prepared, &text);
+    PreprocessResult result;
+    glslang::TShader::ForbidIncluder includer;
+    result.ok = shader->preprocess(GetDefaultResources(), prepared.default_version, EEsProfile,
+                                   prepared.force_version, false, kMessages, &result.text,
+                                   includer);
+    return result;
+}
+
+StageParse ParseStage(const GlslangStageInput& input) {
+    EnsureGlslangInitialized();
+    StageParse result;
+    const PreparedStage prepared = Prepare(input);
+    if (HasErrors(prepared.diagnostics)) {
+        result.diagnostics = prepared.diagnostics;
+        return result;
+    }
+    const char* text = prepared.text.c_str();
+    result.shader = MakeShader(input, prepared, &text);
+    result.ok = result.shader->parse(GetDefaultResources(), prepared.default_version, EEsProfile,
+                                     prepared.force_version, false, kMessages);
+    result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
+    if (result.ok) {
+        result.intermediate = result.shader->getIntermediate();
+    }
+    return result;
+}
+
+namespace {
+
+LinkResult Link(const std::vector<const GlslangStageInput*>& inputs) {
+    LinkResult result;
+    std::vector<StageParse> parses;
+    glslang::TProgram program;
+    for (const GlslangStageInput* input : inputs) {
+        parses.push_back(ParseStage(*input));
+        if (!parses.back().ok) {
+            result.diagnostics = parses.back().diagnostics;
+            return result;
+        }
+        program.addShader(parses.back().shader.get());
+    }
+    result.ok = program.link(kMessages);
+    // Link messages carry no line; attach them to the stage they name, else the last file.
+    const std::string log = program.getInfoLog();
+    for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
+        if (d.line == 0 && inputs.size() == 2 && d.message.find("vertex stage") != std::string::npos &&
+            d.message.find("fragment") == std::string::npos) {
+            d.file = inputs.front()->file;
+        }
+        result.diagnostics.push_back(std::move(d));
+    }
+    if (!result.ok && !HasErrors(result.diagnostics)) {
+        result.diagnostics.push_back(
+                MakeError(inputs.back()->file, 0, 0, "link failed (glslang gave no message)"));
+    }
+    return result;
+}
+
+}  // namespace
+
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment) {
+    EnsureGlslangInitialized();
+    return Link({&vertex, &fragment});
+}
+
+LinkResult LinkSingleStage(const GlslangStageInput& input) {
+    EnsureGlslangInitialized();
+    return Link({&input});
+}
+
+namespace {
+
+std::string_view TrimView(std::string_view text) {
+    const std::size_t begin = text.find_first_not_of(" \t\r");
+    if (begin == std::string_view::npos) {
+        return {};
+    }
+    return text.substr(begin, text.find_last_not_of(" \t\r") - begin + 1);
+}
+
+std::vector<std::string> SplitLines(const std::string& text) {
+    std::vector<std::string> lines;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+        lines.push_back(line);
+    }
+    return lines;
+}
+
+// glslang names a column nowhere in its log; the quoted token at the start of most messages
+// ('foo' : undeclared identifier) is searched for on the reported line instead.
+int ColumnOfToken(const std::string& message, const std::vector<std::string>& source_lines,
+                  int line) {
+    if (line <= 0 || static_cast<std::size_t>(line) > source_lines.size() || message.empty() ||
+        message.front() != '\'') {
+        return 0;
+    }
+    const std::size_t close = message.find('\'', 1);
+    if (close == std::string::npos || close == 1) {
+        return 0;
+    }
+    const std::string token = message.substr(1, close - 1);
+    const std::string& text = source_lines[static_cast<std::size_t>(line) - 1];
+    const std::size_t at = text.find(token);
+    return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
+}
+
+}  // namespace
+
+std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::string& file,
+                                        const std::string& source) {
+    static const std::pair<std::string_view, Severity> kPrefixes[] = {
+            {"ERROR: ", Severity::kError},           {"INTERNAL ERROR: ", Severity::kError},
+            {"UNIMPLEMENTED: ", Severity::kError},   {"WARNING: ", Severity::kWarning},
+            {"NOTE: ", Severity::kNote},
+    };
+    const std::vector<std::string> source_lines = SplitLines(source);
+    std::vector<Diagnostic> diagnostics;
+    for (const std::string& raw : SplitLines(log)) {
+        std::string_view line = TrimView(raw);
+        if (line.empty()) {
+            continue;
+        }
+        const auto prefix = std::find_if(std::begin(kPrefixes), std::end(kPrefixes),
+                                         [&](const auto& p) { return line.rfind(p.first, 0) == 0; });
+        if (prefix == std::end(kPrefixes)) {
+            // A continuation line (link logs list the clashing declarations below the message).
+            if (!diagnostics.empty()) {
+                diagnostics.back().message += fmt::format("; {}", line);
+            }
+            continue;
+        }
+        std::string_view rest = line.substr(prefix->first.size());
+        // glslang's closing summary repeats what the messages already said.
+        if (rest.find("compilation errors.") != std::string_view::npos ||
+            rest.find("compilation warnings.") != std::string_view::npos) {
+            continue;
+        }
+        // Without cascading errors glslang stops at the first error; the notes it then adds
+        // ("compilation terminated", "missing #endif" of the block it stopped in) are not the
+        // user's mistakes.
+        if (rest.find("compilation terminated") != std::string_view::npos ||
+            (HasErrors(diagnostics) && rest.find("missing #endif") != std::string_view::npos)) {
+            continue;
+        }
+        Diagnostic d;
+        d.severity = prefix->second;
+        d.file = file;
+        // Location form "<string>:<line>: message", where <string> is 0 for the user's file.
+        const std::size_t first_colon = rest.find(':');
+        if (first_colon != std::string_view::npos) {
+            const std::size_t second_colon = rest.find(':', first_colon + 1);
+            const std::string_view string_part = rest.substr(0, first_colon);
+            const std::string_view line_part =
+                    second_colon == std::string_view::npos
+                            ? std::string_view()
+                            : rest.substr(first_colon + 1, second_colon - first_colon - 1);
+            const bool numeric = !string_part.empty() && !line_part.empty() &&
+                                 string_part.find_first_not_of("0123456789") ==
+                                         std::string_view::npos &&
+                                 line_part.find_first_not_of("0123456789") == std::string_view::npos;
+            if (numeric) {
+                d.line = std::stoi(std::string(line_part));
+                rest = TrimView(rest.substr(second_colon + 1));
+            }
+        }
+        d.message = std::string(rest);
+        d.column = ColumnOfToken(d.message, source_lines, d.line);
+        diagnostics.push_back(std::move(d));
+    }
+    return diagnostics;
+}
+
+}  // namespace tidepool

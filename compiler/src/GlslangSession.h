@@ -1,0 +1,76 @@
+// The one place that talks to glslang: process initialisation, preprocessing, parsing and
+// linking, with glslang's text log turned into Diagnostics. Private to the compiler library.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tidepool/Diagnostic.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+
+namespace glslang {
+class TShader;
+class TIntermediate;
+}  // namespace glslang
+
+namespace tidepool {
+
+/// One stage as the user wrote it plus what to compile it with. With no target, the file's own
+/// `#version` decides (GLSL ES only); with a target, a `#version 100` file is compiled for it.
+struct GlslangStageInput {
+    std::string file;
+    const std::string& text;
+    Stage stage;
+    std::optional<GlslTarget> target;
+    const std::vector<std::string>& defines;
+};
+
+/// The preprocessed text of a stage (defines applied, comments and inactive blocks gone).
+struct PreprocessResult {
+    bool ok = false;
+    std::string text;
+};
+
+/// A parsed stage; `intermediate` lives as long as this object.
+struct StageParse {
+    StageParse();
+    StageParse(StageParse&&) noexcept;
+    StageParse& operator=(StageParse&&) noexcept;
+    ~StageParse();
+
+    bool ok = false;
+    std::vector<Diagnostic> diagnostics;
+    std::unique_ptr<glslang::TShader> shader;
+    const glslang::TIntermediate* intermediate = nullptr;
+};
+
+/// The outcome of a link.
+struct LinkResult {
+    bool ok = false;
+    std::vector<Diagnostic> diagnostics;
+};
+
+/// Initialises glslang once per process (thread-safe); every function below calls it.
+void EnsureGlslangInitialized();
+
+/// Runs glslang's preprocessor only; fails when the preprocessor reports an error.
+PreprocessResult PreprocessStage(const GlslangStageInput& input);
+
+/// Parses one stage with the defines as glslang's preamble; desktop GLSL is an error.
+StageParse ParseStage(const GlslangStageInput& input);
+
+/// Parses both stages again and links them into one program (all link-time checks).
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment);
+
+/// Links a program of one stage, for link-time errors that need no second stage.
+LinkResult LinkSingleStage(const GlslangStageInput& input);
+
+/// Turns a glslang info log into Diagnostics for `file`; `source` supplies columns (the first
+/// place on the line where the quoted token of the message appears).
+std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::string& file,
+                                        const std::string& source);
+
+}  // namespace tidepool

@@ -1,0 +1,624 @@
+// Loading variants.yaml: yaml-cpp is wrapped here so that no exception leaves the library and
+// every position becomes a 1-based file:line:col.
+#include "tidepool/VariantConfig.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+
+namespace tidepool {
+
+std::string VersionDirective(GlslTarget target) {
+    return target == GlslTarget::kEs300 ? "#version 300 es" : "#version 100";
+}
+
+std::string TargetName(GlslTarget target) {
+    return target == GlslTarget::kEs300 ? "300es" : "100";
+}
+
+std::string Axis::DefineFor(std::string_view value) const {
+    std::string define = name + "_";
+    for (char c : value) {
+        define += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    }
+    return define;
+}
+
+std::string Rule::Describe() const {
+    auto join = [](const std::vector<std::string>& names) {
+        return fmt::format("{}", fmt::join(names, ", "));
+    };
+    switch (kind) {
+        case RuleKind::kRequires:
+            return fmt::format("{} requires {}", subject, join(others));
+        case RuleKind::kExcludes:
+            return fmt::format("{} excludes {}", subject, join(others));
+        case RuleKind::kExcludeCombination:
+            return fmt::format("excluded combination {}", join(others));
+    }
+    return {};
+}
+
+std::vector<std::string> ProgramConfig::AllDefines() const {
+    std::vector<std::string> names;
+    for (const Feature& feature : features) {
+        names.push_back(feature.name);
+    }
+    for (const Axis& axis : axes) {
+        for (const std::string& value : axis.values) {
+            names.push_back(axis.DefineFor(value));
+        }
+    }
+    return names;
+}
+
+const ProgramConfig* VariantConfig::FindProgram(std::string_view name) const {
+    auto it = std::find_if(programs.begin(), programs.end(),
+                           [&](const ProgramConfig& p) { return p.name == name; });
+    return it == programs.end() ? nullptr : &*it;
+}
+
+const Preset* VariantConfig::FindPreset(std::string_view name) const {
+    auto it = std::find_if(presets.begin(), presets.end(),
+                           [&](const Preset& p) { return p.name == name; });
+    return it == presets.end() ? nullptr : &*it;
+}
+
+std::filesystem::path VariantConfig::Resolve(const std::string& shader_path) const {
+    std::filesystem::path p(shader_path);
+    return p.is_absolute() ? p : base_dir / p;
+}
+
+bool IsValidDefineName(std::string_view name) {
+    if (name.empty()) {
+        return false;
+    }
+    auto is_start = [](char c) { return std::isalpha(static_cast<unsigned char>(c)) || c == '_'; };
+    auto is_rest = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    if (!is_start(name.front()) || !std::all_of(name.begin(), name.end(), is_rest)) {
+        return false;
+    }
+    return name.substr(0, 3) != "GL_" && name.find("__") == std::string_view::npos;
+}
+
+namespace {
+
+// Collects diagnostics while walking the YAML tree; every check reports and carries on, so the
+// user sees all problems of a file at once.
+class ConfigParser {
+public:
+    ConfigParser(std::string file_name, std::filesystem::path base_dir)
+        : file_(std::move(file_name)), base_dir_(std::move(base_dir)) {}
+
+    ConfigResult Parse(std::string_view text);
+
+private:
+    SourceLocation At(const YAML::Node& node) const {
+        const YAML::Mark mark = node.Mark();
+        // yaml-cpp marks are 0-based; a null mark (-1) means the node was not in the file.
+        return SourceLocation{file_, mark.line >= 0 ? mark.line + 1 : 0,
+                              mark.column >= 0 ? mark.column + 1 : 0};
+    }
+    void Error(const SourceLocation& where, std::string message) {
+        diagnostics_.push_back(MakeError(where.file, where.line, where.column, std::move(message)));
+    }
+    void Error(const YAML::Node& node, std::string message) { Error(At(node), std::move(message)); }
+
+    bool ExpectMap(const YAML::Node& node, std::string_view what);
+    bool ExpectScalar(const YAML::Node& node, std::string_view what);
+    void CheckKeys(const YAML::Node& map, std::string_view what,
+                   const std::vector<std::string>& allowed);
+    void CheckDuplicateKeys(const YAML::Node& node);
+    std::vector<std::string> NameList(const YAML::Node& node, std::string_view what);
+    bool ReadBool(const YAML::Node& node, std::string_view what, bool fallback);
+    int ReadInt(const YAML::Node& node, std::string_view what, int fallback);
+
+    void ParseTargets(const YAML::Node& node, VariantConfig& config);
+    ProgramConfig ParseProgram(const std::string& name, const YAML::Node& key,
+                               const YAML::Node& node);
+    void ParseRule(const YAML::Node& node, ProgramConfig& program);
+    Preset ParsePreset(const std::string& name, const YAML::Node& key, const YAML::Node& node);
+    PassOptions ParsePasses(const YAML::Node& node);
+    void CheckProgram(const ProgramConfig& program);
+    void CheckPreset(const Preset& preset, const VariantConfig& config);
+
+    std::string file_;
+    std::filesystem::path base_dir_;
+    std::vector<Diagnostic> diagnostics_;
+};
+
+bool ConfigParser::ExpectMap(const YAML::Node& node, std::string_view what) {
+    if (node.IsMap()) {
+        return true;
+    }
+    Error(node, fmt::format("{} must be a mapping of keys to values", what));
+    return false;
+}
+
+bool ConfigParser::ExpectScalar(const YAML::Node& node, std::string_view what) {
+    if (node.IsScalar()) {
+        return true;
+    }
+    Error(node, fmt::format("{} must be a single value, not a list or mapping", what));
+    return false;
+}
+
+void ConfigParser::CheckKeys(const YAML::Node& map, std::string_view what,
+                             const std::vector<std::string>& allowed) {
+    for (auto it = map.begin(); it != map.end(); ++it) {
+        const std::string key = it->first.Scalar();
+        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+            Error(it->first, fmt::format("unknown key '{}' in {}; allowed keys: {}", key, what,
+                                         fmt::join(allowed, ", ")));
+        }
+    }
+}
+
+// yaml-cpp keeps only the first of two equal keys when looked up, silently; iteration still sees
+// both, so every mapping in the file is checked here once.
+void ConfigParser::CheckDuplicateKeys(const YAML::Node& node) {
+    if (node.IsMap()) {
+        std::map<std::string, YAML::Node> seen;
+        for (auto it = node.begin(); it != node.end(); ++it) {
+            const std::string key = it->first.Scalar();
+            auto [pos, inserted] = seen.emplace(key, it->first);
+            if (!inserted) {
+                const SourceLocation first = At(pos->second);
+                Error(it->first, fmt::format("duplicate key '{}' (first written at line {}); "
+                                             "remove one of them",
+                                             key, first.line));
+            }
+            CheckDuplicateKeys(it->second);
+        }
+    } else if (node.IsSequence()) {
+        for (const YAML::Node& child : node) {
+            CheckDuplicateKeys(child);
+        }
+    }
+}
+
+std::vector<std::string> ConfigParser::NameList(const YAML::Node& node, std::string_view what) {
+    std::vector<std::string> names;
+    if (!node || node.IsNull()) {
+        return names;
+    }
+    if (node.IsScalar()) {
+        names.push_back(node.Scalar());
+        return names;
+    }
+    if (!node.IsSequence()) {
+        Error(node, fmt::format("{} must be a name or a list of names", what));
+        return names;
+    }
+    for (const YAML::Node& item : node) {
+        if (ExpectScalar(item, what)) {
+            names.push_back(item.Scalar());
+        }
+    }
+    return names;
+}
+
+bool ConfigParser::ReadBool(const YAML::Node& node, std::string_view what, bool fallback) {
+    bool value = fallback;
+    if (!node.IsScalar() || !YAML::convert<bool>::decode(node, value)) {
+        Error(node, fmt::format("{} must be true or false", what));
+        return fallback;
+    }
+    return value;
+}
+
+int ConfigParser::ReadInt(const YAML::Node& node, std::string_view what, int fallback) {
+    int value = fallback;
+    if (!node.IsScalar() || !YAML::convert<int>::decode(node, value)) {
+        Error(node, fmt::format("{} must be an integer", what));
+        return fallback;
+    }
+    return value;
+}
+
+void ConfigParser::ParseTargets(const YAML::Node& node, VariantConfig& config) {
+    for (const std::string& name : NameList(node, "targets")) {
+        if (name == "100") {
+            config.targets.push_back(GlslTarget::kEs100);
+        } else if (name == "300" || name == "300es" || name == "300 es") {
+            config.targets.push_back(GlslTarget::kEs300);
+        } else {
+            Error(node, fmt::format("unknown GLSL ES target '{}'; use 100 or 300", name));
+        }
+    }
+    if (std::find(config.targets.begin(), config.targets.end(), GlslTarget::kEs100) ==
+        config.targets.end()) {
+        Error(node, "targets must include 100 (GLSL ES 1.00 is the shaders' own language)");
+    }
+}
+
+ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::Node& key,
+                                         const YAML::Node& node) {
+    ProgramConfig program;
+    program.name = name;
+    program.where = At(key);
+    if (!IsValidDefineName(name)) {
+        Error(key, fmt::format("program name '{}' must be an identifier (letters, digits, _)",
+                               name));
+    }
+    const std::string what = fmt::format("program '{}'", name);
+    if (!ExpectMap(node, what)) {
+        return program;
+    }
+    CheckKeys(node, what, {"vertex", "fragment", "features", "axes", "rules", "description"});
+    for (const char* stage : {"vertex", "fragment"}) {
+        const YAML::Node path = node[stage];
+        if (!path) {
+            Error(key, fmt::format("{} has no '{}' shader file; add `{}: shaders/FILE`", what,
+                                   stage, stage));
+            continue;
+        }
+        if (!ExpectScalar(path, fmt::format("{} '{}'", what, stage))) {
+            continue;
+        }
+        const std::string value = path.Scalar();
+        (std::string_view(stage) == "vertex" ? program.vertex_path : program.fragment_path) = value;
+        std::error_code ec;
+        std::filesystem::path resolved(value);
+        if (!resolved.is_absolute()) {
+            resolved = base_dir_ / resolved;
+        }
+        if (!std::filesystem::is_regular_file(resolved, ec)) {
+            Error(path, fmt::format("{} shader file '{}' not found (looked for {}); paths are "
+                                    "relative to the folder of {}",
+                                    stage, value, resolved.string(), file_));
+        }
+    }
+
+    std::set<std::string> declared;
+    auto declare = [&](const std::string& define, const YAML::Node& where) {
+        if (!IsValidDefineName(define)) {
+            Error(where, fmt::format("'{}' is not a valid GLSL define name: use letters, digits "
+                                     "and _, start with a letter, no 'GL_' prefix and no '__'",
+                                     define));
+        }
+        if (!declared.insert(define).second) {
+            Error(where, fmt::format("feature '{}' is declared twice in {}; remove one", define,
+                                     what));
+        }
+    };
+    if (const YAML::Node features = node["features"]) {
+        if (!features.IsSequence()) {
+            Error(features, "features must be a list of define names");
+        } else {
+            for (const YAML::Node& item : features) {
+                if (ExpectScalar(item, "a feature")) {
+                    declare(item.Scalar(), item);
+                    program.features.push_back(Feature{item.Scalar(), At(item)});
+                }
+            }
+        }
+    }
+    if (const YAML::Node axes = node["axes"]) {
+        if (ExpectMap(axes, "axes")) {
+            for (auto it = axes.begin(); it != axes.end(); ++it) {
+                Axis axis;
+                axis.name = it->first.Scalar();
+                axis.where = At(it->first);
+                axis.values = NameList(it->second, fmt::format("axis '{}'", axis.name));
+                if (axis.values.size() < 2) {
+                    Error(it->first, fmt::format("axis '{}' needs at least two values (a single "
+                                                 "value is a feature that is always on)",
+                                                 axis.name));
+                }
+                std::set<std::string> values;
+                for (const std::string& value : axis.values) {
+                    if (!values.insert(value).second) {
+                        Error(it->second, fmt::format("axis '{}' lists value '{}' twice",
+                                                      axis.name, value));
+                        continue;
+                    }
+                    declare(axis.DefineFor(value), it->second);
+                }
+                program.axes.push_back(std::move(axis));
+            }
+        }
+    }
+    if (const YAML::Node rules = node["rules"]) {
+        if (!rules.IsSequence()) {
+            Error(rules, "rules must be a list");
+        } else {
+            for (const YAML::Node& rule : rules) {
+                ParseRule(rule, program);
+            }
+        }
+    }
+    return program;
+}
+
+void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
+    if (!ExpectMap(node, "a rule")) {
+        return;
+    }
+    CheckKeys(node, "a rule", {"if", "requires", "excludes", "exclude", "reason"});
+    Rule rule;
+    rule.where = At(node);
+    if (node["reason"] && ExpectScalar(node["reason"], "reason")) {
+        rule.reason = node["reason"].Scalar();
+    }
+    const bool has_if = static_cast<bool>(node["if"]);
+    const bool has_requires = static_cast<bool>(node["requires"]);
+    const bool has_excludes = static_cast<bool>(node["excludes"]);
+    const bool has_exclude = static_cast<bool>(node["exclude"]);
+    if (has_exclude && !has_if && !has_requires && !has_excludes) {
+        rule.kind = RuleKind::kExcludeCombination;
+        rule.others = NameList(node["exclude"], "exclude");
+        if (rule.others.size() < 2) {
+            Error(node, "an `exclude:` combination needs at least two defines; to forbid one "
+                        "define, remove it from the features");
+        }
+    } else if (has_if && (has_requires != has_excludes) && !has_exclude) {
+        if (ExpectScalar(node["if"], "if")) {
+            rule.subject = node["if"].Scalar();
+        }
+        rule.kind = has_requires ? RuleKind::kRequires : RuleKind::kExcludes;
+        rule.others = NameList(has_requires ? node["requires"] : node["excludes"],
+                               has_requires ? "requires" : "excludes");
+    } else {
+        Error(node, "a rule is either `{if: A, requires: [B]}`, `{if: A, excludes: [B]}` or "
+                    "`{exclude: [A, B]}`");
+        return;
+    }
+    const std::vector<std::string> known = program.AllDefines();
+    auto check = [&](const std::string& name) {
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            Error(node, fmt::format("rule names unknown feature '{}' in program '{}'; known: {}",
+                                    name, program.name, fmt::join(known, ", ")));
+        }
+    };
+    if (!rule.subject.empty()) {
+        check(rule.subject);
+    }
+    for (const std::string& name : rule.others) {
+        check(name);
+    }
+    program.rules.push_back(std::move(rule));
+}
+
+PassOptions ConfigParser::ParsePasses(const YAML::Node& node) {
+    PassOptions passes;
+    if (!ExpectMap(node, "passes")) {
+        return passes;
+    }
+    CheckKeys(node, "passes", {"reflection_size", "low_res_water", "clip", "culling"});
+    if (node["reflection_size"]) {
+        passes.reflection_size = ReadInt(node["reflection_size"], "reflection_size", 256);
+        const int size = passes.reflection_size;
+        if (size < 1 || size > 4096 || (size & (size - 1)) != 0) {
+            Error(node["reflection_size"], "reflection_size must be a power of two from 1 to 4096");
+        }
+    }
+    if (node["low_res_water"]) {
+        passes.low_res_water = ReadBool(node["low_res_water"], "low_res_water", false);
+    }
+    if (node["culling"]) {
+        passes.culling = ReadBool(node["culling"], "culling", true);
+    }
+    if (node["clip"] && ExpectScalar(node["clip"], "clip")) {
+        passes.clip = node["clip"].Scalar();
+        if (passes.clip != "oblique" && passes.clip != "discard") {
+            Error(node["clip"], fmt::format("clip must be 'oblique' or 'discard', not '{}'",
+                                            passes.clip));
+        }
+    }
+    return passes;
+}
+
+Preset ConfigParser::ParsePreset(const std::string& name, const YAML::Node& key,
+                                 const YAML::Node& node) {
+    Preset preset;
+    preset.name = name;
+    preset.where = At(key);
+    const std::string what = fmt::format("preset '{}'", name);
+    if (!ExpectMap(node, what)) {
+        return preset;
+    }
+    CheckKeys(node, what, {"program", "defines", "runtime_features", "description", "passes"});
+    if (!node["program"]) {
+        Error(key, fmt::format("{} has no 'program'", what));
+    } else if (ExpectScalar(node["program"], "program")) {
+        preset.program = node["program"].Scalar();
+    }
+    preset.defines = NameList(node["defines"], "defines");
+    preset.runtime_features = NameList(node["runtime_features"], "runtime_features");
+    for (const std::string& feature : preset.runtime_features) {
+        if (!IsValidDefineName(feature)) {
+            Error(node["runtime_features"],
+                  fmt::format("'{}' is not a valid feature name in runtime_features", feature));
+        }
+    }
+    if (node["description"] && ExpectScalar(node["description"], "description")) {
+        preset.description = node["description"].Scalar();
+    }
+    if (node["passes"]) {
+        preset.passes = ParsePasses(node["passes"]);
+    }
+    return preset;
+}
+
+void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config) {
+    const ProgramConfig* program = config.FindProgram(preset.program);
+    if (program == nullptr) {
+        if (!preset.program.empty()) {
+            Error(preset.where, fmt::format("preset '{}' names unknown program '{}'", preset.name,
+                                            preset.program));
+        }
+        return;
+    }
+    const std::vector<std::string> known = program->AllDefines();
+    bool all_known = true;
+    for (const std::string& define : preset.defines) {
+        if (std::find(known.begin(), known.end(), define) == known.end()) {
+            Error(preset.where, fmt::format("preset '{}' uses unknown define '{}' of program "
+                                            "'{}'; known: {}",
+                                            preset.name, define, program->name,
+                                            fmt::join(known, ", ")));
+            all_known = false;
+        }
+    }
+    if (!all_known) {
+        return;
+    }
+    // A preset must name a variant that exists: every axis set exactly once, no rule broken.
+    for (const Axis& axis : program->axes) {
+        int chosen = 0;
+        for (const std::string& value : axis.values) {
+            chosen += static_cast<int>(std::count(preset.defines.begin(), preset.defines.end(),
+                                                  axis.DefineFor(value)));
+        }
+        if (chosen != 1) {
+            Error(preset.where, fmt::format("preset '{}' must choose exactly one value of axis "
+                                            "'{}' (it chose {})",
+                                            preset.name, axis.name, chosen));
+        }
+    }
+    std::vector<std::string> sorted = preset.defines;
+    std::sort(sorted.begin(), sorted.end());
+    for (const Rule& rule : program->rules) {
+        auto has = [&](const std::string& d) {
+            return std::binary_search(sorted.begin(), sorted.end(), d);
+        };
+        bool broken = false;
+        switch (rule.kind) {
+            case RuleKind::kRequires:
+                broken = has(rule.subject) && !std::all_of(rule.others.begin(),
+                                                           rule.others.end(), has);
+                break;
+            case RuleKind::kExcludes:
+                broken = has(rule.subject) && std::any_of(rule.others.begin(),
+                                                          rule.others.end(), has);
+                break;
+            case RuleKind::kExcludeCombination:
+                broken = std::all_of(rule.others.begin(), rule.others.end(), has);
+                break;
+        }
+        if (broken) {
+            Error(preset.where, fmt::format("preset '{}' breaks rule '{}' (line {}); change its "
+                                            "defines",
+                                            preset.name, rule.Describe(), rule.where.line));
+        }
+    }
+}
+
+ConfigResult ConfigParser::Parse(std::string_view text) {
+    ConfigResult result;
+    YAML::Node root;
+    try {
+        root = YAML::Load(std::string(text));
+    } catch (const YAML::Exception& e) {
+        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
+              fmt::format("malformed YAML: {}", e.msg));
+        result.diagnostics = std::move(diagnostics_);
+        return result;
+    }
+    if (!root || root.IsNull()) {
+        Error(SourceLocation{file_, 1, 1}, "the file is empty; it needs at least `programs:` "
+                                           "(see the variants.yaml schema in README.md)");
+        result.diagnostics = std::move(diagnostics_);
+        return result;
+    }
+    if (!root.IsMap()) {
+        Error(root, "the top level must be a mapping with keys such as `programs:`");
+        result.diagnostics = std::move(diagnostics_);
+        return result;
+    }
+    // yaml-cpp throws on conversions and odd trees; nothing may escape the library.
+    try {
+        CheckDuplicateKeys(root);
+        CheckKeys(root, "the top level", {"version", "targets", "max_variants", "programs",
+                                          "presets", "description"});
+        VariantConfig config;
+        config.path = file_;
+        config.base_dir = base_dir_;
+        if (root["version"]) {
+            config.version = ReadInt(root["version"], "version", 1);
+            if (config.version != 1) {
+                Error(root["version"], fmt::format("unsupported schema version {}; this "
+                                                   "tidepool reads version 1",
+                                                   config.version));
+            }
+        }
+        if (root["max_variants"]) {
+            const int limit = ReadInt(root["max_variants"], "max_variants", 4096);
+            if (limit < 1) {
+                Error(root["max_variants"], "max_variants must be at least 1");
+            } else {
+                config.max_variants = static_cast<std::uint64_t>(limit);
+            }
+        }
+        if (root["targets"]) {
+            ParseTargets(root["targets"], config);
+        } else {
+            config.targets.push_back(GlslTarget::kEs100);
+        }
+        const YAML::Node programs = root["programs"];
+        if (!programs) {
+            Error(SourceLocation{file_, 1, 1}, "no `programs:` section; declare at least one "
+                                               "program with its vertex and fragment files");
+        } else if (ExpectMap(programs, "programs")) {
+            for (auto it = programs.begin(); it != programs.end(); ++it) {
+                config.programs.push_back(ParseProgram(it->first.Scalar(), it->first, it->second));
+            }
+            if (config.programs.empty()) {
+                Error(programs, "`programs:` is empty; declare at least one program");
+            }
+        }
+        if (const YAML::Node presets = root["presets"]) {
+            if (ExpectMap(presets, "presets")) {
+                for (auto it = presets.begin(); it != presets.end(); ++it) {
+                    config.presets.push_back(
+                            ParsePreset(it->first.Scalar(), it->first, it->second));
+                }
+            }
+        }
+        for (const Preset& preset : config.presets) {
+            CheckPreset(preset, config);
+        }
+        if (!HasErrors(diagnostics_)) {
+            result.config = std::move(config);
+        }
+    } catch (const YAML::Exception& e) {
+        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
+                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
+              fmt::format("unexpected YAML structure: {}", e.msg));
+        result.config.reset();
+    }
+    result.diagnostics = std::move(diagnostics_);
+    return result;
+}
+
+}  // namespace
+
+ConfigResult ParseVariantConfig(std::string_view text, const std::string& file_name,
+                                const std::filesystem::path& base_dir) {
+    ConfigParser parser(file_name, base_dir);
+    return parser.Parse(text);
+}
+
+ConfigResult LoadVariantConfig(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        ConfigResult result;
+        result.diagnostics.push_back(MakeError(
+                path.string(), 0, 0,
+                "cannot read the configuration file; check the path or pass --config PATH"));
+        return result;
+    }
+    std::ostringstream text;
+    text << in.rdbuf();
+    return ParseVariantConfig(text.str(), path.string(), path.parent_path());
+}
+
+}  // namespace tidepool

@@ -1,0 +1,14 @@
+#!/usr/bin/env bash
+# Configures and builds one flavour of tidepool: `release` (build/release) or `sanitize`
+# (build/sanitize: Debug with AddressSanitizer + UndefinedBehaviorSanitizer).
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+flavour="${1:-release}"
+jobs="$(nproc)"
+case "$flavour" in
+  release)  dir="$root/build/release";  flags=(-DCMAKE_BUILD_TYPE=Release -DTIDEPOOL_WERROR=ON) ;;
+  sanitize) dir="$root/build/sanitize"; flags=(-DCMAKE_BUILD_TYPE=Debug -DTIDEPOOL_SANITIZE=ON -DTIDEPOOL_WERROR=ON -DTIDEPOOL_BUILD_BENCH=OFF) ;;
+  *) echo "usage: $0 [release|sanitize]" >&2; exit 2 ;;
+esac
+cmake -S "$root" -B "$dir" -G Ninja "${flags[@]}" >/dev/null
+cmake --build "$dir" -j "$jobs"

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# The test command (README.md): installs dependencies, builds, runs every test (unit, gl, cli),
+# then runs the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+"$root/scripts/install-deps.sh"
+
+echo "== release build"
+"$root/scripts/build.sh" release
+echo "== tests (release): unit, gl, cli"
+# llvmpipe's thread count is fixed so that GL results do not depend on the machine's core count.
+export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
+(cd "$root/build/release" && ctest --output-on-failure -j 2 --timeout 600)
+
+echo "== sanitizer build (ASan + UBSan)"
+"$root/scripts/build.sh" sanitize
+echo "== unit tests under ASan + UBSan"
+(cd "$root/build/sanitize" && ctest --output-on-failure -j 2 -L unit --timeout 600)

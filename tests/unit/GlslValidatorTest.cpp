@@ -1,0 +1,231 @@
+#include "tidepool/GlslValidator.h"
+
+#include <gtest/gtest.h>
+
+#include "TempDir.h"
+
+namespace tidepool {
+namespace {
+
+using testing::TempDir;
+
+constexpr const char* kVertex =
+        "#version 100\n"
+        "attribute highp vec4 inVertex;\n"
+        "varying mediump vec2 uv;\n"
+        "void main() {\n"
+        "    uv = inVertex.xy;\n"
+        "    gl_Position = inVertex;\n"
+        "}\n";
+
+// ENABLE_FOG is tested only here, so the vertex program must be shared across it.
+constexpr const char* kFragment =
+        "#version 100\n"
+        "precision mediump float;\n"
+        "varying mediump vec2 uv;\n"
+        "uniform lowp vec3 FogColour;\n"
+        "void main() {\n"
+        "    vec3 colour = vec3(uv, 0.5);\n"
+        "#ifdef ENABLE_FOG\n"
+        "    colour = mix(colour, FogColour, 0.5);\n"
+        "#endif\n"
+        "    gl_FragColor = vec4(colour, 1.0);\n"
+        "}\n";
+
+VariantConfig ConfigIn(const TempDir& dir, const std::string& vertex_name,
+                       const std::string& fragment_name, std::vector<std::string> features) {
+    VariantConfig config;
+    config.path = "v.yaml";
+    config.base_dir = dir.Path();
+    config.targets = {GlslTarget::kEs100};
+    ProgramConfig program;
+    program.name = "p";
+    program.vertex_path = vertex_name;
+    program.fragment_path = fragment_name;
+    for (std::string& f : features) {
+        program.features.push_back(Feature{std::move(f), {}});
+    }
+    config.programs.push_back(program);
+    return config;
+}
+
+ValidationReport ValidateAll(const VariantConfig& config, int jobs = 1) {
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{});
+    ValidationOptions options;
+    options.jobs = jobs;
+    options.targets = config.targets;
+    return ValidateVariants(config, expansion.variants, options);
+}
+
+std::vector<std::string> Formatted(const std::vector<Diagnostic>& diagnostics) {
+    std::vector<std::string> out;
+    for (const Diagnostic& d : diagnostics) {
+        out.push_back(FormatDiagnostic(d));
+    }
+    return out;
+}
+
+TEST(GlslValidatorTest, DefineOnlyTheFragmentTestsSharesOneVertexProgram) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kFragment);
+    const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG"}));
+    ASSERT_EQ(report.verdicts.size(), 2U);
+    EXPECT_TRUE(report.verdicts[0].valid);
+    EXPECT_TRUE(report.verdicts[1].valid);
+    EXPECT_EQ(report.verdicts[0].vertex_hash, report.verdicts[1].vertex_hash);
+    EXPECT_NE(report.verdicts[0].fragment_hash, report.verdicts[1].fragment_hash);
+    EXPECT_EQ(report.stage_slots, 4);
+    EXPECT_EQ(report.stage_programs.size(), 3U);  // one vertex, two fragment
+    EXPECT_EQ(report.SharedStageSlots(), 1);
+    EXPECT_EQ(report.links, 2);
+}
+
+TEST(GlslValidatorTest, DefineNoStageTestsSharesBothStages) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kFragment);
+    const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"UNUSED"}));
+    ASSERT_EQ(report.verdicts.size(), 2U);
+    EXPECT_EQ(report.stage_programs.size(), 2U);
+    EXPECT_EQ(report.links, 1);
+}
+
+TEST(GlslValidatorTest, ErrorInDefineGatedBlockIsReportedAtTheUsersLineWithVariantId) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    std::string broken = kFragment;
+    broken.replace(broken.find("FogColour, 0.5"), 9, "FogColor ");  // line 8
+    dir.Write("a.fsh", broken);
+    const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG"}));
+    ASSERT_EQ(report.verdicts.size(), 2U);
+    EXPECT_TRUE(report.verdicts[0].valid);  // p: (the block is inactive)
+    EXPECT_FALSE(report.verdicts[1].valid);
+    EXPECT_EQ(Formatted(report.verdicts[1].diagnostics),
+              std::vector<std::string>{
+                      "a.fsh:8:26: error: 'FogColor' : undeclared identifier [p:ENABLE_FOG]"});
+}
+
+TEST(GlslValidatorTest, ValidationWithSeveralJobsGivesTheSameVerdicts) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kFragment);
+    const VariantConfig config = ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG", "X", "Y"});
+    const ValidationReport one = ValidateAll(config, 1);
+    const ValidationReport four = ValidateAll(config, 4);
+    ASSERT_EQ(one.verdicts.size(), four.verdicts.size());
+    for (std::size_t i = 0; i < one.verdicts.size(); ++i) {
+        EXPECT_EQ(one.verdicts[i].variant.Id(), four.verdicts[i].variant.Id());
+        EXPECT_EQ(one.verdicts[i].fragment_hash, four.verdicts[i].fragment_hash);
+        EXPECT_EQ(one.verdicts[i].valid, four.verdicts[i].valid);
+    }
+}
+
+TEST(GlslValidatorTest, InterfaceMismatchIsCaughtOnlyAtLinkTime) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    // Same uniform, different precision in the two stages: each stage alone is valid.
+    dir.Write("u.vsh",
+              "#version 100\nuniform highp float k;\nattribute vec4 p;\n"
+              "void main() { gl_Position = p * k; }\n");
+    dir.Write("u.fsh",
+              "#version 100\nprecision mediump float;\nuniform mediump float k;\n"
+              "void main() { gl_FragColor = vec4(k); }\n");
+    const ValidationReport report = ValidateAll(ConfigIn(dir, "u.vsh", "u.fsh", {}));
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_TRUE(report.stage_programs[0].valid);
+    EXPECT_TRUE(report.stage_programs[1].valid);
+    EXPECT_FALSE(report.verdicts[0].valid);
+    ASSERT_FALSE(report.verdicts[0].diagnostics.empty());
+    EXPECT_NE(report.verdicts[0].diagnostics[0].message.find("Precision qualifiers must match"),
+              std::string::npos);
+}
+
+TEST(GlslValidatorTest, RecursionInOneStageIsCaughtByTheLink) {
+    TempDir dir;
+    dir.Write("r.frag",
+              "#version 100\nprecision mediump float;\nfloat g(float x);\n"
+              "float f(float x) { return g(x); }\nfloat g(float x) { return f(x); }\n"
+              "void main() { gl_FragColor = vec4(f(1.0)); }\n");
+    const ValidationReport report =
+            ValidateShaderFiles({ShaderFile{(dir.Path() / "r.frag").string(), Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_TRUE(report.stage_programs[0].valid);
+    EXPECT_FALSE(report.verdicts[0].valid);
+    ASSERT_FALSE(report.verdicts[0].diagnostics.empty());
+    EXPECT_NE(report.verdicts[0].diagnostics[0].message.find("Recursion detected"),
+              std::string::npos);
+}
+
+TEST(GlslValidatorTest, DesktopVersionIsAnErrorAtLineOne) {
+    TempDir dir;
+    const std::string path = dir.Write("d.frag", "#version 330\nvoid main() {}\n").string();
+    const ValidationReport report = ValidateShaderFiles({ShaderFile{path, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_FALSE(report.verdicts[0].valid);
+    EXPECT_EQ(Formatted(report.verdicts[0].diagnostics),
+              std::vector<std::string>{path + ":1:1: error: '#version 330' is desktop GLSL; "
+                                              "tidepool validates GLSL ES: use '#version 100' or "
+                                              "'#version 300 es'"});
+}
+
+TEST(GlslValidatorTest, PlainVertexAndFragmentFilesAreLinkedTogether) {
+    TempDir dir;
+    const std::string vs = dir.Write("a.vert", kVertex).string();
+    // The fragment reads a varying the vertex stage declares with another type.
+    const std::string fs = dir.Write("a.frag",
+                                     "#version 100\nprecision mediump float;\n"
+                                     "varying mediump vec3 uv;\n"
+                                     "void main() { gl_FragColor = vec4(uv, 1.0); }\n")
+                                   .string();
+    const ValidationReport report = ValidateShaderFiles(
+            {ShaderFile{vs, Stage::kVertex}, ShaderFile{fs, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_FALSE(report.verdicts[0].valid);
+    EXPECT_EQ(report.links, 1);
+}
+
+TEST(GlslValidatorTest, Es300TargetCompilesThe100SourceUnchangedAndKeepsLines) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    std::string broken = kFragment;
+    broken.replace(broken.find("FogColour, 0.5"), 9, "FogColor ");
+    dir.Write("a.fsh", broken);
+    VariantConfig config = ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG"});
+    config.targets = {GlslTarget::kEs100, GlslTarget::kEs300};
+    const ValidationReport report = ValidateAll(config);
+    ASSERT_EQ(report.verdicts.size(), 4U);
+    EXPECT_TRUE(report.verdicts[2].valid) << (report.verdicts[2].diagnostics.empty()
+                                                      ? ""
+                                                      : report.verdicts[2].diagnostics[0].message);
+    EXPECT_EQ(report.verdicts[3].target, GlslTarget::kEs300);
+    ASSERT_FALSE(report.verdicts[3].diagnostics.empty());
+    EXPECT_EQ(report.verdicts[3].diagnostics[0].line, 8);
+}
+
+TEST(GlslValidatorTest, StageFromExtensionKnowsTheCommonSuffixes) {
+    Stage stage = Stage::kFragment;
+    EXPECT_TRUE(StageFromExtension("x/water.vsh", &stage));
+    EXPECT_EQ(stage, Stage::kVertex);
+    EXPECT_TRUE(StageFromExtension("a.frag", &stage));
+    EXPECT_EQ(stage, Stage::kFragment);
+    EXPECT_FALSE(StageFromExtension("a.glsl", &stage));
+}
+
+TEST(GlslValidatorTest, EveryDefaultVariantIsValid) {
+    const ConfigResult config =
+            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+    ASSERT_TRUE(config.config.has_value());
+    const ValidationReport report = ValidateAll(*config.config, 2);
+    EXPECT_GT(report.verdicts.size(), 50U);
+    for (const VariantVerdict& verdict : report.verdicts) {
+        EXPECT_TRUE(verdict.valid) << verdict.variant.Id() << ": "
+                                   << (verdict.diagnostics.empty()
+                                               ? std::string("?")
+                                               : FormatDiagnostic(verdict.diagnostics[0]));
+    }
+    EXPECT_GT(report.SharedStageSlots(), 0);
+}
+
+}  // namespace
+}  // namespace tidepool
