@@ -102,6 +102,29 @@ std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
 
 constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
 
+// GLSL ES 1.00 is checked against the built-in limits every ES 2.0 context has (the GLSL ES 1.00
+// section 7.4 minimums), not glslang's defaults, which are desktop-sized (32 draw buffers, 80
+// texture units): with those, gl_FragData[1] was accepted although an ES 2.0 driver without
+// GL_EXT_draw_buffers rejects it (dEQP-GLES2.functional.shaders.fragdata.invalid_assign_to_1).
+const TBuiltInResource* ResourcesFor(int version) {
+    if (version != 100) {
+        return GetDefaultResources();
+    }
+    static const TBuiltInResource es100 = [] {
+        TBuiltInResource resources = *GetDefaultResources();
+        resources.maxVertexAttribs = 8;
+        resources.maxVertexUniformVectors = 128;
+        resources.maxVaryingVectors = 8;
+        resources.maxVertexTextureImageUnits = 0;
+        resources.maxCombinedTextureImageUnits = 8;
+        resources.maxTextureImageUnits = 8;
+        resources.maxFragmentUniformVectors = 16;
+        resources.maxDrawBuffers = 1;
+        return resources;
+    }();
+    return &es100;
+}
+
 }  // namespace
 
 PreprocessResult PreprocessStage(const GlslangStageInput& input) {
@@ -111,9 +134,9 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     auto shader = MakeShader(input, prepared, &text);
     PreprocessResult result;
     glslang::TShader::ForbidIncluder includer;
-    result.ok = shader->preprocess(GetDefaultResources(), prepared.default_version, EEsProfile,
-                                   prepared.force_version, false, kMessages, &result.text,
-                                   includer);
+    result.ok = shader->preprocess(ResourcesFor(prepared.default_version),
+                                   prepared.default_version, EEsProfile, prepared.force_version,
+                                   false, kMessages, &result.text, includer);
     return result;
 }
 
@@ -127,8 +150,9 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     const char* text = prepared.text.c_str();
     result.shader = MakeShader(input, prepared, &text);
-    result.ok = result.shader->parse(GetDefaultResources(), prepared.default_version, EEsProfile,
-                                     prepared.force_version, false, kMessages);
+    result.ok = result.shader->parse(ResourcesFor(prepared.default_version),
+                                     prepared.default_version, EEsProfile, prepared.force_version,
+                                     false, kMessages);
     result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();

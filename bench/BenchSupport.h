@@ -1,0 +1,120 @@
+// What every benchmark needs and none of the libraries should offer: a wall clock, order
+// statistics over repeated runs, a parallel loop, and a description of the machine and build, so
+// that every printed figure can be read next to the conditions it was measured under.
+#pragma once
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <ctime>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+namespace tidepool::bench {
+
+/// Seconds since an arbitrary fixed point, from a monotonic clock (never jumps with NTP).
+inline double NowSeconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+}
+
+/// CPU seconds this process has used so far, all threads together (user + system), so that a
+/// figure can be checked against wall time when other work shares the machine.
+inline double ProcessCpuSeconds() {
+    timespec now{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
+}
+
+/// The 1-, 5- and 15-minute load averages as /proc/loadavg states them ("unknown" elsewhere):
+/// wall-clock figures taken on a loaded machine are slower than the code is.
+inline std::string LoadAverage() {
+    std::ifstream in("/proc/loadavg");
+    std::string one;
+    std::string five;
+    std::string fifteen;
+    if (!(in >> one >> five >> fifteen)) {
+        return "unknown";
+    }
+    return one + " " + five + " " + fifteen;
+}
+
+/// The hardware threads the OS reports; 1 when it cannot tell, so callers never start 0 workers.
+inline int HardwareThreads() {
+    const unsigned threads = std::thread::hardware_concurrency();
+    return threads == 0 ? 1 : static_cast<int>(threads);
+}
+
+/// The median of `samples` (mean of the two middle values for an even count); 0 when empty.
+inline double Median(std::vector<double> samples) {
+    if (samples.empty()) {
+        return 0.0;
+    }
+    std::sort(samples.begin(), samples.end());
+    const std::size_t mid = samples.size() / 2;
+    return samples.size() % 2 == 1 ? samples[mid] : (samples[mid - 1] + samples[mid]) / 2.0;
+}
+
+/// The smallest of `samples`; 0 when empty.
+inline double Min(const std::vector<double>& samples) {
+    return samples.empty() ? 0.0 : *std::min_element(samples.begin(), samples.end());
+}
+
+/// Runs fn(i) for every i in [0, count) on up to `jobs` threads, each index exactly once, in no
+/// particular order; fn must only touch state owned by index i.
+template <typename Fn>
+void ParallelFor(std::size_t count, int jobs, Fn fn) {
+    const std::size_t workers =
+            std::min<std::size_t>(count, static_cast<std::size_t>(std::max(jobs, 1)));
+    if (workers <= 1) {
+        for (std::size_t i = 0; i < count; ++i) {
+            fn(i);
+        }
+        return;
+    }
+    std::atomic<std::size_t> next{0};
+    std::vector<std::thread> threads;
+    threads.reserve(workers);
+    for (std::size_t w = 0; w < workers; ++w) {
+        threads.emplace_back([&] {
+            for (std::size_t i = next++; i < count; i = next++) {
+                fn(i);
+            }
+        });
+    }
+    for (std::thread& thread : threads) {
+        thread.join();
+    }
+}
+
+/// One line naming the machine and how this binary was built. The build type is inferred from
+/// the compiler's own macros because CMake does not pass CMAKE_BUILD_TYPE into the code:
+/// __OPTIMIZE__ means -O1 or higher, NDEBUG means asserts are off (Release, RelWithDebInfo).
+inline std::string DescribeEnvironment() {
+#if defined(__OPTIMIZE__)
+    constexpr const char* optimised = "optimised";
+#else
+    constexpr const char* optimised = "NOT optimised (-O0: figures are not representative)";
+#endif
+#if defined(NDEBUG)
+    constexpr const char* asserts = "asserts off";
+#else
+    constexpr const char* asserts = "asserts on";
+#endif
+#if defined(__clang__)
+    const std::string compiler = fmt::format("clang {}", __clang_version__);
+#elif defined(__GNUC__)
+    const std::string compiler = fmt::format("gcc {}", __VERSION__);
+#else
+    const std::string compiler = "unknown compiler";
+#endif
+    return fmt::format("{} hardware threads, load average {}; build: {}, {}, {}",
+                       HardwareThreads(), LoadAverage(), optimised, asserts, compiler);
+}
+
+}  // namespace tidepool::bench

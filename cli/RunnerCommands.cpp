@@ -1,0 +1,329 @@
+// `tidepool render` and `tidepool bench`: flags → run options → RunRender → print → exit code.
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Results.h"
+
+namespace tidepool::cli {
+namespace {
+
+struct RunnerOptions {
+    std::string command;
+    std::string config = "variants.yaml";
+    std::vector<std::string> filters;
+    std::vector<std::string> presets;
+    std::vector<std::string> views;
+    std::string size = "640x480";
+    int frames = 3;
+    int rounds = 3;
+    int warmup = 2;
+    std::string backend = "auto";
+    int threads = 2;
+    std::string out = "reports/out/render";
+    bool json = false;
+    bool no_images = false;
+};
+
+void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
+    for (const Diagnostic& d : diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+}
+
+std::string CpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) {
+                return line.substr(line.find_first_not_of(' ', colon + 1));
+            }
+        }
+    }
+    return "unknown";
+}
+
+std::string GitRevision(const std::filesystem::path& folder) {
+    const std::string command =
+        fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return "unknown";
+    }
+    char buffer[128] = {0};
+    std::string revision;
+    if (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
+        revision = buffer;
+    }
+    pclose(pipe);
+    while (!revision.empty() && (revision.back() == '\n' || revision.back() == '\r')) {
+        revision.pop_back();
+    }
+    return revision.empty() ? "unknown" : revision;
+}
+
+std::string FormatDuration(double seconds) {
+    const long total = static_cast<long>(seconds + 0.5);
+    return total >= 60 ? fmt::format("{}m{:02}s", total / 60, total % 60)
+                       : fmt::format("{}s", total);
+}
+
+bool ParseSize(const std::string& text, int* width, int* height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos) {
+        return false;
+    }
+    try {
+        std::size_t used = 0;
+        *width = std::stoi(text.substr(0, x), &used);
+        if (used != x) {
+            return false;
+        }
+        *height = std::stoi(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) {
+            return false;
+        }
+    } catch (const std::exception&) {
+        return false;
+    }
+    return *width > 0 && *height > 0 && *width <= 8192 && *height <= 8192;
+}
+
+int RunRunner(const RunnerOptions& options) {
+    using namespace tidepool::runner;
+    int width = 0;
+    int height = 0;
+    if (!ParseSize(options.size, &width, &height)) {
+        std::fprintf(stderr, "error: --size must be WxH with 1..8192 each, not '%s'\n",
+                     options.size.c_str());
+        return kExitUsage;
+    }
+    BackendKind backend = BackendKind::kAuto;
+    if (!ParseBackendKind(options.backend, &backend)) {
+        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
+                     options.backend.c_str());
+        return kExitUsage;
+    }
+    if (options.frames < 1 || options.rounds < 0 || options.warmup < 0 || options.threads < 0) {
+        std::fprintf(stderr, "error: --frames must be at least 1; --rounds, --warmup and "
+                             "--threads at least 0\n");
+        return kExitUsage;
+    }
+
+    ConfigResult loaded = LoadVariantConfig(options.config);
+    PrintDiagnostics(loaded.diagnostics);
+    if (!loaded.config) {
+        return kExitUsage;
+    }
+    const VariantConfig& config = *loaded.config;
+    ExpansionOptions expansion_options;
+    expansion_options.max_variants = config.max_variants;
+    const ExpansionResult expansion = ExpandVariants(config, expansion_options);
+    PrintDiagnostics(expansion.diagnostics);
+    if (HasErrors(expansion.diagnostics)) {
+        return kExitUsage;
+    }
+    const ConfigurationSet all = BuildDefaultConfigurations(config, expansion.variants);
+    const ConfigurationSet selected =
+        FilterConfigurations(all, ConfigurationFilter{options.filters, options.presets});
+    PrintDiagnostics(selected.diagnostics);
+    if (HasErrors(selected.diagnostics)) {
+        return kExitUsage;
+    }
+    if (selected.configurations.empty()) {
+        std::fprintf(stderr, "error: no configuration matches the --filter/--preset given\n");
+        return kExitUsage;
+    }
+    const std::vector<CameraView> default_views = DefaultViews();
+    std::vector<CameraView> views;
+    for (const std::string& name : options.views) {
+        const CameraView* view = FindView(default_views, name);
+        if (view == nullptr) {
+            std::string known;
+            for (const CameraView& v : default_views) {
+                known += (known.empty() ? "" : ", ") + v.name;
+            }
+            std::fprintf(stderr, "error: unknown view '%s'; the views are %s\n", name.c_str(),
+                         known.c_str());
+            return kExitUsage;
+        }
+        views.push_back(*view);
+    }
+    if (views.empty()) {
+        views = default_views;
+    }
+
+    // llvmpipe reads its thread count when the first context is created.
+    const std::string threads = std::to_string(options.threads);
+    setenv("LP_NUM_THREADS", threads.c_str(), 1);
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        return kExitEnvironment;
+    }
+
+    RunOptions run;
+    run.configurations = selected.configurations;
+    run.views = views;
+    run.settings.width = width;
+    run.settings.height = height;
+    run.warmup_frames = options.warmup;
+    run.rounds = options.rounds;
+    run.frames_per_round = options.frames;
+    run.out_dir = options.out;
+    run.write_images = !options.no_images;
+    run.config_path = options.config;
+    run.host.cpu_model = CpuModel();
+    run.host.lp_num_threads = threads;
+#ifdef NDEBUG
+    run.host.build_type = "release (NDEBUG)";
+#else
+    run.host.build_type = "debug (assertions on)";
+#endif
+    run.host.git_revision =
+        GitRevision(std::filesystem::absolute(options.config).parent_path());
+    run.host.command = options.command;
+
+    const GlEnvironment& gl = context.context->Environment();
+    std::fprintf(stderr, "%s: %zu configurations x %zu views at %dx%d on %s (%s, %s), "
+                         "LP_NUM_THREADS=%s\n",
+                 options.command.c_str(), run.configurations.size(), run.views.size(), width,
+                 height, gl.renderer.c_str(), gl.backend.c_str(), gl.version.c_str(),
+                 threads.c_str());
+    const bool terminal = isatty(fileno(stderr)) != 0;
+    std::string last_stage;
+    double last_print = -1e9;
+    auto progress = [&](const RunProgress& p) {
+        const double percent =
+            p.total > 0 ? 100.0 * static_cast<double>(p.done) / static_cast<double>(p.total) : 100;
+        if (terminal) {
+            std::fprintf(stderr, "\r\033[K[%3.0f%%] %-7s %s  ETA %s", percent, p.stage.c_str(),
+                         p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
+            std::fflush(stderr);
+        } else if (p.stage != last_stage || p.elapsed_seconds - last_print >= 10.0 ||
+                   p.done == p.total) {
+            // Plain lines for logs: on every stage change and at most every 10 seconds.
+            std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", percent,
+                         p.stage.c_str(), p.configuration.c_str(),
+                         FormatDuration(p.elapsed_seconds).c_str(),
+                         FormatDuration(p.eta_seconds).c_str());
+            last_print = p.elapsed_seconds;
+        }
+        last_stage = p.stage;
+    };
+    const RunResults results = RunRender(*context.context, config, run, progress);
+    if (terminal) {
+        std::fprintf(stderr, "\n");
+    }
+    PrintDiagnostics(results.diagnostics);
+
+    const nlohmann::json json = ResultsToJson(results);
+    const std::filesystem::path results_path = std::filesystem::path(options.out) / "results.json";
+    const std::string write_error = WriteJsonAtomically(results_path, json);
+    if (!write_error.empty()) {
+        std::fprintf(stderr, "error: %s\n", write_error.c_str());
+    }
+    if (options.json) {
+        std::printf("%s\n", json.dump(2).c_str());
+    }
+
+    int failed = 0;
+    for (const ConfigurationResult& r : results.configurations) {
+        failed += r.Ok() ? 0 : 1;
+        if (!options.json && r.Ok() && r.statistics.count > 0) {
+            std::printf("%-72s median %7.2f ms  95%% CI [%.2f, %.2f]  IQR %.2f  passes %d  "
+                        "draws %d\n",
+                        r.configuration.id.c_str(), r.statistics.median, r.statistics.ci_low,
+                        r.statistics.ci_high, r.statistics.iqr, r.passes, r.draw_calls);
+        } else if (!options.json && !r.Ok()) {
+            std::printf("%-72s FAILED%s%s\n", r.configuration.id.c_str(),
+                        r.verdict.valid ? "" : " (driver compile/link)",
+                        r.gl_error.empty() ? "" : (" (" + r.gl_error + ")").c_str());
+        }
+    }
+    for (const VerdictDisagreement& d : results.disagreements) {
+        std::fprintf(stderr, "note: glslang says %s, Mesa says %s: %s\n",
+                     d.glslang_valid ? "valid" : "invalid", d.mesa_valid ? "valid" : "invalid",
+                     d.variant.c_str());
+    }
+    std::fprintf(stderr, "%s: %zu configurations, %d failed, %zu glslang/Mesa disagreements, "
+                         "%s wall; results in %s\n",
+                 options.command.c_str(), results.configurations.size(), failed,
+                 results.disagreements.size(), FormatDuration(results.wall_seconds).c_str(),
+                 results_path.c_str());
+    if (!write_error.empty()) {
+        return kExitEnvironment;
+    }
+    return failed > 0 ? kExitShaderErrors : kExitOk;
+}
+
+void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
+    command->add_option("--config", options->config, "variants.yaml to read")
+        ->capture_default_str();
+    command->add_option("--filter", options->filters,
+                        "keep configurations whose id matches this glob (repeatable), e.g. "
+                        "'water:*ENABLE_FOG*'");
+    command->add_option("--preset", options->presets, "keep this preset (repeatable)");
+    command->add_option("--view", options->views,
+                        "render this view only (repeatable): three_quarter, grazing, high, shore");
+    command->add_option("--size", options->size, "render size WxH")->capture_default_str();
+    command->add_option("--frames", options->frames, "timed frames per configuration per round")
+        ->capture_default_str();
+    command->add_option("--rounds", options->rounds, "timing rounds")->capture_default_str();
+    command->add_option("--warmup", options->warmup, "untimed frames per configuration first")
+        ->capture_default_str();
+    command->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
+        ->capture_default_str();
+    command->add_option("--threads", options->threads,
+                        "llvmpipe threads (LP_NUM_THREADS; 0 renders on the calling thread)")
+        ->capture_default_str();
+    command->add_option("--out", options->out, "folder for results.json and images/")
+        ->capture_default_str();
+    command->add_flag("--json", options->json, "print the results JSON to stdout");
+    command->add_flag("--no-images", options->no_images, "do not write PNG files");
+}
+
+}  // namespace
+
+void RegisterRunnerCommands(CLI::App& app, int& exit_code) {
+    auto render_options = std::make_shared<RunnerOptions>();
+    render_options->command = "render";
+    CLI::App* render = app.add_subcommand(
+        "render", "render every configuration headless through Mesa: images at every view, the "
+                  "driver's verdict and a short timing");
+    AddRunnerFlags(render, render_options.get());
+    render->callback([render_options, &exit_code] { exit_code = RunRunner(*render_options); });
+
+    auto bench_options = std::make_shared<RunnerOptions>();
+    bench_options->command = "bench";
+    // Timing focus: more rounds and frames, images only where they are cheap to keep.
+    bench_options->warmup = 3;
+    bench_options->rounds = 10;
+    bench_options->frames = 5;
+    bench_options->views = {"three_quarter"};
+    bench_options->out = "reports/out/bench";
+    CLI::App* bench = app.add_subcommand(
+        "bench", "time configurations through Mesa: warm-up, then interleaved rounds; median, "
+                 "IQR and a 95% confidence interval of the median per configuration");
+    AddRunnerFlags(bench, bench_options.get());
+    bench->callback([bench_options, &exit_code] { exit_code = RunRunner(*bench_options); });
+}
+
+}  // namespace tidepool::cli

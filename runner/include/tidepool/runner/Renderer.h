@@ -1,0 +1,132 @@
+// The embedded water renderer: the whitepaper's passes (reflection with a mirrored camera,
+// refraction, optional low-resolution water, main) over the procedural scene, drawn with the
+// variant under test through the real GL driver.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "tidepool/Diagnostic.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+
+namespace tidepool::runner {
+
+/// Everything besides the configuration that moves a pixel or a figure; recorded in results.
+struct RenderSettings {
+    int width = 640;
+    int height = 480;
+    float animation_time = 2.0F;  // seconds; fixed so every run renders the same pixels
+    // Clip planes move this far (world units) "back along the plane's direction" (whitepaper
+    // 3.3.4): the reflection keeps a sliver below the water, the refraction a sliver above it,
+    // so distorted lookups at objects crossing the water find the object, not the clear colour.
+    float clip_plane_offset = 0.5F;
+    // Screen-space distortion in pixels per unit of bump normal. The demo's 100 is for its
+    // scaled mode; 100 unscaled smears the reflection over a fifth of a 640-wide screen, so the
+    // default is a quarter of it.
+    float wave_distortion = 25.0F;
+    glm::vec2 bump_scale0{1.0F / 24.0F, 1.0F / 24.0F};  // one normal-map tile per 24 units
+    glm::vec2 bump_scale1{1.0F / 15.0F, 1.0F / 15.0F};  // a second, finer layer
+    glm::vec2 bump_velocity0{0.013F, 0.021F};           // texture units per second
+    glm::vec2 bump_velocity1{-0.017F, 0.009F};
+    glm::vec3 fog_colour{0.85F, 0.95F, 1.0F};    // water fog (whitepaper demo)
+    float rcp_max_fog_distance = 1.0F / 2000.0F; // water fog reaches 1 at the far plane (demo)
+    glm::vec3 underwater_colour{0.05F, 0.15F, 0.10F};  // refraction clear + depth fog (demo)
+    float rcp_max_fog_depth = 1.0F / 80.0F;            // underwater depth fog (demo)
+    glm::vec4 water_colour{0.05F, 0.15F, 0.10F, 0.4F}; // ENABLE_WATER_COLOUR rgb and mix factor
+    int low_res_water_size = 256;   // low-resolution water texture (whitepaper: 256x256)
+    int sky_size = 128;             // sky cube-map face size
+    int normal_map_size = 256;      // water normal map size
+    int normalisation_cube_size = 32;
+    // Render the main pass into an RGBA32F target instead of RGBA8, so NaN and Inf survive to
+    // the read-back (needs GlEnvironment::float_render_target).
+    bool float_target = false;
+};
+
+/// The driver's verdict on one configuration's programs: its water program and the helper
+/// programs (skybox, model, water_composite variants) the configuration's passes need.
+struct DriverVerdict {
+    bool valid = false;               // every program compiled and linked
+    bool vertex_compiled = false;     // the water program's stages and link
+    bool fragment_compiled = false;
+    bool linked = false;
+    std::string vertex_log;           // Mesa's info logs of the water program, verbatim
+    std::string fragment_log;
+    std::string link_log;
+    std::vector<Diagnostic> diagnostics;  // parsed from every log, at the user's files
+};
+
+/// What one frame did.
+struct FrameReport {
+    int passes = 0;                        // render passes (framebuffer targets) drawn
+    int draw_calls = 0;                    // glDrawArrays/glDrawElements calls
+    std::vector<std::string> pass_names;   // "reflection", "refraction", "low_res_water", "main"
+    bool oblique_fallback = false;  // the oblique near plane was impossible; discard clipped
+    std::string gl_error;           // "" or e.g. "GL_INVALID_OPERATION after pass reflection"
+    double plan_seconds = 0;        // CPU time computing the frame (matrices, polygon, culling)
+};
+
+/// The renderer of one GL context: scene resources, render targets and compiled programs.
+class WaterRenderer {
+public:
+    /// Creates the scene, its textures and render targets on `context` (made current here),
+    /// reading shaders through `config`. Fails (null, `error` set) when a render target is
+    /// incomplete or float_target is asked for but the context cannot render to float.
+    static std::unique_ptr<WaterRenderer> Create(GlContext& context, const VariantConfig& config,
+                                                 const RenderSettings& settings,
+                                                 std::string* error);
+    ~WaterRenderer();
+    WaterRenderer(const WaterRenderer&) = delete;
+    WaterRenderer& operator=(const WaterRenderer&) = delete;
+
+    /// Compiles and links (once; cached) the programs `configuration` needs, in Mesa. Fails
+    /// through the verdict (valid false, diagnostics at the user's lines).
+    DriverVerdict Prepare(const RenderConfiguration& configuration);
+
+    /// Renders one frame of `configuration` from `view` into the main target. Call Prepare
+    /// first (it makes the context current; RenderFrame does not, to keep eglMakeCurrent out of
+    /// timed frames, so re-current the context if another was made current since); fails through FrameReport::gl_error (glGetError after each pass) or, when the
+    /// programs are invalid, by drawing nothing and saying so there.
+    FrameReport RenderFrame(const RenderConfiguration& configuration, const CameraView& view);
+
+    /// Blocks until GL has finished every submitted command (glFinish).
+    void Finish();
+
+    /// Reads the main target back as RGBA8 rows top to bottom (converted when it is float).
+    ImageRgba8 ReadImage();
+
+    /// Reads the main target back as RGBA floats, rows top to bottom; empty unless the settings
+    /// asked for float_target.
+    std::vector<float> ReadFloatPixels();
+
+    /// The settings the renderer was created with.
+    const RenderSettings& Settings() const;
+    /// The scene it draws.
+    const Scene& GetScene() const;
+
+    /// Backend state; defined under runner/src/gl/.
+    struct Impl;
+
+private:
+    explicit WaterRenderer(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
+/// The verdict of the driver on one shader stage.
+struct DriverStageResult {
+    bool compiled = false;
+    std::string log;
+};
+
+/// Compiles one stage's full driver source (as AssembleDriverSource writes it) in the context's
+/// GL driver and returns its status and info log; used to check Mesa's line numbers. Fails
+/// through `compiled` false.
+DriverStageResult CompileDriverStage(GlContext& context, Stage stage, const std::string& source);
+
+}  // namespace tidepool::runner

@@ -1,0 +1,92 @@
+// CPU-side geometry of the water renderer: the mirrored camera, the oblique near plane, the
+// "infinite" water polygon, screen-space texture coordinates and bump animation.
+//
+// Every function is a template on the scalar type and is instantiated for float and double, so a
+// precision study can run the same code at both precisions and compare. Conventions follow
+// shaders/INTERFACE.md: world space, y up, column-major GLM matrices, OpenGL clip space (clip z in
+// [-w, w]). A plane is (n, d) with n·x + d = 0; its kept (positive) side is n·x + d >= 0.
+#pragma once
+
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace tidepool::runner {
+
+/// Returns the matrix that reflects points about `plane` (the reflection pass multiplies the view
+/// matrix by it); the normal is normalised inside. Fails by returning the identity when the
+/// plane's normal has length zero. The result has determinant -1, so front faces flip.
+template <typename T>
+glm::mat<4, 4, T> MirrorMatrix(const glm::vec<4, T>& plane);
+
+/// A projection whose near plane may have been replaced by a user clip plane.
+template <typename T>
+struct ObliqueProjection {
+    glm::mat<4, 4, T> projection;  ///< the projection to use (unmodified when `applied` is false)
+    bool applied = false;          ///< true when the near plane is the clip plane
+};
+
+/// Replaces the near plane of an OpenGL-style `projection` by `clip_plane_view_space` (view space,
+/// kept side dot(plane, p) >= 0), after Lengyel, "Oblique View Frustum Depth Projection and
+/// Clipping" (2005), including the far-plane rescale the whitepaper describes. Points on the plane
+/// map to clip z = -w and the perspective row is untouched, so x, y and w are unchanged. Fails
+/// (returns the projection unmodified with applied = false) when the camera is not strictly on the
+/// clipped side (plane.w >= 0: the camera is on the kept side or on the plane) or when no part of
+/// the kept side is inside the frustum; the caller must then clip with discard instead.
+template <typename T>
+ObliqueProjection<T> ObliqueNearPlane(const glm::mat<4, 4, T>& projection,
+                                      const glm::vec<4, T>& clip_plane_view_space);
+
+/// Returns the convex polygon where `plane` cuts the view frustum of `view_projection` (between
+/// its near and far planes), in world space, ordered as a triangle fan counter-clockwise seen from
+/// the plane's positive side. Fails by returning an empty vector when the plane misses the
+/// frustum, only touches it along an edge or corner, has a zero normal, or `view_projection` is
+/// singular.
+template <typename T>
+std::vector<glm::vec<3, T>> InfinitePlanePolygon(const glm::mat<4, 4, T>& view_projection,
+                                                 const glm::vec<4, T>& plane);
+
+/// Returns the [0,1]^2 screen coordinate of `world` (gl_FragCoord.xy / window size for that
+/// point). Fails silently: a point behind the camera (clip w <= 0) gives a meaningless value.
+template <typename T>
+glm::vec<2, T> ProjectiveTexCoord(const glm::mat<4, 4, T>& view_projection,
+                                  const glm::vec<3, T>& world);
+
+/// Returns translation + velocity * dt, wrapped to its fractional part in [0, 1) when `wrap` is
+/// true (negative values wrap upwards: -0.25 gives 0.75), which keeps the shader's mediump bump
+/// coordinates accurate however long the animation runs. Never fails.
+template <typename T>
+glm::vec<2, T> AdvanceBumpTranslation(glm::vec<2, T> translation, glm::vec<2, T> velocity, T dt,
+                                      bool wrap);
+
+/// Transforms `plane` by the point transform `matrix` (multiplies by its inverse transpose), e.g.
+/// a world plane by the view matrix into view space. Fails silently (non-finite values) when
+/// `matrix` is singular.
+template <typename T>
+glm::vec<4, T> TransformPlane(const glm::mat<4, 4, T>& matrix, const glm::vec<4, T>& plane);
+
+// Defined in WaterMath.cpp for float and double only.
+extern template glm::mat<4, 4, float> MirrorMatrix(const glm::vec<4, float>&);
+extern template ObliqueProjection<float> ObliqueNearPlane(const glm::mat<4, 4, float>&,
+                                                          const glm::vec<4, float>&);
+extern template std::vector<glm::vec<3, float>> InfinitePlanePolygon(const glm::mat<4, 4, float>&,
+                                                                     const glm::vec<4, float>&);
+extern template glm::vec<2, float> ProjectiveTexCoord(const glm::mat<4, 4, float>&,
+                                                      const glm::vec<3, float>&);
+extern template glm::vec<2, float> AdvanceBumpTranslation(glm::vec<2, float>, glm::vec<2, float>,
+                                                          float, bool);
+extern template glm::vec<4, float> TransformPlane(const glm::mat<4, 4, float>&,
+                                                  const glm::vec<4, float>&);
+extern template glm::mat<4, 4, double> MirrorMatrix(const glm::vec<4, double>&);
+extern template ObliqueProjection<double> ObliqueNearPlane(const glm::mat<4, 4, double>&,
+                                                           const glm::vec<4, double>&);
+extern template std::vector<glm::vec<3, double>> InfinitePlanePolygon(const glm::mat<4, 4, double>&,
+                                                                      const glm::vec<4, double>&);
+extern template glm::vec<2, double> ProjectiveTexCoord(const glm::mat<4, 4, double>&,
+                                                       const glm::vec<3, double>&);
+extern template glm::vec<2, double> AdvanceBumpTranslation(glm::vec<2, double>, glm::vec<2, double>,
+                                                           double, bool);
+extern template glm::vec<4, double> TransformPlane(const glm::mat<4, 4, double>&,
+                                                   const glm::vec<4, double>&);
+
+}  // namespace tidepool::runner

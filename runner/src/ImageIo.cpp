@@ -1,0 +1,50 @@
+// libpng's simplified API (png_image), which reports errors through its struct, not longjmp.
+#include "tidepool/runner/ImageIo.h"
+
+#include <png.h>
+
+#include <system_error>
+
+namespace tidepool::runner {
+
+std::string WritePng(const std::filesystem::path& path, const ImageRgba8& image) {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) *
+                                    static_cast<std::size_t>(image.height) * 4) {
+        return "image has no pixels or a size that does not match its pixel count";
+    }
+    std::error_code error;
+    if (path.has_parent_path()) {
+        std::filesystem::create_directories(path.parent_path(), error);
+        if (error) {
+            return "cannot create " + path.parent_path().string() + ": " + error.message();
+        }
+    }
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    png.width = static_cast<png_uint_32>(image.width);
+    png.height = static_cast<png_uint_32>(image.height);
+    png.format = PNG_FORMAT_RGBA;
+    if (png_image_write_to_file(&png, path.c_str(), 0, image.pixels.data(), 0, nullptr) == 0) {
+        return "cannot write " + path.string() + ": " + png.message;
+    }
+    return "";
+}
+
+std::string ReadPng(const std::filesystem::path& path, ImageRgba8* image) {
+    png_image png{};
+    png.version = PNG_IMAGE_VERSION;
+    if (png_image_begin_read_from_file(&png, path.c_str()) == 0) {
+        return "cannot read " + path.string() + ": " + png.message;
+    }
+    png.format = PNG_FORMAT_RGBA;
+    image->width = static_cast<int>(png.width);
+    image->height = static_cast<int>(png.height);
+    image->pixels.assign(PNG_IMAGE_SIZE(png), 0);
+    if (png_image_finish_read(&png, nullptr, image->pixels.data(), 0, nullptr) == 0) {
+        return "cannot decode " + path.string() + ": " + png.message;
+    }
+    return "";
+}
+
+}  // namespace tidepool::runner

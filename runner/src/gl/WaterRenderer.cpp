@@ -1,0 +1,990 @@
+// The water renderer's GL side. A frame is planned on the CPU first (matrices, the water polygon,
+// clip planes, which meshes each pass draws), then executed with GL calls only, so the harness's
+// own cost per frame can be measured apart from the driver's.
+#include "tidepool/runner/Renderer.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include "gl/GlApi.h"
+#include "gl/GlContextImpl.h"
+#include "tidepool/runner/MesaInfoLog.h"
+#include "tidepool/runner/WaterMath.h"
+
+namespace tidepool::runner {
+namespace {
+
+// Attribute locations bound before linking, the same for every program.
+constexpr GLuint kAttribVertex = 0;
+constexpr GLuint kAttribNormal = 1;
+constexpr GLuint kAttribColour = 2;
+
+// Texture units.
+constexpr GLint kUnitReflection = 0;
+constexpr GLint kUnitRefraction = 1;
+constexpr GLint kUnitNormalMap = 2;
+constexpr GLint kUnitNormalisation = 3;
+constexpr GLint kUnitSky = 4;
+constexpr GLint kUnitLowRes = 5;
+
+// Upper bound on water polygon vertices: a plane cuts a frustum (6 faces) in at most 6 corners.
+constexpr int kMaxPolygonVertices = 8;
+
+// The water effects that water_uniform reads as uniform bools (INTERFACE.md).
+constexpr std::array<const char*, 9> kWaterEffects = {
+    "ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION", "ENABLE_REFRACTION",
+    "ENABLE_FRESNEL",    "FRESNEL_EXACT",           "NORMALISE_CUBEMAP",
+    "ENABLE_WATER_COLOUR", "ENABLE_ALPHA_BLEND",    "ENABLE_FOG"};
+
+std::string ErrorName(GLenum error) {
+    switch (error) {
+        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
+        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        default: return fmt::format("GL error 0x{:x}", error);
+    }
+}
+
+std::string ReadText(const std::filesystem::path& path, bool* ok) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    *ok = static_cast<bool>(in);
+    return text.str();
+}
+
+struct MeshBuffers {
+    GLuint vertices = 0;
+    GLuint indices = 0;
+    GLsizei index_count = 0;
+};
+
+struct CompiledProgram {
+    bool valid = false;
+    GLuint id = 0;
+    std::map<std::string, GLint, std::less<>> uniforms;
+    DriverVerdict verdict;
+};
+
+struct RenderTarget {
+    GLuint framebuffer = 0;
+    GLuint colour = 0;  // texture
+    GLuint depth = 0;   // renderbuffer, 0 when none
+    int width = 0;
+    int height = 0;
+};
+
+enum class PassKind { kReflection, kRefraction, kLowResWater, kMain };
+
+const char* PassName(PassKind kind) {
+    switch (kind) {
+        case PassKind::kReflection: return "reflection";
+        case PassKind::kRefraction: return "refraction";
+        case PassKind::kLowResWater: return "low_res_water";
+        case PassKind::kMain: return "main";
+    }
+    return "?";
+}
+
+// Everything one pass needs, computed on the CPU before any GL call.
+struct PassPlan {
+    PassKind kind = PassKind::kMain;
+    glm::mat4 view{1.0F};
+    glm::mat4 projection{1.0F};
+    bool mirrored = false;          // front faces flip (glFrontFace(GL_CW))
+    bool clip_discard = false;      // helper programs clip with CLIP_DISCARD
+    glm::vec4 clip_plane{0.0F};     // world space, kept side >= 0
+    glm::vec3 clear_colour{0.0F};
+    bool draw_sky = true;
+    bool fog_depth = false;         // model ENABLE_FOG_DEPTH
+    std::vector<int> meshes;        // -1 is the terrain, k >= 0 is scene.objects[k]
+    bool draw_water = false;
+};
+
+struct FramePlan {
+    glm::mat4 view_projection{1.0F};
+    glm::vec3 eye{0.0F};
+    std::vector<glm::vec3> polygon;
+    glm::vec2 bump_translation0{0.0F};
+    glm::vec2 bump_translation1{0.0F};
+    std::vector<PassPlan> passes;
+    bool oblique_fallback = false;
+};
+
+}  // namespace
+
+struct WaterRenderer::Impl {
+    GlContext* context = nullptr;
+    const gl::GlApi* gl = nullptr;
+    VariantConfig config;
+    RenderSettings settings;
+    Scene scene;
+
+    std::vector<MeshBuffers> meshes;  // terrain first, then scene.objects
+    MeshBuffers sky_cube;
+    GLuint water_vertices = 0;
+    GLuint sky_texture = 0;
+    GLuint normal_map = 0;
+    GLuint normalisation_cube = 0;
+
+    RenderTarget main;
+    RenderTarget low_res;
+    // Reflection and refraction targets per size, kept so that interleaved configurations with
+    // different reflection sizes never reallocate inside a timed frame.
+    std::map<int, std::pair<RenderTarget, RenderTarget>> pass_targets;
+    RenderTarget reflection;  // the current frame's targets (copies of handles in pass_targets)
+    RenderTarget refraction;
+
+    std::map<std::string, CompiledProgram> programs;  // by program id (variant id or helper id)
+    std::map<std::string, std::string> sources;        // shader file contents by path
+
+    ~Impl();
+    std::string Init();
+    GLuint UploadCube(const CubeMapImage& image);
+    MeshBuffers UploadMesh(const Mesh& mesh);
+    std::string MakeTarget(RenderTarget* target, int width, int height, GLenum internal_format,
+                           GLenum type, bool with_depth);
+    void FreeTarget(RenderTarget* target);
+    CompiledProgram& Program(const Variant& variant);
+    GLint Uniform(CompiledProgram& program, const char* name);
+    std::vector<std::string> HelperDefines(const RenderConfiguration& c, PassKind kind,
+                                           bool discard, const char* program) const;
+    FramePlan Plan(const RenderConfiguration& c, const CameraView& view) const;
+    void DrawSky(const PassPlan& pass, const RenderConfiguration& c, FrameReport* report);
+    void DrawModels(const PassPlan& pass, const RenderConfiguration& c, FrameReport* report);
+    void DrawWater(const FramePlan& plan, const RenderConfiguration& c, PassKind pass,
+                   FrameReport* report);
+    void BindWaterPolygon(const FramePlan& plan);
+};
+
+WaterRenderer::Impl::~Impl() {
+    if (gl == nullptr || context == nullptr || !context->MakeCurrent()) {
+        return;
+    }
+    for (auto& [id, program] : programs) {
+        if (program.id != 0) {
+            gl->glDeleteProgram(program.id);
+        }
+    }
+    for (MeshBuffers& mesh : meshes) {
+        gl->glDeleteBuffers(1, &mesh.vertices);
+        gl->glDeleteBuffers(1, &mesh.indices);
+    }
+    gl->glDeleteBuffers(1, &sky_cube.vertices);
+    gl->glDeleteBuffers(1, &sky_cube.indices);
+    gl->glDeleteBuffers(1, &water_vertices);
+    const GLuint textures[] = {sky_texture, normal_map, normalisation_cube};
+    gl->glDeleteTextures(3, textures);
+    for (RenderTarget* target : {&main, &low_res}) {
+        FreeTarget(target);
+    }
+    for (auto& [size, targets] : pass_targets) {
+        FreeTarget(&targets.first);
+        FreeTarget(&targets.second);
+    }
+}
+
+GLuint WaterRenderer::Impl::UploadCube(const CubeMapImage& image) {
+    GLuint texture = 0;
+    gl->glGenTextures(1, &texture);
+    gl->glBindTexture(GL_TEXTURE_CUBE_MAP, texture);
+    for (int face = 0; face < 6; ++face) {
+        const ImageRgba8& side = image.faces[static_cast<std::size_t>(face)];
+        gl->glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), 0, GL_RGBA,
+                         side.width, side.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+                         side.pixels.data());
+    }
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+MeshBuffers WaterRenderer::Impl::UploadMesh(const Mesh& mesh) {
+    std::vector<float> interleaved;
+    interleaved.reserve(mesh.positions.size() * 9);
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+        for (const glm::vec3* v : {&mesh.positions[i], &mesh.normals[i], &mesh.colours[i]}) {
+            interleaved.insert(interleaved.end(), {v->x, v->y, v->z});
+        }
+    }
+    MeshBuffers buffers;
+    gl->glGenBuffers(1, &buffers.vertices);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, buffers.vertices);
+    gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
+                     interleaved.data(), GL_STATIC_DRAW);
+    gl->glGenBuffers(1, &buffers.indices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers.indices);
+    gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint16_t)),
+                     mesh.indices.data(), GL_STATIC_DRAW);
+    buffers.index_count = static_cast<GLsizei>(mesh.indices.size());
+    return buffers;
+}
+
+std::string WaterRenderer::Impl::MakeTarget(RenderTarget* target, int width, int height,
+                                            GLenum internal_format, GLenum type,
+                                            bool with_depth) {
+    FreeTarget(target);
+    target->width = width;
+    target->height = height;
+    gl->glGenTextures(1, &target->colour);
+    gl->glBindTexture(GL_TEXTURE_2D, target->colour);
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, static_cast<GLint>(internal_format), width, height, 0,
+                     GL_RGBA, type, nullptr);
+    // Linear: the water samples these at screen coordinates that distortion moves off-centre.
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    gl->glGenFramebuffers(1, &target->framebuffer);
+    gl->glBindFramebuffer(GL_FRAMEBUFFER, target->framebuffer);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
+                               target->colour, 0);
+    if (with_depth) {
+        gl->glGenRenderbuffers(1, &target->depth);
+        gl->glBindRenderbuffer(GL_RENDERBUFFER, target->depth);
+        // 24-bit depth: the water polygon reaches the far plane (2000 units, near 1).
+        gl->glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+        gl->glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER,
+                                      target->depth);
+    }
+    const GLenum status = gl->glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (status != GL_FRAMEBUFFER_COMPLETE) {
+        return fmt::format("a {}x{} render target is incomplete (status 0x{:x})", width, height,
+                           status);
+    }
+    return "";
+}
+
+void WaterRenderer::Impl::FreeTarget(RenderTarget* target) {
+    if (target->framebuffer != 0) {
+        gl->glDeleteFramebuffers(1, &target->framebuffer);
+        gl->glDeleteTextures(1, &target->colour);
+    }
+    if (target->depth != 0) {
+        gl->glDeleteRenderbuffers(1, &target->depth);
+    }
+    *target = RenderTarget{};
+}
+
+std::string WaterRenderer::Impl::Init() {
+    if (settings.width < 1 || settings.height < 1) {
+        return fmt::format("the render size {}x{} is empty", settings.width, settings.height);
+    }
+    scene = BuildDefaultScene();
+    meshes.push_back(UploadMesh(scene.terrain));
+    for (const Mesh& object : scene.objects) {
+        meshes.push_back(UploadMesh(object));
+    }
+
+    // The unit cube around the camera for the sky; seen from inside, so drawn without culling.
+    const std::vector<float> cube = {-1, -1, -1, 1, -1, -1, 1, 1, -1, -1, 1, -1,
+                                     -1, -1, 1,  1, -1, 1,  1, 1, 1,  -1, 1, 1};
+    const std::vector<std::uint16_t> cube_indices = {0, 1, 2, 0, 2, 3, 4, 6, 5, 4, 7, 6,
+                                                     0, 4, 5, 0, 5, 1, 3, 2, 6, 3, 6, 7,
+                                                     0, 3, 7, 0, 7, 4, 1, 5, 6, 1, 6, 2};
+    gl->glGenBuffers(1, &sky_cube.vertices);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, sky_cube.vertices);
+    gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(cube.size() * sizeof(float)),
+                     cube.data(), GL_STATIC_DRAW);
+    gl->glGenBuffers(1, &sky_cube.indices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, sky_cube.indices);
+    gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(cube_indices.size() * sizeof(std::uint16_t)),
+                     cube_indices.data(), GL_STATIC_DRAW);
+    sky_cube.index_count = static_cast<GLsizei>(cube_indices.size());
+
+    gl->glGenBuffers(1, &water_vertices);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, water_vertices);
+    gl->glBufferData(GL_ARRAY_BUFFER, kMaxPolygonVertices * 3 * sizeof(float), nullptr,
+                     GL_DYNAMIC_DRAW);
+
+    gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    gl->glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    gl->glActiveTexture(GL_TEXTURE0 + kUnitSky);
+    sky_texture = UploadCube(BuildSkyCubeMap(settings.sky_size, scene.sun_direction));
+    gl->glActiveTexture(GL_TEXTURE0 + kUnitNormalisation);
+    normalisation_cube = UploadCube(BuildNormalisationCubeMap(settings.normalisation_cube_size));
+    gl->glActiveTexture(GL_TEXTURE0 + kUnitNormalMap);
+    const ImageRgba8 normals = BuildWaterNormalMap(settings.normal_map_size);
+    gl->glGenTextures(1, &normal_map);
+    gl->glBindTexture(GL_TEXTURE_2D, normal_map);
+    gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, normals.width, normals.height, 0, GL_RGBA,
+                     GL_UNSIGNED_BYTE, normals.pixels.data());
+    gl->glGenerateMipmap(GL_TEXTURE_2D);
+    // Mipmapped and repeating: far water samples the map at many texels per pixel.
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    gl->glActiveTexture(GL_TEXTURE0);
+
+    if (settings.float_target && !context->Environment().float_render_target) {
+        return "float_target needs a context that renders to RGBA32F (GLES 3 with "
+               "EXT_color_buffer_float, or desktop GL 3)";
+    }
+    std::string error = settings.float_target
+                            ? MakeTarget(&main, settings.width, settings.height, GL_RGBA32F,
+                                         GL_FLOAT, true)
+                            : MakeTarget(&main, settings.width, settings.height, GL_RGBA8,
+                                         GL_UNSIGNED_BYTE, true);
+    if (error.empty()) {
+        error = MakeTarget(&low_res, settings.low_res_water_size, settings.low_res_water_size,
+                           GL_RGBA8, GL_UNSIGNED_BYTE, false);
+    }
+    const GLenum gl_error = gl->glGetError();
+    if (error.empty() && gl_error != GL_NO_ERROR) {
+        error = ErrorName(gl_error) + " while creating the scene and render targets";
+    }
+    return error;
+}
+
+CompiledProgram& WaterRenderer::Impl::Program(const Variant& variant) {
+    const std::string key = variant.Id();
+    auto found = programs.find(key);
+    if (found != programs.end()) {
+        return found->second;
+    }
+    CompiledProgram& program = programs[key];
+    DriverVerdict& verdict = program.verdict;
+    const ProgramConfig* program_config = config.FindProgram(variant.program);
+    std::string vertex_path;
+    std::string fragment_path;
+    if (program_config != nullptr) {
+        vertex_path = program_config->vertex_path;
+        fragment_path = program_config->fragment_path;
+    } else {
+        // Helper programs need not be listed in variants.yaml; they live next to the others.
+        vertex_path = "shaders/" + variant.program + ".vsh";
+        fragment_path = "shaders/" + variant.program + ".fsh";
+    }
+    const std::vector<std::string>& defines = variant.defines;
+    GLuint shaders[2] = {0, 0};
+    bool compiled[2] = {false, false};
+    std::string* logs[2] = {&verdict.vertex_log, &verdict.fragment_log};
+    const std::string* paths[2] = {&vertex_path, &fragment_path};
+    for (int s = 0; s < 2; ++s) {
+        const Stage stage = s == 0 ? Stage::kVertex : Stage::kFragment;
+        const std::filesystem::path resolved = config.Resolve(*paths[s]);
+        bool read_ok = true;
+        auto cached = sources.find(resolved.string());
+        if (cached == sources.end()) {
+            cached = sources.emplace(resolved.string(), ReadText(resolved, &read_ok)).first;
+            if (!read_ok) {
+                sources.erase(cached);
+                verdict.diagnostics.push_back(Diagnostic{
+                    Severity::kError, *paths[s], 0, 0,
+                    fmt::format("cannot read {} for the GL driver", resolved.string()), key});
+                continue;
+            }
+        }
+        const std::string source =
+            AssembleDriverSource(cached->second, defines, stage, GlslTarget::kEs100);
+        shaders[s] = gl->glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER
+                                                                : GL_FRAGMENT_SHADER);
+        const char* text = source.c_str();
+        gl->glShaderSource(shaders[s], 1, &text, nullptr);
+        gl->glCompileShader(shaders[s]);
+        GLint status = GL_FALSE;
+        gl->glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &status);
+        GLint length = 0;
+        gl->glGetShaderiv(shaders[s], GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        gl->glGetShaderInfoLog(shaders[s], length, nullptr, log.data());
+        log.resize(std::strlen(log.c_str()));
+        *logs[s] = log;
+        compiled[s] = status == GL_TRUE;
+        for (Diagnostic& d : ParseMesaInfoLog(log, *paths[s], key, cached->second)) {
+            verdict.diagnostics.push_back(std::move(d));
+        }
+        if (!compiled[s] && !HasErrors(verdict.diagnostics)) {
+            verdict.diagnostics.push_back(
+                Diagnostic{Severity::kError, *paths[s], 0, 0,
+                           "the GL driver rejected the shader without an error message", key});
+        }
+    }
+    verdict.vertex_compiled = compiled[0];
+    verdict.fragment_compiled = compiled[1];
+    if (compiled[0] && compiled[1]) {
+        program.id = gl->glCreateProgram();
+        gl->glAttachShader(program.id, shaders[0]);
+        gl->glAttachShader(program.id, shaders[1]);
+        gl->glBindAttribLocation(program.id, kAttribVertex, "inVertex");
+        gl->glBindAttribLocation(program.id, kAttribNormal, "inNormal");
+        gl->glBindAttribLocation(program.id, kAttribColour, "inColour");
+        gl->glLinkProgram(program.id);
+        GLint status = GL_FALSE;
+        gl->glGetProgramiv(program.id, GL_LINK_STATUS, &status);
+        GLint length = 0;
+        gl->glGetProgramiv(program.id, GL_INFO_LOG_LENGTH, &length);
+        std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+        gl->glGetProgramInfoLog(program.id, length, nullptr, log.data());
+        log.resize(std::strlen(log.c_str()));
+        verdict.link_log = log;
+        verdict.linked = status == GL_TRUE;
+        // Link messages name no line; they belong to the program's vertex file.
+        for (Diagnostic& d : ParseMesaInfoLog(log, vertex_path, key)) {
+            d.line = 0;
+            verdict.diagnostics.push_back(std::move(d));
+        }
+        if (!verdict.linked && !HasErrors(verdict.diagnostics)) {
+            verdict.diagnostics.push_back(Diagnostic{
+                Severity::kError, vertex_path, 0, 0,
+                "the GL driver refused to link the program without an error message", key});
+        }
+    }
+    for (GLuint shader : shaders) {
+        if (shader != 0) {
+            gl->glDeleteShader(shader);
+        }
+    }
+    verdict.valid = verdict.linked;
+    program.valid = verdict.valid;
+    if (!program.valid && program.id != 0) {
+        gl->glDeleteProgram(program.id);
+        program.id = 0;
+    }
+    return program;
+}
+
+GLint WaterRenderer::Impl::Uniform(CompiledProgram& program, const char* name) {
+    auto found = program.uniforms.find(name);
+    if (found != program.uniforms.end()) {
+        return found->second;
+    }
+    const GLint location = gl->glGetUniformLocation(program.id, name);
+    program.uniforms.emplace(name, location);
+    return location;
+}
+
+std::vector<std::string> WaterRenderer::Impl::HelperDefines(const RenderConfiguration& c,
+                                                            PassKind kind, bool discard,
+                                                            const char* program) const {
+    std::vector<std::string> defines;
+    const bool fog = c.Has("ENABLE_FOG");
+    if (std::string_view(program) == "skybox") {
+        if (fog) {
+            defines.emplace_back("ENABLE_FOG");
+        }
+    } else {
+        defines.emplace_back("ENABLE_LIGHTING");
+        if (kind == PassKind::kRefraction && fog) {
+            defines.emplace_back("ENABLE_FOG_DEPTH");
+        }
+    }
+    if (discard && (kind == PassKind::kReflection || kind == PassKind::kRefraction)) {
+        defines.emplace_back("CLIP_DISCARD");
+    }
+    return defines;
+}
+
+FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraView& view) const {
+    FramePlan plan;
+    const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
+    const glm::mat4 view_matrix = ViewMatrix(view);
+    const glm::mat4 projection = ProjectionMatrix(view, aspect);
+    const float h = scene.water_height;
+    const glm::vec4 water_plane(0.0F, 1.0F, 0.0F, -h);
+    plan.view_projection = projection * view_matrix;
+    plan.eye = view.eye;
+    plan.polygon = InfinitePlanePolygon(plan.view_projection, water_plane);
+    if (plan.polygon.size() > static_cast<std::size_t>(kMaxPolygonVertices)) {
+        plan.polygon.resize(kMaxPolygonVertices);  // cannot happen for a convex cut of a frustum
+    }
+    plan.bump_translation0 = AdvanceBumpTranslation(glm::vec2(0.0F), settings.bump_velocity0,
+                                                    settings.animation_time, true);
+    plan.bump_translation1 = AdvanceBumpTranslation(glm::vec2(0.0F), settings.bump_velocity1,
+                                                    settings.animation_time, true);
+    const bool water_visible = !plan.polygon.empty();
+    const bool fog = c.Has("ENABLE_FOG");
+    const bool wants_refraction = c.Has("ENABLE_REFRACTION");
+    const bool discard = c.passes.clip == "discard";
+    const bool culling = c.passes.culling;
+    const int object_count = static_cast<int>(scene.objects.size());
+    auto mesh_of = [&](int index) -> const Mesh& {
+        return index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
+    };
+
+    // Clips with the oblique near plane, or falls back to discard when the camera is on the kept
+    // side (ObliqueNearPlane refuses then).
+    auto clip = [&](PassPlan* pass, const glm::mat4& pass_view) {
+        if (discard) {
+            pass->clip_discard = true;
+            return;
+        }
+        const ObliqueProjection<float> oblique =
+            ObliqueNearPlane(projection, TransformPlane(pass_view, pass->clip_plane));
+        pass->projection = oblique.projection;
+        if (!oblique.applied) {
+            pass->clip_discard = true;
+            plan.oblique_fallback = true;
+        }
+    };
+
+    if (water_visible) {
+        PassPlan mirror;
+        mirror.kind = PassKind::kReflection;
+        mirror.view = view_matrix * MirrorMatrix(water_plane);
+        mirror.projection = projection;
+        mirror.mirrored = true;
+        // Keep what is above the plane, moved down by the offset (whitepaper 3.3.4).
+        mirror.clip_plane = glm::vec4(0.0F, 1.0F, 0.0F, -(h - settings.clip_plane_offset));
+        clip(&mirror, mirror.view);
+        for (int i = -1; i < object_count; ++i) {
+            if (culling && IsEntirelyBelow(mesh_of(i), h - settings.clip_plane_offset)) {
+                continue;
+            }
+            mirror.meshes.push_back(i);
+        }
+        plan.passes.push_back(std::move(mirror));
+
+        if (wants_refraction) {
+            PassPlan pass;
+            pass.kind = PassKind::kRefraction;
+            pass.view = view_matrix;
+            pass.projection = projection;
+            // Keep what is below the plane, moved up by the offset.
+            pass.clip_plane = glm::vec4(0.0F, -1.0F, 0.0F, h + settings.clip_plane_offset);
+            clip(&pass, pass.view);
+            pass.fog_depth = fog;
+            // With fog the water colour hides the distance, so the sky is left out (whitepaper).
+            pass.draw_sky = !fog;
+            pass.clear_colour = fog ? settings.underwater_colour : glm::vec3(0.0F);
+            const float max_depth = 1.0F / settings.rcp_max_fog_depth;
+            for (int i = -1; i < object_count; ++i) {
+                const Mesh& mesh = mesh_of(i);
+                if (culling && (IsEntirelyAbove(mesh, h + settings.clip_plane_offset) ||
+                                (fog && !IntersectsDepthBand(mesh, h, max_depth)))) {
+                    continue;
+                }
+                pass.meshes.push_back(i);
+            }
+            plan.passes.push_back(std::move(pass));
+        }
+        if (c.passes.low_res_water) {
+            PassPlan pass;
+            pass.kind = PassKind::kLowResWater;
+            pass.draw_sky = false;
+            pass.draw_water = true;
+            plan.passes.push_back(std::move(pass));
+        }
+    }
+    PassPlan main_pass;
+    main_pass.kind = PassKind::kMain;
+    main_pass.view = view_matrix;
+    main_pass.projection = projection;
+    for (int i = -1; i < object_count; ++i) {
+        main_pass.meshes.push_back(i);
+    }
+    main_pass.draw_water = water_visible;
+    plan.passes.push_back(std::move(main_pass));
+    return plan;
+}
+
+void WaterRenderer::Impl::DrawSky(const PassPlan& pass, const RenderConfiguration& c,
+                                  FrameReport* report) {
+    CompiledProgram& program =
+        Program(MakeVariant("skybox", HelperDefines(c, pass.kind, pass.clip_discard, "skybox")));
+    if (!program.valid) {
+        return;
+    }
+    gl->glUseProgram(program.id);
+    // Rotation only: the sky must not move with the camera.
+    const glm::mat4 rotation(glm::mat3(pass.view));
+    const glm::mat4 mvp = pass.projection * rotation;
+    gl->glUniformMatrix4fv(Uniform(program, "ModelViewProjMatrix"), 1, GL_FALSE,
+                           glm::value_ptr(mvp));
+    gl->glUniform1i(Uniform(program, "SkyboxTex"), kUnitSky);
+    gl->glUniform3f(Uniform(program, "FogColour"), settings.fog_colour.r, settings.fog_colour.g,
+                    settings.fog_colour.b);
+    // The sky's eye is the real camera's for the unmirrored view, the mirrored one otherwise;
+    // only its clip test uses it, against the world-space plane.
+    const glm::vec3 eye = glm::vec3(glm::inverse(pass.view)[3]);
+    gl->glUniform3f(Uniform(program, "EyePosition"), eye.x, eye.y, eye.z);
+    gl->glUniform4f(Uniform(program, "ClipPlane"), pass.clip_plane.x, pass.clip_plane.y,
+                    pass.clip_plane.z, pass.clip_plane.w);
+    gl->glDisable(GL_CULL_FACE);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, sky_cube.vertices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, sky_cube.indices);
+    gl->glEnableVertexAttribArray(kAttribVertex);
+    gl->glVertexAttribPointer(kAttribVertex, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl->glDisableVertexAttribArray(kAttribNormal);
+    gl->glDisableVertexAttribArray(kAttribColour);
+    gl->glDrawElements(GL_TRIANGLES, sky_cube.index_count, GL_UNSIGNED_SHORT, nullptr);
+    ++report->draw_calls;
+}
+
+void WaterRenderer::Impl::DrawModels(const PassPlan& pass, const RenderConfiguration& c,
+                                     FrameReport* report) {
+    CompiledProgram& program =
+        Program(MakeVariant("model", HelperDefines(c, pass.kind, pass.clip_discard, "model")));
+    if (!program.valid || pass.meshes.empty()) {
+        return;
+    }
+    gl->glUseProgram(program.id);
+    gl->glUniform3f(Uniform(program, "LightDirection"), scene.sun_direction.x,
+                    scene.sun_direction.y, scene.sun_direction.z);
+    gl->glUniform1f(Uniform(program, "WaterHeight"), scene.water_height);
+    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"), settings.rcp_max_fog_depth);
+    gl->glUniform3f(Uniform(program, "FogColour"), settings.underwater_colour.r,
+                    settings.underwater_colour.g, settings.underwater_colour.b);
+    gl->glUniform4f(Uniform(program, "ClipPlane"), pass.clip_plane.x, pass.clip_plane.y,
+                    pass.clip_plane.z, pass.clip_plane.w);
+    const GLint mvp_location = Uniform(program, "ModelViewProjMatrix");
+    const GLint model_location = Uniform(program, "ModelMatrix");
+    const glm::mat4 view_projection = pass.projection * pass.view;
+    gl->glEnable(GL_CULL_FACE);
+    gl->glEnableVertexAttribArray(kAttribVertex);
+    gl->glEnableVertexAttribArray(kAttribNormal);
+    gl->glEnableVertexAttribArray(kAttribColour);
+    constexpr GLsizei kStride = 9 * sizeof(float);
+    for (int index : pass.meshes) {
+        const Mesh& mesh =
+            index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
+        const MeshBuffers& buffers = meshes[static_cast<std::size_t>(index + 1)];
+        const glm::mat4 mvp = view_projection * mesh.model_matrix;
+        gl->glUniformMatrix4fv(mvp_location, 1, GL_FALSE, glm::value_ptr(mvp));
+        gl->glUniformMatrix4fv(model_location, 1, GL_FALSE, glm::value_ptr(mesh.model_matrix));
+        gl->glBindBuffer(GL_ARRAY_BUFFER, buffers.vertices);
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers.indices);
+        gl->glVertexAttribPointer(kAttribVertex, 3, GL_FLOAT, GL_FALSE, kStride, nullptr);
+        gl->glVertexAttribPointer(kAttribNormal, 3, GL_FLOAT, GL_FALSE, kStride,
+                                  reinterpret_cast<const void*>(3 * sizeof(float)));
+        gl->glVertexAttribPointer(kAttribColour, 3, GL_FLOAT, GL_FALSE, kStride,
+                                  reinterpret_cast<const void*>(6 * sizeof(float)));
+        gl->glDrawElements(GL_TRIANGLES, buffers.index_count, GL_UNSIGNED_SHORT, nullptr);
+        ++report->draw_calls;
+    }
+    gl->glDisable(GL_CULL_FACE);
+}
+
+void WaterRenderer::Impl::BindWaterPolygon(const FramePlan& plan) {
+    gl->glBindBuffer(GL_ARRAY_BUFFER, water_vertices);
+    gl->glEnableVertexAttribArray(kAttribVertex);
+    gl->glVertexAttribPointer(kAttribVertex, 3, GL_FLOAT, GL_FALSE, 3 * sizeof(float), nullptr);
+    gl->glDisableVertexAttribArray(kAttribNormal);
+    gl->glDisableVertexAttribArray(kAttribColour);
+    (void)plan;
+}
+
+void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfiguration& c,
+                                    PassKind pass, FrameReport* report) {
+    const bool alpha_blend = c.Has("ENABLE_ALPHA_BLEND") && !c.Has("ENABLE_REFRACTION");
+    const auto vertex_count = static_cast<GLsizei>(plan.polygon.size());
+    BindWaterPolygon(plan);
+    if (pass == PassKind::kMain && c.passes.low_res_water) {
+        CompiledProgram& composite = Program(MakeVariant("water_composite", {}));
+        if (!composite.valid) {
+            return;
+        }
+        gl->glUseProgram(composite.id);
+        gl->glUniformMatrix4fv(Uniform(composite, "ModelViewProjMatrix"), 1, GL_FALSE,
+                               glm::value_ptr(plan.view_projection));
+        gl->glUniform2f(Uniform(composite, "RcpWindowSize"),
+                        1.0F / static_cast<float>(settings.width),
+                        1.0F / static_cast<float>(settings.height));
+        gl->glActiveTexture(GL_TEXTURE0 + kUnitLowRes);
+        gl->glBindTexture(GL_TEXTURE_2D, low_res.colour);
+        gl->glActiveTexture(GL_TEXTURE0);
+        gl->glUniform1i(Uniform(composite, "WaterTex"), kUnitLowRes);
+        if (alpha_blend) {
+            gl->glEnable(GL_BLEND);
+            gl->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        }
+        gl->glDrawArrays(GL_TRIANGLE_FAN, 0, vertex_count);
+        ++report->draw_calls;
+        gl->glDisable(GL_BLEND);
+        return;
+    }
+    CompiledProgram& program = Program(c.variant);
+    if (!program.valid) {
+        return;
+    }
+    gl->glUseProgram(program.id);
+    const float target_width = static_cast<float>(pass == PassKind::kMain ? settings.width
+                                                                           : low_res.width);
+    const float target_height = static_cast<float>(pass == PassKind::kMain ? settings.height
+                                                                            : low_res.height);
+    gl->glUniformMatrix4fv(Uniform(program, "ModelViewProjMatrix"), 1, GL_FALSE,
+                           glm::value_ptr(plan.view_projection));
+    gl->glUniform3f(Uniform(program, "EyePosition"), plan.eye.x, plan.eye.y, plan.eye.z);
+    gl->glUniform2f(Uniform(program, "BumpScale0"), settings.bump_scale0.x,
+                    settings.bump_scale0.y);
+    gl->glUniform2f(Uniform(program, "BumpScale1"), settings.bump_scale1.x,
+                    settings.bump_scale1.y);
+    gl->glUniform2f(Uniform(program, "BumpTranslation0"), plan.bump_translation0.x,
+                    plan.bump_translation0.y);
+    gl->glUniform2f(Uniform(program, "BumpTranslation1"), plan.bump_translation1.x,
+                    plan.bump_translation1.y);
+    gl->glUniform1f(Uniform(program, "WaveDistortion"), settings.wave_distortion);
+    gl->glUniform2f(Uniform(program, "RcpWindowSize"), 1.0F / target_width,
+                    1.0F / target_height);
+    gl->glUniform4f(Uniform(program, "WaterColour"), settings.water_colour.r,
+                    settings.water_colour.g, settings.water_colour.b, settings.water_colour.a);
+    gl->glUniform3f(Uniform(program, "FogColour"), settings.fog_colour.r, settings.fog_colour.g,
+                    settings.fog_colour.b);
+    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"), settings.rcp_max_fog_distance);
+    gl->glUniform1i(Uniform(program, "ReflectionTex"), kUnitReflection);
+    gl->glUniform1i(Uniform(program, "RefractionTex"), kUnitRefraction);
+    gl->glUniform1i(Uniform(program, "NormalTex"), kUnitNormalMap);
+    gl->glUniform1i(Uniform(program, "NormalisationCubeMap"), kUnitNormalisation);
+    if (c.UsesUniformBools()) {
+        for (const char* effect : kWaterEffects) {
+            gl->glUniform1i(Uniform(program, UniformBoolName(effect).c_str()),
+                            c.Has(effect) ? 1 : 0);
+        }
+    }
+    gl->glActiveTexture(GL_TEXTURE0 + kUnitReflection);
+    gl->glBindTexture(GL_TEXTURE_2D, reflection.colour);
+    gl->glActiveTexture(GL_TEXTURE0 + kUnitRefraction);
+    // Without a refraction pass the sampler still needs a complete texture behind it.
+    gl->glBindTexture(GL_TEXTURE_2D, c.Has("ENABLE_REFRACTION") && refraction.colour != 0
+                                         ? refraction.colour
+                                         : reflection.colour);
+    gl->glActiveTexture(GL_TEXTURE0);
+    if (alpha_blend && pass == PassKind::kMain) {
+        gl->glEnable(GL_BLEND);
+        gl->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+    }
+    gl->glDrawArrays(GL_TRIANGLE_FAN, 0, vertex_count);
+    ++report->draw_calls;
+    gl->glDisable(GL_BLEND);
+}
+
+WaterRenderer::WaterRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+WaterRenderer::~WaterRenderer() = default;
+
+std::unique_ptr<WaterRenderer> WaterRenderer::Create(GlContext& context,
+                                                     const VariantConfig& config,
+                                                     const RenderSettings& settings,
+                                                     std::string* error) {
+    if (!context.MakeCurrent()) {
+        *error = "the GL context cannot be made current";
+        return nullptr;
+    }
+    auto impl = std::make_unique<Impl>();
+    impl->context = &context;
+    impl->gl = &context.Internal().api;
+    impl->config = config;
+    impl->settings = settings;
+    *error = impl->Init();
+    if (!error->empty()) {
+        return nullptr;
+    }
+    return std::unique_ptr<WaterRenderer>(new WaterRenderer(std::move(impl)));
+}
+
+DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
+    Impl& r = *impl_;
+    r.context->MakeCurrent();
+    DriverVerdict verdict = r.Program(c.variant).verdict;
+    // Helper programs this configuration's passes can use; their problems join the verdict.
+    std::vector<Variant> helpers;
+    const bool discard = c.passes.clip == "discard";
+    for (PassKind kind : {PassKind::kReflection, PassKind::kRefraction, PassKind::kMain}) {
+        if (kind == PassKind::kRefraction && !c.Has("ENABLE_REFRACTION")) {
+            continue;
+        }
+        helpers.push_back(MakeVariant("skybox", r.HelperDefines(c, kind, discard, "skybox")));
+        helpers.push_back(MakeVariant("model", r.HelperDefines(c, kind, discard, "model")));
+    }
+    if (c.passes.low_res_water) {
+        helpers.push_back(MakeVariant("water_composite", {}));
+    }
+    for (const Variant& helper : helpers) {
+        const DriverVerdict& helper_verdict = r.Program(helper).verdict;
+        if (!helper_verdict.valid) {
+            verdict.valid = false;
+            for (Diagnostic d : helper_verdict.diagnostics) {
+                verdict.diagnostics.push_back(std::move(d));
+            }
+        }
+    }
+    // Reflection and refraction targets of the configuration's size.
+    const int size = c.passes.reflection_size;
+    if (verdict.valid && r.pass_targets.find(size) == r.pass_targets.end()) {
+        std::pair<RenderTarget, RenderTarget> targets;
+        std::string error =
+            r.MakeTarget(&targets.first, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+        if (error.empty()) {
+            error = r.MakeTarget(&targets.second, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+        }
+        if (!error.empty()) {
+            r.FreeTarget(&targets.first);
+            r.FreeTarget(&targets.second);
+            verdict.valid = false;
+            verdict.diagnostics.push_back(MakeError("", 0, 0, error));
+        } else {
+            r.pass_targets.emplace(size, targets);
+        }
+    }
+    return verdict;
+}
+
+FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const CameraView& view) {
+    Impl& r = *impl_;
+    const gl::GlApi& gl = *r.gl;
+    FrameReport report;
+    const auto plan_start = std::chrono::steady_clock::now();
+    const FramePlan plan = r.Plan(c, view);
+    report.plan_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
+    report.oblique_fallback = plan.oblique_fallback;
+    const auto targets = r.pass_targets.find(c.passes.reflection_size);
+    if (targets == r.pass_targets.end()) {
+        report.gl_error = "RenderFrame before a successful Prepare of this configuration";
+        return report;
+    }
+    r.reflection = targets->second.first;
+    r.refraction = targets->second.second;
+    if (!plan.polygon.empty()) {
+        std::array<float, kMaxPolygonVertices * 3> data{};
+        for (std::size_t i = 0; i < plan.polygon.size(); ++i) {
+            data[i * 3] = plan.polygon[i].x;
+            data[i * 3 + 1] = plan.polygon[i].y;
+            data[i * 3 + 2] = plan.polygon[i].z;
+        }
+        gl.glBindBuffer(GL_ARRAY_BUFFER, r.water_vertices);
+        gl.glBufferSubData(GL_ARRAY_BUFFER, 0,
+                           static_cast<GLsizeiptr>(plan.polygon.size() * 3 * sizeof(float)),
+                           data.data());
+    }
+    gl.glDepthFunc(GL_LEQUAL);  // LEQUAL: the sky sits exactly on the cleared depth 1.0
+    for (const PassPlan& pass : plan.passes) {
+        const RenderTarget& target = pass.kind == PassKind::kReflection  ? r.reflection
+                                     : pass.kind == PassKind::kRefraction ? r.refraction
+                                     : pass.kind == PassKind::kLowResWater ? r.low_res
+                                                                           : r.main;
+        gl.glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+        gl.glViewport(0, 0, target.width, target.height);
+        ++report.passes;
+        report.pass_names.emplace_back(PassName(pass.kind));
+        if (pass.kind == PassKind::kLowResWater) {
+            // The water alone: cleared transparent, no depth (the composite is depth-tested).
+            gl.glClearColor(0.0F, 0.0F, 0.0F, 0.0F);
+            gl.glClear(GL_COLOR_BUFFER_BIT);
+            gl.glDisable(GL_DEPTH_TEST);
+            r.DrawWater(plan, c, pass.kind, &report);
+        } else {
+            gl.glClearColor(pass.clear_colour.r, pass.clear_colour.g, pass.clear_colour.b, 1.0F);
+            gl.glDepthMask(GL_TRUE);
+            gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+            gl.glEnable(GL_DEPTH_TEST);
+            // The mirror matrix has determinant -1, so mirrored triangles wind clockwise.
+            gl.glFrontFace(pass.mirrored ? GL_CW : GL_CCW);
+            if (pass.draw_sky) {
+                r.DrawSky(pass, c, &report);
+            }
+            r.DrawModels(pass, c, &report);
+            if (pass.draw_water) {
+                r.DrawWater(plan, c, pass.kind, &report);
+            }
+            gl.glFrontFace(GL_CCW);
+        }
+        const GLenum error = gl.glGetError();
+        if (error != GL_NO_ERROR && report.gl_error.empty()) {
+            report.gl_error = fmt::format("{} after pass {}", ErrorName(error), PassName(pass.kind));
+        }
+    }
+    return report;
+}
+
+void WaterRenderer::Finish() { impl_->gl->glFinish(); }
+
+ImageRgba8 WaterRenderer::ReadImage() {
+    Impl& r = *impl_;
+    ImageRgba8 image;
+    image.width = r.settings.width;
+    image.height = r.settings.height;
+    const auto row_bytes = static_cast<std::size_t>(image.width) * 4;
+    image.pixels.resize(row_bytes * static_cast<std::size_t>(image.height));
+    r.gl->glBindFramebuffer(GL_FRAMEBUFFER, r.main.framebuffer);
+    std::vector<std::uint8_t> bottom_up(image.pixels.size());
+    if (r.settings.float_target) {
+        const std::vector<float> floats = ReadFloatPixels();
+        for (std::size_t i = 0; i < floats.size(); ++i) {
+            const float v = std::isfinite(floats[i]) ? std::clamp(floats[i], 0.0F, 1.0F) : 0.0F;
+            image.pixels[i] = static_cast<std::uint8_t>(std::lround(v * 255.0F));
+        }
+        return image;
+    }
+    r.gl->glReadPixels(0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                       bottom_up.data());
+    for (int row = 0; row < image.height; ++row) {
+        std::copy_n(bottom_up.begin() +
+                        static_cast<std::ptrdiff_t>(row_bytes *
+                                                    static_cast<std::size_t>(image.height - 1 - row)),
+                    row_bytes,
+                    image.pixels.begin() +
+                        static_cast<std::ptrdiff_t>(row_bytes * static_cast<std::size_t>(row)));
+    }
+    return image;
+}
+
+std::vector<float> WaterRenderer::ReadFloatPixels() {
+    Impl& r = *impl_;
+    if (!r.settings.float_target) {
+        return {};
+    }
+    const auto row_floats = static_cast<std::size_t>(r.settings.width) * 4;
+    std::vector<float> bottom_up(row_floats * static_cast<std::size_t>(r.settings.height));
+    r.gl->glBindFramebuffer(GL_FRAMEBUFFER, r.main.framebuffer);
+    r.gl->glReadPixels(0, 0, r.settings.width, r.settings.height, GL_RGBA, GL_FLOAT,
+                       bottom_up.data());
+    std::vector<float> pixels(bottom_up.size());
+    for (int row = 0; row < r.settings.height; ++row) {
+        std::copy_n(bottom_up.begin() +
+                        static_cast<std::ptrdiff_t>(
+                            row_floats * static_cast<std::size_t>(r.settings.height - 1 - row)),
+                    row_floats,
+                    pixels.begin() +
+                        static_cast<std::ptrdiff_t>(row_floats * static_cast<std::size_t>(row)));
+    }
+    return pixels;
+}
+
+const RenderSettings& WaterRenderer::Settings() const { return impl_->settings; }
+
+const Scene& WaterRenderer::GetScene() const { return impl_->scene; }
+
+DriverStageResult CompileDriverStage(GlContext& context, Stage stage, const std::string& source) {
+    DriverStageResult result;
+    if (!context.MakeCurrent()) {
+        result.log = "the GL context cannot be made current";
+        return result;
+    }
+    const gl::GlApi& gl = context.Internal().api;
+    const GLuint shader =
+        gl.glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
+    const char* text = source.c_str();
+    gl.glShaderSource(shader, 1, &text, nullptr);
+    gl.glCompileShader(shader);
+    GLint status = GL_FALSE;
+    gl.glGetShaderiv(shader, GL_COMPILE_STATUS, &status);
+    GLint length = 0;
+    gl.glGetShaderiv(shader, GL_INFO_LOG_LENGTH, &length);
+    std::string log(static_cast<std::size_t>(std::max(length, 1)), '\0');
+    gl.glGetShaderInfoLog(shader, length, nullptr, log.data());
+    log.resize(std::strlen(log.c_str()));
+    gl.glDeleteShader(shader);
+    result.compiled = status == GL_TRUE;
+    result.log = log;
+    return result;
+}
+
+}  // namespace tidepool::runner

@@ -1,0 +1,45 @@
+#version 100
+// Terrain and objects, fragment stage. Interface: shaders/INTERFACE.md ("model").
+//
+// Defines:
+//   ENABLE_LIGHTING   Nothing here: lighting is per vertex (see model.vsh).
+//   ENABLE_FOG_DEPTH  Underwater depth fog: fades towards FogColour (the water colour) with depth
+//                     below the water plane, so submerged terrain grows murky in the refraction
+//                     pass. Costs a multiply, a clamp and a mix (whitepaper: fog overall +3.5%
+//                     when disabled).
+//   CLIP_DISCARD      Discards fragments on the negative side of ClipPlane, the fallback for
+//                     reflection/refraction passes that do not clip with an oblique projection.
+//                     Costs a discard, which disables early depth tests on tile-based GPUs; the
+//                     whitepaper recommends the projection matrix method instead.
+
+precision mediump float;
+
+varying lowp vec3 Colour;
+
+#ifdef ENABLE_FOG_DEPTH
+uniform mediump float RcpMaxFogDepth;
+uniform lowp vec3 FogColour;
+varying mediump float WaterDepth;
+#endif
+
+#ifdef CLIP_DISCARD
+varying highp float ClipDistance;
+#endif
+
+void main()
+{
+#ifdef CLIP_DISCARD
+    if (ClipDistance < 0.0) {
+        discard;
+    }
+#endif
+
+    mediump vec3 colour = Colour;
+
+#ifdef ENABLE_FOG_DEPTH
+    // Above the water the depth is negative and the clamp leaves the colour unfogged.
+    colour = mix(colour, FogColour, clamp(WaterDepth * RcpMaxFogDepth, 0.0, 1.0));
+#endif
+
+    gl_FragColor = vec4(colour, 1.0);
+}

@@ -1,0 +1,313 @@
+// The embedded water renderer through Mesa: what the passes put on screen, determinism, GL
+// errors and NaN/Inf, on small images so the whole suite stays fast.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ImageIo.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/WaterMath.h"
+
+namespace tidepool::runner {
+namespace {
+
+// Small enough that the whole gl suite renders in seconds on llvmpipe, large enough that the
+// scene's objects cover several pixels at the default views.
+constexpr int kWidth = 128;
+constexpr int kHeight = 96;
+
+// One context, configuration and renderer for the whole file: creating them costs more than
+// most tests.
+struct Shared {
+    std::unique_ptr<GlContext> context;
+    std::optional<VariantConfig> config;
+    std::vector<Variant> variants;
+    std::unique_ptr<WaterRenderer> renderer;
+    std::unique_ptr<WaterRenderer> float_renderer;
+    std::string error;
+};
+
+Shared& Get() {
+    static Shared shared = [] {
+        Shared s;
+        GlContextResult created = CreateGlContext(BackendKind::kAuto);
+        if (!created.context) {
+            s.error = created.error;
+            return s;
+        }
+        s.context = std::move(created.context);
+        ConfigResult loaded =
+            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+        if (!loaded.config) {
+            s.error = "variants.yaml does not load";
+            return s;
+        }
+        s.config = std::move(loaded.config);
+        s.variants = ExpandVariants(*s.config, ExpansionOptions{}).variants;
+        RenderSettings settings;
+        settings.width = kWidth;
+        settings.height = kHeight;
+        s.renderer = WaterRenderer::Create(*s.context, *s.config, settings, &s.error);
+        if (s.renderer && s.context->Environment().float_render_target) {
+            settings.float_target = true;
+            s.float_renderer = WaterRenderer::Create(*s.context, *s.config, settings, &s.error);
+        }
+        return s;
+    }();
+    return shared;
+}
+
+RenderConfiguration Configuration(std::vector<std::string> defines, PassOptions passes = {}) {
+    RenderConfiguration c;
+    c.variant = MakeVariant("water", std::move(defines));
+    c.effects = c.variant.defines;
+    c.passes = passes;
+    c.id = ConfigurationId(c.variant, passes);
+    return c;
+}
+
+ImageRgba8 Render(const RenderConfiguration& c, const std::string& view_name,
+                  WaterRenderer* renderer = nullptr) {
+    Shared& s = Get();
+    WaterRenderer& r = renderer ? *renderer : *s.renderer;
+    s.context->MakeCurrent();  // another test file's context may be current
+    const DriverVerdict verdict = r.Prepare(c);
+    EXPECT_TRUE(verdict.valid) << c.id << "\n" << verdict.vertex_log << verdict.fragment_log
+                               << verdict.link_log;
+    const std::vector<CameraView> views = DefaultViews();
+    const CameraView* view = FindView(views, view_name);
+    EXPECT_NE(view, nullptr);
+    const FrameReport report = r.RenderFrame(c, *view);
+    EXPECT_EQ(report.gl_error, "") << c.id;
+    r.Finish();
+    ImageRgba8 image = r.ReadImage();
+    if (const char* dump = std::getenv("TIDEPOOL_TEST_IMAGES")) {
+        WritePng(std::filesystem::path(dump) / (SanitiseFileName(c.id) + "-" + view_name + ".png"),
+                 image);
+    }
+    return image;
+}
+
+glm::vec3 Pixel(const ImageRgba8& image, int x, int y) {
+    const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
+                    static_cast<std::size_t>(x)) * 4;
+    return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
+}
+
+class RendererGlTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!Get().renderer) {
+            GTEST_SKIP() << "no GL renderer: " << Get().error;
+        }
+    }
+};
+
+// Hue in degrees (0..360) and saturation (0..1) of an RGB colour.
+std::pair<float, float> HueSaturation(const glm::vec3& c) {
+    const float high = std::max({c.r, c.g, c.b});
+    const float low = std::min({c.r, c.g, c.b});
+    const float chroma = high - low;
+    if (chroma <= 0.0F) {
+        return {0.0F, 0.0F};
+    }
+    float hue = 0;
+    if (high == c.r) {
+        hue = 60.0F * std::fmod((c.g - c.b) / chroma + 6.0F, 6.0F);
+    } else if (high == c.g) {
+        hue = 60.0F * ((c.b - c.r) / chroma + 2.0F);
+    } else {
+        hue = 60.0F * ((c.r - c.g) / chroma + 4.0F);
+    }
+    return {hue, chroma / high};
+}
+
+// Counts pixels with a saturated hue in [low, high] degrees.
+int CountHue(const ImageRgba8& image, float low, float high) {
+    int count = 0;
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            const auto [hue, saturation] = HueSaturation(Pixel(image, x, y));
+            // 0.4: the scene's object colours are fully saturated; sky, water and terrain are
+            // far below that, so only the objects (and their reflections) count.
+            count += saturation > 0.4F && hue >= low && hue <= high ? 1 : 0;
+        }
+    }
+    return count;
+}
+
+// Whether a saturated pixel of hue [low, high] lies within `radius` pixels of `centre`.
+bool HueNear(const ImageRgba8& image, glm::ivec2 centre, int radius, float low, float high) {
+    for (int y = centre.y - radius; y <= centre.y + radius; ++y) {
+        for (int x = centre.x - radius; x <= centre.x + radius; ++x) {
+            if (x < 0 || y < 0 || x >= image.width || y >= image.height) {
+                continue;
+            }
+            const auto [hue, saturation] = HueSaturation(Pixel(image, x, y));
+            if (saturation > 0.4F && hue >= low && hue <= high) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+const Mesh& FindMesh(const Scene& scene, const std::string& name) {
+    for (const Mesh& mesh : scene.objects) {
+        if (mesh.name == name) {
+            return mesh;
+        }
+    }
+    ADD_FAILURE() << "no mesh " << name;
+    return scene.terrain;
+}
+
+// The pixel (rows top to bottom) where `world` lands at `view`.
+glm::ivec2 ScreenPixel(const CameraView& view, const glm::vec3& world) {
+    const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
+    const glm::vec2 uv =
+        ProjectiveTexCoord(ProjectionMatrix(view, aspect) * ViewMatrix(view), world);
+    return glm::ivec2(static_cast<int>(uv.x * kWidth), static_cast<int>((1.0F - uv.y) * kHeight));
+}
+
+TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
+    const Scene& scene = Get().renderer->GetScene();
+    const Mesh& tower = FindMesh(scene, "tower");
+    const glm::vec3 centre = (tower.world_bounds_min + tower.world_bounds_max) * 0.5F;
+    // A point on the tower well above the water, and its mirror image about y = water height.
+    const glm::vec3 point(centre.x, glm::mix(tower.world_bounds_min.y, tower.world_bounds_max.y,
+                                             0.6F), centre.z);
+    const glm::vec3 mirrored(point.x, 2.0F * scene.water_height - point.y, point.z);
+    const CameraView view = *FindView(DefaultViews(), "grazing");
+    const ImageRgba8 image = Render(Configuration({}), "grazing");
+    const glm::ivec2 direct = ScreenPixel(view, point);
+    const glm::ivec2 reflected = ScreenPixel(view, mirrored);
+    ASSERT_GT(reflected.y, direct.y) << "the mirrored point must project below the tower";
+    // The tower is orange (hue about 25 degrees); 2 pixels of slack for the 256x256 reflection
+    // texture being magnified onto a 128x96 image and for linear filtering at its edges.
+    EXPECT_TRUE(HueNear(image, direct, 2, 10.0F, 45.0F)) << "tower not at " << direct.x << ","
+                                                         << direct.y;
+    EXPECT_TRUE(HueNear(image, reflected, 2, 10.0F, 45.0F))
+        << "no reflection at " << reflected.x << "," << reflected.y;
+}
+
+TEST_F(RendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot) {
+    // Magenta is about 300 degrees; no other object, nor sky or terrain, is near that hue.
+    // The rocks are small at 128x96, so two views look for them.
+    int with_refraction = 0;
+    int reflection_only = 0;
+    for (const char* view : {"high", "three_quarter"}) {
+        with_refraction +=
+            CountHue(Render(Configuration({"ENABLE_REFRACTION"}), view), 280.0F, 320.0F);
+        reflection_only += CountHue(Render(Configuration({}), view), 280.0F, 320.0F);
+    }
+    // 4 pixels: each rock covers a few pixels at this size; none may show without refraction.
+    EXPECT_GE(with_refraction, 4);
+    EXPECT_EQ(reflection_only, 0);
+}
+
+TEST_F(RendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
+    const CameraView view = *FindView(DefaultViews(), "three_quarter");
+    // Water 1500 units away along the view direction, projected onto the plane.
+    glm::vec3 forward = view.target - view.eye;
+    forward.y = 0.0F;
+    const glm::vec3 far_water = view.eye + glm::normalize(forward) * 1500.0F;
+    const glm::ivec2 pixel = ScreenPixel(view, glm::vec3(far_water.x, 0.0F, far_water.z));
+    ASSERT_GE(pixel.y, 0);
+    ASSERT_LT(pixel.y, kHeight);
+    const glm::vec3 fog = RenderSettings{}.fog_colour;
+    const glm::vec3 clear = Pixel(Render(Configuration({}), "three_quarter"), pixel.x, pixel.y);
+    const glm::vec3 fogged =
+        Pixel(Render(Configuration({"ENABLE_FOG"}), "three_quarter"), pixel.x, pixel.y);
+    // At 1500 of 2000 units the fog factor is 0.75, so the distance to the fog colour must
+    // shrink to about a quarter; 0.5 leaves room for the sky's own horizon colour.
+    EXPECT_LT(glm::length(fogged - fog), 0.5F * glm::length(clear - fog))
+        << "clear " << clear.r << "," << clear.g << "," << clear.b << " fogged " << fogged.r
+        << "," << fogged.g << "," << fogged.b;
+}
+
+TEST_F(RendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
+    const RenderConfiguration full = Configuration(
+        {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_FOG"});
+    const ImageRgba8 first = Render(full, "shore");
+    Render(Configuration({"ENABLE_WATER_COLOUR"}), "high");  // something else in between
+    const ImageRgba8 second = Render(full, "shore");
+    EXPECT_TRUE(first.pixels == second.pixels);
+}
+
+TEST_F(RendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
+    Shared& s = Get();
+    const ConfigurationSet set = BuildDefaultConfigurations(*s.config, s.variants);
+    ASSERT_TRUE(set.diagnostics.empty());
+    ASSERT_GT(set.configurations.size(), 10U);
+    const CameraView view = *FindView(DefaultViews(), "three_quarter");
+    s.context->MakeCurrent();
+    // Prepare everything first, then render: as a run does, so per-size targets must persist.
+    for (const RenderConfiguration& c : set.configurations) {
+        const DriverVerdict verdict = s.renderer->Prepare(c);
+        ASSERT_TRUE(verdict.valid) << c.id << "\n" << verdict.fragment_log << verdict.link_log;
+    }
+    for (const RenderConfiguration& c : set.configurations) {
+        const FrameReport report = s.renderer->RenderFrame(c, view);
+        EXPECT_EQ(report.gl_error, "") << c.id;
+        // Reflection + main at least; refraction adds one, low-resolution water another.
+        const int expected = 2 + (c.Has("ENABLE_REFRACTION") ? 1 : 0) +
+                             (c.passes.low_res_water ? 1 : 0);
+        EXPECT_EQ(report.passes, expected) << c.id;
+    }
+}
+
+TEST_F(RendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
+    Shared& s = Get();
+    if (!s.float_renderer) {
+        GTEST_SKIP() << "the context cannot render to RGBA32F";
+    }
+    const ConfigurationSet set = BuildDefaultConfigurations(*s.config, s.variants);
+    for (const RenderConfiguration& c : set.configurations) {
+        s.context->MakeCurrent();
+        ASSERT_TRUE(s.float_renderer->Prepare(c).valid) << c.id;
+        for (const CameraView& view : DefaultViews()) {
+            const FrameReport report = s.float_renderer->RenderFrame(c, view);
+            ASSERT_EQ(report.gl_error, "") << c.id;
+            const std::vector<float> pixels = s.float_renderer->ReadFloatPixels();
+            ASSERT_EQ(pixels.size(), static_cast<std::size_t>(kWidth * kHeight * 4));
+            const auto bad = std::find_if(pixels.begin(), pixels.end(),
+                                          [](float v) { return !std::isfinite(v); });
+            EXPECT_EQ(bad, pixels.end()) << c.id << " at " << view.name << ", pixel "
+                                         << (bad - pixels.begin()) / 4;
+        }
+    }
+}
+
+TEST_F(RendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
+    const RenderConfiguration culled = Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"});
+    PassOptions no_culling;
+    no_culling.culling = false;
+    const RenderConfiguration unculled =
+        Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"}, no_culling);
+    Shared& s = Get();
+    const CameraView view = *FindView(DefaultViews(), "three_quarter");
+    s.context->MakeCurrent();
+    ASSERT_TRUE(s.renderer->Prepare(culled).valid);
+    const FrameReport with = s.renderer->RenderFrame(culled, view);
+    ASSERT_TRUE(s.renderer->Prepare(unculled).valid);
+    const FrameReport without = s.renderer->RenderFrame(unculled, view);
+    EXPECT_LT(with.draw_calls, without.draw_calls);
+    // Same passes either way; culling changes draws, not passes.
+    EXPECT_EQ(with.pass_names, without.pass_names);
+}
+
+}  // namespace
+}  // namespace tidepool::runner
