@@ -6,9 +6,11 @@ root="$(cd "$(dirname "$0")/.." && pwd)"
 flavour="${1:-release}"
 jobs="$(nproc)"
 case "$flavour" in
-  release)  dir="$root/build/release";  flags=(-DCMAKE_BUILD_TYPE=Release -DTIDEPOOL_WERROR=ON) ;;
-  sanitize) dir="$root/build/sanitize"; flags=(-DCMAKE_BUILD_TYPE=Debug -DTIDEPOOL_SANITIZE=ON -DTIDEPOOL_WERROR=ON -DTIDEPOOL_BUILD_BENCH=OFF) ;;
+  release)  dir="$root/build/release";  flags=(-DCMAKE_BUILD_TYPE=Release -DTIDEPOOL_WERROR=ON); targets=() ;;
+  # The sanitizer build exists for the unit tests, so only they are built there.
+  sanitize) dir="$root/build/sanitize"; flags=(-DCMAKE_BUILD_TYPE=Debug -DTIDEPOOL_SANITIZE=ON -DTIDEPOOL_WERROR=ON -DTIDEPOOL_BUILD_BENCH=OFF)
+            targets=(--target tidepool_unit_tests) ;;
   *) echo "usage: $0 [release|sanitize]" >&2; exit 2 ;;
 esac
 cmake -S "$root" -B "$dir" -G Ninja "${flags[@]}" >/dev/null
-cmake --build "$dir" -j "$jobs"
+cmake --build "$dir" -j "$jobs" "${targets[@]}"

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cctype>
+#include <set>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -113,6 +115,40 @@ void HashStage(StageJob& job) {
     job.key = job.file + "|" + job.hash;
 }
 
+// Every identifier-like token of a file (comments included: over-counting only costs a
+// preprocessor run). GLSL ES has no token pasting (glslang rejects `##` for ES), so a define can
+// only change the preprocessed text if its name is spelled out somewhere in the file.
+std::set<std::string> MentionedIdentifiers(const std::string& text) {
+    std::set<std::string> names;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const auto c = static_cast<unsigned char>(text[i]);
+        if (std::isalpha(c) != 0 || c == '_') {
+            const std::size_t start = i;
+            while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) != 0 ||
+                                       text[i] == '_')) {
+                ++i;
+            }
+            names.insert(text.substr(start, i - start));
+        } else {
+            ++i;
+        }
+    }
+    return names;
+}
+
+// The part of a slot's identity that can change glslang's preprocessed output.
+std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
+    std::string key = fmt::format("{}|{}|{}|", job.file, StageName(job.stage),
+                                  TargetName(job.target));
+    for (const std::string& define : job.defines) {
+        if (mentioned.count(define) != 0) {
+            key += define + ",";
+        }
+    }
+    return key;
+}
+
 std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::string& id) {
     for (Diagnostic& d : diagnostics) {
         d.variant = id;
@@ -162,11 +198,31 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
     }
     report.stage_slots = static_cast<int>(jobs.size());
-    ParallelFor(jobs.size(), options.jobs, [&](std::size_t i) {
-        if (jobs[i].source->ok) {
-            HashStage(jobs[i]);
+    // Slots whose defines differ only in names the file never mentions preprocess to the same
+    // text, so glslang's preprocessor (which costs nearly a parse) runs once per group.
+    std::map<std::string, std::set<std::string>> mentioned;
+    for (const auto& [path, text] : files) {
+        mentioned[path] = MentionedIdentifiers(text.text);
+    }
+    std::map<std::string, std::vector<std::size_t>> groups;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        groups[PreprocessGroupKey(jobs[i], mentioned[jobs[i].file])].push_back(i);
+    }
+    std::vector<const std::vector<std::size_t>*> group_list;
+    for (const auto& [key, members] : groups) {
+        group_list.push_back(&members);
+    }
+    ParallelFor(group_list.size(), options.jobs, [&](std::size_t g) {
+        const std::vector<std::size_t>& members = *group_list[g];
+        StageJob& first = jobs[members.front()];
+        if (first.source->ok) {
+            HashStage(first);
         } else {
-            jobs[i].key = jobs[i].file + "|unreadable";
+            first.key = first.file + "|unreadable";
+        }
+        for (std::size_t i : members) {
+            jobs[i].hash = first.hash;
+            jobs[i].key = first.key;
         }
     });
 
@@ -187,6 +243,10 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         report.stage_programs[it->second].variants.push_back(job.variant_id);
     }
+    // Each parsed stage is kept for the first link that needs it; later links sharing that stage
+    // parse it again, because a glslang tree is finalised by the one program that links it.
+    std::vector<StageParse> parsed(report.stage_programs.size());
+    std::vector<std::atomic<bool>> claimed(report.stage_programs.size());
     ParallelFor(report.stage_programs.size(), options.jobs, [&](std::size_t i) {
         StageProgram& program = report.stage_programs[i];
         const StageJob& job = *representative[i];
@@ -201,6 +261,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         program.diagnostics = std::move(parse.diagnostics);
         if (parse.ok && parse.intermediate != nullptr) {
             program.cost = AnalyzeStageCost(*parse.intermediate);
+            parsed[i] = std::move(parse);
         }
     });
 
@@ -232,9 +293,13 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         const StageJob& vjob = *representative[link.vertex];
         const StageJob& fjob = *representative[link.fragment];
+        auto take = [&](std::size_t index) {
+            return claimed[index].exchange(true) ? StageParse{} : std::move(parsed[index]);
+        };
         const LinkResult result = LinkStages(
                 {vjob.file, vjob.source->text, Stage::kVertex, vjob.target, vjob.defines},
-                {fjob.file, fjob.source->text, Stage::kFragment, fjob.target, fjob.defines});
+                {fjob.file, fjob.source->text, Stage::kFragment, fjob.target, fjob.defines},
+                take(link.vertex), take(link.fragment));
         link.linked = result.ok;
         link.diagnostics = result.diagnostics;
     });

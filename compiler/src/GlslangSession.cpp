@@ -162,12 +162,18 @@ StageParse ParseStage(const GlslangStageInput& input) {
 
 namespace {
 
-LinkResult Link(const std::vector<const GlslangStageInput*>& inputs) {
+// `parsed[i]`, when it holds a shader, is the already-parsed stage i; it is consumed (a glslang
+// shader's tree is finalised by the link that uses it, so it must serve exactly one program).
+LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
+                std::vector<StageParse> parsed) {
     LinkResult result;
+    parsed.resize(inputs.size());
     std::vector<StageParse> parses;
-    glslang::TProgram program;
-    for (const GlslangStageInput* input : inputs) {
-        parses.push_back(ParseStage(*input));
+    parses.reserve(inputs.size());
+    glslang::TProgram program;  // declared after the shaders it links, so destroyed before them
+    for (std::size_t i = 0; i < inputs.size(); ++i) {
+        parses.push_back(parsed[i].shader != nullptr ? std::move(parsed[i])
+                                                     : ParseStage(*inputs[i]));
         if (!parses.back().ok) {
             result.diagnostics = parses.back().diagnostics;
             return result;
@@ -193,14 +199,18 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs) {
 
 }  // namespace
 
-LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment) {
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment,
+                      StageParse vertex_parsed, StageParse fragment_parsed) {
     EnsureGlslangInitialized();
-    return Link({&vertex, &fragment});
+    std::vector<StageParse> parsed;
+    parsed.push_back(std::move(vertex_parsed));
+    parsed.push_back(std::move(fragment_parsed));
+    return Link({&vertex, &fragment}, std::move(parsed));
 }
 
 LinkResult LinkSingleStage(const GlslangStageInput& input) {
     EnsureGlslangInitialized();
-    return Link({&input});
+    return Link({&input}, {});
 }
 
 namespace {

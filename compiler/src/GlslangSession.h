@@ -62,8 +62,11 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input);
 /// Parses one stage with the defines as glslang's preamble; desktop GLSL is an error.
 StageParse ParseStage(const GlslangStageInput& input);
 
-/// Parses both stages again and links them into one program (all link-time checks).
-LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment);
+/// Links a vertex and a fragment stage into one program (all link-time checks). A stage given
+/// already parsed (a StageParse holding a shader) is consumed by this link; an empty StageParse
+/// means "parse it here".
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment,
+                      StageParse vertex_parsed = {}, StageParse fragment_parsed = {});
 
 /// Links a program of one stage, for link-time errors that need no second stage.
 LinkResult LinkSingleStage(const GlslangStageInput& input);

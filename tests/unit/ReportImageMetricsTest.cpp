@@ -41,8 +41,8 @@ RgbaImage MakeImage(int width, int height, const std::function<Rgba(int, int)>& 
 }
 
 Rgba PixelAt(const RgbaImage& image, int x, int y) {
-    const auto pixel = static_cast<std::size_t>(y * image.width + x);
-    const std::size_t i = pixel * 4;
+    const int pixel = y * image.width + x;
+    const auto i = static_cast<std::size_t>(pixel) * 4;
     return {image.pixels[i], image.pixels[i + 1], image.pixels[i + 2], image.pixels[i + 3]};
 }
 

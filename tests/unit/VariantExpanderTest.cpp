@@ -134,7 +134,7 @@ TEST(VariantExpanderTest, AxisContributesExactlyOneValueDefinePerVariant) {
 TEST(VariantExpanderTest, MatrixOverTheLimitIsRefusedWithItsCountBeforeEnumeration) {
     std::vector<std::string> many;
     for (int i = 0; i < 40; ++i) {
-        many.push_back("F" + std::to_string(i));
+        many.push_back(std::string("F").append(std::to_string(i)));
     }
     const ExpansionResult result = ExpandVariants(Config({Program(many)}), ExpansionOptions{4096});
     EXPECT_TRUE(result.variants.empty());
@@ -147,7 +147,7 @@ TEST(VariantExpanderTest, MatrixOverTheLimitIsRefusedWithItsCountBeforeEnumerati
 TEST(VariantExpanderTest, RaisedLimitAdmitsTheMatrix) {
     std::vector<std::string> thirteen;
     for (int i = 0; i < 13; ++i) {
-        thirteen.push_back("F" + std::to_string(i));
+        thirteen.push_back(std::string("F").append(std::to_string(i)));
     }
     // 2^13 = 8192 combinations: refused at the default limit, admitted when it is raised.
     EXPECT_TRUE(HasErrors(ExpandVariants(Config({Program(thirteen)}), {4096}).diagnostics));
