@@ -20,4 +20,8 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code);
 /// `tidepool render`, `tidepool bench` (the runner side).
 void RegisterRunnerCommands(CLI::App& app, int& exit_code);
 
+/// `tidepool report` (from saved manifest and results) and `tidepool run` (validate, render,
+/// report).
+void RegisterReportCommands(CLI::App& app, int& exit_code);
+
 }  // namespace tidepool::cli

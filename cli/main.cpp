@@ -2,6 +2,8 @@
 #include <cstdio>
 
 #include "Commands.h"
+#include "PlanCommands.h"
+#include "StabilityCommands.h"
 
 int main(int argc, char** argv) {
     CLI::App app{"tidepool: shader-variant compiler and validation toolchain for GLSL ES water "
@@ -11,6 +13,9 @@ int main(int argc, char** argv) {
     int exit_code = tidepool::cli::kExitOk;
     tidepool::cli::RegisterCompilerCommands(app, exit_code);
     tidepool::cli::RegisterRunnerCommands(app, exit_code);
+    tidepool::cli::RegisterReportCommands(app, exit_code);
+    tidepool::cli::RegisterStabilityCommands(app, exit_code);
+    tidepool::cli::RegisterPlanCommands(app, exit_code);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

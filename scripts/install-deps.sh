@@ -15,6 +15,7 @@ packages=(
   libglm-dev                         # CPU-side matrix math
   libgtest-dev googletest            # tests
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # Mesa: EGL surfaceless + OSMesa
+  chromium                           # headless browser: the report page test opens index.html
 )
 
 missing=()

@@ -14,6 +14,14 @@
 
 precision mediump float;
 
+// highp is optional in GLSL ES 1.00 fragment shaders; without it this falls back to mediump
+// (docs/HARD_CASES.md, "Precision"). TP_FORCE_MEDIUMP takes that path for tests.
+#if defined(GL_FRAGMENT_PRECISION_HIGH) && !defined(TP_FORCE_MEDIUMP)
+#define HIGHP_OR_MEDIUMP highp
+#else
+#define HIGHP_OR_MEDIUMP mediump
+#endif
+
 varying lowp vec3 Colour;
 
 #ifdef ENABLE_FOG_DEPTH
@@ -23,7 +31,7 @@ varying mediump float WaterDepth;
 #endif
 
 #ifdef CLIP_DISCARD
-varying highp float ClipDistance;
+varying HIGHP_OR_MEDIUMP float ClipDistance;
 #endif
 
 void main()

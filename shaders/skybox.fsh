@@ -12,6 +12,14 @@
 
 precision mediump float;
 
+// highp is optional in GLSL ES 1.00 fragment shaders; without it this falls back to mediump
+// (docs/HARD_CASES.md, "Precision"). TP_FORCE_MEDIUMP takes that path for tests.
+#if defined(GL_FRAGMENT_PRECISION_HIGH) && !defined(TP_FORCE_MEDIUMP)
+#define HIGHP_OR_MEDIUMP highp
+#else
+#define HIGHP_OR_MEDIUMP mediump
+#endif
+
 uniform samplerCube SkyboxTex;
 
 varying mediump vec3 SkyDirection;
@@ -24,11 +32,11 @@ const mediump float cSinFogElevation = 0.173648;
 #endif
 
 #ifdef CLIP_DISCARD
-uniform highp vec3 EyePosition;
-uniform highp vec4 ClipPlane;
+uniform HIGHP_OR_MEDIUMP vec3 EyePosition;
+uniform HIGHP_OR_MEDIUMP vec4 ClipPlane;
 
 // Distance at which the sky is taken to lie when clipping it against a world-space plane.
-const highp float cSkyDistance = 1000.0;
+const HIGHP_OR_MEDIUMP float cSkyDistance = 1000.0;
 #endif
 
 void main()
@@ -36,11 +44,11 @@ void main()
 #if defined(ENABLE_FOG) || defined(CLIP_DISCARD)
     // The interpolated cube-face point is not unit length. Every point on the faces is at least
     // the cube's half-size from its centre, so this never normalises a zero vector.
-    highp vec3 direction = normalize(SkyDirection);
+    HIGHP_OR_MEDIUMP vec3 direction = normalize(SkyDirection);
 #endif
 
 #ifdef CLIP_DISCARD
-    highp vec3 skyPoint = EyePosition + direction * cSkyDistance;
+    HIGHP_OR_MEDIUMP vec3 skyPoint = EyePosition + direction * cSkyDistance;
     if (dot(ClipPlane, vec4(skyPoint, 1.0)) < 0.0) {
         discard;
     }

@@ -29,6 +29,11 @@
 //   ENABLE_FOG               Fades the water towards FogColour with eye distance. Costs a
 //                            length and a mix (whitepaper: disabling it gave +3.5%).
 // Every combination compiles; an option whose prerequisite is missing is a no-op.
+//
+// Test-only switches (never in variants.yaml; `tidepool stability` uses them to measure what each
+// numerical guard changes, docs/HARD_CASES.md): TP_NO_COS_CLAMP, TP_NO_NORMAL_FLOOR,
+// TP_NO_EYE_FLOOR, TP_NO_EYE_SCALING each remove one guard; TP_FORCE_MEDIUMP takes the path of
+// hardware without fragment highp.
 // water_uniform.fsh is the same shader with uniform bools; keep the two in step.
 
 precision mediump float;
@@ -60,12 +65,23 @@ precision mediump float;
 #define NEEDS_EYE_DISTANCE
 #endif
 
+// highp is optional in GLSL ES 1.00 fragment shaders; where it is missing, the eye vector and bump
+// coordinates fall back to mediump. The eye-vector scaling below keeps lengths and directions
+// right in fp16; what stays lost is bump-coordinate resolution on water more than ~1000 units
+// away (fp16 spacing 0.5 at |coord| >= 1024), where the mipmapped normal map is a blur anyway.
+#if defined(GL_FRAGMENT_PRECISION_HIGH) && !defined(TP_FORCE_MEDIUMP)
+#define HIGHP_OR_MEDIUMP highp
+#else
+#define HIGHP_OR_MEDIUMP mediump
+#endif
+
 // Reflection share of the constant reflection/refraction mix (whitepaper demo).
 const mediump float cReflectionShare = 0.4;
 // Alpha under ENABLE_ALPHA_BLEND: 40% of the scene below shows through.
 const mediump float cBlendAlpha = 0.6;
 // Smallest eye distance divided by; the camera can sit on the water plane.
-const highp float cMinEyeDistance = 1e-3;
+// 1e-3 is a normal fp16 number (the smallest is 6.1e-5).
+const HIGHP_OR_MEDIUMP float cMinEyeDistance = 1e-3;
 
 uniform sampler2D ReflectionTex;
 uniform mediump vec2 RcpWindowSize;
@@ -73,12 +89,12 @@ uniform mediump vec2 RcpWindowSize;
 #ifdef ENABLE_DISTORTION
 uniform sampler2D NormalTex;
 uniform mediump float WaveDistortion;
-varying highp vec2 BumpCoord0;
-varying highp vec2 BumpCoord1;
+varying HIGHP_OR_MEDIUMP vec2 BumpCoord0;
+varying HIGHP_OR_MEDIUMP vec2 BumpCoord1;
 #endif
 
 #ifdef NEEDS_EYE_VECTOR
-varying highp vec3 EyeVector;
+varying HIGHP_OR_MEDIUMP vec3 EyeVector;
 #endif
 
 #ifdef ENABLE_REFRACTION
@@ -138,9 +154,29 @@ void main()
     // share the screen layout, so this is also where the mirrored/refracted scene lies.
     mediump vec2 screenCoord = gl_FragCoord.xy * RcpWindowSize;
 
+#ifdef NEEDS_EYE_VECTOR
+#ifdef TP_NO_EYE_SCALING
+    HIGHP_OR_MEDIUMP float eyeScale = 1.0;
+    HIGHP_OR_MEDIUMP vec3 eyeScaled = EyeVector;
+#else
+    // Divided by its largest component before squaring: |EyeVector|^2 overflows fp16 (65504)
+    // beyond 256 units and loses precision below 0.01, whereas the scaled square lies in [1, 3]
+    // (less only nearer than cMinEyeDistance). Costs three abs, two max and a divide.
+    HIGHP_OR_MEDIUMP float eyeScale = max(max(abs(EyeVector.x), abs(EyeVector.y)),
+                                          max(abs(EyeVector.z), cMinEyeDistance));
+    HIGHP_OR_MEDIUMP vec3 eyeScaled = EyeVector / eyeScale;
+#endif
+    HIGHP_OR_MEDIUMP float eyeScaledLength2 = dot(eyeScaled, eyeScaled);
+#endif
+
 #ifdef NEEDS_EYE_DISTANCE
-    // Floored once here, so both the distortion divide and fog can use it.
-    highp float eyeDistance = max(length(EyeVector), cMinEyeDistance);
+#ifdef TP_NO_EYE_FLOOR
+    HIGHP_OR_MEDIUMP float eyeDistance = eyeScale * sqrt(eyeScaledLength2);
+#else
+    // Floored once here, so both the distortion divide and fog can use it: the camera can sit
+    // on the water plane.
+    HIGHP_OR_MEDIUMP float eyeDistance = max(eyeScale * sqrt(eyeScaledLength2), cMinEyeDistance);
+#endif
 #endif
 
 #ifdef ENABLE_DISTORTION
@@ -167,21 +203,34 @@ void main()
 #ifdef ENABLE_FRESNEL
 #ifdef NORMALISE_CUBEMAP
     // The cube map stores normalize(dir) * 0.5 + 0.5, so a lookup replaces the rsqrt.
-    highp vec3 eyeDirection = textureCube(NormalisationCubeMap, EyeVector).rgb * 2.0 - 1.0;
+    HIGHP_OR_MEDIUMP vec3 eyeDirection =
+            textureCube(NormalisationCubeMap, EyeVector).rgb * 2.0 - 1.0;
+#elif defined(TP_NO_EYE_FLOOR)
+    HIGHP_OR_MEDIUMP vec3 eyeDirection = eyeScaled * inversesqrt(eyeScaledLength2);
 #else
-    // normalize() with a floor under the squared length, so a zero vector cannot give NaN.
-    highp vec3 eyeDirection = EyeVector * inversesqrt(max(dot(EyeVector, EyeVector), 1e-8));
+    // normalize() with a floor under the squared length, so a zero vector cannot give NaN
+    // (1e-4 is representable in mediump; the scaled square is >= 1 unless the eye is nearer
+    // than cMinEyeDistance).
+    HIGHP_OR_MEDIUMP vec3 eyeDirection = eyeScaled * inversesqrt(max(eyeScaledLength2, 1e-4));
 #endif
-#ifdef ENABLE_DISTORTION
-    // inversesqrt with a floor rather than normalize(), which is NaN for a zero vector
-    // (a float normal map could hold exactly 0.5 grey; 1e-4 is representable in mediump).
-    mediump vec3 normal = bumpNormal * inversesqrt(max(dot(bumpNormal, bumpNormal), 1e-4));
-#else
+#if !defined(ENABLE_DISTORTION)
     mediump vec3 normal = vec3(0.0, 1.0, 0.0);
+#elif defined(TP_NO_NORMAL_FLOOR)
+    mediump vec3 normal = normalize(bumpNormal);
+#else
+    // The sum of two bump layers is not unit length (the whitepaper assumes it is): normalised
+    // with a floor rather than normalize(), which is NaN for a zero vector (a float normal map
+    // could hold exactly 0.5 grey; 1e-4 is representable in mediump).
+    mediump vec3 normal = bumpNormal * inversesqrt(max(dot(bumpNormal, bumpNormal), 1e-4));
 #endif
+#ifdef TP_NO_COS_CLAMP
+    mediump float cosIncidence = dot(normal, eyeDirection);
+#else
     // Clamped: the cube map's 8-bit vectors and back-facing bump normals can push the dot
-    // product slightly outside [0, 1].
+    // product outside [0, 1], and 1 - cos must stay in [0, 1] for the fifth power (pow() of a
+    // negative base is undefined in GLSL) and for a reflectance in [0, 1].
     mediump float cosIncidence = clamp(dot(normal, eyeDirection), 0.0, 1.0);
+#endif
     reflectance = fresnelReflectance(cosIncidence);
 #endif
     colour = mix(refraction, colour, reflectance);

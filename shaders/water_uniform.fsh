@@ -16,7 +16,14 @@ precision mediump float;
 
 const mediump float cReflectionShare = 0.4;
 const mediump float cBlendAlpha = 0.6;
-const highp float cMinEyeDistance = 1e-3;
+// highp is optional in GLSL ES 1.00 fragment shaders: the same mediump fallback as water.fsh.
+#if defined(GL_FRAGMENT_PRECISION_HIGH) && !defined(TP_FORCE_MEDIUMP)
+#define HIGHP_OR_MEDIUMP highp
+#else
+#define HIGHP_OR_MEDIUMP mediump
+#endif
+
+const HIGHP_OR_MEDIUMP float cMinEyeDistance = 1e-3;
 
 uniform bool bDistortion;
 uniform bool bScaleDistortion;
@@ -38,9 +45,9 @@ uniform lowp vec4 WaterColour;
 uniform lowp vec3 FogColour;
 uniform mediump float RcpMaxFogDepth;
 
-varying highp vec2 BumpCoord0;
-varying highp vec2 BumpCoord1;
-varying highp vec3 EyeVector;
+varying HIGHP_OR_MEDIUMP vec2 BumpCoord0;
+varying HIGHP_OR_MEDIUMP vec2 BumpCoord1;
+varying HIGHP_OR_MEDIUMP vec3 EyeVector;
 
 // Unpolarised air-to-water reflectance from the Fresnel equations; same as water.fsh
 // (FRESNEL_EXACT), which explains the clamps. cosIncidence must already lie in [0, 1].
@@ -75,9 +82,14 @@ void main()
 
     mediump vec2 screenCoord = gl_FragCoord.xy * RcpWindowSize;
 
-    highp float eyeDistance = cMinEyeDistance;
+    // Scaled by the largest component before squaring, as in water.fsh (fp16 overflow).
+    HIGHP_OR_MEDIUMP float eyeScale = max(max(abs(EyeVector.x), abs(EyeVector.y)),
+                                          max(abs(EyeVector.z), cMinEyeDistance));
+    HIGHP_OR_MEDIUMP vec3 eyeScaled = EyeVector / eyeScale;
+    HIGHP_OR_MEDIUMP float eyeScaledLength2 = dot(eyeScaled, eyeScaled);
+    HIGHP_OR_MEDIUMP float eyeDistance = cMinEyeDistance;
     if (scaleDistortion || bFog) {
-        eyeDistance = max(length(EyeVector), cMinEyeDistance);
+        eyeDistance = max(eyeScale * sqrt(eyeScaledLength2), cMinEyeDistance);
     }
 
     mediump vec3 bumpNormal = vec3(0.0, 1.0, 0.0);
@@ -100,11 +112,11 @@ void main()
         mediump vec3 refraction = texture2D(RefractionTex, screenCoord).rgb;
         mediump float reflectance = cReflectionShare;
         if (fresnel) {
-            highp vec3 eyeDirection;
+            HIGHP_OR_MEDIUMP vec3 eyeDirection;
             if (bNormaliseCubemap) {
                 eyeDirection = textureCube(NormalisationCubeMap, EyeVector).rgb * 2.0 - 1.0;
             } else {
-                eyeDirection = EyeVector * inversesqrt(max(dot(EyeVector, EyeVector), 1e-8));
+                eyeDirection = eyeScaled * inversesqrt(max(eyeScaledLength2, 1e-4));
             }
             mediump vec3 normal = vec3(0.0, 1.0, 0.0);
             if (bDistortion) {

@@ -534,6 +534,71 @@ Scene BuildDefaultScene() {
     return scene;
 }
 
+Scene BuildSceneFromDescription(const SceneDescription& description) {
+    Scene scene = BuildDefaultScene();
+    // The default seabed lies at -20 (TerrainHeight far from the island).
+    constexpr float kDefaultSeabed = 20.0F;
+    // Moved rocks stay this far below the water: below the 0.5-unit
+    // sliver the reflection's clip plane keeps (RenderSettings::clip_plane_offset), so the
+    // reflection pass culls them as wholly under water.
+    constexpr float kSubmergedClearance = 0.6F;
+    const float depth_scale = description.water_depth / kDefaultSeabed;
+    auto reshape = [&](float y) {
+        if (y < scene.water_height) {
+            y = scene.water_height + (y - scene.water_height) * depth_scale;
+        }
+        return y;
+    };
+    for (glm::vec3& p : scene.terrain.positions) {
+        // Without the island the floor is flat at the water's depth (open water).
+        p.y = description.above_terrain ? reshape(p.y)
+                                        : scene.water_height - description.water_depth;
+    }
+    FinishMesh(scene.terrain);
+    std::vector<Mesh> kept;
+    for (Mesh& object : scene.objects) {
+        const bool below = IsEntirelyBelow(object, scene.water_height);
+        const bool above = IsEntirelyAbove(object, scene.water_height);
+        // Hull and pillars cross the water: they are seen above it, so `above` decides.
+        const bool wanted = below ? description.below_objects : description.above_objects;
+        if (!wanted) {
+            continue;
+        }
+        if (below) {
+            // Whole rocks move with the floor under them, their top kept under the water.
+            const float centre = 0.5F * (object.world_bounds_min.y + object.world_bounds_max.y);
+            float shift = reshape(centre) - centre;
+            shift = std::min(shift, scene.water_height - kSubmergedClearance -
+                                            object.world_bounds_max.y);
+            object.model_matrix =
+                    glm::translate(glm::mat4(1.0F), glm::vec3(0.0F, shift, 0.0F)) *
+                    object.model_matrix;
+        } else if (!above) {
+            // Parts through the water stretch with the floor (model matrices are rigid).
+            const glm::mat4 inverse = glm::inverse(object.model_matrix);
+            for (glm::vec3& p : object.positions) {
+                glm::vec3 world(object.model_matrix * glm::vec4(p, 1.0F));
+                world.y = reshape(world.y);
+                p = glm::vec3(inverse * glm::vec4(world, 1.0F));
+            }
+        }
+        FinishMesh(object);
+        kept.push_back(std::move(object));
+    }
+    scene.objects = std::move(kept);
+    return scene;
+}
+
+CameraView SceneCameraView(const SceneDescription& description) {
+    const SceneCamera& camera = description.camera;
+    const float heading = glm::radians(camera.heading_degrees);
+    const glm::vec3 target(camera.look_at[0], camera.look_at[1], camera.look_at[2]);
+    const glm::vec3 eye(target.x + camera.distance * std::sin(heading), camera.height,
+                        target.z + camera.distance * std::cos(heading));
+    // Near 1 as in DefaultViews: 24-bit depth stays precise out to the far plane.
+    return {description.name, eye, target, glm::radians(50.0F), 1.0F, camera.view_range};
+}
+
 bool IsEntirelyBelow(const Mesh& mesh, float plane_height) {
     return mesh.world_bounds_max.y <= plane_height;
 }

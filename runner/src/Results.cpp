@@ -20,6 +20,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// CPU time of this whole process: llvmpipe rasterises on worker threads of this process, so the
+// sum over threads is the work a frame costs, whatever else the machine is running.
+double ProcessCpuSeconds() {
+    timespec now{};
+    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
+}
+
 double Seconds(Clock::duration duration) {
     return std::chrono::duration<double>(duration).count();
 }
@@ -193,6 +201,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             step("warmup", r.configuration.id, 1);
         }
         r.samples_ms.assign(static_cast<std::size_t>(std::max(options.rounds, 0)), {});
+        r.cpu_samples_ms.assign(r.samples_ms.size(), {});
     }
     for (int round = 0; round < options.rounds; ++round) {
         for (std::size_t k = 0; k < timed.size(); ++k) {
@@ -200,11 +209,14 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             const std::size_t i = timed[(k + static_cast<std::size_t>(round)) % timed.size()];
             ConfigurationResult& r = results.configurations[i];
             for (int f = 0; f < options.frames_per_round; ++f) {
+                const double cpu_start = ProcessCpuSeconds();
                 const Clock::time_point frame_start = Clock::now();
                 const FrameReport frame = renderer->RenderFrame(r.configuration, *timing_view);
                 renderer->Finish();
                 const double ms = Seconds(Clock::now() - frame_start) * 1000.0;
+                const double cpu_ms = (ProcessCpuSeconds() - cpu_start) * 1000.0;
                 r.samples_ms[static_cast<std::size_t>(round)].push_back(ms);
+                r.cpu_samples_ms[static_cast<std::size_t>(round)].push_back(cpu_ms);
                 plan_ms[i].push_back(frame.plan_seconds * 1000.0);
                 if (!frame.gl_error.empty() && r.gl_error.empty()) {
                     r.gl_error = frame.gl_error;
@@ -220,6 +232,11 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             all.insert(all.end(), round.begin(), round.end());
         }
         r.statistics = ComputeSampleStatistics(all);
+        std::vector<double> all_cpu;
+        for (const std::vector<double>& round : r.cpu_samples_ms) {
+            all_cpu.insert(all_cpu.end(), round.begin(), round.end());
+        }
+        r.cpu_statistics = ComputeSampleStatistics(all_cpu);
         r.plan_ms_median = ComputeSampleStatistics(plan_ms[i]).median;
     }
     for (const ConfigurationResult& r : results.configurations) {
@@ -274,7 +291,8 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         {"warmup_frames", o.warmup_frames},
         {"rounds", o.rounds},
         {"frames_per_round", o.frames_per_round},
-        {"timing_method", "steady_clock around submission + glFinish, per frame; rounds "
+        {"timing_method", "steady_clock (samples_ms) and CLOCK_PROCESS_CPUTIME_ID "
+                          "(cpu_samples_ms) around submission + glFinish, per frame; rounds "
                           "interleave configurations, order rotated each round"},
         {"animation_time_s", s.animation_time},
         {"clip_plane_offset", s.clip_plane_offset},
@@ -339,6 +357,8 @@ nlohmann::json ResultsToJson(const RunResults& results) {
             {"frame_draw_calls", r.draw_calls},
             {"samples_ms", r.samples_ms},
             {"statistics", StatisticsJson(r.statistics)},
+            {"cpu_samples_ms", r.cpu_samples_ms},
+            {"cpu_statistics", StatisticsJson(r.cpu_statistics)},
             {"plan_ms_median", r.plan_ms_median},
             {"gl_error", r.gl_error},
             {"ok", r.Ok()},

@@ -6,6 +6,8 @@
 #include <limits>
 #include <utility>
 
+#include <glm/ext/matrix_transform.hpp>
+
 namespace tidepool::runner {
 namespace {
 
@@ -198,6 +200,28 @@ glm::vec<4, T> TransformPlane(const glm::mat<4, 4, T>& matrix, const glm::vec<4,
     return glm::transpose(glm::inverse(matrix)) * plane;
 }
 
+template <typename T>
+glm::mat<4, 4, T> LookAtWithFallbackUp(const glm::vec<3, T>& eye, const glm::vec<3, T>& target) {
+    const glm::vec<3, T> direction = target - eye;
+    const T length = glm::length(direction);
+    if (!(length > T(0))) {
+        return glm::mat<4, 4, T>(T(1));
+    }
+    const glm::vec<3, T> up(T(0), T(1), T(0));
+    const T sine = glm::length(glm::cross(direction / length, up));
+    if (sine >= static_cast<T>(kVerticalViewSine)) {
+        return glm::lookAt(eye, target, up);
+    }
+    // Looking down, screen-up is -z (north on a map); looking up, +z, so the image is the
+    // limit of a view tilting towards vertical from the default views' side.
+    const glm::vec<3, T> fallback(T(0), T(0), direction.y < T(0) ? T(-1) : T(1));
+    return glm::lookAt(eye, target, fallback);
+}
+
+template glm::mat<4, 4, float> LookAtWithFallbackUp(const glm::vec<3, float>&,
+                                                    const glm::vec<3, float>&);
+template glm::mat<4, 4, double> LookAtWithFallbackUp(const glm::vec<3, double>&,
+                                                     const glm::vec<3, double>&);
 template glm::mat<4, 4, float> MirrorMatrix(const glm::vec<4, float>&);
 template ObliqueProjection<float> ObliqueNearPlane(const glm::mat<4, 4, float>&,
                                                    const glm::vec<4, float>&);

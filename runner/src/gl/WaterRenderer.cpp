@@ -131,6 +131,7 @@ struct WaterRenderer::Impl {
     VariantConfig config;
     RenderSettings settings;
     Scene scene;
+    bool scene_given = false;  // Create received a scene; Init keeps it instead of the default
 
     std::vector<MeshBuffers> meshes;  // terrain first, then scene.objects
     MeshBuffers sky_cube;
@@ -285,7 +286,9 @@ std::string WaterRenderer::Impl::Init() {
     if (settings.width < 1 || settings.height < 1) {
         return fmt::format("the render size {}x{} is empty", settings.width, settings.height);
     }
-    scene = BuildDefaultScene();
+    if (!scene_given) {
+        scene = BuildDefaultScene();
+    }
     meshes.push_back(UploadMesh(scene.terrain));
     for (const Mesh& object : scene.objects) {
         meshes.push_back(UploadMesh(object));
@@ -495,7 +498,9 @@ std::vector<std::string> WaterRenderer::Impl::HelperDefines(const RenderConfigur
 FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraView& view) const {
     FramePlan plan;
     const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    const glm::mat4 view_matrix = ViewMatrix(view);
+    // Not ViewMatrix(view): that is NaN for a view straight down or up (hard cases
+    // "straight_down", "straight_up"); elsewhere the two are the same matrix.
+    const glm::mat4 view_matrix = LookAtWithFallbackUp(view.eye, view.target);
     const glm::mat4 projection = ProjectionMatrix(view, aspect);
     const float h = scene.water_height;
     const glm::vec4 water_plane(0.0F, 1.0F, 0.0F, -h);
@@ -505,10 +510,14 @@ FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraVi
     if (plan.polygon.size() > static_cast<std::size_t>(kMaxPolygonVertices)) {
         plan.polygon.resize(kMaxPolygonVertices);  // cannot happen for a convex cut of a frustum
     }
-    plan.bump_translation0 = AdvanceBumpTranslation(glm::vec2(0.0F), settings.bump_velocity0,
-                                                    settings.animation_time, true);
-    plan.bump_translation1 = AdvanceBumpTranslation(glm::vec2(0.0F), settings.bump_velocity1,
-                                                    settings.animation_time, true);
+    // In double, then rounded: velocity × 10^6 s in float keeps only ~3 fractional bits of the
+    // wrapped translation (hard case "long_run_wrapped"); double keeps it to 1e-10.
+    plan.bump_translation0 = glm::vec2(AdvanceBumpTranslation(
+            glm::dvec2(0.0), glm::dvec2(settings.bump_velocity0),
+            static_cast<double>(settings.animation_time), settings.wrap_bump_translation));
+    plan.bump_translation1 = glm::vec2(AdvanceBumpTranslation(
+            glm::dvec2(0.0), glm::dvec2(settings.bump_velocity1),
+            static_cast<double>(settings.animation_time), settings.wrap_bump_translation));
     const bool water_visible = !plan.polygon.empty();
     const bool fog = c.Has("ENABLE_FOG");
     const bool wants_refraction = c.Has("ENABLE_REFRACTION");
@@ -564,7 +573,7 @@ FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraVi
             // With fog the water colour hides the distance, so the sky is left out (whitepaper).
             pass.draw_sky = !fog;
             pass.clear_colour = fog ? settings.underwater_colour : glm::vec3(0.0F);
-            const float max_depth = 1.0F / settings.rcp_max_fog_depth;
+            const float max_depth = 1.0F / MediumpFogReciprocal(settings.rcp_max_fog_depth);
             for (int i = -1; i < object_count; ++i) {
                 const Mesh& mesh = mesh_of(i);
                 if (culling && (IsEntirelyAbove(mesh, h + settings.clip_plane_offset) ||
@@ -639,7 +648,8 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, const RenderConfigura
     gl->glUniform3f(Uniform(program, "LightDirection"), scene.sun_direction.x,
                     scene.sun_direction.y, scene.sun_direction.z);
     gl->glUniform1f(Uniform(program, "WaterHeight"), scene.water_height);
-    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"), settings.rcp_max_fog_depth);
+    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"),
+                    MediumpFogReciprocal(settings.rcp_max_fog_depth));
     gl->glUniform3f(Uniform(program, "FogColour"), settings.underwater_colour.r,
                     settings.underwater_colour.g, settings.underwater_colour.b);
     gl->glUniform4f(Uniform(program, "ClipPlane"), pass.clip_plane.x, pass.clip_plane.y,
@@ -737,7 +747,8 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
                     settings.water_colour.g, settings.water_colour.b, settings.water_colour.a);
     gl->glUniform3f(Uniform(program, "FogColour"), settings.fog_colour.r, settings.fog_colour.g,
                     settings.fog_colour.b);
-    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"), settings.rcp_max_fog_distance);
+    gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"),
+                    MediumpFogReciprocal(settings.rcp_max_fog_distance));
     gl->glUniform1i(Uniform(program, "ReflectionTex"), kUnitReflection);
     gl->glUniform1i(Uniform(program, "RefractionTex"), kUnitRefraction);
     gl->glUniform1i(Uniform(program, "NormalTex"), kUnitNormalMap);
@@ -772,7 +783,7 @@ WaterRenderer::~WaterRenderer() = default;
 std::unique_ptr<WaterRenderer> WaterRenderer::Create(GlContext& context,
                                                      const VariantConfig& config,
                                                      const RenderSettings& settings,
-                                                     std::string* error) {
+                                                     std::string* error, const Scene* scene) {
     if (!context.MakeCurrent()) {
         *error = "the GL context cannot be made current";
         return nullptr;
@@ -782,6 +793,10 @@ std::unique_ptr<WaterRenderer> WaterRenderer::Create(GlContext& context,
     impl->gl = &context.Internal().api;
     impl->config = config;
     impl->settings = settings;
+    if (scene != nullptr) {
+        impl->scene = *scene;
+        impl->scene_given = true;
+    }
     *error = impl->Init();
     if (!error->empty()) {
         return nullptr;
@@ -874,6 +889,8 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
         gl.glViewport(0, 0, target.width, target.height);
         ++report.passes;
         report.pass_names.emplace_back(PassName(pass.kind));
+        report.pass_pixels.push_back(static_cast<long long>(target.width) * target.height);
+        const int draws_before = report.draw_calls;
         if (pass.kind == PassKind::kLowResWater) {
             // The water alone: cleared transparent, no depth (the composite is depth-tested).
             gl.glClearColor(0.0F, 0.0F, 0.0F, 0.0F);
@@ -896,12 +913,26 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
             }
             gl.glFrontFace(GL_CCW);
         }
+        report.pass_draw_calls.push_back(report.draw_calls - draws_before);
         const GLenum error = gl.glGetError();
         if (error != GL_NO_ERROR && report.gl_error.empty()) {
             report.gl_error = fmt::format("{} after pass {}", ErrorName(error), PassName(pass.kind));
         }
     }
     return report;
+}
+
+void WaterRenderer::UpdateFrameSettings(const RenderSettings& settings) {
+    RenderSettings& kept = impl_->settings;
+    RenderSettings updated = settings;
+    updated.width = kept.width;
+    updated.height = kept.height;
+    updated.low_res_water_size = kept.low_res_water_size;
+    updated.sky_size = kept.sky_size;
+    updated.normal_map_size = kept.normal_map_size;
+    updated.normalisation_cube_size = kept.normalisation_cube_size;
+    updated.float_target = kept.float_target;
+    kept = updated;
 }
 
 void WaterRenderer::Finish() { impl_->gl->glFinish(); }

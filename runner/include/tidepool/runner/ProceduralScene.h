@@ -13,6 +13,8 @@
 #include <glm/ext/vector_uint4_sized.hpp>
 #include <glm/glm.hpp>
 
+#include "tidepool/SceneDescription.h"
+
 namespace tidepool::runner {
 
 /// An 8-bit RGBA image, rows top to bottom, 4 bytes per pixel. Uploaded as-is with glTexImage2D,
@@ -82,6 +84,14 @@ struct Scene {
 /// on the island and fully above the water. Never fails.
 Scene BuildDefaultScene();
 
+/// Builds the default scene reshaped to a description: heights under the water scaled so the
+/// open sea floor lies at `water.depth` (the island's slope and the submerged parts of hull and
+/// pillars with it; submerged rocks move, staying whole), a flat floor at that depth when
+/// terrain is not above, the submerged rocks only when objects are below, and the objects
+/// through or above the water only when objects are above. Never fails: the
+/// description's parser already refused what the renderer cannot draw.
+Scene BuildSceneFromDescription(const SceneDescription& description);
+
 /// True when the mesh's world bounds lie at or below the plane y = plane_height (nothing to draw
 /// above it). Never fails.
 bool IsEntirelyBelow(const Mesh& mesh, float plane_height);
@@ -110,6 +120,10 @@ std::vector<CameraView> DefaultViews();
 
 /// Returns the view called `name`, or nullptr when there is none.
 const CameraView* FindView(const std::vector<CameraView>& views, std::string_view name);
+
+/// The camera a description asks for: look_at seen from `distance` away at `height` above the
+/// water, 50-degree vertical field of view, near plane 1, far plane `view_range`. Never fails.
+CameraView SceneCameraView(const SceneDescription& description);
 
 /// Returns the world → view matrix (right-handed, y up). Fails (non-finite values) when eye equals
 /// target or looks straight along the y axis.

@@ -23,6 +23,10 @@ struct RenderSettings {
     int width = 640;
     int height = 480;
     float animation_time = 2.0F;  // seconds; fixed so every run renders the same pixels
+    // Hand the shader only the fractional part of the bump translations (whitepaper 2.2). Off
+    // only for the hard case that shows why: after long run times the raw translation is too
+    // large for mediump bump coordinates.
+    bool wrap_bump_translation = true;
     // Clip planes move this far (world units) "back along the plane's direction" (whitepaper
     // 3.3.4): the reflection keeps a sliver below the water, the refraction a sliver above it,
     // so distorted lookups at objects crossing the water find the object, not the clear colour.
@@ -67,6 +71,10 @@ struct FrameReport {
     int passes = 0;                        // render passes (framebuffer targets) drawn
     int draw_calls = 0;                    // glDrawArrays/glDrawElements calls
     std::vector<std::string> pass_names;   // "reflection", "refraction", "low_res_water", "main"
+    std::vector<int> pass_draw_calls;      // draw calls of each pass, in pass_names' order
+    // Pixels of each pass's target: every pass clears and covers its whole target once, so this
+    // is an occlusion-free estimate of the fragments it shades (GLES 2 has no occlusion query).
+    std::vector<long long> pass_pixels;
     bool oblique_fallback = false;  // the oblique near plane was impossible; discard clipped
     std::string gl_error;           // "" or e.g. "GL_INVALID_OPERATION after pass reflection"
     double plan_seconds = 0;        // CPU time computing the frame (matrices, polygon, culling)
@@ -76,11 +84,13 @@ struct FrameReport {
 class WaterRenderer {
 public:
     /// Creates the scene, its textures and render targets on `context` (made current here),
-    /// reading shaders through `config`. Fails (null, `error` set) when a render target is
+    /// reading shaders through `config`; draws `scene` when given (BuildSceneFromDescription),
+    /// the default scene otherwise. Fails (null, `error` set) when a render target is
     /// incomplete or float_target is asked for but the context cannot render to float.
     static std::unique_ptr<WaterRenderer> Create(GlContext& context, const VariantConfig& config,
                                                  const RenderSettings& settings,
-                                                 std::string* error);
+                                                 std::string* error,
+                                                 const Scene* scene = nullptr);
     ~WaterRenderer();
     WaterRenderer(const WaterRenderer&) = delete;
     WaterRenderer& operator=(const WaterRenderer&) = delete;
@@ -94,6 +104,11 @@ public:
     /// timed frames, so re-current the context if another was made current since); fails through FrameReport::gl_error (glGetError after each pass) or, when the
     /// programs are invalid, by drawing nothing and saying so there.
     FrameReport RenderFrame(const RenderConfiguration& configuration, const CameraView& view);
+
+    /// Replaces the settings that only move uniforms and the frame plan (animation time and
+    /// wrapping, fog, distortion, bump scales and velocities, colours, clip offset); the sizes
+    /// and float_target stay as created, since they decide textures and targets. Never fails.
+    void UpdateFrameSettings(const RenderSettings& settings);
 
     /// Blocks until GL has finished every submitted command (glFinish).
     void Finish();

@@ -65,6 +65,10 @@ struct ConfigurationResult {
     std::vector<ViewResult> views;
     std::vector<std::vector<double>> samples_ms;  // frame times per round, milliseconds
     SampleStatistics statistics;                  // over every sample of every round
+    // The same frames measured as this process's CPU time (every llvmpipe thread included):
+    // the work a frame costs, which other processes on a shared machine barely disturb.
+    std::vector<std::vector<double>> cpu_samples_ms;
+    SampleStatistics cpu_statistics;
     int passes = 0;                               // per frame at the timing view
     int draw_calls = 0;
     std::string gl_error;                         // the first GL error seen, "" when none

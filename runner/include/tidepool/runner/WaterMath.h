@@ -7,6 +7,7 @@
 // [-w, w]). A plane is (n, d) with n·x + d = 0; its kept (positive) side is n·x + d >= 0.
 #pragma once
 
+#include <cmath>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -65,6 +66,30 @@ glm::vec<2, T> AdvanceBumpTranslation(glm::vec<2, T> translation, glm::vec<2, T>
 template <typename T>
 glm::vec<4, T> TransformPlane(const glm::mat<4, 4, T>& matrix, const glm::vec<4, T>& plane);
 
+/// Returns the world → view matrix looking from `eye` at `target` with y up, exactly as
+/// glm::lookAt(eye, target, y) does, except where that is undefined: when the view direction is
+/// within kVerticalViewSine of the y axis (looking straight down or up), y is no usable up vector
+/// (lookAt normalises a zero cross product into NaN), so -z (looking down) or +z (looking up)
+/// serves instead. Fails by returning the identity when eye equals target.
+template <typename T>
+glm::mat<4, 4, T> LookAtWithFallbackUp(const glm::vec<3, T>& eye, const glm::vec<3, T>& target);
+
+/// Sine of the angle to the y axis below which LookAtWithFallbackUp switches its up vector: the
+/// cross product with y is then shorter than 1e-4, which float still normalises, but the view's
+/// roll would swing with rounding; 1e-4 rad (0.006°) is far below any view the renderer sets.
+inline constexpr double kVerticalViewSine = 1e-4;
+
+/// Largest finite mediump (fp16) number, the top of the range a mediump uniform can hold.
+inline constexpr float kMaxMediump = 65504.0F;
+
+/// Returns a fog reciprocal (1 / maximum fog depth or distance) as the renderer uploads it to a
+/// mediump uniform: clamped to [0, kMaxMediump], with NaN and negative values giving 0 (no fog).
+/// A maximum depth of 0 would otherwise upload +Inf, and 0 × Inf at the water line is NaN; at
+/// 1/65504 units no pixel can tell the clamped fog from the exact one. Never fails.
+inline float MediumpFogReciprocal(float reciprocal) {
+    return std::fmin(std::fmax(reciprocal, 0.0F), kMaxMediump);  // fmax drops a NaN
+}
+
 // Defined in WaterMath.cpp for float and double only.
 extern template glm::mat<4, 4, float> MirrorMatrix(const glm::vec<4, float>&);
 extern template ObliqueProjection<float> ObliqueNearPlane(const glm::mat<4, 4, float>&,
@@ -77,6 +102,10 @@ extern template glm::vec<2, float> AdvanceBumpTranslation(glm::vec<2, float>, gl
                                                           float, bool);
 extern template glm::vec<4, float> TransformPlane(const glm::mat<4, 4, float>&,
                                                   const glm::vec<4, float>&);
+extern template glm::mat<4, 4, float> LookAtWithFallbackUp(const glm::vec<3, float>&,
+                                                           const glm::vec<3, float>&);
+extern template glm::mat<4, 4, double> LookAtWithFallbackUp(const glm::vec<3, double>&,
+                                                            const glm::vec<3, double>&);
 extern template glm::mat<4, 4, double> MirrorMatrix(const glm::vec<4, double>&);
 extern template ObliqueProjection<double> ObliqueNearPlane(const glm::mat<4, 4, double>&,
                                                            const glm::vec<4, double>&);

@@ -1,0 +1,253 @@
+// `tidepool plan`: flags → plan options → PlanScene per scene → print → plans.json → exit code.
+#include "PlanCommands.h"
+
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/Results.h"
+#include "tidepool/runner/ScenePlanner.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "Commands.h"
+#include <fmt/format.h>
+
+namespace tidepool::cli {
+namespace {
+
+struct PlanCommandOptions {
+    std::string config = "variants.yaml";
+    std::vector<std::string> scenes;
+    bool all = false;
+    std::string size = "320x240";
+    int rounds = 5;
+    int frames = 3;
+    std::string backend = "auto";
+    int threads = 2;
+    bool json = false;
+    std::string out;
+};
+
+bool ParsePlanSize(const std::string& text, int* width, int* height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos) {
+        return false;
+    }
+    try {
+        std::size_t used = 0;
+        *width = std::stoi(text.substr(0, x), &used);
+        if (used != x) {
+            return false;
+        }
+        *height = std::stoi(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) {
+            return false;
+        }
+    } catch (const std::exception&) {
+        return false;
+    }
+    // SSIM needs an 11x11 window inside the image; 8192 is the renderer's limit elsewhere.
+    return *width >= 16 && *height >= 16 && *width <= 8192 && *height <= 8192;
+}
+
+report::RgbaImage ToReportImage(const runner::ImageRgba8& image) {
+    return report::RgbaImage{image.width, image.height, image.pixels};
+}
+
+runner::ImageError MeasureWithReportMetrics(const runner::ImageRgba8& reference,
+                                            const runner::ImageRgba8& candidate) {
+    const report::RgbaImage a = ToReportImage(reference);
+    const report::RgbaImage b = ToReportImage(candidate);
+    runner::ImageError error;
+    error.psnr_db = report::Psnr(a, b);
+    error.ssim = report::Ssim(a, b);
+    error.share_visible = report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold);
+    return error;
+}
+
+void PrintPlan(const runner::ScenePlan& plan) {
+    std::printf("scene %s: %s\n", plan.scene.name.c_str(), plan.scene.description.c_str());
+    for (const Diagnostic& d : plan.diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+    if (plan.chosen < 0) {
+        return;
+    }
+    for (const std::string& need : plan.needed) {
+        std::printf("  needs   %s\n", need.c_str());
+    }
+    for (const runner::PlanCandidate& c : plan.candidates) {
+        if (!c.valid) {
+            std::printf("  skip    %-64s invalid\n", c.configuration.id.c_str());
+            continue;
+        }
+        std::printf(
+                "  %s %-64s %6.2f ms %+5.0f%%  %5.1f dB  ssim %.3f  visible %5.1f%%  "
+                "passes %d draws %d\n",
+                &c == &plan.candidates[static_cast<std::size_t>(plan.chosen)] ? "chosen "
+                                                                              : "       ",
+                c.configuration.id.c_str(), c.time_ms, c.time_change_percent, c.error.psnr_db,
+                c.error.ssim, 100.0 * c.error.share_visible, c.frame.passes, c.frame.draw_calls);
+    }
+    for (const runner::DroppedEffect& d : plan.dropped) {
+        std::printf("  %s\n", d.reason.c_str());
+    }
+    for (const runner::DroppedEffect& k : plan.kept) {
+        std::printf("  %s\n", k.reason.c_str());
+    }
+    const runner::PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(plan.chosen)];
+    std::printf(
+            "  => %s: %.2f ms vs %.2f ms full (%+.0f%%), %.1f dB, target %s; %d passes and "
+            "%d draws saved\n",
+            chosen.configuration.id.c_str(), chosen.time_ms, plan.candidates.front().time_ms,
+            chosen.time_change_percent, chosen.error.psnr_db, plan.met ? "met" : "NOT met",
+            plan.passes_saved, plan.draws_saved);
+}
+
+int RunPlan(const PlanCommandOptions& options) {
+    using namespace tidepool::runner;
+    PlanOptions plan_options;
+    if (!ParsePlanSize(options.size, &plan_options.settings.width, &plan_options.settings.height)) {
+        std::fprintf(stderr, "error: --size must be WxH with 16..8192 each, not '%s'\n",
+                     options.size.c_str());
+        return kExitUsage;
+    }
+    BackendKind backend = BackendKind::kAuto;
+    if (!ParseBackendKind(options.backend, &backend)) {
+        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
+                     options.backend.c_str());
+        return kExitUsage;
+    }
+    if (options.rounds < 1 || options.frames < 1 || options.threads < 0) {
+        std::fprintf(stderr,
+                     "error: --rounds and --frames must be at least 1, --threads at "
+                     "least 0\n");
+        return kExitUsage;
+    }
+    if (options.all == !options.scenes.empty()) {
+        std::fprintf(stderr, "error: give either --scene NAME (repeatable) or --all\n");
+        return kExitUsage;
+    }
+    plan_options.rounds = options.rounds;
+    plan_options.frames_per_round = options.frames;
+
+    ConfigResult loaded = LoadVariantConfig(options.config);
+    for (const Diagnostic& d : loaded.diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+    if (!loaded.config) {
+        return kExitUsage;
+    }
+    const VariantConfig& config = *loaded.config;
+    const std::filesystem::path scene_dir = config.base_dir / "scenes";
+    std::vector<std::filesystem::path> paths;
+    if (options.all) {
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
+            if (entry.path().extension() == ".yaml") {
+                paths.push_back(entry.path());
+            }
+        }
+        std::sort(paths.begin(), paths.end());
+        if (paths.empty()) {
+            std::fprintf(stderr, "error: no scenes/*.yaml next to %s\n", options.config.c_str());
+            return kExitUsage;
+        }
+    } else {
+        for (const std::string& name : options.scenes) {
+            paths.push_back(scene_dir / (name + ".yaml"));
+        }
+    }
+    std::vector<SceneDescription> scenes;
+    bool bad = false;
+    for (const std::filesystem::path& path : paths) {
+        SceneResult scene = LoadSceneDescription(path);
+        for (const Diagnostic& d : scene.diagnostics) {
+            std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+        }
+        if (scene.scene) {
+            scenes.push_back(std::move(*scene.scene));
+        } else {
+            bad = true;
+        }
+    }
+    if (bad) {
+        return kExitUsage;
+    }
+
+    // llvmpipe reads its thread count when the first context is created.
+    const std::string threads = std::to_string(options.threads);
+    setenv("LP_NUM_THREADS", threads.c_str(), 1);
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        return kExitEnvironment;
+    }
+    std::string out = options.out;
+    if (out.empty() && options.all) {
+        out = "reports/out/plan";
+    }
+    if (!out.empty()) {
+        plan_options.out_dir = out;
+    }
+    std::vector<ScenePlan> plans;
+    int failed = 0;
+    for (const SceneDescription& scene : scenes) {
+        plans.push_back(
+                PlanScene(*context.context, config, scene, plan_options, MeasureWithReportMetrics));
+        if (!options.json) {
+            PrintPlan(plans.back());
+        }
+        failed += plans.back().chosen < 0 ? 1 : 0;
+    }
+    const nlohmann::json json = PlansToJson(plans, plan_options);
+    if (options.json) {
+        std::printf("%s\n", json.dump(2).c_str());
+    }
+    if (!out.empty()) {
+        const std::filesystem::path path = std::filesystem::path(out) / "plans.json";
+        const std::string error = WriteJsonAtomically(path, json);
+        if (!error.empty()) {
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+            return kExitEnvironment;
+        }
+        std::fprintf(stderr, "plan: %zu scenes; plans in %s\n", plans.size(), path.c_str());
+    }
+    return failed > 0 ? kExitShaderErrors : kExitOk;
+}
+
+}  // namespace
+
+void RegisterPlanCommands(CLI::App& app, int& exit_code) {
+    auto options = std::make_shared<PlanCommandOptions>();
+    CLI::App* plan = app.add_subcommand(
+            "plan",
+            "pick the cheapest water configuration that meets a scene's quality target, "
+            "by rendering and timing a short candidate list (scenes/NAME.yaml)");
+    plan->add_option("--config", options->config, "variants.yaml to read; scenes/ lies next to it")
+            ->capture_default_str();
+    plan->add_option("--scene", options->scenes, "plan scenes/NAME.yaml (repeatable)");
+    plan->add_flag("--all", options->all, "plan every scenes/*.yaml and write plans.json");
+    plan->add_option("--size", options->size, "render size WxH")->capture_default_str();
+    plan->add_option("--rounds", options->rounds, "paired timing rounds")->capture_default_str();
+    plan->add_option("--frames", options->frames, "timed frames per candidate per round")
+            ->capture_default_str();
+    plan->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
+            ->capture_default_str();
+    plan->add_option("--threads", options->threads,
+                     "llvmpipe threads (LP_NUM_THREADS; 0 renders on the calling thread)")
+            ->capture_default_str();
+    plan->add_flag("--json", options->json, "print plans.json to stdout");
+    plan->add_option("--out", options->out,
+                     "folder for plans.json (default reports/out/plan with --all)");
+    plan->callback([options, &exit_code] { exit_code = RunPlan(*options); });
+}
+
+}  // namespace tidepool::cli

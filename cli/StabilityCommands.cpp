@@ -1,0 +1,168 @@
+// `tidepool stability`: flags → catalogue run → stability.json → summary → exit code.
+#include "StabilityCommands.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "Commands.h"
+#include "tidepool/AtomicFile.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/StabilityReport.h"
+
+namespace tidepool::cli {
+namespace {
+
+struct StabilityOptions {
+    std::string config = "variants.yaml";
+    std::string out = "reports/out/render";
+    std::string backend = "auto";
+    std::string size = "64x48";
+    int threads = 2;
+    bool json = false;
+};
+
+bool ParseWxH(const std::string& text, int* width, int* height) {
+    int consumed = 0;
+    if (std::sscanf(text.c_str(), "%dx%d%n", width, height, &consumed) != 2 ||
+        static_cast<std::size_t>(consumed) != text.size()) {
+        return false;
+    }
+    return *width > 0 && *height > 0 && *width <= 4096 && *height <= 4096;
+}
+
+int RunStability(const StabilityOptions& options) {
+    using namespace tidepool::runner;
+    GlStabilityOptions gl_options;
+    if (!ParseWxH(options.size, &gl_options.width, &gl_options.height)) {
+        std::fprintf(stderr, "error: --size must be WxH with 1..4096 each, not '%s'\n",
+                     options.size.c_str());
+        return kExitUsage;
+    }
+    BackendKind backend = BackendKind::kAuto;
+    if (!ParseBackendKind(options.backend, &backend) || options.threads < 0) {
+        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa and --threads >= 0\n");
+        return kExitUsage;
+    }
+    ConfigResult loaded = LoadVariantConfig(options.config);
+    for (const Diagnostic& d : loaded.diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+    if (!loaded.config) {
+        return kExitUsage;
+    }
+    ExpansionOptions expansion_options;
+    expansion_options.max_variants = loaded.config->max_variants;
+    const ExpansionResult expansion = ExpandVariants(*loaded.config, expansion_options);
+    if (HasErrors(expansion.diagnostics)) {
+        for (const Diagnostic& d : expansion.diagnostics) {
+            std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+        }
+        return kExitUsage;
+    }
+
+    StabilityReport report;
+    const std::vector<HardCase> catalogue = HardCaseCatalogue();
+    for (const HardCase& hard_case : catalogue) {
+        if (hard_case.kind == HardCaseKind::kCpu) {
+            report.cases.push_back(RunCpuHardCase(hard_case));
+        }
+    }
+    report.precision = RunPrecisionStudy();
+
+    // llvmpipe reads its thread count when the first context is created.
+    const std::string threads = std::to_string(options.threads);
+    setenv("LP_NUM_THREADS", threads.c_str(), 1);
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        return kExitEnvironment;
+    }
+    const GlEnvironment& env = context.context->Environment();
+    report.environment = {{"backend", env.backend},
+                          {"renderer", env.renderer},
+                          {"version", env.version},
+                          {"mesa_version", env.mesa_version},
+                          {"lp_num_threads", threads},
+                          {"size", options.size},
+                          {"config", options.config}};
+    std::string error;
+    const std::vector<RenderConfiguration> configs =
+            WaterVariantConfigurations(expansion.variants);
+    std::vector<StabilityCaseResult> gl_cases =
+            RunGlHardCases(*context.context, *loaded.config, configs, catalogue, gl_options, &error);
+    if (!error.empty()) {
+        std::fprintf(stderr, "error: %s\n", error.c_str());
+        return kExitEnvironment;
+    }
+    for (StabilityCaseResult& r : gl_cases) {
+        report.cases.push_back(std::move(r));
+    }
+    report.guards = MeasureGuards(*context.context, *loaded.config, gl_options, &error);
+    if (!error.empty()) {
+        std::fprintf(stderr, "error: %s\n", error.c_str());
+        return kExitEnvironment;
+    }
+
+    const std::string json = StabilityReportJson(report);
+    const std::filesystem::path path = std::filesystem::path(options.out) / "stability.json";
+    const std::string write_error = WriteFileAtomically(path, json);
+    if (!write_error.empty()) {
+        std::fprintf(stderr, "error: %s\n", write_error.c_str());
+        return kExitEnvironment;
+    }
+    int failed = 0;
+    for (const StabilityCaseResult& r : report.cases) {
+        failed += r.passed ? 0 : 1;
+    }
+    if (options.json) {
+        std::fputs(json.c_str(), stdout);
+    } else {
+        for (const StabilityCaseResult& r : report.cases) {
+            std::printf("%-4s %-34s %s  max_error %.3g (bound %.3g)\n",
+                        r.passed ? "ok" : "FAIL", r.name.c_str(), HardCaseKindName(r.kind),
+                        r.max_error, r.bound);
+        }
+        for (const PrecisionRow& p : report.precision) {
+            std::printf("%-9s %s (fp16 rel %.3g)\n",
+                        p.loses_precision ? "mediump!" : "mediump", p.expression.c_str(),
+                        p.max_rel_error_fp16);
+        }
+        for (const GuardResult& g : report.guards) {
+            std::printf("guard %s: %.3g (tolerance %.3g)\n", g.guard.c_str(),
+                        g.max_channel_diff_normal_views, g.tolerance);
+        }
+        std::printf("%zu cases, %d failed; wrote %s\n", report.cases.size(), failed,
+                    path.string().c_str());
+    }
+    return failed == 0 ? kExitOk : kExitShaderErrors;
+}
+
+}  // namespace
+
+void RegisterStabilityCommands(CLI::App& app, int& exit_code) {
+    auto options = std::make_shared<StabilityOptions>();
+    CLI::App* command = app.add_subcommand(
+            "stability", "Run the numerical hard cases (CPU sweeps, every water variant rendered "
+                         "into a float target), the mediump precision study and the shader-guard "
+                         "comparison; write DIR/stability.json");
+    command->add_option("--config", options->config, "variants.yaml to read")
+            ->capture_default_str();
+    command->add_option("--out", options->out, "folder for stability.json")->capture_default_str();
+    command->add_option("--backend", options->backend, "auto, egl or osmesa")
+            ->capture_default_str();
+    command->add_option("--size", options->size, "render size WxH of the GL cases")
+            ->capture_default_str();
+    command->add_option("--threads", options->threads, "LP_NUM_THREADS for llvmpipe")
+            ->capture_default_str();
+    command->add_flag("--json", options->json, "print stability.json instead of a summary");
+    command->callback([options, &exit_code] { exit_code = RunStability(*options); });
+}
+
+}  // namespace tidepool::cli

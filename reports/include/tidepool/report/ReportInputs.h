@@ -1,0 +1,132 @@
+// The saved files a report is built from: the compiler's manifest (tidepool.manifest v1), the
+// runner's results (tidepool.render-results v1) and, when present, the numerical-stability
+// catalogue (tidepool.stability) next to the results. Loading checks schemas and the fields the
+// report reads, so a corrupt or foreign file is an error naming that file, never a crash.
+#pragma once
+
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tidepool::report {
+
+/// The results schema the report understands.
+inline constexpr std::string_view kResultsSchemaName = "tidepool.render-results";
+/// The manifest schema the report understands.
+inline constexpr std::string_view kManifestSchemaName = "tidepool.manifest";
+/// The numerical-stability schema rendered generically when its file exists.
+inline constexpr std::string_view kStabilitySchemaName = "tidepool.stability";
+/// The file name of the stability catalogue, looked for beside results.json.
+inline constexpr std::string_view kStabilityFileName = "stability.json";
+/// The scene-plan schema (docs/SCENES.md) rendered in the Scenes section when its file exists.
+inline constexpr std::string_view kPlansSchemaName = "tidepool.plans";
+inline constexpr int kPlansVersion = 1;
+/// The file name of the scene plans, looked for beside results.json.
+inline constexpr std::string_view kPlansFileName = "plans.json";
+
+/// The clock whose samples the report compares configurations on.
+enum class TimingClock {
+    kWall,  // samples_ms: steady-clock time per frame (what a user waits)
+    kCpu,   // cpu_samples_ms: CLOCK_PROCESS_CPUTIME_ID, every llvmpipe thread of the process
+};
+
+/// "cpu" or "wall"; never fails.
+std::string_view TimingClockName(TimingClock clock);
+
+/// One camera view of a configuration and the image rendered at it.
+struct ViewImage {
+    std::string view;
+    std::filesystem::path image;  // absolute (resolved against the results folder); empty if none
+};
+
+/// One render configuration (variant + pass options) as the runner recorded it.
+struct MeasuredConfiguration {
+    std::string id;        // variant id plus pass suffix
+    std::string variant;   // the variant compiled
+    std::string program;
+    std::vector<std::string> defines;
+    std::vector<std::string> effects;
+    std::vector<std::string> presets;  // presets that asked for this configuration
+    bool uniform_bools = false;
+    int reflection_size = 256;
+    bool low_res_water = false;
+    std::string clip = "oblique";
+    bool culling = true;
+    bool ok = false;                     // compiled, linked, rendered without a GL error
+    bool driver_valid = false;           // Mesa's verdict
+    std::optional<bool> glslang_valid;   // glslang's verdict, when the runner compared
+    std::string gl_error;
+    std::vector<std::string> driver_messages;  // GCC-style driver diagnostics
+    std::vector<ViewImage> views;
+    std::vector<std::vector<double>> samples_ms;  // wall clock, per round
+    double median_ms = std::numeric_limits<double>::quiet_NaN();  // wall clock
+    double ci_low_ms = std::numeric_limits<double>::quiet_NaN();
+    double ci_high_ms = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::vector<double>> cpu_samples_ms;  // process CPU time, per round (may be empty)
+    double cpu_median_ms = std::numeric_limits<double>::quiet_NaN();
+    double cpu_ci_low_ms = std::numeric_limits<double>::quiet_NaN();
+    double cpu_ci_high_ms = std::numeric_limits<double>::quiet_NaN();
+    int frame_passes = 0;
+    int frame_draw_calls = 0;
+
+    /// True when `preset` asked for this configuration.
+    bool HasPreset(std::string_view preset) const;
+    /// The pass options as a short human label ("256, oblique" plus "low-res water" etc.).
+    std::string PassLabel() const;
+    /// The image at `view`, or an empty path when there is none.
+    std::filesystem::path ImageAt(std::string_view view) const;
+    /// The per-round samples on `clock`.
+    const std::vector<std::vector<double>>& SamplesOn(TimingClock clock) const;
+    /// The median frame time on `clock` (NaN when not timed on it).
+    double MedianOn(TimingClock clock) const;
+};
+
+/// Everything a report is built from.
+struct ReportInputs {
+    std::filesystem::path manifest_path;
+    std::filesystem::path results_path;
+    nlohmann::json manifest;  // as read (schema checked)
+    nlohmann::json results;   // as read (schema checked)
+    std::vector<MeasuredConfiguration> configurations;  // in run order, failed ones included
+    std::string timing_view;  // the view that was timed (the report's default view)
+    std::vector<std::string> view_names;
+    std::filesystem::path stability_path;      // where stability.json was looked for
+    std::optional<nlohmann::json> stability;   // its content when present and valid
+    std::string stability_error;               // why a present stability.json was not used
+    std::filesystem::path plans_path;          // where plans.json was looked for
+    std::optional<nlohmann::json> plans;       // its content when present and valid
+    std::string plans_error;                   // why a present plans.json was not used
+    // The clock every comparison uses: CPU time when every timed configuration has CPU samples
+    // (wall time on a shared machine is disturbed by other processes), else wall time.
+    TimingClock clock = TimingClock::kWall;
+    std::string clock_reason;                  // one sentence: why this clock
+
+    /// The configuration `preset` asked for, or null when no configuration carries it.
+    const MeasuredConfiguration* FindByPreset(std::string_view preset) const;
+    /// The configuration with this id, or null.
+    const MeasuredConfiguration* FindById(std::string_view id) const;
+};
+
+/// What LoadReportInputs found: the inputs, or an error naming the offending file.
+struct ReportInputsResult {
+    std::optional<ReportInputs> inputs;
+    std::string error;  // "" on success; starts with the path of the file at fault
+};
+
+/// Reads and checks the manifest and the results (and stability.json and plans.json beside the
+/// results, if any). Fails (no inputs, `error` naming the file) when a file is missing,
+/// unreadable, not JSON, of another schema or version, or lacks a field the report needs. Images
+/// are checked later, when they are read. A corrupt stability.json or plans.json does not fail
+/// the load: the report shows why (the error names the file). Chooses the comparison clock.
+ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
+                                    const std::filesystem::path& results_path);
+
+/// Reads a JSON file; returns it or an error "<path>: <what went wrong>". Never throws.
+std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error);
+
+}  // namespace tidepool::report

@@ -1,0 +1,197 @@
+// Everything the report shows, computed once from the saved inputs: the whitepaper table with
+// verdicts, accuracy against the reference versus time with its Pareto frontier, static cost
+// versus measured time, the validation summary, image panels, method and noise. The writers
+// (ReportWriter.h) only format this model, so HTML, Markdown and data.json always agree.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/report/Statistics.h"
+#include "tidepool/report/WhitepaperTable.h"
+
+namespace tidepool::report {
+
+/// The preset whose images every other configuration is compared with.
+inline constexpr std::string_view kReferencePreset = "reference";
+
+/// A direction is only called when the whole 95% interval clears ±kNoiseFloorPercent: on a
+/// shared 2-core machine, effects of a few percent (alpha blending, distortion scaling) changed
+/// sign between consecutive runs of the default matrix while their bootstrap intervals, which
+/// only see within-run noise, excluded 0%. 3% removes those flips while every effect the
+/// whitepaper quotes at 9% or more can still clear it.
+inline constexpr double kNoiseFloorPercent = 3.0;
+
+/// How many configurations the static-cost section lists as most misleading.
+inline constexpr std::size_t kMisleadingCount = 6;
+
+/// The verdict of one whitepaper row.
+enum class Verdict {
+    kSameDirectionAndMagnitude,  // same direction, and the size within tolerance (or in the CI)
+    kSameDirectionOnly,          // same direction; the size differs, or the figure is qualitative
+    kOpposite,                   // a definite change the other way
+    kInconclusive,               // the interval reaches into the noise floor around 0%
+    kFailed,                     // a configuration failed to compile or render, or is missing
+};
+
+/// A stable lower-case name of `verdict` for tables and JSON; never fails.
+std::string_view VerdictName(Verdict verdict);
+
+/// Grades a measured paired ratio against a row. Inconclusive when the 95% interval reaches
+/// within ±noise_floor_percent of no change, or when `split` (may be null) shows the odd and
+/// even rounds pointing different ways; otherwise the direction is the interval's side of 0%.
+/// Magnitude agrees only when the whole interval lies within the tolerance of the figure (an
+/// equivalence test, so noise widens the interval and loses agreement instead of flipping it);
+/// "<1%" rows agree when the interval lies within the tolerance of 0%; qualitative rows get a
+/// direction only. Sets `reason` to one line saying why. Never fails (no ratio is kFailed).
+Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
+                 double magnitude_tolerance_percent_points, double noise_floor_percent,
+                 std::string* reason);
+
+/// One side of a comparison.
+struct ComparisonSide {
+    std::string preset;
+    const MeasuredConfiguration* configuration = nullptr;  // null when no configuration has it
+};
+
+/// A whitepaper row as measured here.
+struct RowComparison {
+    WhitepaperRow row;
+    ComparisonSide baseline;
+    ComparisonSide candidate;
+    PairedRatio ratio;  // candidate / baseline frame time, paired by round
+    double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
+    Interval change_ci;  // of change_percent
+    SplitHalf split;
+    double odd_change_percent = std::numeric_limits<double>::quiet_NaN();
+    double even_change_percent = std::numeric_limits<double>::quiet_NaN();
+    Verdict verdict = Verdict::kFailed;
+    std::string verdict_reason;
+    // What the change costs in image quality (candidate minus baseline; NaN when unknown).
+    double time_change_ms = std::numeric_limits<double>::quiet_NaN();
+    double ssim_loss_change = std::numeric_limits<double>::quiet_NaN();
+    double psnr_change_db = std::numeric_limits<double>::quiet_NaN();
+};
+
+/// A configuration's image error against the reference and its time.
+struct AccuracyEntry {
+    const MeasuredConfiguration* configuration = nullptr;
+    bool measured = false;  // has a time and an image error (false for failed configurations)
+    double median_ms = std::numeric_limits<double>::quiet_NaN();  // on the model's clock
+    double psnr_db = std::numeric_limits<double>::quiet_NaN();  // from the mean MSE over views
+    double ssim = std::numeric_limits<double>::quiet_NaN();     // mean over views
+    double share_visible = std::numeric_limits<double>::quiet_NaN();  // mean over views, 0..1
+    int views_compared = 0;
+    bool on_frontier = false;
+    bool is_reference = false;
+    std::string note;  // why it is not measured, when it is not
+
+    /// 1 - SSIM, the error axis of the chart.
+    double SsimLoss() const { return 1.0 - ssim; }
+};
+
+/// A variant's static operation count beside its time.
+struct StaticCostEntry {
+    const MeasuredConfiguration* configuration = nullptr;
+    int vertex_ops = 0;
+    int fragment_ops = 0;
+    int total_ops = 0;
+    double median_ms = std::numeric_limits<double>::quiet_NaN();  // on the model's clock
+    double ops_rank = 0;   // 1 = fewest operations (ties averaged)
+    double time_rank = 0;  // 1 = fastest
+};
+
+/// Static cost versus measured time.
+struct StaticCostAnalysis {
+    std::vector<StaticCostEntry> entries;  // default-pass configurations with a static cost
+    double spearman_rho = std::numeric_limits<double>::quiet_NaN();
+    std::vector<std::size_t> misleading;   // indices into entries, largest |rank gap| first
+    std::string note;                      // why there is no correlation, when there is none
+};
+
+/// A pair of verdicts that differ between glslang and Mesa.
+struct VerdictDisagreementRow {
+    std::string variant;
+    bool glslang_valid = false;
+    bool mesa_valid = false;
+};
+
+/// The compiler's and the driver's verdicts.
+struct ValidationSummary {
+    nlohmann::json counts;                      // the manifest's counts, as written
+    std::vector<std::string> glslang_invalid;   // variant ids glslang rejected
+    std::vector<std::pair<std::string, std::string>> pruned;  // (combination id, rule)
+    int configurations = 0;
+    std::vector<const MeasuredConfiguration*> failed;  // configurations not ok
+    std::vector<VerdictDisagreementRow> disagreements;
+    std::vector<std::string> run_diagnostics;   // results.json diagnostics (GCC-style text)
+};
+
+/// A configuration's image at a view beside the reference's and their difference.
+struct ImagePanel {
+    std::string title;       // the preset(s), e.g. "full_no_fog (row 4)"
+    const MeasuredConfiguration* configuration = nullptr;
+    std::string view;
+    RgbaImage image;
+    RgbaImage reference;
+    RgbaImage heat_map;
+    double psnr_db = std::numeric_limits<double>::quiet_NaN();
+    double ssim = std::numeric_limits<double>::quiet_NaN();
+    double share_visible = std::numeric_limits<double>::quiet_NaN();
+    std::string note;  // why there is no image, when there is none
+};
+
+/// Options of a report build.
+struct ReportOptions {
+    std::string name = "default";
+    double magnitude_tolerance_percent_points = kWhitepaperMagnitudeTolerancePercentPoints;
+    double noise_floor_percent = kNoiseFloorPercent;
+    std::uint64_t seed = 1;
+    std::string generated_utc;  // supplied by the caller (the library reads no clock)
+    std::vector<std::string> panel_views;  // views shown in the image panels; empty: timing view
+};
+
+/// The whole report.
+struct ReportModel {
+    ReportOptions options;
+    const ReportInputs* inputs = nullptr;  // the model points into these; keep them alive
+    // The clock every time below is on (inputs->clock): ratios, medians, Pareto, static cost.
+    TimingClock clock = TimingClock::kWall;
+    const MeasuredConfiguration* reference = nullptr;
+    std::vector<RowComparison> rows;
+    std::vector<AccuracyEntry> accuracy;   // one per configuration, run order
+    std::vector<std::size_t> frontier;     // indices into accuracy, by time
+    StaticCostAnalysis static_cost;
+    ValidationSummary validation;
+    std::vector<ImagePanel> panels;
+    double largest_split_half_disagreement = std::numeric_limits<double>::quiet_NaN();
+    int largest_split_half_row = 0;
+    int failed_configurations = 0;
+};
+
+/// What BuildReportModel produced: the model, or an error naming the file at fault.
+struct ReportModelResult {
+    std::optional<ReportModel> model;
+    std::string error;  // "" on success
+};
+
+/// Computes every section from `inputs`. Fails (no model, `error` starting with the path) when
+/// an image a configuration that rendered claims cannot be read, or when two images of one view
+/// differ in size. Failed configurations are kept and marked, never dropped. A missing reference
+/// leaves the accuracy figures NaN with a note.
+ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptions& options);
+
+/// Rank correlation and largest rank gaps of static counts versus times, for tests and the
+/// model. Ranks average ties. Fails softly: rho NaN and `note` set when fewer than 3 entries.
+StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries);
+
+}  // namespace tidepool::report

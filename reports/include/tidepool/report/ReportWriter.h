@@ -1,0 +1,64 @@
+// Formats a ReportModel as one self-contained HTML page (tables, SVG charts, images embedded as
+// data: URIs), a Markdown page for repository viewers (PNG and SVG files beside it) and
+// data.json (schema "tidepool.report" v1), and publishes them atomically as one folder.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "tidepool/report/ReportModel.h"
+
+namespace tidepool::report {
+
+/// The schema name and version of data.json.
+inline constexpr const char* kReportSchema = "tidepool.report";
+inline constexpr int kReportSchemaVersion = 1;
+
+/// Upper bound on the bytes of PNG data embedded in index.html: images are downscaled by 2, 3,
+/// ... until they fit, so the page stays under about 10 MB (base64 adds a third) and opens
+/// quickly from disk.
+inline constexpr std::uintmax_t kHtmlImageBudgetBytes = 6u * 1024u * 1024u;
+
+/// One point of a scatter chart.
+struct ChartPoint {
+    double x = 0;
+    double y = 0;
+    std::string label;    // drawn beside the point when not empty
+    std::string tooltip;  // the SVG <title>
+    bool highlight = false;
+};
+
+/// A scatter chart as standalone SVG; `line` (indices into points, in drawing order) is drawn
+/// as a step line (the Pareto frontier). Points with a non-finite coordinate are left out.
+/// Never fails: with no drawable point it draws empty axes.
+std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
+                       const std::string& x_label, const std::string& y_label,
+                       const std::string& title);
+
+/// Every figure of the report as JSON (schema kReportSchema, version kReportSchemaVersion);
+/// NaN and infinite numbers are written as null. Never fails.
+nlohmann::json ReportToJson(const ReportModel& model);
+
+/// The whitepaper table as plain text for a terminal. Never fails.
+std::string WhitepaperTableText(const ReportModel& model);
+
+/// What WriteReport wrote.
+struct WrittenReport {
+    std::filesystem::path folder;              // out_dir / model.options.name
+    std::vector<std::filesystem::path> files;  // relative to folder
+    std::uintmax_t html_bytes = 0;
+    int image_downscale = 1;                   // factor applied to the images embedded in HTML
+    std::string error;                         // "" on success, otherwise naming the path
+};
+
+/// Writes index.html, report.md, data.json, images/ and charts/ into a staging folder beside
+/// out_dir / name, then renames it into place (replacing an earlier report), so a reader never
+/// sees half a report. Fails (error naming the path, nothing published) when a file cannot be
+/// written or the destination exists and was not written by this function (no data.json).
+WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path& out_dir);
+
+}  // namespace tidepool::report

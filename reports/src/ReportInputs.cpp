@@ -1,0 +1,442 @@
+#include "tidepool/report/ReportInputs.h"
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "tidepool/report/Statistics.h"
+
+namespace tidepool::report {
+namespace {
+
+// The results schema version the report reads: version 1 only ever gains keys (RESULTS.md).
+constexpr int kResultsVersion = 1;
+constexpr int kManifestVersion = 1;
+
+double NumberOr(const nlohmann::json& object, const char* key, double fallback) {
+    auto it = object.find(key);
+    return it != object.end() && it->is_number() ? it->get<double>() : fallback;
+}
+
+std::vector<std::string> StringList(const nlohmann::json& object, const char* key) {
+    std::vector<std::string> list;
+    auto it = object.find(key);
+    if (it != object.end() && it->is_array()) {
+        for (const nlohmann::json& item : *it) {
+            if (item.is_string()) {
+                list.push_back(item.get<std::string>());
+            }
+        }
+    }
+    return list;
+}
+
+std::string StringOr(const nlohmann::json& object, const char* key, std::string fallback = {}) {
+    auto it = object.find(key);
+    return it != object.end() && it->is_string() ? it->get<std::string>() : fallback;
+}
+
+// Checks the schema name and version of `document`; returns "" or what is wrong.
+std::string CheckSchema(const nlohmann::json& document, std::string_view schema,
+                        const char* version_key, int version) {
+    if (!document.is_object()) {
+        return "not a JSON object";
+    }
+    const std::string found = StringOr(document, "schema");
+    if (found != schema) {
+        return fmt::format("schema is '{}', expected '{}'", found, schema);
+    }
+    auto it = document.find(version_key);
+    if (it == document.end() || !it->is_number_integer() || it->get<int>() != version) {
+        return fmt::format("{} must be {}", version_key, version);
+    }
+    return {};
+}
+
+// Reads `key` (an array of rounds, each an array of numbers) into `rounds`; returns "" or the
+// problem. An absent key leaves `rounds` empty: older results files have no cpu_samples_ms.
+std::string ParseRounds(const nlohmann::json& entry, const char* key, const std::string& id,
+                        std::vector<std::vector<double>>* rounds) {
+    auto samples = entry.find(key);
+    if (samples == entry.end()) {
+        return {};
+    }
+    if (!samples->is_array()) {
+        return fmt::format("configuration '{}': {} is not an array of rounds", id, key);
+    }
+    for (const nlohmann::json& round : *samples) {
+        if (!round.is_array()) {
+            return fmt::format("configuration '{}': a round of {} is not an array", id, key);
+        }
+        std::vector<double> frames;
+        for (const nlohmann::json& sample : round) {
+            if (!sample.is_number()) {
+                return fmt::format("configuration '{}': a sample of {} is not a number", id,
+                                   key);
+            }
+            frames.push_back(sample.get<double>());
+        }
+        rounds->push_back(std::move(frames));
+    }
+    return {};
+}
+
+// Reads the median and its interval from the statistics object `key`, when it counted samples.
+void ParseStatistics(const nlohmann::json& entry, const char* key, double* median, double* low,
+                     double* high) {
+    auto stats = entry.find(key);
+    if (stats == entry.end() || !stats->is_object() || NumberOr(*stats, "count", 0) <= 0) {
+        return;
+    }
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    *median = NumberOr(*stats, "median_ms", nan);
+    *low = NumberOr(*stats, "ci_low_ms", nan);
+    *high = NumberOr(*stats, "ci_high_ms", nan);
+}
+
+// Chooses the comparison clock: CPU time only when every timed configuration has CPU samples
+// of the same shape as its wall samples, so no comparison mixes the two clocks.
+void ChooseClock(ReportInputs* inputs) {
+    int timed = 0;
+    std::vector<std::string> without;
+    for (const MeasuredConfiguration& c : inputs->configurations) {
+        if (!c.ok || c.samples_ms.empty()) {
+            continue;
+        }
+        ++timed;
+        bool same_shape = c.cpu_samples_ms.size() == c.samples_ms.size();
+        for (std::size_t r = 0; same_shape && r < c.samples_ms.size(); ++r) {
+            same_shape = c.cpu_samples_ms[r].size() == c.samples_ms[r].size();
+        }
+        if (!same_shape || std::isnan(c.cpu_median_ms)) {
+            without.push_back(c.id);
+        }
+    }
+    if (timed > 0 && without.empty()) {
+        inputs->clock = TimingClock::kCpu;
+        inputs->clock_reason = fmt::format(
+                "process CPU time (CLOCK_PROCESS_CPUTIME_ID, every llvmpipe thread), because all "
+                "{} timed configurations carry it: it measures the work a frame costs, while "
+                "wall-clock samples on a shared 2-core machine are disturbed by other processes "
+                "so much that two consecutive runs did not give the same verdicts",
+                timed);
+    } else if (timed == 0) {
+        inputs->clock = TimingClock::kWall;
+        inputs->clock_reason = "wall-clock time: no configuration was timed";
+    } else {
+        inputs->clock = TimingClock::kWall;
+        inputs->clock_reason = fmt::format(
+                "wall-clock time, because {} of {} timed configurations (first: {}) have no "
+                "cpu_samples_ms of the same shape (results written before the runner recorded "
+                "CPU time); comparisons never mix the two clocks",
+                without.size(), timed, without.front());
+    }
+}
+
+// Reads an optional JSON file beside the results: absent leaves both outputs untouched; present
+// but unreadable, not JSON or not of `schema` (version `version`, when `version` > 0) sets
+// `error` naming the file.
+void LoadOptionalSibling(const std::filesystem::path& path, std::string_view schema,
+                         int version, std::optional<nlohmann::json>* content,
+                         std::string* error) {
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) {
+        return;
+    }
+    std::optional<nlohmann::json> json = ReadJsonFile(path, error);
+    if (!json) {
+        return;
+    }
+    if (!json->is_object() || StringOr(*json, "schema") != schema) {
+        *error = fmt::format("{}: schema is not '{}'", path.string(), schema);
+        return;
+    }
+    if (version > 0) {
+        auto v = json->find("version");
+        if (v == json->end() || !v->is_number_integer() || v->get<int>() != version) {
+            *error = fmt::format("{}: version must be {}", path.string(), version);
+            return;
+        }
+    }
+    *content = std::move(*json);
+}
+
+// The fields of plans.json the Scenes section reads; returns "" or what is wrong.
+std::string CheckPlans(const nlohmann::json& plans) {
+    auto list = plans.find("plans");
+    if (list == plans.end() || !list->is_array()) {
+        return "lacks the 'plans' array";
+    }
+    for (const nlohmann::json& plan : *list) {
+        if (!plan.is_object() || !plan.contains("scene") || !plan["scene"].is_string()) {
+            return "a plan has no string 'scene'";
+        }
+        for (const char* key : {"dropped", "kept"}) {
+            if (auto it = plan.find(key); it != plan.end() && !it->is_array()) {
+                return fmt::format("plan '{}': '{}' is not an array",
+                                   plan["scene"].get<std::string>(), key);
+            }
+        }
+        for (const char* key : {"chosen", "full", "error"}) {
+            if (auto it = plan.find(key); it != plan.end() && !it->is_object() && !it->is_null()) {
+                return fmt::format("plan '{}': '{}' is not an object",
+                                   plan["scene"].get<std::string>(), key);
+            }
+        }
+    }
+    return {};
+}
+
+// Parses one entry of results.json `configurations`; returns "" or the problem.
+std::string ParseConfiguration(const nlohmann::json& entry, const std::filesystem::path& folder,
+                               MeasuredConfiguration* out) {
+    if (!entry.is_object() || !entry.contains("id") || !entry["id"].is_string()) {
+        return "a configuration has no string 'id'";
+    }
+    MeasuredConfiguration& c = *out;
+    c.id = entry["id"].get<std::string>();
+    c.variant = StringOr(entry, "variant", c.id);
+    c.program = StringOr(entry, "program");
+    c.defines = StringList(entry, "defines");
+    c.effects = StringList(entry, "effects");
+    c.presets = StringList(entry, "presets");
+    c.uniform_bools = entry.value("uniform_bools", false);
+    if (auto passes = entry.find("passes"); passes != entry.end() && passes->is_object()) {
+        c.reflection_size = static_cast<int>(NumberOr(*passes, "reflection_size", 256));
+        c.low_res_water = passes->value("low_res_water", false);
+        c.clip = StringOr(*passes, "clip", "oblique");
+        c.culling = passes->value("culling", true);
+    }
+    if (!entry.contains("ok") || !entry["ok"].is_boolean()) {
+        return fmt::format("configuration '{}' has no boolean 'ok'", c.id);
+    }
+    c.ok = entry["ok"].get<bool>();
+    c.gl_error = StringOr(entry, "gl_error");
+    if (auto driver = entry.find("driver"); driver != entry.end() && driver->is_object()) {
+        c.driver_valid = driver->value("valid", false);
+        if (auto d = driver->find("diagnostics"); d != driver->end() && d->is_array()) {
+            for (const nlohmann::json& diagnostic : *d) {
+                c.driver_messages.push_back(
+                        diagnostic.is_object() ? StringOr(diagnostic, "text",
+                                                          StringOr(diagnostic, "message"))
+                                               : diagnostic.dump());
+            }
+        }
+    }
+    if (auto g = entry.find("glslang_valid"); g != entry.end() && g->is_boolean()) {
+        c.glslang_valid = g->get<bool>();
+    }
+    if (auto views = entry.find("views"); views != entry.end() && views->is_array()) {
+        for (const nlohmann::json& v : *views) {
+            if (!v.is_object()) {
+                return fmt::format("configuration '{}': a view is not an object", c.id);
+            }
+            ViewImage image{StringOr(v, "view"), {}};
+            const std::string relative = StringOr(v, "image");
+            if (!relative.empty()) {
+                image.image = folder / relative;
+            }
+            c.views.push_back(std::move(image));
+        }
+    }
+    if (std::string problem = ParseRounds(entry, "samples_ms", c.id, &c.samples_ms);
+        !problem.empty()) {
+        return problem;
+    }
+    if (std::string problem = ParseRounds(entry, "cpu_samples_ms", c.id, &c.cpu_samples_ms);
+        !problem.empty()) {
+        return problem;
+    }
+    ParseStatistics(entry, "statistics", &c.median_ms, &c.ci_low_ms, &c.ci_high_ms);
+    ParseStatistics(entry, "cpu_statistics", &c.cpu_median_ms, &c.cpu_ci_low_ms,
+                    &c.cpu_ci_high_ms);
+    if (std::isnan(c.cpu_median_ms) && !c.cpu_samples_ms.empty()) {
+        // Older writers of cpu samples without statistics: the median of every frame, as the
+        // runner's statistics define it.
+        std::vector<double> all;
+        for (const std::vector<double>& round : c.cpu_samples_ms) {
+            all.insert(all.end(), round.begin(), round.end());
+        }
+        c.cpu_median_ms = Median(all);
+    }
+    c.frame_passes = static_cast<int>(NumberOr(entry, "frame_passes", 0));
+    c.frame_draw_calls = static_cast<int>(NumberOr(entry, "frame_draw_calls", 0));
+    return {};
+}
+
+}  // namespace
+
+bool MeasuredConfiguration::HasPreset(std::string_view preset) const {
+    for (const std::string& p : presets) {
+        if (p == preset) {
+            return true;
+        }
+    }
+    return false;
+}
+
+std::string MeasuredConfiguration::PassLabel() const {
+    std::string label = fmt::format("reflection {0}x{0}, {1} clip", reflection_size, clip);
+    if (low_res_water) {
+        label += ", low-res water";
+    }
+    if (!culling) {
+        label += ", no culling";
+    }
+    return label;
+}
+
+const std::vector<std::vector<double>>& MeasuredConfiguration::SamplesOn(
+        TimingClock clock) const {
+    return clock == TimingClock::kCpu ? cpu_samples_ms : samples_ms;
+}
+
+double MeasuredConfiguration::MedianOn(TimingClock clock) const {
+    return clock == TimingClock::kCpu ? cpu_median_ms : median_ms;
+}
+
+std::string_view TimingClockName(TimingClock clock) {
+    return clock == TimingClock::kCpu ? "cpu" : "wall";
+}
+
+std::filesystem::path MeasuredConfiguration::ImageAt(std::string_view view) const {
+    for (const ViewImage& v : views) {
+        if (v.view == view) {
+            return v.image;
+        }
+    }
+    return {};
+}
+
+const MeasuredConfiguration* ReportInputs::FindByPreset(std::string_view preset) const {
+    for (const MeasuredConfiguration& c : configurations) {
+        if (c.HasPreset(preset)) {
+            return &c;
+        }
+    }
+    return nullptr;
+}
+
+const MeasuredConfiguration* ReportInputs::FindById(std::string_view id) const {
+    for (const MeasuredConfiguration& c : configurations) {
+        if (c.id == id) {
+            return &c;
+        }
+    }
+    return nullptr;
+}
+
+std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path,
+                                           std::string* error) {
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        *error = fmt::format("{}: no such file", path.string());
+        return std::nullopt;
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    if (!in) {
+        *error = fmt::format("{}: cannot read", path.string());
+        return std::nullopt;
+    }
+    nlohmann::json json = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+    if (json.is_discarded()) {
+        *error = fmt::format("{}: not valid JSON (corrupt or truncated)", path.string());
+        return std::nullopt;
+    }
+    return json;
+}
+
+ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
+                                    const std::filesystem::path& results_path) {
+    ReportInputsResult out;
+    ReportInputs inputs;
+    inputs.manifest_path = manifest_path;
+    inputs.results_path = results_path;
+
+    std::optional<nlohmann::json> manifest = ReadJsonFile(manifest_path, &out.error);
+    if (!manifest) {
+        return out;
+    }
+    if (std::string problem = CheckSchema(*manifest, kManifestSchemaName, "version",
+                                          kManifestVersion);
+        !problem.empty()) {
+        out.error = fmt::format("{}: {}", manifest_path.string(), problem);
+        return out;
+    }
+    if (!manifest->contains("variants") || !(*manifest)["variants"].is_array() ||
+        !manifest->contains("counts") || !(*manifest)["counts"].is_object()) {
+        out.error = fmt::format("{}: lacks 'variants' or 'counts' (write it with `tidepool "
+                                "validate --out DIR`)",
+                                manifest_path.string());
+        return out;
+    }
+    inputs.manifest = std::move(*manifest);
+
+    std::optional<nlohmann::json> results = ReadJsonFile(results_path, &out.error);
+    if (!results) {
+        return out;
+    }
+    if (std::string problem = CheckSchema(*results, kResultsSchemaName, "schema_version",
+                                          kResultsVersion);
+        !problem.empty()) {
+        out.error = fmt::format("{}: {}", results_path.string(), problem);
+        return out;
+    }
+    if (!results->contains("configurations") || !(*results)["configurations"].is_array()) {
+        out.error = fmt::format("{}: lacks the 'configurations' array", results_path.string());
+        return out;
+    }
+    const std::filesystem::path folder = results_path.parent_path();
+    for (const nlohmann::json& entry : (*results)["configurations"]) {
+        MeasuredConfiguration c;
+        if (std::string problem = ParseConfiguration(entry, folder, &c); !problem.empty()) {
+            out.error = fmt::format("{}: {}", results_path.string(), problem);
+            return out;
+        }
+        inputs.configurations.push_back(std::move(c));
+    }
+    if (auto settings = results->find("settings"); settings != results->end() &&
+                                                     settings->is_object()) {
+        inputs.timing_view = StringOr(*settings, "timing_view");
+        if (auto views = settings->find("views"); views != settings->end() && views->is_array()) {
+            for (const nlohmann::json& v : *views) {
+                if (v.is_object()) {
+                    inputs.view_names.push_back(StringOr(v, "name"));
+                }
+            }
+        }
+    }
+    if (inputs.view_names.empty() && !inputs.configurations.empty()) {
+        for (const ViewImage& v : inputs.configurations.front().views) {
+            inputs.view_names.push_back(v.view);
+        }
+    }
+    if (inputs.timing_view.empty() && !inputs.view_names.empty()) {
+        inputs.timing_view = inputs.view_names.front();
+    }
+    inputs.results = std::move(*results);
+
+    ChooseClock(&inputs);
+
+    inputs.stability_path = folder / kStabilityFileName;
+    // The stability schema's version is not checked: the section renders its tables generically.
+    LoadOptionalSibling(inputs.stability_path, kStabilitySchemaName, 0, &inputs.stability,
+                        &inputs.stability_error);
+    inputs.plans_path = folder / kPlansFileName;
+    LoadOptionalSibling(inputs.plans_path, kPlansSchemaName, kPlansVersion, &inputs.plans,
+                        &inputs.plans_error);
+    if (inputs.plans) {
+        if (std::string problem = CheckPlans(*inputs.plans); !problem.empty()) {
+            inputs.plans_error = fmt::format("{}: {}", inputs.plans_path.string(), problem);
+            inputs.plans.reset();
+        }
+    }
+    out.inputs = std::move(inputs);
+    return out;
+}
+
+}  // namespace tidepool::report

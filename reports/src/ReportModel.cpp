@@ -1,0 +1,522 @@
+#include "tidepool/report/ReportModel.h"
+
+#include <algorithm>
+#include <cmath>
+#include <future>
+#include <map>
+#include <numeric>
+#include <thread>
+
+#include <fmt/format.h>
+
+namespace tidepool::report {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A configuration rendered with the default pass options (256 reflection, oblique clip, no
+// low-resolution water, culling): only these share the pass work, so their static counts are
+// comparable with their times.
+bool HasDefaultPasses(const MeasuredConfiguration& c) {
+    return c.reflection_size == 256 && c.clip == "oblique" && !c.low_res_water && c.culling;
+}
+
+// Ranks 1..n, ties getting the average of their ranks.
+std::vector<double> Ranks(const std::vector<double>& values) {
+    std::vector<std::size_t> order(values.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+    std::vector<double> ranks(values.size());
+    std::size_t i = 0;
+    while (i < order.size()) {
+        std::size_t j = i;
+        while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) {
+            ++j;
+        }
+        const double rank = (static_cast<double>(i) + static_cast<double>(j)) / 2.0 + 1.0;
+        for (std::size_t k = i; k <= j; ++k) {
+            ranks[order[k]] = rank;
+        }
+        i = j + 1;
+    }
+    return ranks;
+}
+
+// Image error of one configuration against the reference over every view both have.
+struct ViewErrors {
+    double mse_sum = 0;
+    double ssim_sum = 0;
+    double share_sum = 0;
+    int views = 0;
+    std::string error;  // an unreadable image, naming the file
+};
+
+// The mean squared error behind a PSNR figure (PSNR = 10 log10(255^2 / MSE)).
+double MseFromPsnr(double psnr_db) {
+    return std::isinf(psnr_db) ? 0.0 : 255.0 * 255.0 / std::pow(10.0, psnr_db / 10.0);
+}
+
+double PsnrFromMse(double mse) {
+    return mse <= 0 ? std::numeric_limits<double>::infinity()
+                    : 10.0 * std::log10(255.0 * 255.0 / mse);
+}
+
+using ImageCache = std::map<std::string, RgbaImage>;
+
+// Reads `path`, or returns the error naming it.
+std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::string* error) {
+    ImageResult read = ReadPng(path);
+    if (!read.image) {
+        *error = read.error.empty() ? path.string() + ": cannot read image" : read.error;
+        return std::nullopt;
+    }
+    return std::move(*read.image);
+}
+
+ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache& reference) {
+    ViewErrors errors;
+    for (const ViewImage& v : c.views) {
+        auto ref = reference.find(v.view);
+        if (v.image.empty() || ref == reference.end()) {
+            continue;
+        }
+        std::optional<RgbaImage> image = LoadImage(v.image, &errors.error);
+        if (!image) {
+            return errors;
+        }
+        const RgbaImage& r = ref->second;
+        if (image->width != r.width || image->height != r.height) {
+            errors.error = fmt::format("{}: {}x{} image, but the reference's at view '{}' is "
+                                       "{}x{}",
+                                       v.image.string(), image->width, image->height, v.view,
+                                       r.width, r.height);
+            return errors;
+        }
+        errors.mse_sum += MseFromPsnr(Psnr(*image, r));
+        errors.ssim_sum += Ssim(*image, r);
+        errors.share_sum += ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold);
+        ++errors.views;
+    }
+    return errors;
+}
+
+std::string PresetTitle(const MeasuredConfiguration& c) {
+    std::string title;
+    for (const std::string& p : c.presets) {
+        title += (title.empty() ? "" : ", ") + p;
+    }
+    return title.empty() ? c.id : title;
+}
+
+}  // namespace
+
+std::string_view VerdictName(Verdict verdict) {
+    switch (verdict) {
+    case Verdict::kSameDirectionAndMagnitude:
+        return "same-direction-and-magnitude";
+    case Verdict::kSameDirectionOnly:
+        return "same-direction-only";
+    case Verdict::kOpposite:
+        return "opposite";
+    case Verdict::kInconclusive:
+        return "inconclusive";
+    case Verdict::kFailed:
+        return "failed";
+    }
+    return "failed";
+}
+
+Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
+                 double magnitude_tolerance_percent_points, double noise_floor_percent,
+                 std::string* reason) {
+    const double tolerance = std::isnan(magnitude_tolerance_percent_points)
+                                     ? 0.0
+                                     : std::max(0.0, magnitude_tolerance_percent_points);
+    const double floor =
+            std::isnan(noise_floor_percent) ? 0.0 : std::max(0.0, noise_floor_percent);
+    if (!std::isfinite(measured.ratio) || measured.rounds == 0) {
+        *reason = measured.error.empty() ? "no measurement" : measured.error;
+        return Verdict::kFailed;
+    }
+    const double change = PerformanceChangePercent(measured.ratio);
+    // A larger frame-time ratio is a lower frame rate, so the interval's ends swap.
+    const double low = PerformanceChangePercent(measured.ci.high);
+    const double high = std::isfinite(measured.ci.low) && measured.ci.low > 0
+                                ? PerformanceChangePercent(measured.ci.low)
+                                : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(low) || !std::isfinite(high)) {
+        *reason = "the interval is unbounded (too few rounds)";
+        return Verdict::kInconclusive;
+    }
+    const std::string interval = fmt::format("[{:+.1f}%, {:+.1f}%]", low, high);
+    // Magnitude agreement is an equivalence test: the whole interval, not just the estimate,
+    // must lie within the tolerance of the figure, so a noisy run cannot agree by luck.
+    auto within = [&](double figure) {
+        return low >= figure - tolerance && high <= figure + tolerance;
+    };
+    if (row.kind == FigureKind::kNegligible && within(0.0)) {
+        *reason = fmt::format("the whole interval {} lies within ±{:.0f} points of no change, as "
+                              "the whitepaper's <1%",
+                              interval, tolerance);
+        return Verdict::kSameDirectionAndMagnitude;
+    }
+    int direction = 0;
+    if (low > floor) {
+        direction = +1;
+    } else if (high < -floor) {
+        direction = -1;
+    }
+    if (direction == 0) {
+        *reason = fmt::format("the 95% interval {} reaches within ±{:.0f}% of no change (the "
+                              "noise floor)",
+                              interval, floor);
+        return Verdict::kInconclusive;
+    }
+    // Both halves of the rounds must point the same way, or one disturbed stretch of the run
+    // could be deciding the direction.
+    if (split != nullptr) {
+        const double odd = PerformanceChangePercent(split->odd.ratio);
+        const double even = PerformanceChangePercent(split->even.ratio);
+        if (std::isfinite(odd) && std::isfinite(even) &&
+            (odd * direction <= 0 || even * direction <= 0)) {
+            *reason = fmt::format("odd rounds say {:+.1f}%, even rounds {:+.1f}%: the halves "
+                                  "disagree on the direction",
+                                  odd, even);
+            return Verdict::kInconclusive;
+        }
+    }
+    if (direction != row.expected_sign) {
+        *reason = fmt::format("definitely {} ({}) where the whitepaper says {}",
+                              direction > 0 ? "faster" : "slower", interval,
+                              row.expected_sign > 0 ? "faster" : "slower");
+        return Verdict::kOpposite;
+    }
+    if (row.kind == FigureKind::kDirection) {
+        *reason = "the whitepaper's figure is qualitative: direction only";
+        return Verdict::kSameDirectionOnly;
+    }
+    const double figure = row.kind == FigureKind::kNegligible ? 0.0 : row.whitepaper_percent;
+    if (within(figure)) {
+        *reason = fmt::format("the whole interval {} lies within {:.0f} points of the "
+                              "whitepaper's {:+.1f}%",
+                              interval, tolerance, figure);
+        return Verdict::kSameDirectionAndMagnitude;
+    }
+    *reason = fmt::format("{:+.1f}% (interval {}) is not within {:.0f} points of the "
+                          "whitepaper's {}",
+                          change, interval, tolerance,
+                          row.kind == FigureKind::kNegligible ? std::string("<1%")
+                                                              : fmt::format("{:+.1f}%", figure));
+    return Verdict::kSameDirectionOnly;
+}
+
+StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries) {
+    StaticCostAnalysis analysis;
+    analysis.entries = std::move(entries);
+    if (analysis.entries.size() < 3) {
+        analysis.note = "fewer than 3 measured configurations with a static cost";
+        return analysis;
+    }
+    std::vector<double> ops;
+    std::vector<double> times;
+    for (const StaticCostEntry& e : analysis.entries) {
+        ops.push_back(static_cast<double>(e.total_ops));
+        times.push_back(e.median_ms);
+    }
+    const std::vector<double> ops_ranks = Ranks(ops);
+    const std::vector<double> time_ranks = Ranks(times);
+    for (std::size_t i = 0; i < analysis.entries.size(); ++i) {
+        analysis.entries[i].ops_rank = ops_ranks[i];
+        analysis.entries[i].time_rank = time_ranks[i];
+    }
+    analysis.spearman_rho = SpearmanRho(ops, times);
+    if (std::isnan(analysis.spearman_rho)) {
+        analysis.note = "the counts or the times are all equal";
+    }
+    std::vector<std::size_t> order(analysis.entries.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        const StaticCostEntry& x = analysis.entries[a];
+        const StaticCostEntry& y = analysis.entries[b];
+        return std::abs(x.ops_rank - x.time_rank) > std::abs(y.ops_rank - y.time_rank);
+    });
+    order.resize(std::min(order.size(), kMisleadingCount));
+    analysis.misleading = order;
+    return analysis;
+}
+
+ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptions& options) {
+    ReportModelResult out;
+    ReportModel model;
+    model.options = options;
+    model.inputs = &inputs;
+    model.clock = inputs.clock;
+    model.reference = inputs.FindByPreset(kReferencePreset);
+    if (model.reference != nullptr && !model.reference->ok) {
+        model.reference = nullptr;  // a failed reference has no images to compare with
+    }
+
+    // Reference images per view, read once.
+    ImageCache reference_images;
+    if (model.reference != nullptr) {
+        for (const ViewImage& v : model.reference->views) {
+            if (v.image.empty()) {
+                continue;
+            }
+            std::optional<RgbaImage> image = LoadImage(v.image, &out.error);
+            if (!image) {
+                return out;
+            }
+            reference_images[v.view] = std::move(*image);
+        }
+    }
+
+    // Accuracy: every configuration's error against the reference, on the cores we have.
+    std::vector<ViewErrors> errors(inputs.configurations.size());
+    {
+        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+        std::vector<std::future<void>> workers;
+        std::atomic<std::size_t> next{0};
+        for (unsigned w = 0; w < cores; ++w) {
+            workers.push_back(std::async(std::launch::async, [&] {
+                for (std::size_t i = next++; i < inputs.configurations.size(); i = next++) {
+                    if (inputs.configurations[i].ok) {
+                        errors[i] = CompareWithReference(inputs.configurations[i],
+                                                         reference_images);
+                    }
+                }
+            }));
+        }
+        for (auto& w : workers) {
+            w.get();
+        }
+    }
+    std::vector<double> times;
+    std::vector<double> losses;
+    for (std::size_t i = 0; i < inputs.configurations.size(); ++i) {
+        const MeasuredConfiguration& c = inputs.configurations[i];
+        if (!errors[i].error.empty()) {
+            out.error = errors[i].error;
+            return out;
+        }
+        AccuracyEntry entry;
+        entry.configuration = &c;
+        entry.is_reference = &c == model.reference;
+        entry.median_ms = c.MedianOn(model.clock);
+        if (!c.ok) {
+            entry.note = "FAILED: " + (c.driver_valid ? "GL error " + c.gl_error
+                                                      : std::string("Mesa compile/link failed"));
+            ++model.failed_configurations;
+        } else if (model.reference == nullptr) {
+            entry.note = "no reference configuration (preset 'reference') rendered";
+        } else if (errors[i].views == 0) {
+            entry.note = "no images to compare";
+        } else if (std::isnan(entry.median_ms)) {
+            entry.note = fmt::format("not timed ({} clock)", TimingClockName(model.clock));
+        } else {
+            const double n = errors[i].views;
+            entry.measured = true;
+            entry.views_compared = errors[i].views;
+            entry.psnr_db = PsnrFromMse(errors[i].mse_sum / n);
+            entry.ssim = errors[i].ssim_sum / n;
+            entry.share_visible = errors[i].share_sum / n;
+        }
+        times.push_back(entry.measured ? entry.median_ms : kNaN);
+        losses.push_back(entry.measured ? entry.SsimLoss() : kNaN);
+        model.accuracy.push_back(std::move(entry));
+    }
+    model.frontier = ParetoFrontier(times, losses);
+    for (std::size_t i : model.frontier) {
+        model.accuracy[i].on_frontier = true;
+    }
+    auto accuracy_of = [&](const MeasuredConfiguration* c) -> const AccuracyEntry* {
+        for (const AccuracyEntry& e : model.accuracy) {
+            if (e.configuration == c) {
+                return &e;
+            }
+        }
+        return nullptr;
+    };
+
+    // The whitepaper table.
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        RowComparison comparison;
+        comparison.row = row;
+        comparison.baseline = {row.baseline_preset, inputs.FindByPreset(row.baseline_preset)};
+        comparison.candidate = {row.candidate_preset, inputs.FindByPreset(row.candidate_preset)};
+        const MeasuredConfiguration* base = comparison.baseline.configuration;
+        const MeasuredConfiguration* cand = comparison.candidate.configuration;
+        if (base == nullptr || cand == nullptr) {
+            comparison.verdict = Verdict::kFailed;
+            comparison.verdict_reason = fmt::format(
+                    "no configuration in the results carries preset '{}'",
+                    base == nullptr ? row.baseline_preset : row.candidate_preset);
+        } else if (!base->ok || !cand->ok) {
+            comparison.verdict = Verdict::kFailed;
+            comparison.verdict_reason = fmt::format("configuration {} failed",
+                                                    !base->ok ? base->id : cand->id);
+        } else {
+            comparison.ratio = ComparePaired(base->SamplesOn(model.clock),
+                                             cand->SamplesOn(model.clock), options.seed);
+            comparison.split = CompareSplitHalves(base->SamplesOn(model.clock),
+                                                  cand->SamplesOn(model.clock), options.seed);
+            comparison.verdict = GradeRow(row, comparison.ratio, &comparison.split,
+                                          options.magnitude_tolerance_percent_points,
+                                          options.noise_floor_percent,
+                                          &comparison.verdict_reason);
+            if (std::isfinite(comparison.ratio.ratio)) {
+                comparison.change_percent = PerformanceChangePercent(comparison.ratio.ratio);
+                comparison.change_ci.low = PerformanceChangePercent(comparison.ratio.ci.high);
+                comparison.change_ci.high =
+                        comparison.ratio.ci.low > 0
+                                ? PerformanceChangePercent(comparison.ratio.ci.low)
+                                : std::numeric_limits<double>::infinity();
+            }
+            comparison.odd_change_percent = PerformanceChangePercent(comparison.split.odd.ratio);
+            comparison.even_change_percent =
+                    PerformanceChangePercent(comparison.split.even.ratio);
+            const double d = comparison.split.disagreement_percent_points;
+            if (std::isfinite(d) && (std::isnan(model.largest_split_half_disagreement) ||
+                                     d > model.largest_split_half_disagreement)) {
+                model.largest_split_half_disagreement = d;
+                model.largest_split_half_row = row.number;
+            }
+            comparison.time_change_ms =
+                    cand->MedianOn(model.clock) - base->MedianOn(model.clock);
+            const AccuracyEntry* a = accuracy_of(base);
+            const AccuracyEntry* b = accuracy_of(cand);
+            if (a != nullptr && b != nullptr && a->measured && b->measured) {
+                comparison.ssim_loss_change = b->SsimLoss() - a->SsimLoss();
+                comparison.psnr_change_db = b->psnr_db - a->psnr_db;
+            }
+        }
+        model.rows.push_back(std::move(comparison));
+    }
+
+    // Static cost versus time.
+    std::map<std::string, const nlohmann::json*> manifest_variants;
+    for (const nlohmann::json& v : inputs.manifest["variants"]) {
+        if (v.is_object() && v.contains("id") && v["id"].is_string()) {
+            manifest_variants[v["id"].get<std::string>()] = &v;
+        }
+    }
+    std::vector<StaticCostEntry> static_entries;
+    for (const MeasuredConfiguration& c : inputs.configurations) {
+        if (!c.ok || !HasDefaultPasses(c) || std::isnan(c.MedianOn(model.clock))) {
+            continue;
+        }
+        auto it = manifest_variants.find(c.variant);
+        if (it == manifest_variants.end()) {
+            continue;
+        }
+        const nlohmann::json& stages = it->second->value("stages", nlohmann::json::object());
+        const nlohmann::json vertex = stages.value("vertex", nlohmann::json::object())
+                                              .value("cost", nlohmann::json::object());
+        const nlohmann::json fragment = stages.value("fragment", nlohmann::json::object())
+                                                .value("cost", nlohmann::json::object());
+        if (!vertex.contains("total_ops") || !fragment.contains("total_ops")) {
+            continue;
+        }
+        StaticCostEntry entry;
+        entry.configuration = &c;
+        entry.vertex_ops = vertex.value("total_ops", 0);
+        entry.fragment_ops = fragment.value("total_ops", 0);
+        entry.total_ops = entry.vertex_ops + entry.fragment_ops;
+        entry.median_ms = c.MedianOn(model.clock);
+        static_entries.push_back(entry);
+    }
+    model.static_cost = AnalyseStaticCost(std::move(static_entries));
+
+    // Validation.
+    ValidationSummary& validation = model.validation;
+    validation.counts = inputs.manifest["counts"];
+    for (const nlohmann::json& v : inputs.manifest["variants"]) {
+        if (v.is_object() && !v.value("valid", true)) {
+            validation.glslang_invalid.push_back(v.value("id", std::string("?")));
+        }
+    }
+    if (auto pruned = inputs.manifest.find("pruned");
+        pruned != inputs.manifest.end() && pruned->is_array()) {
+        for (const nlohmann::json& p : *pruned) {
+            if (p.is_object()) {
+                validation.pruned.emplace_back(p.value("id", std::string()),
+                                               p.value("rule", std::string()));
+            }
+        }
+    }
+    validation.configurations = static_cast<int>(inputs.configurations.size());
+    for (const MeasuredConfiguration& c : inputs.configurations) {
+        if (!c.ok) {
+            validation.failed.push_back(&c);
+        }
+    }
+    if (auto d = inputs.results.find("disagreements");
+        d != inputs.results.end() && d->is_array()) {
+        for (const nlohmann::json& item : *d) {
+            if (item.is_object()) {
+                validation.disagreements.push_back({item.value("variant", std::string()),
+                                                    item.value("glslang_valid", false),
+                                                    item.value("mesa_valid", false)});
+            }
+        }
+    }
+    if (auto d = inputs.results.find("diagnostics");
+        d != inputs.results.end() && d->is_array()) {
+        for (const nlohmann::json& item : *d) {
+            validation.run_diagnostics.push_back(
+                    item.is_object() ? item.value("text", item.value("message", std::string()))
+                                     : item.dump());
+        }
+    }
+
+    // Image panels: every whitepaper preset's configuration, once, at the chosen views.
+    std::vector<std::string> views = options.panel_views;
+    if (views.empty() && !inputs.timing_view.empty()) {
+        views.push_back(inputs.timing_view);
+    }
+    std::vector<const MeasuredConfiguration*> shown;
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        for (const std::string& preset : {row.baseline_preset, row.candidate_preset}) {
+            const MeasuredConfiguration* c = inputs.FindByPreset(preset);
+            if (c != nullptr && c != model.reference &&
+                std::find(shown.begin(), shown.end(), c) == shown.end()) {
+                shown.push_back(c);
+            }
+        }
+    }
+    for (const std::string& view : views) {
+        auto ref = reference_images.find(view);
+        for (const MeasuredConfiguration* c : shown) {
+            ImagePanel panel;
+            panel.title = PresetTitle(*c);
+            panel.configuration = c;
+            panel.view = view;
+            const std::filesystem::path path = c->ImageAt(view);
+            if (!c->ok) {
+                panel.note = "FAILED: no image (the configuration did not compile or render)";
+            } else if (path.empty()) {
+                panel.note = "no image was written at this view";
+            } else if (ref == reference_images.end()) {
+                panel.note = "no reference image at this view";
+            } else {
+                std::optional<RgbaImage> image = LoadImage(path, &out.error);
+                if (!image) {
+                    return out;
+                }
+                panel.image = std::move(*image);
+                panel.reference = ref->second;
+                panel.heat_map = DifferenceHeatMap(panel.image, panel.reference, kHeatMapFullScale);
+                panel.psnr_db = Psnr(panel.image, panel.reference);
+                panel.ssim = Ssim(panel.image, panel.reference);
+                panel.share_visible =
+                        ShareAboveThreshold(panel.image, panel.reference, kVisibleDifferenceThreshold);
+            }
+            model.panels.push_back(std::move(panel));
+        }
+    }
+    out.model = std::move(model);
+    return out;
+}
+
+}  // namespace tidepool::report

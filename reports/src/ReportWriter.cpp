@@ -1,0 +1,1675 @@
+#include "tidepool/report/ReportWriter.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "tidepool/AtomicFile.h"
+
+namespace tidepool::report {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+nlohmann::json Num(double value) {
+    return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
+}
+
+std::string Html(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (char c : text) {
+        switch (c) {
+        case '&': out += "&amp;"; break;
+        case '<': out += "&lt;"; break;
+        case '>': out += "&gt;"; break;
+        case '"': out += "&quot;"; break;
+        default: out += c;
+        }
+    }
+    return out;
+}
+
+// A Markdown table cell: pipes would end the cell, newlines the row.
+std::string Cell(std::string_view text) {
+    std::string out;
+    for (char c : text) {
+        if (c == '|') {
+            out += "\\|";
+        } else if (c == '\n') {
+            out += ' ';
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+std::string Fixed(double value, int digits, std::string_view unit = "") {
+    if (std::isinf(value)) {
+        return value > 0 ? "inf" : "-inf";
+    }
+    if (!std::isfinite(value)) {
+        return "–";
+    }
+    return fmt::format("{:.{}f}{}", value, digits, unit);
+}
+
+std::string Signed(double value, int digits, std::string_view unit = "") {
+    if (!std::isfinite(value)) {
+        return std::isinf(value) ? (value > 0 ? "+inf" : "-inf") : "–";
+    }
+    return fmt::format("{:+.{}f}{}", value, digits, unit);
+}
+
+std::string IntervalText(const Interval& ci, int digits, std::string_view unit) {
+    if (std::isnan(ci.low) || std::isnan(ci.high)) {
+        return "–";
+    }
+    return fmt::format("[{}, {}]", Signed(ci.low, digits, unit), Signed(ci.high, digits, unit));
+}
+
+std::string ConfigurationLabel(const ComparisonSide& side) {
+    if (side.configuration == nullptr) {
+        return fmt::format("{} (missing)", side.preset);
+    }
+    return fmt::format("{}{}", side.configuration->id, side.configuration->ok ? "" : " FAILED");
+}
+
+std::string ClockName(TimingClock clock) {
+    return clock == TimingClock::kCpu ? "CPU" : "wall";
+}
+
+std::string DirectionText(int sign) { return sign > 0 ? "faster" : "slower"; }
+
+std::string FigureKindName(FigureKind kind) {
+    switch (kind) {
+    case FigureKind::kPercent: return "percent";
+    case FigureKind::kNegligible: return "negligible";
+    case FigureKind::kDirection: return "direction-only";
+    }
+    return "percent";
+}
+
+std::string Base64(const std::string& bytes) {
+    static constexpr char kAlphabet[] =
+            "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    std::string out;
+    out.reserve((bytes.size() + 2) / 3 * 4);
+    std::size_t i = 0;
+    for (; i + 2 < bytes.size(); i += 3) {
+        const auto n = (static_cast<unsigned>(static_cast<unsigned char>(bytes[i])) << 16) |
+                       (static_cast<unsigned>(static_cast<unsigned char>(bytes[i + 1])) << 8) |
+                       static_cast<unsigned>(static_cast<unsigned char>(bytes[i + 2]));
+        out += kAlphabet[(n >> 18) & 63];
+        out += kAlphabet[(n >> 12) & 63];
+        out += kAlphabet[(n >> 6) & 63];
+        out += kAlphabet[n & 63];
+    }
+    if (i < bytes.size()) {
+        unsigned n = static_cast<unsigned>(static_cast<unsigned char>(bytes[i])) << 16;
+        if (i + 1 < bytes.size()) {
+            n |= static_cast<unsigned>(static_cast<unsigned char>(bytes[i + 1])) << 8;
+        }
+        out += kAlphabet[(n >> 18) & 63];
+        out += kAlphabet[(n >> 12) & 63];
+        out += i + 1 < bytes.size() ? kAlphabet[(n >> 6) & 63] : '=';
+        out += '=';
+    }
+    return out;
+}
+
+std::string ReadBytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream bytes;
+    bytes << in.rdbuf();
+    return bytes.str();
+}
+
+// Box-filters `image` down by an integer `factor` (1 returns it unchanged).
+RgbaImage Downscale(const RgbaImage& image, int factor) {
+    if (factor <= 1 || image.width < factor || image.height < factor) {
+        return image;
+    }
+    RgbaImage out;
+    out.width = image.width / factor;
+    out.height = image.height / factor;
+    out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 4);
+    const int area = factor * factor;
+    for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+            for (int channel = 0; channel < 4; ++channel) {
+                int sum = 0;
+                for (int dy = 0; dy < factor; ++dy) {
+                    for (int dx = 0; dx < factor; ++dx) {
+                        const auto index = (static_cast<std::size_t>(y * factor + dy) *
+                                                    static_cast<std::size_t>(image.width) +
+                                            static_cast<std::size_t>(x * factor + dx)) * 4 +
+                                           static_cast<std::size_t>(channel);
+                        sum += image.pixels[index];
+                    }
+                }
+                out.pixels[(static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) +
+                            static_cast<std::size_t>(x)) * 4 + static_cast<std::size_t>(channel)] =
+                        static_cast<std::uint8_t>((sum + area / 2) / area);
+            }
+        }
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// SVG
+
+struct Axis {
+    double low = 0;
+    double high = 1;
+};
+
+Axis NiceAxis(double low, double high) {
+    if (!std::isfinite(low) || !std::isfinite(high)) {
+        return {};
+    }
+    if (high <= low) {
+        const double pad = low == 0 ? 1.0 : std::abs(low) * 0.1;
+        return {low - pad, high + pad};
+    }
+    const double pad = (high - low) * 0.06;
+    // Times and error measures are never negative: keep the axis from suggesting they could be.
+    return {low >= 0 ? std::max(0.0, low - pad) : low - pad, high + pad};
+}
+
+std::string TickLabel(double value, double span) {
+    const int digits = span >= 20 ? 0 : span >= 2 ? 1 : span >= 0.2 ? 2 : span >= 0.02 ? 3 : 4;
+    return fmt::format("{:.{}f}", value, digits);
+}
+
+}  // namespace
+
+std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
+                       const std::string& x_label, const std::string& y_label,
+                       const std::string& title) {
+    constexpr double kWidth = 760;
+    constexpr double kHeight = 420;
+    constexpr double kLeft = 70;
+    constexpr double kRight = 20;
+    constexpr double kTop = 30;
+    constexpr double kBottom = 50;
+    double x_min = kInf, x_max = -kInf, y_min = kInf, y_max = -kInf;
+    for (const ChartPoint& p : points) {
+        if (std::isfinite(p.x) && std::isfinite(p.y)) {
+            x_min = std::min(x_min, p.x);
+            x_max = std::max(x_max, p.x);
+            y_min = std::min(y_min, p.y);
+            y_max = std::max(y_max, p.y);
+        }
+    }
+    const Axis xa = NiceAxis(x_min, x_max);
+    const Axis ya = NiceAxis(y_min, y_max);
+    auto sx = [&](double x) { return kLeft + (x - xa.low) / (xa.high - xa.low) * (kWidth - kLeft - kRight); };
+    auto sy = [&](double y) { return kHeight - kBottom - (y - ya.low) / (ya.high - ya.low) * (kHeight - kTop - kBottom); };
+    std::string svg = fmt::format(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
+            "height=\"{1}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">"
+            "<title>{2}</title><rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
+            kWidth, kHeight, Html(title));
+    svg += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"13\" font-weight=\"bold\">{}</text>",
+                       kLeft, Html(title));
+    for (int i = 0; i <= 5; ++i) {
+        const double xv = xa.low + (xa.high - xa.low) * i / 5.0;
+        const double yv = ya.low + (ya.high - ya.low) * i / 5.0;
+        svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
+                           "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>",
+                           sx(xv), kTop, kHeight - kBottom, kHeight - kBottom + 15,
+                           TickLabel(xv, xa.high - xa.low));
+        svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
+                           "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>",
+                           kLeft, sy(yv), kWidth - kRight, kLeft - 5, sy(yv) + 4,
+                           TickLabel(yv, ya.high - ya.low));
+    }
+    svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
+                       (kLeft + kWidth - kRight) / 2, kHeight - 12, Html(x_label));
+    svg += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>",
+                       (kTop + kHeight - kBottom) / 2, Html(y_label));
+    // The frontier as a step line: from each point right along its error, then down to the next.
+    std::string path;
+    for (std::size_t k = 0; k < line.size(); ++k) {
+        if (line[k] >= points.size()) {
+            continue;
+        }
+        const ChartPoint& p = points[line[k]];
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+            continue;
+        }
+        if (path.empty()) {
+            path = fmt::format("M{:.1f},{:.1f}", sx(p.x), sy(p.y));
+        } else {
+            path += fmt::format(" H{:.1f} V{:.1f}", sx(p.x), sy(p.y));
+        }
+    }
+    if (!path.empty()) {
+        svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" "
+                           "stroke-dasharray=\"4 3\"/>",
+                           path);
+    }
+    for (const ChartPoint& p : points) {
+        if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+            continue;
+        }
+        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" "
+                           "fill-opacity=\"0.8\"><title>{}</title></circle>",
+                           sx(p.x), sy(p.y), p.highlight ? 5 : 3.5,
+                           p.highlight ? "#c0392b" : "#5d6d7e", Html(p.tooltip));
+        if (!p.label.empty()) {
+            svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"#333\">{}</text>",
+                               sx(p.x) + 6, sy(p.y) - 4, Html(p.label));
+        }
+    }
+    svg += "</svg>";
+    return svg;
+}
+
+namespace {
+
+// Horizontal bars: measured change with its interval per row, the whitepaper's figure marked.
+std::string WhitepaperChartSvg(const ReportModel& model) {
+    constexpr double kWidth = 760;
+    constexpr double kRowHeight = 26;
+    constexpr double kLeft = 200;
+    constexpr double kRight = 20;
+    constexpr double kTop = 40;
+    const double height = kTop + kRowHeight * static_cast<double>(model.rows.size()) + 40;
+    double low = -10, high = 10;
+    for (const RowComparison& r : model.rows) {
+        for (double v : {r.change_percent, r.change_ci.low, r.change_ci.high,
+                         r.row.whitepaper_percent}) {
+            if (std::isfinite(v)) {
+                low = std::min(low, v);
+                high = std::max(high, v);
+            }
+        }
+    }
+    // Frame-rate changes below -100% cannot happen; above +150% the chart would squash the rest.
+    low = std::max(low - 5, -100.0);
+    high = std::min(high + 5, 150.0);
+    auto sx = [&](double v) {
+        return kLeft + (std::clamp(v, low, high) - low) / (high - low) * (kWidth - kLeft - kRight);
+    };
+    std::string svg = fmt::format(
+            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
+            "height=\"{1}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">"
+            "<title>Performance change per whitepaper row</title>"
+            "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
+            "<text x=\"10\" y=\"18\" font-size=\"12\" font-weight=\"bold\">Performance change "
+            "(frame rate, + = faster): bar = measured, line = 95% interval, &#9670; = "
+            "whitepaper</text>",
+            kWidth, height);
+    for (int t = static_cast<int>(std::ceil(low / 20.0)) * 20; t <= high; t += 20) {
+        svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>"
+                           "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{5:+d}%</text>",
+                           sx(t), kTop - 8, height - 30, t == 0 ? "#333" : "#ddd", height - 15, t);
+    }
+    for (std::size_t i = 0; i < model.rows.size(); ++i) {
+        const RowComparison& r = model.rows[i];
+        const double y = kTop + kRowHeight * static_cast<double>(i);
+        svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}. {}</text>",
+                           kLeft - 8, y + 15, r.row.number, Html(r.candidate.preset));
+        if (std::isfinite(r.change_percent)) {
+            const double x0 = sx(0);
+            const double x1 = sx(r.change_percent);
+            const char* colour = r.verdict == Verdict::kSameDirectionAndMagnitude ? "#27ae60"
+                                 : r.verdict == Verdict::kSameDirectionOnly       ? "#2e86c1"
+                                 : r.verdict == Verdict::kOpposite                ? "#c0392b"
+                                                                                  : "#95a5a6";
+            svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"12\" "
+                               "fill=\"{}\"><title>row {}: {} ({})</title></rect>",
+                               std::min(x0, x1), y + 5, std::max(1.0, std::abs(x1 - x0)), colour,
+                               r.row.number, Signed(r.change_percent, 1, "%"),
+                               VerdictName(r.verdict));
+            if (std::isfinite(r.change_ci.low)) {
+                svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
+                                   "stroke=\"#111\" stroke-width=\"1.5\"/>",
+                                   sx(r.change_ci.low), y + 11, sx(r.change_ci.high), y + 11);
+            }
+        } else {
+            svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#c0392b\">{}</text>",
+                               sx(0) + 4, y + 15, VerdictName(r.verdict));
+        }
+        if (r.row.kind == FigureKind::kPercent && std::isfinite(r.row.whitepaper_percent)) {
+            const double wx = sx(r.row.whitepaper_percent);
+            svg += fmt::format("<path d=\"M{0:.1f},{1:.1f} l5,6 l-5,6 l-5,-6 z\" fill=\"#f39c12\" "
+                               "stroke=\"#7e5109\"><title>whitepaper: {2}</title></path>",
+                               wx, y + 5, Html(r.row.whitepaper_text));
+        }
+    }
+    svg += "</svg>";
+    return svg;
+}
+
+std::vector<ChartPoint> AccuracyPoints(const ReportModel& model) {
+    std::vector<ChartPoint> points;
+    for (const AccuracyEntry& e : model.accuracy) {
+        ChartPoint p;
+        p.x = e.measured ? e.median_ms : std::numeric_limits<double>::quiet_NaN();
+        p.y = e.measured ? e.SsimLoss() : std::numeric_limits<double>::quiet_NaN();
+        p.highlight = e.on_frontier;
+        if (!e.configuration->presets.empty()) {
+            p.label = e.configuration->presets.front();
+        }
+        p.tooltip = fmt::format("{}: {} ms, 1-SSIM {}, PSNR {} dB", e.configuration->id,
+                                Fixed(e.median_ms, 2), Fixed(e.SsimLoss(), 4),
+                                Fixed(e.psnr_db, 1));
+        points.push_back(std::move(p));
+    }
+    return points;
+}
+
+std::vector<ChartPoint> StaticPoints(const ReportModel& model) {
+    std::vector<ChartPoint> points;
+    for (std::size_t i = 0; i < model.static_cost.entries.size(); ++i) {
+        const StaticCostEntry& e = model.static_cost.entries[i];
+        ChartPoint p;
+        p.x = e.total_ops;
+        p.y = e.median_ms;
+        p.highlight = std::find(model.static_cost.misleading.begin(),
+                                model.static_cost.misleading.end(), i) !=
+                      model.static_cost.misleading.end();
+        if (p.highlight && !e.configuration->presets.empty()) {
+            p.label = e.configuration->presets.front();
+        }
+        p.tooltip = fmt::format("{}: {} ops, {} ms", e.configuration->id, e.total_ops,
+                                Fixed(e.median_ms, 2));
+        points.push_back(std::move(p));
+    }
+    return points;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Environment and settings in display order.
+
+std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& model) {
+    const nlohmann::json& results = model.inputs->results;
+    const nlohmann::json env = results.value("environment", nlohmann::json::object());
+    const nlohmann::json settings = results.value("settings", nlohmann::json::object());
+    auto text = [](const nlohmann::json& object, const char* key) -> std::string {
+        auto it = object.find(key);
+        if (it == object.end() || it->is_null()) {
+            return "–";
+        }
+        if (it->is_number_float()) {
+            return fmt::format("{:.1f}", it->get<double>());
+        }
+        return it->is_string() ? it->get<std::string>() : it->dump();
+    };
+    std::vector<std::pair<std::string, std::string>> facts = {
+            {"CPU", text(env, "cpu_model")},
+            {"Renderer", text(env, "gl_renderer")},
+            {"GL version", text(env, "gl_version")},
+            {"Mesa version", text(env, "mesa_version")},
+            {"Backend", text(env, "backend") + " (" + text(env, "context_api") + ")"},
+            {"LP_NUM_THREADS", text(env, "lp_num_threads")},
+            {"Build", text(env, "build_type")},
+            {"Git revision", text(env, "git_revision")},
+            {"Render command", text(env, "command")},
+            {"Run started (UTC)", text(results, "started_utc")},
+            {"Run wall time (s)", text(results, "wall_seconds")},
+            {"Render size", text(settings, "width") + "x" + text(settings, "height")},
+            {"Timing view", text(settings, "timing_view")},
+            {"Warm-up frames", text(settings, "warmup_frames")},
+            {"Rounds", text(settings, "rounds")},
+            {"Frames per round", text(settings, "frames_per_round")},
+            {"Timing method", text(settings, "timing_method")},
+            {"Compared on", ClockName(model.clock) + " time: " + model.inputs->clock_reason},
+            {"Animation time (s)", text(settings, "animation_time_s")},
+            {"Config", text(settings, "config")},
+    };
+    return facts;
+}
+
+std::string StabilityHowTo() {
+    return "No numerical-stability catalogue was found next to results.json. Produce one with "
+           "`tidepool stability` (it writes stability.json, schema \"tidepool.stability\", beside "
+           "the results), then rebuild this report with `tidepool report`.";
+}
+
+std::string PlansHowTo() {
+    return "No scene plans were found next to results.json. Produce them with `tidepool plan "
+           "--all --out DIR` (DIR = the folder of results.json; it writes plans.json, schema "
+           "\"tidepool.plans\"), or let `tidepool run` make them (unless --no-plans), then "
+           "rebuild this report with `tidepool report`.";
+}
+
+// The time axis of the charts and the single-clock columns, naming the clock compared on.
+std::string TimeAxisLabel(const ReportModel& model) {
+    return fmt::format("median frame time (ms, {} time)", ClockName(model.clock));
+}
+
+std::string ClockText(const ReportModel& model) {
+    return fmt::format(
+            "Every comparison (whitepaper rows, split halves, accuracy versus time, the Pareto "
+            "frontier, static cost versus time) uses {}. Tables list both medians; \"median ms "
+            "({})\" is the one compared.",
+            model.inputs->clock_reason, ClockName(model.clock));
+}
+
+// The columns of each stability table, in display order.
+const std::vector<std::pair<std::string, std::vector<std::string>>>& StabilityTables() {
+    static const std::vector<std::pair<std::string, std::vector<std::string>>> tables = {
+            {"cases",
+             {"name", "description", "kind", "variants_checked", "nan_count", "inf_count",
+              "max_error", "bound", "passed", "fix"}},
+            {"precision",
+             {"expression", "max_abs_error_float", "max_abs_error_fp16", "max_rel_error_fp16",
+              "loses_precision", "note"}},
+            {"guards", {"guard", "max_channel_diff_normal_views", "tolerance"}},
+    };
+    return tables;
+}
+
+std::string JsonCell(const nlohmann::json& value) {
+    if (value.is_null()) {
+        return "–";
+    }
+    if (value.is_string()) {
+        return value.get<std::string>();
+    }
+    if (value.is_number_float()) {
+        const double v = value.get<double>();
+        return std::abs(v) >= 1e-3 || v == 0 ? fmt::format("{:.4g}", v) : fmt::format("{:.3e}", v);
+    }
+    if (value.is_array()) {
+        std::string out;
+        for (const nlohmann::json& item : value) {
+            out += (out.empty() ? "" : ", ") + JsonCell(item);
+        }
+        return out;
+    }
+    return value.dump();
+}
+
+// A JSON number as text with `digits` decimals, "–" when absent or not a number.
+std::string JsonFixed(const nlohmann::json& object, const char* key, int digits,
+                      std::string_view unit = "") {
+    auto it = object.find(key);
+    return it != object.end() && it->is_number() ? Fixed(it->get<double>(), digits, unit)
+                                                  : std::string("–");
+}
+
+std::string JsonSigned(const nlohmann::json& object, const char* key, int digits,
+                       std::string_view unit = "") {
+    auto it = object.find(key);
+    return it != object.end() && it->is_number() ? Signed(it->get<double>(), digits, unit)
+                                                  : std::string("–");
+}
+
+std::string JsonText(const nlohmann::json& object, const char* key) {
+    auto it = object.find(key);
+    if (it == object.end() || it->is_null()) {
+        return "–";
+    }
+    return it->is_string() ? it->get<std::string>() : it->dump();
+}
+
+// The Scenes section's tables, read from plans.json (CheckPlans vetted the shape).
+struct SceneTables {
+    std::vector<std::vector<std::string>> summary;
+    std::vector<std::string> summary_css;
+    // Per scene: its name and one row per dropped or kept effect.
+    std::vector<std::pair<std::string, std::vector<std::vector<std::string>>>> effects;
+    int missed = 0;  // plans whose chosen configuration does not meet the target
+};
+
+const std::vector<std::string>& SceneSummaryHeader() {
+    static const std::vector<std::string> header = {
+            "scene", "chosen configuration", "full-effect configuration",
+            "time chosen / full (ms)", "time change", "error vs full (PSNR, SSIM, visible)",
+            "target", "met", "passes / draws / pixels saved"};
+    return header;
+}
+
+const std::vector<std::string>& SceneEffectHeader() {
+    static const std::vector<std::string> header = {"effect", "decision", "PSNR alone",
+                                                    "time change alone", "reason"};
+    return header;
+}
+
+SceneTables BuildSceneTables(const nlohmann::json& plans) {
+    SceneTables t;
+    const nlohmann::json empty = nlohmann::json::object();
+    for (const nlohmann::json& plan : plans.value("plans", nlohmann::json::array())) {
+        const std::string scene = JsonText(plan, "scene");
+        const nlohmann::json& chosen = plan.contains("chosen") && plan["chosen"].is_object()
+                                               ? plan["chosen"] : empty;
+        const nlohmann::json& full = plan.contains("full") && plan["full"].is_object()
+                                             ? plan["full"] : empty;
+        const nlohmann::json& error = plan.contains("error") && plan["error"].is_object()
+                                              ? plan["error"] : empty;
+        std::string target;
+        if (auto it = plan.find("target"); it != plan.end() && it->is_object()) {
+            for (const auto& [key, value] : it->items()) {
+                target += (target.empty() ? "" : ", ") + key + " " + JsonCell(value);
+            }
+        }
+        const bool met = plan.value("met", false);
+        t.missed += met ? 0 : 1;
+        // 99 dB is how plans.json writes "identical" (docs/SCENES.md).
+        const std::string psnr = error.contains("psnr_db") && error["psnr_db"].is_number() &&
+                                                 error["psnr_db"].get<double>() >= 99.0
+                                         ? std::string("identical")
+                                         : JsonFixed(error, "psnr_db", 1, " dB");
+        std::string visible = "–";
+        if (error.contains("share_visible") && error["share_visible"].is_number()) {
+            visible = Fixed(error["share_visible"].get<double>() * 100, 1, "%");
+        }
+        std::string errors;
+        if (auto it = plan.find("errors"); it != plan.end() && it->is_array() && !it->empty()) {
+            errors = " (" + JsonCell(*it) + ")";
+        }
+        t.summary.push_back(
+                {scene, JsonText(chosen, "id") + errors, JsonText(full, "id"),
+                 JsonFixed(plan, "time_ms_chosen", 2) + " / " + JsonFixed(plan, "time_ms_full", 2),
+                 JsonSigned(plan, "time_change_percent", 0, "%"),
+                 psnr + ", SSIM " + JsonFixed(error, "ssim", 3) + ", " + visible,
+                 target.empty() ? "–" : target, met ? "met" : "NOT met",
+                 JsonText(plan, "passes_saved") + " / " + JsonText(plan, "draws_saved") + " / " +
+                         JsonText(plan, "pixels_saved")});
+        t.summary_css.push_back(met ? "" : "bad");
+        std::vector<std::vector<std::string>> effects;
+        for (const auto& [key, decision] : {std::pair<const char*, const char*>{"dropped", "dropped"},
+                                            {"kept", "kept"}}) {
+            for (const nlohmann::json& e : plan.value(key, nlohmann::json::array())) {
+                if (!e.is_object()) {
+                    continue;
+                }
+                const bool identical = e.contains("psnr_change_db") &&
+                                       e["psnr_change_db"].is_number() &&
+                                       e["psnr_change_db"].get<double>() >= 99.0;
+                effects.push_back({JsonText(e, "effect"), decision,
+                                   identical ? std::string("identical")
+                                             : JsonFixed(e, "psnr_change_db", 1, " dB"),
+                                   JsonSigned(e, "time_change_percent", 0, "%"),
+                                   JsonText(e, "reason")});
+            }
+        }
+        t.effects.emplace_back(scene, std::move(effects));
+    }
+    return t;
+}
+
+std::string ScenesIntro(const nlohmann::json& plans) {
+    std::string size = "–";
+    if (auto it = plans.find("size"); it != plans.end() && it->is_array() && it->size() == 2) {
+        size = (*it)[0].dump() + "x" + (*it)[1].dump();
+    }
+    return fmt::format(
+            "Per scene (scenes/*.yaml), the cheapest configuration whose image meets the scene's "
+            "target against the full-effect configuration (docs/SCENES.md), from `tidepool plan` "
+            "at {} with {} paired rounds of {} frames. Times are the planner's own medians at "
+            "that size, not the whitepaper run's; the time change is the median of per-round "
+            "ratios (so it can differ from the ratio of the two medians), negative = faster. "
+            "\"PSNR alone\" and \"time change alone\" are those of the candidate that drops "
+            "only that effect.",
+            size, JsonText(plans, "rounds"), JsonText(plans, "frames_per_round"));
+}
+
+
+std::string VerdictCss(Verdict verdict) {
+    switch (verdict) {
+    case Verdict::kSameDirectionAndMagnitude: return "good";
+    case Verdict::kSameDirectionOnly: return "fair";
+    case Verdict::kOpposite: return "bad";
+    case Verdict::kInconclusive: return "unknown";
+    case Verdict::kFailed: return "bad";
+    }
+    return "unknown";
+}
+
+std::string WhitepaperFigureCell(const WhitepaperRow& row) {
+    std::string text = row.whitepaper_text;
+    if (row.kind == FigureKind::kDirection) {
+        text += fmt::format(" (qualitative: expects {})", DirectionText(row.expected_sign));
+    }
+    return text;
+}
+
+std::string MeasuredCell(const RowComparison& r) {
+    if (!std::isfinite(r.change_percent)) {
+        return "–";
+    }
+    const bool faster = r.change_percent >= 0;
+    return fmt::format("performance {} by {:.1f}%", faster ? "increased" : "reduced",
+                       std::abs(r.change_percent));
+}
+
+// Relative file names of a panel's images.
+struct PanelFiles {
+    std::string image;
+    std::string reference;
+    std::string heat;
+};
+
+std::string PanelStem(const ImagePanel& panel) {
+    std::string stem = panel.configuration != nullptr && !panel.configuration->presets.empty()
+                               ? panel.configuration->presets.front()
+                               : std::string("configuration");
+    for (char& c : stem) {
+        if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') {
+            c = '_';
+        }
+    }
+    return stem;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Markdown and HTML share this walk: each section is emitted by both writers from one model.
+
+struct Page {
+    const ReportModel& model;
+    const std::vector<PanelFiles>& files;
+    const std::vector<std::array<std::string, 3>>* uris;  // HTML only: data: URIs per panel
+};
+
+std::string GlossaryText() {
+    return fmt::format(
+            "Performance change is in percent of frame rate as the whitepaper words it (+ = faster; "
+            "\"reduced by 60%\" = -60% = 2.5x the frame time), computed from frame-time ratios "
+            "paired by timing round (median of per-round ratios, {:.0f}% percentile-bootstrap "
+            "interval over rounds, {} resamples).",
+            kConfidenceLevel * 100, kBootstrapResamples);
+}
+
+std::string VerdictRuleText(const ReportModel& model) {
+    return fmt::format(
+            "Verdict: inconclusive when the 95% interval reaches within ±{0:.0f}% of no change (a "
+            "noise floor: on a shared 2-core machine smaller effects move between runs) or when "
+            "the odd and the even rounds point different ways; otherwise the direction is the "
+            "side of 0% the interval lies on. Same direction and magnitude only when the whole "
+            "interval lies within {1:.0f} percentage points of the whitepaper's figure (an "
+            "equivalence test: noise widens the interval and loses the agreement instead of "
+            "flipping it; {1:.0f} points absorbs the platform difference between an SGX GPU and "
+            "llvmpipe). Row 6's \"<1%\" agrees when the whole interval lies within ±{1:.0f} "
+            "points of 0%. Rows 8-11 quote no number, so only the direction is compared "
+            "(\"same-direction-only\" is the best they can get).",
+            model.options.noise_floor_percent, model.options.magnitude_tolerance_percent_points);
+}
+
+}  // namespace
+
+std::string WhitepaperTableText(const ReportModel& model) {
+    std::string out = fmt::format("compared on {} time\n", ClockName(model.clock));
+    out += fmt::format("{:>2}  {:<26} {:<26} {:>20} {:>10} {:>20}  {}\n", "#",
+                                  "baseline", "candidate", "whitepaper", "measured", "95% CI",
+                                  "verdict");
+    for (const RowComparison& r : model.rows) {
+        std::string figure = r.row.kind == FigureKind::kPercent
+                                     ? Signed(r.row.whitepaper_percent, 1, "%")
+                             : r.row.kind == FigureKind::kNegligible
+                                     ? std::string("<1% slower")
+                                     : "qualitative, " + DirectionText(r.row.expected_sign);
+        out += fmt::format("{:>2}  {:<26} {:<26} {:>20} {:>10} {:>20}  {}\n", r.row.number,
+                           r.baseline.preset, r.candidate.preset, figure,
+                           Signed(r.change_percent, 1, "%"), IntervalText(r.change_ci, 1, "%"),
+                           VerdictName(r.verdict));
+    }
+    return out;
+}
+
+nlohmann::json ReportToJson(const ReportModel& model) {
+    nlohmann::json json;
+    json["schema"] = kReportSchema;
+    json["version"] = kReportSchemaVersion;
+    json["name"] = model.options.name;
+    json["generated_utc"] = model.options.generated_utc;
+    json["inputs"] = {{"manifest", model.inputs->manifest_path.string()},
+                      {"results", model.inputs->results_path.string()},
+                      {"stability", model.inputs->stability
+                                            ? nlohmann::json(model.inputs->stability_path.string())
+                                            : nlohmann::json(nullptr)},
+                      {"plans", model.inputs->plans
+                                        ? nlohmann::json(model.inputs->plans_path.string())
+                                        : nlohmann::json(nullptr)}};
+    json["method"] = {{"clock", TimingClockName(model.clock)},
+                      {"clock_reason", model.inputs->clock_reason},
+                      {"magnitude_tolerance_percent_points",
+                       model.options.magnitude_tolerance_percent_points},
+                      {"noise_floor_percent", model.options.noise_floor_percent},
+                      {"confidence_level", kConfidenceLevel},
+                      {"bootstrap_resamples", kBootstrapResamples},
+                      {"bootstrap_seed", model.options.seed},
+                      {"visible_difference_threshold", kVisibleDifferenceThreshold},
+                      {"reference_preset", kReferencePreset},
+                      {"largest_split_half_disagreement_percent_points",
+                       Num(model.largest_split_half_disagreement)},
+                      {"largest_split_half_row", model.largest_split_half_row},
+                      {"environment", model.inputs->results.value("environment", nlohmann::json::object())},
+                      {"settings", model.inputs->results.value("settings", nlohmann::json::object())}};
+    auto side = [&model](const ComparisonSide& s) {
+        nlohmann::json j = {{"preset", s.preset}};
+        if (s.configuration != nullptr) {
+            j["configuration"] = s.configuration->id;
+            j["passes"] = {{"reflection_size", s.configuration->reflection_size},
+                           {"low_res_water", s.configuration->low_res_water},
+                           {"clip", s.configuration->clip},
+                           {"culling", s.configuration->culling}};
+            j["ok"] = s.configuration->ok;
+            j["median_ms"] = Num(s.configuration->MedianOn(model.clock));
+            j["median_wall_ms"] = Num(s.configuration->median_ms);
+            j["median_cpu_ms"] = Num(s.configuration->cpu_median_ms);
+        } else {
+            j["configuration"] = nullptr;
+            j["ok"] = false;
+        }
+        return j;
+    };
+    nlohmann::json rows = nlohmann::json::array();
+    for (const RowComparison& r : model.rows) {
+        rows.push_back({{"number", r.row.number},
+                        {"change", r.row.change},
+                        {"whitepaper_figure", r.row.whitepaper_text},
+                        {"whitepaper_percent", Num(r.row.whitepaper_percent)},
+                        {"figure_kind", FigureKindName(r.row.kind)},
+                        {"expected_direction", DirectionText(r.row.expected_sign)},
+                        {"baseline", side(r.baseline)},
+                        {"candidate", side(r.candidate)},
+                        {"frame_time_ratio", Num(r.ratio.ratio)},
+                        {"frame_time_ratio_ci", {Num(r.ratio.ci.low), Num(r.ratio.ci.high)}},
+                        {"rounds", r.ratio.rounds},
+                        {"clock", TimingClockName(model.clock)},
+                        {"measured_percent", Num(r.change_percent)},
+                        {"measured_percent_ci", {Num(r.change_ci.low), Num(r.change_ci.high)}},
+                        {"verdict", VerdictName(r.verdict)},
+                        {"verdict_reason", r.verdict_reason},
+                        {"llvmpipe_note", r.row.llvmpipe_note},
+                        {"split_half",
+                         {{"odd_rounds_percent", Num(r.odd_change_percent)},
+                          {"even_rounds_percent", Num(r.even_change_percent)},
+                          {"disagreement_percent_points", Num(r.split.disagreement_percent_points)}}},
+                        {"accuracy_cost",
+                         {{"time_change_ms", Num(r.time_change_ms)},
+                          {"ssim_loss_change", Num(r.ssim_loss_change)},
+                          {"psnr_change_db", Num(r.psnr_change_db)}}}});
+    }
+    json["whitepaper_rows"] = rows;
+    nlohmann::json accuracy = nlohmann::json::array();
+    nlohmann::json frontier = nlohmann::json::array();
+    for (const AccuracyEntry& e : model.accuracy) {
+        const MeasuredConfiguration& c = *e.configuration;
+        accuracy.push_back({{"configuration", c.id},
+                            {"variant", c.variant},
+                            {"presets", c.presets},
+                            {"passes", c.PassLabel()},
+                            {"ok", c.ok},
+                            {"measured", e.measured},
+                            {"median_ms", Num(e.median_ms)},
+                            {"median_wall_ms", Num(c.median_ms)},
+                            {"median_wall_ci_ms", {Num(c.ci_low_ms), Num(c.ci_high_ms)}},
+                            {"median_cpu_ms", Num(c.cpu_median_ms)},
+                            {"median_cpu_ci_ms", {Num(c.cpu_ci_low_ms), Num(c.cpu_ci_high_ms)}},
+                            {"psnr_db", Num(e.psnr_db)},
+                            {"identical_to_reference", std::isinf(e.psnr_db)},
+                            {"ssim", Num(e.ssim)},
+                            {"ssim_loss", Num(e.measured ? e.SsimLoss() : std::nan(""))},
+                            {"share_visible", Num(e.share_visible)},
+                            {"views_compared", e.views_compared},
+                            {"on_frontier", e.on_frontier},
+                            {"reference", e.is_reference},
+                            {"note", e.note}});
+    }
+    for (std::size_t i : model.frontier) {
+        frontier.push_back(model.accuracy[i].configuration->id);
+    }
+    json["accuracy"] = accuracy;
+    json["pareto_frontier"] = frontier;
+    nlohmann::json static_entries = nlohmann::json::array();
+    for (const StaticCostEntry& e : model.static_cost.entries) {
+        static_entries.push_back({{"configuration", e.configuration->id},
+                                  {"vertex_ops", e.vertex_ops},
+                                  {"fragment_ops", e.fragment_ops},
+                                  {"total_ops", e.total_ops},
+                                  {"median_ms", Num(e.median_ms)},
+                                  {"ops_rank", e.ops_rank},
+                                  {"time_rank", e.time_rank}});
+    }
+    nlohmann::json misleading = nlohmann::json::array();
+    for (std::size_t i : model.static_cost.misleading) {
+        misleading.push_back(model.static_cost.entries[i].configuration->id);
+    }
+    json["static_cost"] = {{"spearman_rho", Num(model.static_cost.spearman_rho)},
+                           {"note", model.static_cost.note},
+                           {"entries", static_entries},
+                           {"most_misleading", misleading}};
+    nlohmann::json failed = nlohmann::json::array();
+    for (const MeasuredConfiguration* c : model.validation.failed) {
+        failed.push_back({{"configuration", c->id},
+                          {"driver_valid", c->driver_valid},
+                          {"gl_error", c->gl_error},
+                          {"driver_diagnostics", c->driver_messages}});
+    }
+    nlohmann::json disagreements = nlohmann::json::array();
+    for (const VerdictDisagreementRow& d : model.validation.disagreements) {
+        disagreements.push_back({{"variant", d.variant},
+                                 {"glslang_valid", d.glslang_valid},
+                                 {"mesa_valid", d.mesa_valid}});
+    }
+    nlohmann::json pruned = nlohmann::json::array();
+    for (const auto& [id, rule] : model.validation.pruned) {
+        pruned.push_back({{"id", id}, {"rule", rule}});
+    }
+    json["validation"] = {{"counts", model.validation.counts},
+                          {"glslang_invalid", model.validation.glslang_invalid},
+                          {"pruned", pruned},
+                          {"configurations", model.validation.configurations},
+                          {"failed_configurations", failed},
+                          {"disagreements", disagreements},
+                          {"run_diagnostics", model.validation.run_diagnostics}};
+    nlohmann::json images = nlohmann::json::array();
+    for (const ImagePanel& p : model.panels) {
+        images.push_back({{"title", p.title},
+                          {"configuration", p.configuration->id},
+                          {"view", p.view},
+                          {"psnr_db", Num(p.psnr_db)},
+                          {"ssim", Num(p.ssim)},
+                          {"share_visible", Num(p.share_visible)},
+                          {"note", p.note}});
+    }
+    json["images"] = images;
+    if (model.inputs->stability) {
+        json["stability"] = *model.inputs->stability;
+    } else {
+        json["stability"] = {{"present", false},
+                             {"error", model.inputs->stability_error},
+                             {"how_to_produce", StabilityHowTo()}};
+    }
+    if (model.inputs->plans) {
+        // The scenes as the section shows them; the full plans (candidates) stay in plans.json.
+        nlohmann::json scenes = nlohmann::json::array();
+        for (const nlohmann::json& plan : model.inputs->plans->value("plans",
+                                                                    nlohmann::json::array())) {
+            nlohmann::json scene = nlohmann::json::object();
+            for (const char* key : {"scene", "description", "target", "met", "chosen", "full",
+                                    "time_ms_chosen", "time_ms_full", "time_change_percent",
+                                    "error", "dropped", "kept", "passes_saved", "draws_saved",
+                                    "pixels_saved", "errors"}) {
+                if (plan.contains(key)) {
+                    scene[key] = plan[key];
+                }
+            }
+            scenes.push_back(std::move(scene));
+        }
+        json["scenes"] = {{"present", true},
+                          {"size", model.inputs->plans->value("size", nlohmann::json())},
+                          {"rounds", model.inputs->plans->value("rounds", nlohmann::json())},
+                          {"frames_per_round",
+                           model.inputs->plans->value("frames_per_round", nlohmann::json())},
+                          {"plans", scenes}};
+    } else {
+        json["scenes"] = {{"present", false},
+                          {"error", model.inputs->plans_error},
+                          {"how_to_produce", PlansHowTo()}};
+    }
+    return json;
+}
+
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Markdown
+
+std::string MarkdownTable(const std::vector<std::string>& header,
+                          const std::vector<std::vector<std::string>>& rows) {
+    std::string out = "|";
+    for (const std::string& h : header) {
+        out.append(" ").append(Cell(h)).append(" |");
+    }
+    out += "\n|";
+    for (std::size_t i = 0; i < header.size(); ++i) {
+        out += "---|";
+    }
+    out += "\n";
+    for (const auto& row : rows) {
+        out += "|";
+        for (const std::string& c : row) {
+            out.append(" ").append(Cell(c)).append(" |");
+        }
+        out += "\n";
+    }
+    return out + "\n";
+}
+
+std::string HtmlTable(const std::vector<std::string>& header,
+                      const std::vector<std::vector<std::string>>& rows,
+                      const std::vector<std::string>& row_classes = {}) {
+    std::string out = "<table class=\"wide\"><thead><tr>";
+    for (const std::string& h : header) {
+        out += "<th>" + Html(h) + "</th>";
+    }
+    out += "</tr></thead><tbody>";
+    for (std::size_t r = 0; r < rows.size(); ++r) {
+        const std::string css = r < row_classes.size() ? row_classes[r] : "";
+        out += css.empty() ? "<tr>" : "<tr class=\"" + css + "\">";
+        for (const std::string& c : rows[r]) {
+            // Variant ids are long comma-joined define lists: let them wrap after a comma.
+            std::string cell = Html(c);
+            for (std::size_t at = cell.find(','); at != std::string::npos;
+                 at = cell.find(',', at + 6)) {
+                cell.insert(at + 1, "<wbr>");
+            }
+            out += "<td>" + cell + "</td>";
+        }
+        out += "</tr>";
+    }
+    return out + "</tbody></table>\n";
+}
+
+// The tables of the report, shared by both formats.
+struct Tables {
+    std::vector<std::string> whitepaper_header = {
+            "#", "change", "configurations compared (baseline → candidate)", "whitepaper's figure",
+            "measured here", "95% interval", "verdict", "why", "why llvmpipe agrees or differs"};
+    std::vector<std::vector<std::string>> whitepaper;
+    std::vector<std::string> whitepaper_css;
+    std::vector<std::string> accuracy_header;  // set by BuildTables (names the clocks)
+    std::vector<std::string> frontier_header;
+    std::vector<std::string> static_header;
+    std::vector<std::string> misleading_header;
+    std::vector<std::vector<std::string>> accuracy;
+    std::vector<std::string> accuracy_css;
+    std::vector<std::vector<std::string>> frontier;
+    std::vector<std::vector<std::string>> optimisation;
+    std::vector<std::vector<std::string>> static_rows;
+    std::vector<std::vector<std::string>> misleading;
+    std::vector<std::vector<std::string>> split;
+    std::vector<std::vector<std::string>> method;
+};
+
+std::string Presets(const MeasuredConfiguration& c) {
+    std::string out;
+    for (const std::string& p : c.presets) {
+        out += (out.empty() ? "" : ", ") + p;
+    }
+    return out;
+}
+
+// "median ms (CPU)" and "median ms (wall)", the compared clock first.
+std::vector<std::string> MedianHeaders(const ReportModel& model) {
+    const TimingClock other =
+            model.clock == TimingClock::kCpu ? TimingClock::kWall : TimingClock::kCpu;
+    return {fmt::format("median ms ({}, compared)", ClockName(model.clock)),
+            fmt::format("median ms ({})", ClockName(other))};
+}
+
+// The two medians of `c`, the compared clock first.
+std::vector<std::string> MedianCells(const ReportModel& model, const MeasuredConfiguration& c) {
+    const TimingClock other =
+            model.clock == TimingClock::kCpu ? TimingClock::kWall : TimingClock::kCpu;
+    return {Fixed(c.MedianOn(model.clock), 2), Fixed(c.MedianOn(other), 2)};
+}
+
+std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<std::string>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+}
+
+Tables BuildTables(const ReportModel& model) {
+    Tables t;
+    const std::vector<std::string> medians = MedianHeaders(model);
+    t.accuracy_header = Concat(Concat({"configuration", "presets", "passes"}, medians),
+                               {"PSNR dB", "SSIM", "1-SSIM", "pixels visibly different",
+                                "frontier"});
+    t.frontier_header = Concat(Concat({"configuration", "presets", "passes"}, medians),
+                               {"1-SSIM", "PSNR dB", "visibly different"});
+    t.static_header = Concat(Concat({"configuration", "presets", "vertex ops", "fragment ops",
+                                     "total ops"},
+                                    medians),
+                             {"ops rank", "time rank"});
+    t.misleading_header = {"configuration", "total ops", medians.front(), "ops rank",
+                           "time rank", "reading"};
+    for (const RowComparison& r : model.rows) {
+        t.whitepaper.push_back(
+                {std::to_string(r.row.number), r.row.change,
+                 fmt::format("{} [{}] → {} [{}]", r.baseline.preset, ConfigurationLabel(r.baseline),
+                             r.candidate.preset, ConfigurationLabel(r.candidate)),
+                 "whitepaper: " + WhitepaperFigureCell(r.row), MeasuredCell(r),
+                 IntervalText(r.change_ci, 1, "%"), std::string(VerdictName(r.verdict)),
+                 r.verdict_reason, r.row.llvmpipe_note});
+        // The row class names the row so tools (and the browser test) can find each one.
+        t.whitepaper_css.push_back(VerdictCss(r.verdict) + " wp-row-" + std::to_string(r.row.number));
+    }
+    for (const AccuracyEntry& e : model.accuracy) {
+        const MeasuredConfiguration& c = *e.configuration;
+        if (!e.measured) {
+            t.accuracy.push_back(Concat(Concat({c.id, Presets(c), c.PassLabel()},
+                                               MedianCells(model, c)),
+                                        {"–", "–", "–", "–", e.note}));
+            t.accuracy_css.push_back(c.ok ? "" : "bad");
+            continue;
+        }
+        t.accuracy.push_back(Concat(
+                Concat({c.id, Presets(c), c.PassLabel()}, MedianCells(model, c)),
+                {std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1), Fixed(e.ssim, 4),
+                 Fixed(e.SsimLoss(), 4), Fixed(e.share_visible * 100, 2, "%"),
+                 e.is_reference ? "reference" : e.on_frontier ? "yes" : ""}));
+        t.accuracy_css.push_back(e.on_frontier ? "frontier" : "");
+    }
+    for (std::size_t i : model.frontier) {
+        const AccuracyEntry& e = model.accuracy[i];
+        t.frontier.push_back(Concat(Concat({e.configuration->id, Presets(*e.configuration),
+                                            e.configuration->PassLabel()},
+                                           MedianCells(model, *e.configuration)),
+                                    {Fixed(e.SsimLoss(), 4),
+                                     std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1),
+                                     Fixed(e.share_visible * 100, 2, "%")}));
+    }
+    for (const RowComparison& r : model.rows) {
+        t.optimisation.push_back({std::to_string(r.row.number), r.row.change,
+                                  r.baseline.preset + " → " + r.candidate.preset,
+                                  Signed(r.time_change_ms, 2, " ms"),
+                                  Signed(r.change_percent, 1, "%"),
+                                  Signed(r.ssim_loss_change, 4), Signed(r.psnr_change_db, 1, " dB")});
+    }
+    for (const StaticCostEntry& e : model.static_cost.entries) {
+        t.static_rows.push_back(Concat(
+                Concat({e.configuration->id, Presets(*e.configuration),
+                        std::to_string(e.vertex_ops), std::to_string(e.fragment_ops),
+                        std::to_string(e.total_ops)},
+                       MedianCells(model, *e.configuration)),
+                {Fixed(e.ops_rank, 1), Fixed(e.time_rank, 1)}));
+    }
+    for (std::size_t i : model.static_cost.misleading) {
+        const StaticCostEntry& e = model.static_cost.entries[i];
+        const double gap = e.time_rank - e.ops_rank;
+        t.misleading.push_back(
+                {e.configuration->id, std::to_string(e.total_ops), Fixed(e.median_ms, 2),
+                 Fixed(e.ops_rank, 1), Fixed(e.time_rank, 1),
+                 gap > 0 ? fmt::format("slower than its count suggests ({:+.0f} ranks)", gap)
+                         : fmt::format("faster than its count suggests ({:+.0f} ranks)", gap)});
+    }
+    for (const RowComparison& r : model.rows) {
+        t.split.push_back({std::to_string(r.row.number),
+                           r.baseline.preset + " → " + r.candidate.preset,
+                           Signed(r.change_percent, 1, "%"), Signed(r.odd_change_percent, 1, "%"),
+                           Signed(r.even_change_percent, 1, "%"),
+                           Fixed(r.split.disagreement_percent_points, 1, " pt"),
+                           std::to_string(r.ratio.rounds)});
+    }
+    for (const auto& [key, value] : MethodFacts(model)) {
+        t.method.push_back({key, value});
+    }
+    return t;
+}
+
+std::string ValidationLine(const ReportModel& model) {
+    const nlohmann::json& c = model.validation.counts;
+    auto n = [&](const char* key) { return c.contains(key) ? c[key].dump() : std::string("–"); };
+    return fmt::format(
+            "{} variants ({} pruned combinations); {} stage slots compiled as {} distinct stage "
+            "programs ({} slots shared); {} links; glslang rejected {}. Mesa: {} configurations "
+            "rendered, {} failed; glslang and Mesa disagree on {} variant(s).",
+            n("variants"), n("pruned"), n("stage_slots"), n("stage_programs"),
+            n("shared_stage_slots"), n("links"), model.validation.glslang_invalid.size(),
+            model.validation.configurations, model.validation.failed.size(),
+            model.validation.disagreements.size());
+}
+
+std::string AccuracyIntro() {
+    return fmt::format(
+            "Every configuration's images against the reference (preset `reference`) at every "
+            "view: PSNR over R, G, B (from the mean squared error over views), mean SSIM "
+            "(Gaussian 11x11 on luma), and the share of pixels whose largest channel difference "
+            "exceeds {:.0f}/255 (about where a difference becomes visible). The chart plots "
+            "median frame time against 1 - SSIM; the dashed line is the Pareto frontier "
+            "(no configuration is both faster and closer to the reference). Failed configurations "
+            "have no point; they are listed in the table as FAILED.",
+            kVisibleDifferenceThreshold);
+}
+
+// One paragraph a reader can stop after: verdict counts, the frontier, the static-cost fit.
+std::string AtAGlance(const ReportModel& model) {
+    std::map<Verdict, int> counts;
+    for (const RowComparison& r : model.rows) {
+        ++counts[r.verdict];
+    }
+    std::string frontier;
+    for (std::size_t i : model.frontier) {
+        const MeasuredConfiguration& c = *model.accuracy[i].configuration;
+        if (!c.presets.empty()) {
+            frontier += (frontier.empty() ? "" : ", ") + c.presets.front();
+        }
+    }
+    return fmt::format(
+            "At a glance: of the whitepaper's 11 rows, {} agree in direction and magnitude, {} in "
+            "direction only, {} go the opposite way, {} are inconclusive at this run's noise and "
+            "{} failed. {} of {} configurations are on the time/accuracy Pareto frontier{}. The "
+            "static operation count ranks configurations by time with Spearman rho {}.{}",
+            counts[Verdict::kSameDirectionAndMagnitude], counts[Verdict::kSameDirectionOnly],
+            counts[Verdict::kOpposite], counts[Verdict::kInconclusive], counts[Verdict::kFailed],
+            model.frontier.size(), model.accuracy.size(),
+            frontier.empty() ? "" : " (presets among them: " + frontier + ")",
+            Fixed(model.static_cost.spearman_rho, 2),
+            model.failed_configurations > 0
+                    ? fmt::format(" {} configuration(s) FAILED.", model.failed_configurations)
+                    : std::string());
+}
+
+std::string Markdown(const ReportModel& model, const Tables& t, const std::vector<PanelFiles>& files) {
+    std::string md = fmt::format("# tidepool report: {}\n\n", model.options.name);
+    md += fmt::format("Generated {} from `{}` and `{}`. Figures labelled \"whitepaper\" are quoted "
+                      "from Imagination's \"Shader Based Water Effects\" (measured on a PowerVR "
+                      "SGX-class GPU); everything else was measured here on Mesa llvmpipe.\n\n",
+                      model.options.generated_utc, model.inputs->manifest_path.string(),
+                      model.inputs->results_path.string());
+    if (model.failed_configurations > 0) {
+        md += fmt::format("**{} configuration(s) FAILED** to compile or render; they are shown as "
+                          "failed below.\n\n",
+                          model.failed_configurations);
+    }
+    md += AtAGlance(model) + "\n\n";
+    md += "## 1. The whitepaper's cost table, measured\n\n" + GlossaryText() + "\n\n" +
+          VerdictRuleText(model) + "\n\n![whitepaper chart](charts/whitepaper.svg)\n\n";
+    md += MarkdownTable(t.whitepaper_header, t.whitepaper);
+    md += "## 2. What accuracy costs in time\n\n" + AccuracyIntro() +
+          "\n\n![accuracy vs time](charts/accuracy.svg)\n\n### Pareto frontier\n\n";
+    md += MarkdownTable(t.frontier_header, t.frontier);
+    md += "### Each whitepaper optimisation: time saved, error added\n\n";
+    md += MarkdownTable({"#", "change", "baseline → candidate", "Δ median frame time",
+                         "performance change", "Δ(1-SSIM)", "Δ PSNR"},
+                        t.optimisation);
+    md += "### Every configuration\n\n" + MarkdownTable(t.accuracy_header, t.accuracy);
+    md += "## 3. Static cost versus measured time\n\n";
+    md += fmt::format("The compiler's static operation count (vertex + fragment `total_ops` of the "
+                      "water variant, from the manifest) beside the measured median frame time, "
+                      "for configurations with default pass options. Spearman rank correlation: "
+                      "**{}**{}. The count sees only the water shader, not the passes a feature "
+                      "adds (refraction renders the scene once more), nor that llvmpipe samples "
+                      "textures in software.\n\n![static cost vs time](charts/static_cost.svg)\n\n",
+                      Fixed(model.static_cost.spearman_rho, 3),
+                      model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")");
+    md += "### Where the static count misleads (largest rank disagreements)\n\n";
+    md += MarkdownTable(t.misleading_header, t.misleading);
+    md += "### All\n\n" + MarkdownTable(t.static_header, t.static_rows);
+    md += "## 4. Validation summary\n\n" + ValidationLine(model) + "\n\n";
+    if (!model.validation.failed.empty()) {
+        std::vector<std::vector<std::string>> rows;
+        for (const MeasuredConfiguration* c : model.validation.failed) {
+            std::string why = c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
+            for (const std::string& m : c->driver_messages) {
+                why += "; " + m;
+            }
+            rows.push_back({c->id, "FAILED", why});
+        }
+        md += MarkdownTable({"configuration", "status", "why"}, rows);
+    }
+    if (!model.validation.disagreements.empty()) {
+        std::vector<std::vector<std::string>> rows;
+        for (const VerdictDisagreementRow& d : model.validation.disagreements) {
+            rows.push_back({d.variant, d.glslang_valid ? "valid" : "invalid",
+                            d.mesa_valid ? "valid" : "invalid"});
+        }
+        md += MarkdownTable({"variant", "glslang", "Mesa"}, rows);
+    }
+    {
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& [id, rule] : model.validation.pruned) {
+            rows.push_back({id, rule});
+        }
+        md += "<details><summary>Pruned combinations</summary>\n\n" +
+              MarkdownTable({"combination", "rule"}, rows) + "</details>\n\n";
+    }
+    md += "## 5. Images\n\nEach key configuration beside the reference, and their difference "
+          "(black = identical, red → yellow → white = up to 32/255 and more).\n\n";
+    for (std::size_t i = 0; i < model.panels.size(); ++i) {
+        const ImagePanel& p = model.panels[i];
+        md += fmt::format("### {} — view {}\n\n`{}`", p.title, p.view, p.configuration->id);
+        if (!p.note.empty()) {
+            md += fmt::format(": **{}**\n\n", p.note);
+            continue;
+        }
+        md += fmt::format(" — PSNR {} dB, SSIM {}, {} of pixels visibly different\n\n",
+                          std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
+                          Fixed(p.share_visible * 100, 2, "%"));
+        md += fmt::format("| this configuration | reference | difference |\n|---|---|---|\n"
+                          "| ![]({}) | ![]({}) | ![]({}) |\n\n",
+                          files[i].image, files[i].reference, files[i].heat);
+    }
+    md += "## 6. Method and noise\n\n" + ClockText(model) + "\n\n" +
+          MarkdownTable({"setting", "value"}, t.method);
+    md += fmt::format("Split-half reliability: every comparison computed again from the odd rounds "
+                      "and from the even rounds. Largest disagreement: **{}** (row {}).\n\n",
+                      Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
+                      model.largest_split_half_row);
+    md += MarkdownTable({"#", "comparison", "all rounds", "odd rounds", "even rounds",
+                         "disagreement", "rounds"},
+                        t.split);
+    md += "## 7. Numerical stability\n\n";
+    if (!model.inputs->stability) {
+        md += (model.inputs->stability_error.empty() ? StabilityHowTo()
+                                                      : model.inputs->stability_error + ". " +
+                                                                StabilityHowTo()) +
+              "\n";
+    } else {
+        for (const auto& [key, columns] : StabilityTables()) {
+            const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
+            md += "### " + key + "\n\n";
+            std::vector<std::vector<std::string>> rows;
+            if (table.is_array()) {
+                for (const nlohmann::json& item : table) {
+                    std::vector<std::string> row;
+                    for (const std::string& column : columns) {
+                        row.push_back(item.is_object() && item.contains(column)
+                                              ? JsonCell(item[column])
+                                              : "–");
+                    }
+                    rows.push_back(std::move(row));
+                }
+            }
+            md += rows.empty() ? "(none)\n\n" : MarkdownTable(columns, rows);
+        }
+    }
+    md += "## 8. Scenes\n\n";
+    if (!model.inputs->plans) {
+        md += (model.inputs->plans_error.empty() ? PlansHowTo()
+                                                  : model.inputs->plans_error + ". " +
+                                                            PlansHowTo()) +
+              "\n\n";
+    } else {
+        const SceneTables scenes = BuildSceneTables(*model.inputs->plans);
+        md += ScenesIntro(*model.inputs->plans) + "\n\n";
+        if (scenes.missed > 0) {
+            md += fmt::format("**{} scene(s) NOT met their target.**\n\n", scenes.missed);
+        }
+        md += MarkdownTable(SceneSummaryHeader(), scenes.summary);
+        for (const auto& [scene, rows] : scenes.effects) {
+            md += "### " + scene + "\n\n" +
+                  (rows.empty() ? std::string("No effect was offered for dropping.\n\n")
+                                : MarkdownTable(SceneEffectHeader(), rows));
+        }
+    }
+    return md;
+}
+
+// ---------------------------------------------------------------------------------------------
+// HTML
+
+constexpr const char* kCss = R"css(
+body{font-family:system-ui,-apple-system,Segoe UI,Roboto,sans-serif;margin:24px auto;max-width:1400px;padding:0 16px;color:#222;line-height:1.4}
+h1{font-size:1.6em}h2{border-bottom:2px solid #ddd;padding-bottom:4px;margin-top:2em}
+table{border-collapse:collapse;margin:8px 0 16px;font-size:13px}
+th,td{border:1px solid #ccc;padding:4px 6px;vertical-align:top;text-align:left;overflow-wrap:break-word}
+table.wide{width:100%}
+th{background:#f2f4f4;position:sticky;top:0}
+tr.good td:nth-child(7){background:#d5f5e3}tr.fair td:nth-child(7){background:#d6eaf8}
+tr.bad td{background:#fadbd8}tr.unknown td:nth-child(7){background:#eaeded}
+tr.frontier td{background:#fdf2e9}
+.note{color:#555;font-size:13px}.warn{background:#fadbd8;padding:8px;border-left:4px solid #c0392b}
+.panel{margin:0 0 18px 0}
+.panel img{border:1px solid #999;width:100%;height:auto}
+.panel figure{display:inline-block;width:32%;margin:0 1% 0 0;vertical-align:top}.panel figcaption{font-size:12px;color:#555}
+code{font-size:12px;background:#f4f6f6;padding:1px 3px}
+svg{max-width:100%;height:auto;border:1px solid #eee}
+nav a{margin-right:12px}
+)css";
+
+// Sets data-images-loaded="loaded/total" on <body> once the page has loaded, so a headless
+// browser test can check that every embedded image decoded.
+constexpr const char* kImageCheckScript =
+        "<script>window.addEventListener('load',function(){var i=document.images,n=0;"
+        "for(var k=0;k<i.length;k++){if(i[k].complete&&i[k].naturalWidth>0)n++;}"
+        "document.body.setAttribute('data-images-loaded',n+'/'+i.length);});</script>";
+
+// Escapes `text` for HTML and shows `quoted` spans (Markdown inline code) as <code>.
+std::string HtmlNote(std::string_view text) {
+    const std::string escaped = Html(text);
+    std::string out;
+    bool open = false;
+    for (char c : escaped) {
+        if (c == '`') {
+            out += open ? "</code>" : "<code>";
+            open = !open;
+        } else {
+            out += c;
+        }
+    }
+    return open ? out + "</code>" : out;
+}
+
+std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page) {
+    std::string h = "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+                    "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
+    h += fmt::format("<title>tidepool report: {}</title><style>{}</style>{}</head><body>",
+                     Html(model.options.name), kCss, kImageCheckScript);
+    h += fmt::format("<h1>tidepool report: {}</h1>", Html(model.options.name));
+    h += fmt::format("<p class=\"note\">Generated {} from <code>{}</code> and <code>{}</code>. "
+                     "Figures labelled <b>whitepaper</b> are quoted from Imagination's \"Shader "
+                     "Based Water Effects\" (measured on a PowerVR SGX-class GPU); everything "
+                     "else was measured here on Mesa llvmpipe.</p>",
+                     Html(model.options.generated_utc), Html(model.inputs->manifest_path.string()),
+                     Html(model.inputs->results_path.string()));
+    h += "<nav><a href=\"#whitepaper\">Whitepaper table</a><a href=\"#accuracy\">Accuracy vs "
+         "time</a><a href=\"#static\">Static cost</a><a href=\"#validation\">Validation</a><a "
+         "href=\"#images\">Images</a><a href=\"#method\">Method and noise</a><a "
+         "href=\"#stability\">Numerical stability</a><a href=\"#scenes\">Scenes</a></nav>";
+    if (model.failed_configurations > 0) {
+        h += fmt::format("<p class=\"warn\"><b>{} configuration(s) FAILED</b> to compile or "
+                         "render; they are shown as failed below.</p>",
+                         model.failed_configurations);
+    }
+    h += "<p><b>" + HtmlNote(AtAGlance(model)) + "</b></p>";
+    h += "<h2 id=\"whitepaper\">1. The whitepaper's cost table, measured</h2>";
+    h += "<p class=\"note\">" + HtmlNote(GlossaryText()) + "</p><p class=\"note\">" +
+         HtmlNote(VerdictRuleText(model)) + "</p>";
+    h += WhitepaperChartSvg(model);
+    h += HtmlTable(t.whitepaper_header, t.whitepaper, t.whitepaper_css);
+
+    h += "<h2 id=\"accuracy\">2. What accuracy costs in time</h2><p class=\"note\">" +
+         HtmlNote(AccuracyIntro()) + "</p>";
+    h += ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),
+                    "mean SSIM loss vs reference (1 - SSIM)",
+                    "Accuracy versus time (red: Pareto frontier)");
+    h += "<h3>Pareto frontier</h3>" +
+         HtmlTable(t.frontier_header, t.frontier);
+    h += "<h3>Each whitepaper optimisation: time saved, error added</h3>" +
+         HtmlTable({"#", "change", "baseline → candidate", "Δ median frame time",
+                    "performance change", "Δ(1-SSIM)", "Δ PSNR"},
+                   t.optimisation);
+    h += "<details><summary>Every configuration</summary>" +
+         HtmlTable(t.accuracy_header, t.accuracy, t.accuracy_css) + "</details>";
+
+    h += "<h2 id=\"static\">3. Static cost versus measured time</h2>";
+    h += fmt::format("<p class=\"note\">The compiler's static operation count (vertex + fragment "
+                     "<code>total_ops</code> of the water variant, from the manifest) beside the "
+                     "measured median frame time, for configurations with default pass options. "
+                     "Spearman rank correlation: <b>{}</b>{}. Red points: the configurations "
+                     "where the count misleads most. The count sees only the water shader, not "
+                     "the passes a feature adds (refraction renders the scene once more), nor "
+                     "that llvmpipe samples textures in software.</p>",
+                     Fixed(model.static_cost.spearman_rho, 3),
+                     Html(model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")"));
+    h += ScatterSvg(StaticPoints(model), {}, "static operations (vertex + fragment total_ops)",
+                    TimeAxisLabel(model), "Static cost versus measured time");
+    h += "<h3>Where the static count misleads (largest rank disagreements)</h3>" +
+         HtmlTable(t.misleading_header, t.misleading);
+    h += "<details><summary>All</summary>" +
+         HtmlTable(t.static_header, t.static_rows) +
+         "</details>";
+
+    h += "<h2 id=\"validation\">4. Validation summary</h2><p>" + Html(ValidationLine(model)) + "</p>";
+    if (!model.validation.failed.empty()) {
+        std::vector<std::vector<std::string>> rows;
+        std::vector<std::string> css;
+        for (const MeasuredConfiguration* c : model.validation.failed) {
+            std::string why = c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
+            for (const std::string& m : c->driver_messages) {
+                why += "; " + m;
+            }
+            rows.push_back({c->id, "FAILED", why});
+            css.push_back("bad");
+        }
+        h += "<h3>Failed configurations</h3>" + HtmlTable({"configuration", "status", "why"}, rows, css);
+    }
+    if (!model.validation.disagreements.empty()) {
+        std::vector<std::vector<std::string>> rows;
+        for (const VerdictDisagreementRow& d : model.validation.disagreements) {
+            rows.push_back({d.variant, d.glslang_valid ? "valid" : "invalid",
+                            d.mesa_valid ? "valid" : "invalid"});
+        }
+        h += "<h3>glslang / Mesa disagreements</h3>" + HtmlTable({"variant", "glslang", "Mesa"}, rows);
+    }
+    {
+        std::vector<std::vector<std::string>> rows;
+        for (const auto& [id, rule] : model.validation.pruned) {
+            rows.push_back({id, rule});
+        }
+        h += "<details><summary>Pruned combinations (" + std::to_string(rows.size()) +
+             ")</summary>" + HtmlTable({"combination", "rule"}, rows) + "</details>";
+    }
+
+    h += "<h2 id=\"images\">5. Images</h2><p class=\"note\">Each key configuration beside the "
+         "reference, and their difference (black = identical, red → yellow → white = up to "
+         "32/255 and more). Click an image for the full-size file (when the report folder is "
+         "intact).</p>";
+    for (std::size_t i = 0; i < model.panels.size(); ++i) {
+        const ImagePanel& p = model.panels[i];
+        h += fmt::format("<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
+                         Html(p.title), Html(p.view), Html(p.configuration->id));
+        if (!p.note.empty()) {
+            h += "<p class=\"warn\">" + Html(p.note) + "</p></div>";
+            continue;
+        }
+        h += fmt::format("<p class=\"note\">PSNR {} dB, SSIM {}, {} of pixels visibly different</p>",
+                         std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
+                         Fixed(p.share_visible * 100, 2, "%"));
+        const std::array<std::string, 3>& uri = (*page.uris)[i];
+        const std::array<std::string, 3> links = {page.files[i].image, page.files[i].reference,
+                                                  page.files[i].heat};
+        const std::array<const char*, 3> captions = {"this configuration", "reference",
+                                                     "difference"};
+        for (std::size_t k = 0; k < 3; ++k) {
+            h += fmt::format("<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
+                             "<figcaption>{}</figcaption></figure>",
+                             Html(links[k]), uri[k], Html(p.title), captions[k], captions[k]);
+        }
+        h += "</div>";
+    }
+
+    h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" + HtmlNote(ClockText(model)) +
+         "</p>" + HtmlTable({"setting", "value"}, t.method);
+    h += fmt::format("<p>Split-half reliability: every comparison computed again from the odd "
+                     "rounds and from the even rounds. Largest disagreement: <b>{}</b> (row {}). "
+                     "A verdict is only as firm as its interval; rows whose halves disagree by "
+                     "more than the noise floor ({:.0f}%) deserve a longer run.</p>",
+                     Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
+                     model.largest_split_half_row, model.options.noise_floor_percent);
+    h += HtmlTable({"#", "comparison", "all rounds", "odd rounds", "even rounds", "disagreement",
+                    "rounds"},
+                   t.split);
+
+    h += "<h2 id=\"stability\">7. Numerical stability</h2>";
+    if (!model.inputs->stability) {
+        h += "<p class=\"note\">" +
+             HtmlNote(model.inputs->stability_error.empty()
+                          ? StabilityHowTo()
+                          : model.inputs->stability_error + ". " + StabilityHowTo()) +
+             "</p>";
+    } else {
+        for (const auto& [key, columns] : StabilityTables()) {
+            const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
+            std::vector<std::vector<std::string>> rows;
+            std::vector<std::string> css;
+            if (table.is_array()) {
+                for (const nlohmann::json& item : table) {
+                    std::vector<std::string> row;
+                    for (const std::string& column : columns) {
+                        row.push_back(item.is_object() && item.contains(column)
+                                              ? JsonCell(item[column])
+                                              : "–");
+                    }
+                    css.push_back(item.is_object() && item.value("passed", true) == false ? "bad" : "");
+                    rows.push_back(std::move(row));
+                }
+            }
+            h += "<h3>" + Html(key) + "</h3>" +
+                 (rows.empty() ? std::string("<p>(none)</p>") : HtmlTable(columns, rows, css));
+        }
+    }
+    h += "<h2 id=\"scenes\">8. Scenes</h2>";
+    if (!model.inputs->plans) {
+        h += "<p class=\"note\">" +
+             HtmlNote(model.inputs->plans_error.empty()
+                              ? PlansHowTo()
+                              : model.inputs->plans_error + ". " + PlansHowTo()) +
+             "</p>";
+    } else {
+        const SceneTables scenes = BuildSceneTables(*model.inputs->plans);
+        h += "<p class=\"note\">" + HtmlNote(ScenesIntro(*model.inputs->plans)) + "</p>";
+        if (scenes.missed > 0) {
+            h += fmt::format("<p class=\"warn\"><b>{} scene(s) NOT met their target.</b></p>",
+                             scenes.missed);
+        }
+        h += HtmlTable(SceneSummaryHeader(), scenes.summary, scenes.summary_css);
+        for (const auto& [scene, rows] : scenes.effects) {
+            h += "<h3>" + Html(scene) + "</h3>" +
+                 (rows.empty() ? std::string("<p>No effect was offered for dropping.</p>")
+                               : HtmlTable(SceneEffectHeader(), rows));
+        }
+    }
+    h += "</body></html>\n";
+    return h;
+}
+
+// Replaces `dir` with the fully written `staging` folder; refuses to replace a folder this
+// writer did not create (no data.json), so a mistyped --out never deletes someone's files.
+std::string Publish(const std::filesystem::path& staging, const std::filesystem::path& dir) {
+    std::error_code ec;
+    std::filesystem::path old;
+    if (std::filesystem::exists(dir, ec)) {
+        if (!std::filesystem::exists(dir / "data.json", ec) && !std::filesystem::is_empty(dir, ec)) {
+            std::filesystem::remove_all(staging, ec);
+            return fmt::format("{}: exists and is not a tidepool report (no data.json); choose "
+                               "another --name or --out",
+                               dir.string());
+        }
+        old = dir.parent_path() / fmt::format(".{}.old.{}", dir.filename().string(), ::getpid());
+        std::filesystem::rename(dir, old, ec);
+        if (ec) {
+            std::filesystem::remove_all(staging, ec);
+            return fmt::format("{}: cannot replace: {}", dir.string(), ec.message());
+        }
+    }
+    std::filesystem::rename(staging, dir, ec);
+    if (ec) {
+        const std::string message = fmt::format("{}: cannot create: {}", dir.string(), ec.message());
+        std::filesystem::remove_all(staging, ec);
+        return message;
+    }
+    if (!old.empty()) {
+        std::filesystem::remove_all(old, ec);
+    }
+    return {};
+}
+
+}  // namespace
+
+WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path& out_dir) {
+    WrittenReport written;
+    written.folder = out_dir / model.options.name;
+    std::error_code ec;
+    std::filesystem::create_directories(out_dir, ec);
+    if (ec) {
+        written.error = fmt::format("{}: cannot create: {}", out_dir.string(), ec.message());
+        return written;
+    }
+    const std::filesystem::path staging =
+            out_dir / fmt::format(".{}.staging.{}", model.options.name, ::getpid());
+    std::filesystem::remove_all(staging, ec);
+    auto fail = [&](std::string message) {
+        std::filesystem::remove_all(staging, ec);
+        written.error = std::move(message);
+        return written;
+    };
+    auto write = [&](const std::string& relative, std::string_view content) {
+        const std::string error = WriteFileAtomically(staging / relative, content);
+        if (error.empty()) {
+            written.files.emplace_back(relative);
+        }
+        return error;
+    };
+
+    // Full-size PNGs beside report.md; the reference once per view.
+    std::vector<PanelFiles> files(model.panels.size());
+    std::map<std::string, std::string> reference_files;
+    for (std::size_t i = 0; i < model.panels.size(); ++i) {
+        const ImagePanel& p = model.panels[i];
+        if (!p.note.empty()) {
+            continue;
+        }
+        const std::string stem = PanelStem(p) + "-" + p.view;
+        files[i].image = "images/" + stem + ".png";
+        files[i].heat = "images/" + stem + "-diff.png";
+        if (reference_files.count(p.view) == 0) {
+            reference_files[p.view] = "images/reference-" + p.view + ".png";
+            if (std::string e = WritePngAtomically(staging / reference_files[p.view], p.reference);
+                !e.empty()) {
+                return fail(e);
+            }
+            written.files.emplace_back(reference_files[p.view]);
+        }
+        files[i].reference = reference_files[p.view];
+        for (const auto& [relative, image] :
+             {std::pair{files[i].image, &p.image}, std::pair{files[i].heat, &p.heat_map}}) {
+            if (std::string e = WritePngAtomically(staging / relative, *image); !e.empty()) {
+                return fail(e);
+            }
+            written.files.emplace_back(relative);
+        }
+    }
+
+    // Embedded copies for index.html, downscaled until they fit the budget.
+    std::vector<std::array<std::string, 3>> uris(model.panels.size());
+    const std::filesystem::path scratch = staging / ".embed.png";
+    for (int factor = 1; factor <= 8; ++factor) {
+        std::uintmax_t total = 0;
+        for (std::size_t i = 0; i < model.panels.size(); ++i) {
+            const ImagePanel& p = model.panels[i];
+            if (!p.note.empty()) {
+                continue;
+            }
+            const std::array<const RgbaImage*, 3> images = {&p.image, &p.reference, &p.heat_map};
+            const std::array<const std::string*, 3> full_size = {&files[i].image,
+                                                                 &files[i].reference,
+                                                                 &files[i].heat};
+            for (std::size_t k = 0; k < 3; ++k) {
+                std::string bytes;
+                if (factor == 1) {
+                    bytes = ReadBytes(staging / *full_size[k]);  // already encoded above
+                } else {
+                    if (std::string e = WritePngAtomically(scratch, Downscale(*images[k], factor));
+                        !e.empty()) {
+                        return fail(e);
+                    }
+                    bytes = ReadBytes(scratch);
+                }
+                total += bytes.size();
+                uris[i][k] = "data:image/png;base64," + Base64(bytes);
+            }
+        }
+        written.image_downscale = factor;
+        if (total <= kHtmlImageBudgetBytes) {
+            break;
+        }
+    }
+    std::filesystem::remove(scratch, ec);
+
+    const Tables tables = BuildTables(model);
+    const Page page{model, files, &uris};
+    const std::string html = HtmlPage(model, tables, page);
+    written.html_bytes = html.size();
+    for (const auto& [relative, content] :
+         {std::pair<std::string, std::string>{"index.html", html},
+          {"report.md", Markdown(model, tables, files)},
+          {"data.json", ReportToJson(model).dump(2) + "\n"},
+          {"charts/whitepaper.svg", WhitepaperChartSvg(model)},
+          {"charts/accuracy.svg",
+           ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),
+                      "mean SSIM loss vs reference (1 - SSIM)",
+                      "Accuracy versus time (red: Pareto frontier)")},
+          {"charts/static_cost.svg",
+           ScatterSvg(StaticPoints(model), {}, "static operations (vertex + fragment total_ops)",
+                      TimeAxisLabel(model), "Static cost versus measured time")}}) {
+        if (std::string e = write(relative, content); !e.empty()) {
+            return fail(e);
+        }
+    }
+    if (std::string e = Publish(staging, written.folder); !e.empty()) {
+        written.error = e;
+        return written;
+    }
+    return written;
+}
+
+}  // namespace tidepool::report

@@ -1,0 +1,48 @@
+// The water fragment's math evaluated in float, double and emulated fp16 (mediump on hardware
+// that has it: every operation rounds to half precision) over sweeps of its inputs, to name the
+// expressions that lose precision at mediump and to check that the shaders' guarded forms do not.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace tidepool::runner {
+
+/// Rounds `value` to the nearest IEEE binary16 number (ties to even), with overflow to ±Inf past
+/// 65504 and gradual underflow below 6.1e-5; NaN stays NaN. Never fails.
+double RoundToHalf(double value);
+
+/// A scalar that rounds to fp16 after every operation, as mediump arithmetic does on GPUs with
+/// 16-bit ALUs (inputs are rounded when constructed, as a mediump varying or uniform is).
+struct Half {
+    double value = 0;
+    Half() = default;
+    /// Rounds `v` to fp16.
+    Half(double v) : value(RoundToHalf(v)) {}  // NOLINT(google-explicit-constructor): a scalar
+};
+/// fp16 arithmetic: the exact result of each operation, rounded once.
+Half operator+(Half a, Half b);
+Half operator-(Half a, Half b);
+Half operator-(Half a);
+Half operator*(Half a, Half b);
+Half operator/(Half a, Half b);
+bool operator<(Half a, Half b);
+bool operator>(Half a, Half b);
+
+/// The accuracy of one shader expression over its sweep.
+struct PrecisionRow {
+    std::string expression;        // the expression as the shader writes it
+    double max_abs_error_float = 0;  // against double, over the sweep
+    double max_abs_error_fp16 = 0;
+    double max_rel_error_fp16 = 0;   // abs error / max(|reference|, the expression's floor)
+    double bound_fp16 = 0;           // the relative error above which it "loses precision"
+    bool loses_precision = false;    // max_rel_error_fp16 > bound_fp16, or non-finite in fp16
+    int non_finite_fp16 = 0;         // sweep points where fp16 gave NaN or Inf
+    std::string note;                // where it breaks, and what the shaders do about it
+};
+
+/// Evaluates every expression of the study over its sweep (a few hundred thousand evaluations,
+/// well under a second). Never fails.
+std::vector<PrecisionRow> RunPrecisionStudy();
+
+}  // namespace tidepool::runner

@@ -1,0 +1,120 @@
+// The scene planner: from a scene description, propose a short list of water configurations by
+// rule (which effects the scene may not need), then render and time every one against the
+// scene's full-effect configuration and pick the cheapest that meets the description's target,
+// explaining each dropped effect with the measurement behind it.
+#pragma once
+
+#include "tidepool/Diagnostic.h"
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tidepool::runner {
+
+/// PSNR reported for identical images, since JSON has no infinity; above any finite PSNR of
+/// 8-bit images (one code value off in one pixel of a 640x480 image is about 103 dB, but a
+/// render that differs that little is identical for every purpose here).
+inline constexpr double kIdenticalPsnrDb = 99.0;
+
+/// How far a candidate's image is from the full-effect image.
+struct ImageError {
+    double psnr_db = kIdenticalPsnrDb;  // over RGB, capped at kIdenticalPsnrDb
+    double ssim = 1.0;
+    double share_visible = 0.0;  // share of pixels that differ visibly
+};
+
+/// Measures a candidate image against the reference; supplied by the caller (the CLI passes
+/// tidepool_report's metrics), so the runner library does not depend on the report library.
+using ImageErrorFunction =
+        std::function<ImageError(const ImageRgba8& reference, const ImageRgba8& candidate)>;
+
+/// How a plan renders and times.
+struct PlanOptions {
+    RenderSettings settings;           // size and the defaults the description does not move
+    int warmup_frames = 1;             // untimed frames per candidate before its image
+    int rounds = 3;                    // paired timing rounds (every candidate once per round)
+    int frames_per_round = 3;          // timed frames per candidate per round
+    std::string full_preset = "full";  // the full-effect configuration every error is against
+    // When set, every candidate's image is written to out_dir/images/SCENE-ID.png (ids
+    // sanitised), named relative to out_dir, where plans.json goes, so the report can show what
+    // each drop looks like.
+    std::filesystem::path out_dir;
+};
+
+/// One configuration the planner rendered and timed (or skipped as invalid).
+struct PlanCandidate {
+    RenderConfiguration configuration;
+    std::string proposed_because;  // the rule that put it on the list
+    std::string drops;             // the effect it drops alone ("" for the full and combinations)
+    // ENABLE_WATER_COLOUR's mix factor (WaterColour.a), or negative for the renderer's default:
+    // a candidate that replaces refraction with the water colour mixes it in as much as the
+    // refraction would show, 1 - Fresnel reflectance at the centre of the view.
+    float water_colour_alpha = -1.0F;
+    bool valid = false;                   // passed glslang and Mesa; never chosen otherwise
+    std::vector<Diagnostic> diagnostics;  // why it is invalid
+    ImageError error;
+    std::string image_path;          // relative to PlanOptions::out_dir; "" when not written
+    double time_ms = 0;              // median over rounds of the round's median frame time
+    double time_change_percent = 0;  // frame time vs the full configuration, paired by round
+    FrameReport frame;               // passes, draws and pixels of one frame
+    bool meets_quality = false;      // the image-error bounds of the target hold
+};
+
+/// Why one effect of the full configuration is not in the chosen one.
+struct DroppedEffect {
+    std::string effect;              // "refraction", "fresnel", "distortion", ...
+    std::string reason;              // the scene's property and the measurement, one sentence
+    double psnr_change_db = 0;       // PSNR vs full of dropping this effect alone
+    double time_change_percent = 0;  // frame time change of dropping it alone
+};
+
+/// A plan for one scene.
+struct ScenePlan {
+    SceneDescription scene;
+    std::vector<std::string> needed;  // effects the rules say the scene shows, with why
+    std::vector<PlanCandidate> candidates;
+    int full = -1;  // index into candidates; -1 when the plan failed
+    int chosen = -1;
+    bool met = false;  // the chosen candidate meets every bound of the target
+    std::vector<DroppedEffect> dropped;
+    // Effects the rules offered to drop but the measurement kept, with the same fields: the
+    // error dropping each alone causes breaks the target.
+    std::vector<DroppedEffect> kept;
+    int passes_saved = 0;
+    int draws_saved = 0;
+    long long pixels_saved = 0;
+    std::vector<Diagnostic> diagnostics;  // errors end the plan (full invalid, GL failures)
+};
+
+/// The candidate list the rules propose for `scene` (at most 11, the full configuration first,
+/// then every effect dropped alone, then combinations the scene suggests),
+/// each a variant of program `water` with its pass options; a candidate whose defines break a
+/// rule of `config` is left out. Fails through diagnostics when `full_preset` does not exist.
+std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
+                                             const SceneDescription& scene,
+                                             const std::string& full_preset,
+                                             std::vector<Diagnostic>* diagnostics);
+
+/// Plans `scene`: validates the candidates with glslang (invalid ones are skipped, never
+/// chosen), renders the scene built from the description with each and measures its error with
+/// `measure`, adds one candidate that combines every drop that met the target alone (at most
+/// 12 in all), times them all in paired rounds, and picks the cheapest that meets the target.
+/// Fails through ScenePlan::diagnostics when the full configuration is invalid or the renderer
+/// cannot be created.
+ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
+                    const PlanOptions& options, const ImageErrorFunction& measure);
+
+/// The plans as JSON, schema "tidepool.plans" version 1 (docs/SCENES.md). Never fails.
+nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOptions& options);
+
+}  // namespace tidepool::runner

@@ -1,0 +1,750 @@
+// The scene planner. Rules only propose: every candidate is rendered and timed, and the choice
+// is made on the measurements, so a rule that guesses wrong costs time, never quality.
+#include "tidepool/runner/ScenePlanner.h"
+
+#include "tidepool/GlslValidator.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/ImageIo.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <set>
+
+#include <fmt/format.h>
+
+namespace tidepool::runner {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// The longest candidate list: the budget for a short search, which keeps a plan at the
+// default size under a minute on two llvmpipe threads.
+constexpr std::size_t kMaxCandidates = 12;
+
+// Below this wave strength the distortion moves the reflection by less than a pixel or so at
+// the default 25 px per unit of bump normal; the rules then propose flat water.
+constexpr float kCalmWaves = 0.2F;
+
+// From this eye height (world units) the view looks down steeply on most of the water, where
+// the Fresnel term is nearly constant, so a constant mix is worth trying.
+constexpr float kHighCamera = 100.0F;
+
+// The rules' guess at whether the floor shows: a floor deeper than the fog depth is hidden.
+bool FloorVisible(const SceneDescription& scene) {
+    return scene.below_terrain && scene.water_depth < scene.fog_depth;
+}
+
+// Anything below the water in sight: the floor, or submerged objects within the fog depth
+// (the rocks lie a few units down).
+bool BelowVisible(const SceneDescription& scene) {
+    return FloorVisible(scene) || scene.below_objects;
+}
+
+std::vector<std::string> Without(std::vector<std::string> defines,
+                                 std::initializer_list<const char*> drop) {
+    for (const char* name : drop) {
+        defines.erase(std::remove(defines.begin(), defines.end(), name), defines.end());
+    }
+    return defines;
+}
+
+std::vector<std::string> With(std::vector<std::string> defines,
+                              std::initializer_list<const char*> add) {
+    for (const char* name : add) {
+        if (std::find(defines.begin(), defines.end(), name) == defines.end()) {
+            defines.emplace_back(name);
+        }
+    }
+    return defines;
+}
+
+double Median(std::vector<double> values) {
+    if (values.empty()) {
+        return std::nan("");
+    }
+    std::sort(values.begin(), values.end());
+    const std::size_t n = values.size();
+    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+bool MeetsQuality(const QualityTarget& target, const ImageError& error) {
+    if (target.min_psnr_db && error.psnr_db < *target.min_psnr_db) {
+        return false;
+    }
+    if (target.max_share_visible && error.share_visible > *target.max_share_visible) {
+        return false;
+    }
+    return true;
+}
+
+// The settings a description moves: fog depth, wave strength and view range.
+RenderSettings SceneSettings(const SceneDescription& scene, RenderSettings settings) {
+    settings.rcp_max_fog_depth = 1.0F / scene.fog_depth;
+    // Wave strength 1 is the renderer's default distortion.
+    settings.wave_distortion *= scene.wave_strength;
+    settings.rcp_max_fog_distance = 1.0F / scene.camera.view_range;
+    return settings;
+}
+
+// Schlick's reflectance of water (n = 1.33, so R0 = ((n - 1) / (n + 1))^2 = 0.02) where the
+// view's centre ray meets the water: how much of the reflection the full effect shows there.
+float CentreReflectance(const SceneDescription& scene) {
+    constexpr float kR0 = 0.02F;
+    const float height = scene.camera.height;
+    const float slant = std::sqrt(height * height + scene.camera.distance * scene.camera.distance);
+    const float cosine = height / slant;
+    return kR0 + (1.0F - kR0) * std::pow(1.0F - cosine, 5.0F);
+}
+
+// Fills `candidate` with a `water` variant and its passes; false when a define is not declared
+// by the program or the combination breaks one of its rules.
+bool MakeCandidate(const ProgramConfig& water, const SceneDescription& scene,
+                   std::vector<std::string> defines, const PassOptions& passes,
+                   PlanCandidate* candidate) {
+    const std::vector<std::string> declared = water.AllDefines();
+    for (const std::string& d : defines) {
+        if (std::find(declared.begin(), declared.end(), d) == declared.end()) {
+            return false;
+        }
+    }
+    const Variant variant = MakeVariant(std::string(kWaterProgram), std::move(defines));
+    if (FirstBrokenRule(water, variant.defines) != nullptr) {
+        return false;
+    }
+    candidate->configuration.variant = variant;
+    candidate->configuration.effects = variant.defines;
+    candidate->configuration.passes = passes;
+    candidate->configuration.id = ConfigurationId(variant, passes);
+    if (candidate->configuration.Has("ENABLE_WATER_COLOUR")) {
+        candidate->water_colour_alpha = 1.0F - CentreReflectance(scene);
+    }
+    return true;
+}
+
+// Applies the drop of `effect` (a PlanCandidate::drops name) to a configuration.
+void ApplyDrop(const std::string& effect, std::vector<std::string>* defines, PassOptions* passes) {
+    if (effect == "refraction") {
+        *defines = With(Without(*defines, {"ENABLE_REFRACTION", "ENABLE_FRESNEL",
+                                           "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
+                        {"ENABLE_WATER_COLOUR"});
+    } else if (effect == "fresnel") {
+        *defines = Without(*defines, {"ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"});
+    } else if (effect == "distortion") {
+        *defines = Without(*defines, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"});
+    } else if (effect == "distortion_scaling") {
+        *defines = Without(*defines, {"ENABLE_SCALE_DISTORTION"});
+    } else if (effect == "fog") {
+        *defines = Without(*defines, {"ENABLE_FOG"});
+    } else if (effect == "reflection_resolution") {
+        passes->reflection_size = std::max(1, passes->reflection_size / 2);
+    } else if (effect == "full_resolution_water") {
+        passes->low_res_water = true;
+    }
+}
+
+// True when `chosen` still has `effect` (a name of PlanCandidate::drops) that `full` has.
+bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
+           const std::string& effect) {
+    if (effect == "refraction") {
+        return chosen.Has("ENABLE_REFRACTION");
+    }
+    if (effect == "fresnel") {
+        return chosen.Has("ENABLE_FRESNEL");
+    }
+    if (effect == "distortion") {
+        return chosen.Has("ENABLE_DISTORTION");
+    }
+    if (effect == "distortion_scaling") {
+        return chosen.Has("ENABLE_SCALE_DISTORTION");
+    }
+    if (effect == "fog") {
+        return chosen.Has("ENABLE_FOG");
+    }
+    if (effect == "reflection_resolution") {
+        return chosen.passes.reflection_size >= full.passes.reflection_size;
+    }
+    if (effect == "full_resolution_water") {
+        return !chosen.passes.low_res_water;
+    }
+    return true;
+}
+
+std::string PercentText(double percent) {
+    return fmt::format("{}{:.0f}%", percent < 0 ? "\u2212" : "+", std::fabs(percent));
+}
+
+}  // namespace
+
+std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
+                                             const SceneDescription& scene,
+                                             const std::string& full_preset,
+                                             std::vector<Diagnostic>* diagnostics) {
+    std::vector<PlanCandidate> candidates;
+    const Preset* full = config.FindPreset(full_preset);
+    if (full == nullptr || full->program != kWaterProgram) {
+        diagnostics->push_back(MakeError(
+                config.path, 0, 0,
+                fmt::format("the full-effect preset '{}' is missing or not a `water` preset; the "
+                            "planner measures every candidate against it",
+                            full_preset)));
+        return candidates;
+    }
+    const ProgramConfig* water = config.FindProgram(kWaterProgram);
+    std::set<std::string> seen;
+    auto add = [&](std::vector<std::string> defines, PassOptions passes, std::string because,
+                   std::string drops) {
+        // One place is left for the combination PlanScene measures after these.
+        if (candidates.size() + 1 >= kMaxCandidates || water == nullptr) {
+            return;
+        }
+        PlanCandidate c;
+        if (!MakeCandidate(*water, scene, std::move(defines), passes, &c) ||
+            !seen.insert(c.configuration.id).second) {
+            return;
+        }
+        c.proposed_because = std::move(because);
+        c.drops = std::move(drops);
+        candidates.push_back(std::move(c));
+    };
+    // The scene's reference: every effect of the preset the description does not turn off;
+    // mirror-calm water (waves 0) has no distortion to show, and its bump normals would only
+    // add Fresnel sparkle the scene does not have.
+    std::vector<std::string> f = full->defines;
+    if (scene.wave_strength <= 0.0F) {
+        f = Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"});
+    }
+    const PassOptions p = full->passes;
+    PassOptions refl128 = p;
+    refl128.reflection_size = std::max(1, p.reflection_size / 2);
+    PassOptions low_res = p;
+    low_res.low_res_water = true;
+
+    add(f, p,
+        fmt::format("the full effect (preset {}{}): the reference", full_preset,
+                    scene.wave_strength <= 0.0F ? " without distortion: the water is calm" : ""),
+        "");
+    // Each effect dropped alone, so every drop in the plan has its own measurement.
+    const bool below = BelowVisible(scene);
+    add(With(Without(f,
+                     {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
+             {"ENABLE_WATER_COLOUR"}),
+        p,
+        below ? "refraction replaced by the water colour (the rules expect it to show)"
+              : "refraction replaced by the water colour: nothing below the water is in sight",
+        "refraction");
+    add(Without(f, {"ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}), p,
+        "a constant reflection/refraction mix instead of Fresnel", "fresnel");
+    add(Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), p,
+        scene.wave_strength <= kCalmWaves ? "flat water: the waves are calm"
+                                          : "flat water (the rules expect the waves to show)",
+        "distortion");
+    add(Without(f, {"ENABLE_SCALE_DISTORTION"}), p, "distortion not scaled by distance",
+        "distortion_scaling");
+    add(Without(f, {"ENABLE_FOG"}), p, "no distance fog", "fog");
+    add(f, refl128, "a reflection texture of half the size", "reflection_resolution");
+    add(f, low_res, "the water rendered at low resolution", "full_resolution_water");
+
+    // Combinations the scene's properties suggest.
+    const std::vector<std::string> colour = With(Without(f, {"ENABLE_REFRACTION", "ENABLE_FRESNEL",
+                                                             "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
+                                                 {"ENABLE_WATER_COLOUR"});
+    if (!below) {
+        add(colour, refl128, "no refraction and a half-size reflection: nothing below shows", "");
+    }
+    if (scene.wave_strength <= kCalmWaves) {
+        add(Without(colour, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), p,
+            "no refraction, flat water", "");
+        add(Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), refl128,
+            "flat water with a half-size reflection", "");
+    }
+    if (scene.camera.height >= kHighCamera) {
+        add(Without(f, {"ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION",
+                        "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
+            p, "seen from high up: constant mix, waves too small to see", "");
+    }
+    if (!scene.above_terrain) {
+        add(colour, refl128, "only sky above: the reflection is the smooth sky", "");
+        add(Without(colour, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), refl128,
+            "only sky above, flat water", "");
+    }
+    if (!below) {
+        add(With(Without(f, {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "NORMALISE_CUBEMAP",
+                             "FRESNEL_EXACT"}),
+                 {"ENABLE_ALPHA_BLEND"}),
+            p, "the scene below blended instead of a refraction pass", "");
+    }
+    add(Without(f, {"ENABLE_FRESNEL", "ENABLE_SCALE_DISTORTION", "NORMALISE_CUBEMAP",
+                    "FRESNEL_EXACT"}),
+        refl128, "constant mix, unscaled distortion, half-size reflection", "");
+    return candidates;
+}
+
+ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
+                    const PlanOptions& options, const ImageErrorFunction& measure) {
+    ScenePlan plan;
+    plan.scene = scene;
+    if (FloorVisible(scene)) {
+        plan.needed.push_back(
+                fmt::format("refraction: the floor {} deep is within the fog depth "
+                            "{}",
+                            scene.water_depth, scene.fog_depth));
+    } else if (scene.below_objects) {
+        plan.needed.push_back("refraction: objects lie below the water");
+    }
+    if (scene.wave_strength > kCalmWaves) {
+        plan.needed.push_back(fmt::format("distortion: wave strength {}", scene.wave_strength));
+    }
+    if (scene.above_terrain || scene.above_objects) {
+        plan.needed.push_back("reflection of the island and objects above the water");
+    } else {
+        plan.needed.push_back("reflection of the sky only");
+    }
+    plan.candidates = ProposeCandidates(config, scene, options.full_preset, &plan.diagnostics);
+    if (plan.candidates.empty()) {
+        return plan;
+    }
+
+    // glslang first: an invalid variant is skipped before it reaches the driver.
+    std::vector<Variant> variants;
+    for (const PlanCandidate& c : plan.candidates) {
+        variants.push_back(c.configuration.variant);
+    }
+    ValidationOptions validation;
+    validation.targets = {GlslTarget::kEs100};
+    const ValidationReport report = ValidateVariants(config, variants, validation);
+    for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
+        PlanCandidate& c = plan.candidates[i];
+        const VariantVerdict* verdict = nullptr;
+        for (const VariantVerdict& v : report.verdicts) {
+            if (v.variant == c.configuration.variant && v.target == GlslTarget::kEs100) {
+                verdict = &v;
+            }
+        }
+        c.valid = verdict != nullptr && verdict->valid;
+        if (verdict != nullptr) {
+            c.diagnostics = verdict->diagnostics;
+        }
+        if (!c.valid && c.diagnostics.empty()) {
+            c.diagnostics.push_back(MakeError(config.path, 0, 0,
+                                              "glslang gave no verdict for " + c.configuration.id));
+        }
+    }
+    if (!plan.candidates.front().valid) {
+        plan.diagnostics.push_back(MakeError(
+                config.path, 0, 0,
+                fmt::format("the full-effect configuration {} fails validation; there is no "
+                            "reference to measure against",
+                            plan.candidates.front().configuration.id)));
+        for (const Diagnostic& d : plan.candidates.front().diagnostics) {
+            plan.diagnostics.push_back(d);
+        }
+        return plan;
+    }
+
+    const RenderSettings settings = SceneSettings(scene, options.settings);
+    const Scene built = BuildSceneFromDescription(scene);
+    std::string error;
+    std::unique_ptr<WaterRenderer> renderer =
+            WaterRenderer::Create(context, config, settings, &error, &built);
+    if (!renderer) {
+        plan.diagnostics.push_back(MakeError("", 0, 0, error));
+        return plan;
+    }
+    const CameraView view = SceneCameraView(scene);
+    auto use_settings = [&](const PlanCandidate& c) {
+        RenderSettings candidate = settings;
+        if (c.water_colour_alpha >= 0.0F) {
+            candidate.water_colour.a = c.water_colour_alpha;
+        }
+        renderer->UpdateFrameSettings(candidate);
+    };
+
+    // The driver's verdict, one frame's counts and the image of every valid candidate.
+    std::vector<ImageRgba8> images(plan.candidates.size());
+    auto render_image = [&](std::size_t i) {
+        PlanCandidate& c = plan.candidates[i];
+        if (!c.valid) {
+            return;
+        }
+        use_settings(c);
+        const DriverVerdict verdict = renderer->Prepare(c.configuration);
+        if (!verdict.valid) {
+            c.valid = false;
+            c.diagnostics = verdict.diagnostics;
+            return;
+        }
+        for (int f = 0; f < options.warmup_frames; ++f) {
+            renderer->RenderFrame(c.configuration, view);
+        }
+        c.frame = renderer->RenderFrame(c.configuration, view);
+        renderer->Finish();
+        if (!c.frame.gl_error.empty()) {
+            c.valid = false;
+            c.diagnostics.push_back(MakeError("", 0, 0, c.frame.gl_error));
+            return;
+        }
+        images[i] = renderer->ReadImage();
+        if (!options.out_dir.empty()) {
+            const std::string name = fmt::format("images/{}-{}.png", scene.name,
+                                                 SanitiseFileName(c.configuration.id));
+            const std::string write_error = WritePng(options.out_dir / name, images[i]);
+            if (write_error.empty()) {
+                c.image_path = name;
+            } else {
+                plan.diagnostics.push_back(MakeError("", 0, 0, write_error));
+            }
+        }
+    };
+    for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
+        render_image(i);
+    }
+    if (!plan.candidates.front().valid) {
+        plan.diagnostics.push_back(
+                MakeError("", 0, 0,
+                          fmt::format("the full-effect configuration {} failed in the GL driver",
+                                      plan.candidates.front().configuration.id)));
+        return plan;
+    }
+    const ImageRgba8 reference = images.front();
+    auto measure_candidate = [&](std::size_t i) {
+        PlanCandidate& c = plan.candidates[i];
+        if (c.valid) {
+            c.error = i == 0 ? ImageError{} : measure(reference, images[i]);
+            c.error.psnr_db = std::min(c.error.psnr_db, kIdenticalPsnrDb);
+            c.meets_quality = MeetsQuality(scene.target, c.error);
+        }
+    };
+    for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
+        measure_candidate(i);
+    }
+
+    // Second stage, from the measurements: every drop that met the target alone, together.
+    std::vector<std::string> passing;
+    for (const PlanCandidate& c : plan.candidates) {
+        if (c.valid && c.meets_quality && !c.drops.empty()) {
+            passing.push_back(c.drops);
+        }
+    }
+    const ProgramConfig* water = config.FindProgram(kWaterProgram);
+    if (passing.size() >= 2 && water != nullptr) {
+        std::vector<std::string> defines = plan.candidates.front().configuration.variant.defines;
+        PassOptions passes = plan.candidates.front().configuration.passes;
+        for (const std::string& effect : passing) {
+            ApplyDrop(effect, &defines, &passes);
+        }
+        PlanCandidate combined;
+        const bool known = [&] {
+            for (const PlanCandidate& c : plan.candidates) {
+                if (c.configuration.id ==
+                    ConfigurationId(MakeVariant(std::string(kWaterProgram), defines), passes)) {
+                    return true;
+                }
+            }
+            return false;
+        }();
+        if (!known && MakeCandidate(*water, scene, defines, passes, &combined)) {
+            combined.proposed_because = fmt::format("every drop that met the target alone: {}",
+                                                    fmt::join(passing, ", "));
+            const ValidationReport combined_report =
+                    ValidateVariants(config, {combined.configuration.variant}, validation);
+            combined.valid =
+                    combined_report.InvalidCount() == 0 && !combined_report.verdicts.empty();
+            for (const VariantVerdict& v : combined_report.verdicts) {
+                for (const Diagnostic& d : v.diagnostics) {
+                    combined.diagnostics.push_back(d);
+                }
+            }
+            plan.candidates.push_back(std::move(combined));
+            images.emplace_back();
+            render_image(plan.candidates.size() - 1);
+            measure_candidate(plan.candidates.size() - 1);
+        }
+    }
+
+    // Paired rounds: every valid candidate once per round, the order rotated each round.
+    std::vector<std::size_t> timed;
+    for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
+        if (plan.candidates[i].valid) {
+            timed.push_back(i);
+        }
+    }
+    const int rounds = std::max(options.rounds, 1);
+    const int frames = std::max(options.frames_per_round, 1);
+    std::vector<std::vector<double>> round_ms(plan.candidates.size());
+    for (int round = 0; round < rounds; ++round) {
+        for (std::size_t k = 0; k < timed.size(); ++k) {
+            const std::size_t i = timed[(k + static_cast<std::size_t>(round)) % timed.size()];
+            std::vector<double> samples;
+            use_settings(plan.candidates[i]);
+            for (int f = 0; f < frames; ++f) {
+                const Clock::time_point start = Clock::now();
+                renderer->RenderFrame(plan.candidates[i].configuration, view);
+                renderer->Finish();
+                samples.push_back(
+                        std::chrono::duration<double, std::milli>(Clock::now() - start).count());
+            }
+            round_ms[i].push_back(Median(samples));
+        }
+    }
+    for (std::size_t i : timed) {
+        PlanCandidate& c = plan.candidates[i];
+        c.time_ms = Median(round_ms[i]);
+        std::vector<double> ratios;
+        for (std::size_t r = 0; r < round_ms[i].size(); ++r) {
+            ratios.push_back(round_ms[i][r] / round_ms[0][r]);
+        }
+        c.time_change_percent = (Median(ratios) - 1.0) * 100.0;
+    }
+
+    // The choice, on the measurements only.
+    plan.full = 0;
+    const QualityTarget& target = scene.target;
+    const bool quality_bounds = target.min_psnr_db || target.max_share_visible;
+    int best = -1;
+    for (std::size_t i : timed) {
+        const PlanCandidate& c = plan.candidates[i];
+        const int index = static_cast<int>(i);
+        if (quality_bounds) {
+            // The cheapest that is accurate enough.
+            if (c.meets_quality &&
+                (best < 0 || c.time_ms < plan.candidates[static_cast<std::size_t>(best)].time_ms)) {
+                best = index;
+            }
+        } else if (c.time_ms <= *target.frame_budget_ms) {
+            // Only a budget: the most accurate within it (SSIM breaks PSNR ties at the cap).
+            const PlanCandidate* b =
+                    best < 0 ? nullptr : &plan.candidates[static_cast<std::size_t>(best)];
+            if (b == nullptr || c.error.psnr_db > b->error.psnr_db ||
+                (c.error.psnr_db == b->error.psnr_db && c.time_ms < b->time_ms)) {
+                best = index;
+            }
+        }
+    }
+    if (best < 0) {
+        // Nothing meets the budget: the fastest, reported as not met.
+        for (std::size_t i : timed) {
+            if (best < 0 || plan.candidates[i].time_ms <
+                                    plan.candidates[static_cast<std::size_t>(best)].time_ms) {
+                best = static_cast<int>(i);
+            }
+        }
+    }
+    plan.chosen = best;
+    const PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(best)];
+    const PlanCandidate& full = plan.candidates.front();
+    plan.met = (!quality_bounds || chosen.meets_quality) &&
+               (!target.frame_budget_ms || chosen.time_ms <= *target.frame_budget_ms);
+    plan.passes_saved = full.frame.passes - chosen.frame.passes;
+    plan.draws_saved = full.frame.draw_calls - chosen.frame.draw_calls;
+    long long full_pixels = 0;
+    long long chosen_pixels = 0;
+    for (long long p : full.frame.pass_pixels) {
+        full_pixels += p;
+    }
+    for (long long p : chosen.frame.pass_pixels) {
+        chosen_pixels += p;
+    }
+    plan.pixels_saved = full_pixels - chosen_pixels;
+
+    // Every effect of the full configuration the chosen one lacks, with its measurement.
+    const RenderConfiguration& cc = chosen.configuration;
+    const RenderConfiguration& fc = full.configuration;
+    std::vector<std::pair<std::string, std::string>> drops;  // effect, scene property
+    if (fc.Has("ENABLE_REFRACTION") && !cc.Has("ENABLE_REFRACTION")) {
+        drops.emplace_back(
+                "refraction",
+                FloorVisible(scene)
+                        ? fmt::format("the floor {} deep shows through fog depth {}, "
+                                      "but not enough to break the target",
+                                      scene.water_depth, scene.fog_depth)
+                        : fmt::format("fog depth {} hides the floor {} deep{}; the "
+                                      "water colour stands in for it{}",
+                                      scene.fog_depth, scene.water_depth,
+                                      scene.below_objects ? ""
+                                                          : " and nothing else "
+                                                            "lies below",
+                                      fc.Has("ENABLE_FRESNEL") ? " and the Fresnel mix goes with it"
+                                                               : ""));
+    }
+    if (fc.Has("ENABLE_FRESNEL") && !cc.Has("ENABLE_FRESNEL") && cc.Has("ENABLE_REFRACTION")) {
+        drops.emplace_back("fresnel", fmt::format("camera {} above the water: the mix barely "
+                                                  "varies over the visible water",
+                                                  scene.camera.height));
+    }
+    if (fc.Has("ENABLE_DISTORTION") && !cc.Has("ENABLE_DISTORTION")) {
+        drops.emplace_back(
+                "distortion",
+                fmt::format("wave strength {} shifts the image by {:.0f} px per unit of wave slope",
+                            scene.wave_strength,
+                            options.settings.wave_distortion * scene.wave_strength));
+    }
+    if (fc.Has("ENABLE_SCALE_DISTORTION") && !cc.Has("ENABLE_SCALE_DISTORTION") &&
+        cc.Has("ENABLE_DISTORTION")) {
+        drops.emplace_back("distortion_scaling",
+                           fmt::format("view range {}", scene.camera.view_range));
+    }
+    if (fc.Has("ENABLE_FOG") && !cc.Has("ENABLE_FOG")) {
+        drops.emplace_back("fog", fmt::format("view range {}: little water lies far enough away "
+                                              "to fog",
+                                              scene.camera.view_range));
+    }
+    if (cc.passes.reflection_size < fc.passes.reflection_size) {
+        drops.emplace_back("reflection_resolution",
+                           scene.above_terrain ? "the reflection is soft enough at half size"
+                                               : "only the smooth sky is reflected");
+    }
+    if (cc.passes.low_res_water && !fc.passes.low_res_water) {
+        drops.emplace_back("full_resolution_water",
+                           "the water's detail survives a low-"
+                           "resolution pass");
+    }
+    for (const auto& [effect, property] : drops) {
+        DroppedEffect d;
+        d.effect = effect;
+        const PlanCandidate* alone = nullptr;
+        for (const PlanCandidate& c : plan.candidates) {
+            if (c.drops == effect && c.valid) {
+                alone = &c;
+            }
+        }
+        const PlanCandidate& measured = alone != nullptr ? *alone : chosen;
+        d.psnr_change_db = measured.error.psnr_db;
+        d.time_change_percent = measured.time_change_percent;
+        d.reason =
+                fmt::format("{} dropped: {}; {}: {:.1f} dB PSNR vs full, time {}", effect, property,
+                            alone != nullptr ? "dropped alone"
+                                             : "in the chosen "
+                                               "configuration",
+                            measured.error.psnr_db, PercentText(measured.time_change_percent));
+        plan.dropped.push_back(std::move(d));
+    }
+    for (const PlanCandidate& c : plan.candidates) {
+        if (c.drops.empty() || !c.valid || c.meets_quality || !Keeps(cc, fc, c.drops)) {
+            continue;
+        }
+        DroppedEffect k;
+        k.effect = c.drops;
+        k.psnr_change_db = c.error.psnr_db;
+        k.time_change_percent = c.time_change_percent;
+        k.reason = fmt::format(
+                "{} kept: dropping it alone gives {:.1f} dB PSNR and {:.1f}% "
+                "visibly different pixels vs full (time {}), outside the target",
+                c.drops, c.error.psnr_db, 100.0 * c.error.share_visible,
+                PercentText(c.time_change_percent));
+        plan.kept.push_back(std::move(k));
+    }
+    return plan;
+}
+
+nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOptions& options) {
+    nlohmann::json out;
+    out["schema"] = "tidepool.plans";
+    out["version"] = 1;
+    out["size"] = {options.settings.width, options.settings.height};
+    out["rounds"] = options.rounds;
+    out["frames_per_round"] = options.frames_per_round;
+    out["plans"] = nlohmann::json::array();
+    auto configuration = [](const PlanCandidate& c) {
+        long long pixels = 0;
+        for (long long p : c.frame.pass_pixels) {
+            pixels += p;
+        }
+        return nlohmann::json{{"id", c.configuration.id},
+                              {"variant", c.configuration.variant.Id()},
+                              {"passes", c.frame.pass_names},
+                              {"pass_draw_calls", c.frame.pass_draw_calls},
+                              {"pass_options",
+                               {{"reflection_size", c.configuration.passes.reflection_size},
+                                {"low_res_water", c.configuration.passes.low_res_water}}},
+                              {"draw_calls", c.frame.draw_calls},
+                              {"image", c.image_path},
+                              {"pixels_shaded_estimate", pixels}};
+    };
+    for (const ScenePlan& plan : plans) {
+        nlohmann::json p;
+        p["scene"] = plan.scene.name;
+        p["description"] = plan.scene.description;
+        nlohmann::json target = nlohmann::json::object();
+        if (plan.scene.target.min_psnr_db) {
+            target["min_psnr_db"] = *plan.scene.target.min_psnr_db;
+        }
+        if (plan.scene.target.max_share_visible) {
+            target["max_share_visible"] = *plan.scene.target.max_share_visible;
+        }
+        if (plan.scene.target.frame_budget_ms) {
+            target["frame_budget_ms"] = *plan.scene.target.frame_budget_ms;
+        }
+        p["target"] = target;
+        p["needed"] = plan.needed;
+        std::vector<std::string> errors;
+        for (const Diagnostic& d : plan.diagnostics) {
+            errors.push_back(FormatDiagnostic(d));
+        }
+        p["errors"] = errors;
+        if (plan.chosen < 0 || plan.full < 0) {
+            p["met"] = false;
+            out["plans"].push_back(p);
+            continue;
+        }
+        const PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(plan.chosen)];
+        const PlanCandidate& full = plan.candidates[static_cast<std::size_t>(plan.full)];
+        p["chosen"] = configuration(chosen);
+        p["full"] = configuration(full);
+        p["time_ms_chosen"] = chosen.time_ms;
+        p["time_ms_full"] = full.time_ms;
+        p["time_change_percent"] = chosen.time_change_percent;
+        p["error"] = {{"psnr_db", chosen.error.psnr_db},
+                      {"ssim", chosen.error.ssim},
+                      {"share_visible", chosen.error.share_visible}};
+        p["met"] = plan.met;
+        nlohmann::json dropped = nlohmann::json::array();
+        for (const DroppedEffect& d : plan.dropped) {
+            dropped.push_back({{"effect", d.effect},
+                               {"reason", d.reason},
+                               {"psnr_change_db", d.psnr_change_db},
+                               {"time_change_percent", d.time_change_percent}});
+        }
+        p["dropped"] = dropped;
+        nlohmann::json kept = nlohmann::json::array();
+        for (const DroppedEffect& k : plan.kept) {
+            kept.push_back({{"effect", k.effect},
+                            {"reason", k.reason},
+                            {"psnr_change_db", k.psnr_change_db},
+                            {"time_change_percent", k.time_change_percent}});
+        }
+        p["kept"] = kept;
+        p["passes_saved"] = plan.passes_saved;
+        p["draws_saved"] = plan.draws_saved;
+        p["pixels_saved"] = plan.pixels_saved;
+        nlohmann::json candidates = nlohmann::json::array();
+        for (const PlanCandidate& c : plan.candidates) {
+            nlohmann::json j = configuration(c);
+            j["proposed_because"] = c.proposed_because;
+            if (c.water_colour_alpha >= 0.0F) {
+                j["water_colour_alpha"] = c.water_colour_alpha;
+            }
+            j["valid"] = c.valid;
+            if (c.valid) {
+                j["psnr_db"] = c.error.psnr_db;
+                j["ssim"] = c.error.ssim;
+                j["share_visible"] = c.error.share_visible;
+                j["time_ms"] = c.time_ms;
+                j["time_change_percent"] = c.time_change_percent;
+                j["meets_quality"] = c.meets_quality;
+            } else {
+                std::vector<std::string> messages;
+                for (const Diagnostic& d : c.diagnostics) {
+                    messages.push_back(FormatDiagnostic(d));
+                }
+                j["diagnostics"] = messages;
+            }
+            candidates.push_back(j);
+        }
+        p["candidates"] = candidates;
+        out["plans"].push_back(p);
+    }
+    return out;
+}
+
+}  // namespace tidepool::runner

@@ -1,0 +1,203 @@
+// `tidepool run` and `tidepool report` as a user runs them: a small run end to end, the page
+// opened in headless Chromium (renders, every image loads, every whitepaper row present), the
+// report rebuilt from saved files, and bad inputs rejected with exit 2 and the file named.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "TempDir.h"
+
+namespace {
+
+using tidepool::testing::TempDir;
+
+struct CommandResult {
+    int exit_code = -1;
+    std::string out;  // stdout and stderr together
+};
+
+CommandResult Shell(const std::string& command) {
+    CommandResult result;
+    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+    if (pipe == nullptr) {
+        return result;
+    }
+    std::array<char, 4096> buffer{};
+    std::size_t n = 0;
+    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+        result.out.append(buffer.data(), n);
+    }
+    const int status = ::pclose(pipe);
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return result;
+}
+
+// Runs the tidepool binary with `args` (a shell fragment) in the source root.
+CommandResult RunTidepool(const std::string& args) {
+    return Shell("cd '" + std::string(TIDEPOOL_SOURCE_ROOT) + "' && LP_NUM_THREADS=2 '" +
+                 std::string(TIDEPOOL_BINARY) + "' " + args);
+}
+
+std::string ReadText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// One small `tidepool run` shared by every test of the suite (it is the slow part): 160x120,
+// 2 rounds of 1 frame, no warm-up; the stability catalogue at its default 64x48 and the scene
+// plans at 64x48 with 1 round of 1 frame (the test checks the sections, not the times).
+class ReportCliTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = new TempDir();
+        run_ = new CommandResult(RunTidepool("run --size 160x120 --rounds 2 --frames 1 --warmup 0 "
+                                             "--plan-size 64x48 --plan-rounds 1 --plan-frames 1 "
+                                             "--out '" + dir_->Path().string() + "'"));
+    }
+    static void TearDownTestSuite() {
+        delete run_;
+        delete dir_;
+        run_ = nullptr;
+        dir_ = nullptr;
+    }
+    static std::filesystem::path Out() { return dir_->Path(); }
+
+    static TempDir* dir_;
+    static CommandResult* run_;
+};
+
+TempDir* ReportCliTest::dir_ = nullptr;
+CommandResult* ReportCliTest::run_ = nullptr;
+
+TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "manifest/manifest.json"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "render/results.json"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "render/stability.json"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "render/plans.json"));
+    for (const char* file : {"index.html", "report.md", "data.json"}) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "default" / file)) << file;
+    }
+    const nlohmann::json data = nlohmann::json::parse(ReadText(Out() / "default/data.json"));
+    EXPECT_EQ(data["schema"], "tidepool.report");
+    EXPECT_EQ(data["version"], 1);
+    ASSERT_EQ(data["whitepaper_rows"].size(), 11u);
+    for (const nlohmann::json& row : data["whitepaper_rows"]) {
+        EXPECT_NE(row["verdict"], "failed") << row.dump();
+    }
+    EXPECT_FALSE(data["pareto_frontier"].empty());
+    // `run` measures CPU time beside wall time, so the report compares on it.
+    EXPECT_EQ(data["method"]["clock"], "cpu");
+    EXPECT_EQ(data["scenes"]["present"], true);
+    EXPECT_FALSE(data["scenes"]["plans"].empty());
+    EXPECT_TRUE(data["stability"].contains("cases")) << data["stability"].dump().substr(0, 500);
+    EXPECT_NE(run_->out.find("reflection_refraction"), std::string::npos) << run_->out;
+    // Well under the ~10 MB a page should weigh.
+    EXPECT_LT(std::filesystem::file_size(Out() / "default/index.html"), 10u * 1000u * 1000u);
+}
+
+TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepaperRow) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    if (Shell("command -v chromium").exit_code != 0) {
+        GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
+    }
+    TempDir profile;
+    const CommandResult dom = Shell(
+            "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
+            "--no-first-run --disable-background-networking --disable-component-update "
+            "--disable-sync --user-data-dir='" + profile.Path().string() +
+            "' --virtual-time-budget=5000 --dump-dom 'file://" +
+            (Out() / "default/index.html").string() + "' 2>/dev/null");
+    ASSERT_EQ(dom.exit_code, 0) << dom.out.substr(0, 2000);
+    std::smatch loaded;
+    ASSERT_TRUE(std::regex_search(dom.out, loaded,
+                                  std::regex("data-images-loaded=\"([0-9]+)/([0-9]+)\"")))
+            << "the page's load script did not run";
+    EXPECT_EQ(loaded[1].str(), loaded[2].str()) << "images that did not load";
+    EXPECT_GT(std::stoi(loaded[2].str()), 0);
+    for (int row = 1; row <= 11; ++row) {
+        EXPECT_NE(dom.out.find("wp-row-" + std::to_string(row) + "\""), std::string::npos)
+                << "whitepaper row " << row;
+    }
+    EXPECT_NE(dom.out.find("<svg"), std::string::npos);
+    EXPECT_NE(dom.out.find("Pareto frontier"), std::string::npos);
+    // run wrote stability.json and plans.json, so both sections show their tables, not how-tos.
+    EXPECT_NE(dom.out.find("<h2 id=\"stability\">7. Numerical stability</h2>"), std::string::npos);
+    EXPECT_NE(dom.out.find("<h2 id=\"scenes\">8. Scenes</h2>"), std::string::npos);
+    EXPECT_EQ(dom.out.find("No numerical-stability catalogue was found"), std::string::npos);
+    EXPECT_EQ(dom.out.find("No scene plans were found"), std::string::npos);
+    EXPECT_NE(dom.out.find("murky_pond"), std::string::npos);
+}
+
+TEST_F(ReportCliTest, ReportRebuildsFromSavedFilesWithoutRendering) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    const CommandResult r = RunTidepool(
+            "report --manifest '" + (Out() / "manifest/manifest.json").string() +
+            "' --results '" + (Out() / "render/results.json").string() + "' --name again --out '" +
+            Out().string() + "'");
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "again/index.html"));
+    EXPECT_EQ(r.out.find("render:"), std::string::npos) << "report must not render";
+}
+
+TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    TempDir copy;
+    std::filesystem::copy(Out() / "render", copy.Path() / "render",
+                          std::filesystem::copy_options::recursive);
+    const nlohmann::json results = nlohmann::json::parse(ReadText(copy.Path() / "render/results.json"));
+    const std::string image = results["configurations"][0]["views"][0]["image"];
+    const std::filesystem::path missing = copy.Path() / "render" / image;
+    ASSERT_TRUE(std::filesystem::remove(missing));
+    const CommandResult r = RunTidepool(
+            "report --manifest '" + (Out() / "manifest/manifest.json").string() +
+            "' --results '" + (copy.Path() / "render/results.json").string() + "' --out '" +
+            (copy.Path() / "out").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find(missing.string()), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out" / "default"));
+}
+
+TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
+    TempDir dir;
+    const std::filesystem::path manifest = dir.Write("manifest.json", "{\"schema\": \"tidep");
+    CommandResult r = RunTidepool("report --manifest '" + manifest.string() + "' --results '" +
+                                  (dir.Path() / "results.json").string() + "' --out '" +
+                                  (dir.Path() / "out").string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find(manifest.string() + ": not valid JSON"), std::string::npos) << r.out;
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
+
+    if (run_->exit_code == 0) {
+        r = RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
+                        "' --results '" + (dir.Path() / "nope.json").string() + "' --out '" +
+                        (dir.Path() / "out").string() + "'");
+        EXPECT_EQ(r.exit_code, 2) << r.out;
+        EXPECT_NE(r.out.find((dir.Path() / "nope.json").string() + ": no such file"),
+                  std::string::npos)
+                << r.out;
+    }
+}
+
+TEST_F(ReportCliTest, RunRejectsBadFlagsWithExitTwo) {
+    EXPECT_EQ(RunTidepool("run --size 0x0 --out /tmp/never").exit_code, 2);
+    EXPECT_EQ(RunTidepool("run --name render --out /tmp/never").exit_code, 2);
+    EXPECT_EQ(RunTidepool("run --no-stability --no-plans --plan-size 8x8 --out /tmp/never")
+                      .exit_code,
+              2);
+    EXPECT_FALSE(std::filesystem::exists("/tmp/never"));
+}
+
+}  // namespace

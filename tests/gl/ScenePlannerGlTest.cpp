@@ -1,0 +1,247 @@
+// The scene planner through Mesa: it drops an effect where the scene hides it and keeps it where
+// it shows, never picks an invalid variant, and the passes and draws match the scene. Small
+// images and few timing rounds keep the file to a few seconds; the choices asserted here are
+// between configurations a whole render pass apart, so timing noise cannot decide them.
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ScenePlanner.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "TempDir.h"
+
+namespace tidepool::runner {
+namespace {
+
+// Small enough to plan a scene in a few seconds on llvmpipe, large enough for SSIM's window and
+// for the island and objects to cover many pixels.
+constexpr int kWidth = 96;
+constexpr int kHeight = 72;
+
+ImageError Measure(const ImageRgba8& reference, const ImageRgba8& candidate) {
+    const report::RgbaImage a{reference.width, reference.height, reference.pixels};
+    const report::RgbaImage b{candidate.width, candidate.height, candidate.pixels};
+    return ImageError{report::Psnr(a, b), report::Ssim(a, b),
+                      report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold)};
+}
+
+PlanOptions SmallOptions() {
+    PlanOptions options;
+    options.settings.width = kWidth;
+    options.settings.height = kHeight;
+    // Three rounds of three frames: one stray slow frame (another process) cannot flip a choice
+    // between configurations a whole pass apart, and the file still runs in a few seconds.
+    options.warmup_frames = 1;
+    options.rounds = 3;
+    options.frames_per_round = 3;
+    return options;
+}
+
+SceneDescription LoadScene(const std::string& name) {
+    const SceneResult result = LoadSceneDescription(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) /
+                                                    "scenes" / (name + ".yaml"));
+    EXPECT_TRUE(result.scene) << name;
+    return result.scene.value_or(SceneDescription{});
+}
+
+struct Shared {
+    std::unique_ptr<GlContext> context;
+    std::optional<VariantConfig> config;
+    std::optional<ScenePlan> murky;
+    std::optional<ScenePlan> lake;
+    std::string error;
+};
+
+Shared& Get() {
+    static Shared shared = [] {
+        Shared s;
+        GlContextResult created = CreateGlContext(BackendKind::kAuto);
+        if (!created.context) {
+            s.error = created.error;
+            return s;
+        }
+        s.context = std::move(created.context);
+        ConfigResult loaded =
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+        if (!loaded.config) {
+            s.error = "variants.yaml does not load";
+            return s;
+        }
+        s.config = std::move(loaded.config);
+        s.murky =
+                PlanScene(*s.context, *s.config, LoadScene("murky_pond"), SmallOptions(), Measure);
+        s.lake = PlanScene(*s.context, *s.config, LoadScene("clear_lake"), SmallOptions(), Measure);
+        return s;
+    }();
+    return shared;
+}
+
+#define REQUIRE_GL()                                          \
+    do {                                                      \
+        if (!Get().context) {                                 \
+            GTEST_SKIP() << "no GL context: " << Get().error; \
+        }                                                     \
+    } while (false)
+
+const PlanCandidate* Dropping(const ScenePlan& plan, const std::string& effect) {
+    for (const PlanCandidate& c : plan.candidates) {
+        if (c.drops == effect) {
+            return &c;
+        }
+    }
+    return nullptr;
+}
+
+const PlanCandidate& Chosen(const ScenePlan& plan) {
+    return plan.candidates.at(static_cast<std::size_t>(plan.chosen));
+}
+
+bool HasPass(const FrameReport& frame, const std::string& name) {
+    return std::find(frame.pass_names.begin(), frame.pass_names.end(), name) !=
+           frame.pass_names.end();
+}
+
+TEST(ScenePlannerGlTest, MurkyPondDropsRefractionWithinTarget) {
+    REQUIRE_GL();
+    const ScenePlan& plan = *Get().murky;
+    ASSERT_GE(plan.chosen, 0);
+    const PlanCandidate* drop = Dropping(plan, "refraction");
+    ASSERT_NE(drop, nullptr);
+    ASSERT_TRUE(drop->valid);
+    EXPECT_TRUE(drop->meets_quality) << drop->error.psnr_db << " dB";
+    EXPECT_TRUE(plan.met);
+    const PlanCandidate& chosen = Chosen(plan);
+    EXPECT_FALSE(chosen.configuration.Has("ENABLE_REFRACTION")) << chosen.configuration.id;
+    EXPECT_FALSE(HasPass(chosen.frame, "refraction"));
+    // One pass fewer, unless the plan also moved the water to a low-resolution pass.
+    EXPECT_EQ(plan.passes_saved, chosen.configuration.passes.low_res_water ? 0 : 1);
+    const bool explained =
+            std::any_of(plan.dropped.begin(), plan.dropped.end(), [](const DroppedEffect& d) {
+                return d.effect == "refraction" && d.reason.find("dB PSNR") != std::string::npos;
+            });
+    EXPECT_TRUE(explained);
+}
+
+TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarget) {
+    REQUIRE_GL();
+    const ScenePlan& plan = *Get().lake;
+    ASSERT_GE(plan.chosen, 0);
+    const PlanCandidate* drop = Dropping(plan, "refraction");
+    ASSERT_NE(drop, nullptr);
+    ASSERT_TRUE(drop->valid);
+    EXPECT_FALSE(drop->meets_quality) << drop->error.psnr_db << " dB";
+    const PlanCandidate& chosen = Chosen(plan);
+    EXPECT_TRUE(chosen.configuration.Has("ENABLE_REFRACTION")) << chosen.configuration.id;
+    EXPECT_TRUE(HasPass(chosen.frame, "refraction"));
+    EXPECT_TRUE(plan.met);
+}
+
+TEST(ScenePlannerGlTest, EveryChoiceMeetsTheTargetAndIsNoSlowerThanAnyOtherThatDoes) {
+    REQUIRE_GL();
+    for (const ScenePlan* plan : {&*Get().murky, &*Get().lake}) {
+        const PlanCandidate& chosen = Chosen(*plan);
+        EXPECT_TRUE(chosen.valid && chosen.meets_quality);
+        for (const PlanCandidate& c : plan->candidates) {
+            if (c.valid && c.meets_quality) {
+                EXPECT_LE(chosen.time_ms, c.time_ms) << c.configuration.id;
+            }
+        }
+    }
+}
+
+TEST(ScenePlannerGlTest, ReflectionDrawsOnlyWhatIsAboveTheWater) {
+    REQUIRE_GL();
+    const ScenePlan& plan = *Get().lake;
+    const Scene scene = BuildSceneFromDescription(plan.scene);
+    // The clear lake keeps its submerged rocks; the reflection pass must leave them out.
+    int above = 0;
+    int below = 0;
+    for (const Mesh& mesh : scene.objects) {
+        (IsEntirelyBelow(mesh, scene.water_height - RenderSettings{}.clip_plane_offset) ? below
+                                                                                        : above)++;
+    }
+    ASSERT_GT(below, 0);
+    const FrameReport& frame = plan.candidates.front().frame;
+    ASSERT_EQ(frame.pass_names.front(), "reflection");
+    // Sky, terrain and every object not wholly under the water.
+    EXPECT_EQ(frame.pass_draw_calls.front(), 1 + 1 + above);
+    ASSERT_EQ(frame.pass_names.size(), frame.pass_pixels.size());
+    EXPECT_EQ(frame.pass_pixels.back(), static_cast<long long>(kWidth) * kHeight);
+}
+
+TEST(ScenePlannerGlTest, OpenSeaReflectsOnlyTheSkyAndRefractsNothingTheFogHides) {
+    REQUIRE_GL();
+    const SceneDescription sea = LoadScene("open_sea");
+    const Scene scene = BuildSceneFromDescription(sea);
+    EXPECT_TRUE(scene.objects.empty());
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.rcp_max_fog_depth = 1.0F / sea.fog_depth;
+    std::string error;
+    auto renderer = WaterRenderer::Create(*Get().context, *Get().config, settings, &error, &scene);
+    ASSERT_TRUE(renderer) << error;
+    std::vector<Diagnostic> diagnostics;
+    const std::vector<PlanCandidate> candidates =
+            ProposeCandidates(*Get().config, sea, "full", &diagnostics);
+    ASSERT_FALSE(candidates.empty());
+    const RenderConfiguration& full = candidates.front().configuration;
+    ASSERT_TRUE(renderer->Prepare(full).valid);
+    const FrameReport frame = renderer->RenderFrame(full, SceneCameraView(sea));
+    ASSERT_EQ(frame.pass_names, (std::vector<std::string>{"reflection", "refraction", "main"}));
+    EXPECT_EQ(frame.pass_draw_calls[0], 1);  // the sky only: the floor lies 200 down
+    EXPECT_EQ(frame.pass_draw_calls[1], 0);  // fog hides the floor; the sky is left out under fog
+}
+
+TEST(ScenePlannerGlTest, InvalidVariantIsNeverChosen) {
+    REQUIRE_GL();
+    // A copy of the configuration whose water-colour block does not compile.
+    testing::TempDir dir;
+    const std::filesystem::path root(TIDEPOOL_SOURCE_ROOT);
+    std::filesystem::copy(root / "shaders", dir.Path() / "shaders",
+                          std::filesystem::copy_options::recursive);
+    std::filesystem::copy_file(root / "variants.yaml", dir.Path() / "variants.yaml");
+    const std::filesystem::path fragment = dir.Path() / "shaders" / "water.fsh";
+    std::ifstream in(fragment);
+    std::stringstream broken;
+    std::string line;
+    int blocks = 0;
+    while (std::getline(in, line)) {
+        broken << line << "\n";
+        if (line.rfind("#ifdef ENABLE_WATER_COLOUR", 0) == 0) {
+            broken << "    this_function_does_not_exist();\n";
+            ++blocks;
+        }
+    }
+    in.close();
+    ASSERT_GT(blocks, 0);
+    std::ofstream(fragment) << broken.str();
+    ConfigResult loaded = LoadVariantConfig(dir.Path() / "variants.yaml");
+    ASSERT_TRUE(loaded.config);
+    const ScenePlan plan = PlanScene(*Get().context, *loaded.config, LoadScene("murky_pond"),
+                                     SmallOptions(), Measure);
+    ASSERT_GE(plan.chosen, 0);
+    int invalid = 0;
+    for (const PlanCandidate& c : plan.candidates) {
+        if (c.configuration.Has("ENABLE_WATER_COLOUR")) {
+            EXPECT_FALSE(c.valid) << c.configuration.id;
+            ++invalid;
+        }
+    }
+    EXPECT_GT(invalid, 0);
+    const PlanCandidate& chosen = Chosen(plan);
+    EXPECT_TRUE(chosen.valid);
+    EXPECT_FALSE(chosen.configuration.Has("ENABLE_WATER_COLOUR")) << chosen.configuration.id;
+}
+
+}  // namespace
+}  // namespace tidepool::runner

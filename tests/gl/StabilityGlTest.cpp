@@ -1,0 +1,154 @@
+// The GL side of the hard-case catalogue: every water variant rendered at every GL hard case
+// into an RGBA32F target has no NaN, no Inf and no channel outside [0, 1]; the shader guards
+// change the default views by less than an 8-bit step; the mediump fallback compiles.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/HardCases.h"
+#include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/StabilityReport.h"
+
+namespace tidepool::runner {
+namespace {
+
+// Tiny: 54 variants × ~20 cases must render in well under a minute on llvmpipe.
+constexpr int kWidth = 32;
+constexpr int kHeight = 24;
+
+struct Shared {
+    std::unique_ptr<GlContext> context;
+    std::optional<VariantConfig> config;
+    std::vector<RenderConfiguration> configurations;
+    std::string error;
+};
+
+Shared& Get() {
+    static Shared shared = [] {
+        Shared s;
+        GlContextResult created = CreateGlContext(BackendKind::kAuto);
+        if (!created.context) {
+            s.error = created.error;
+            return s;
+        }
+        s.context = std::move(created.context);
+        ConfigResult loaded =
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+        if (!loaded.config) {
+            s.error = "variants.yaml does not load";
+            return s;
+        }
+        s.config = std::move(loaded.config);
+        s.configurations =
+                WaterVariantConfigurations(ExpandVariants(*s.config, ExpansionOptions{}).variants);
+        if (!s.context->Environment().float_render_target) {
+            s.error = "the context cannot render to RGBA32F";
+        }
+        return s;
+    }();
+    return shared;
+}
+
+class StabilityGlCaseTest : public ::testing::TestWithParam<std::string> {
+protected:
+    void SetUp() override {
+        if (!Get().error.empty()) {
+            GTEST_SKIP() << Get().error;
+        }
+    }
+};
+
+std::vector<std::string> GlCaseNames() {
+    std::vector<std::string> names;
+    for (const HardCase& c : HardCaseCatalogue()) {
+        if (c.kind == HardCaseKind::kGl) {
+            names.push_back(c.name);
+        }
+    }
+    return names;
+}
+
+TEST_P(StabilityGlCaseTest, EveryWaterVariantIsFiniteAndInRange) {
+    Shared& s = Get();
+    ASSERT_EQ(s.configurations.size(), 54U);  // the default water matrix
+    const std::vector<HardCase> catalogue = HardCaseCatalogue();
+    const HardCase* hard_case = FindHardCase(catalogue, GetParam());
+    ASSERT_NE(hard_case, nullptr);
+    std::string error;
+    const std::vector<StabilityCaseResult> results =
+            RunGlHardCases(*s.context, *s.config, s.configurations, {*hard_case},
+                           GlStabilityOptions{kWidth, kHeight}, &error);
+    ASSERT_EQ(error, "");
+    ASSERT_EQ(results.size(), 1U);
+    const StabilityCaseResult& r = results.front();
+    EXPECT_EQ(r.variants_checked, 54);
+    EXPECT_EQ(r.nan_count, 0) << r.note;
+    EXPECT_EQ(r.inf_count, 0) << r.note;
+    EXPECT_LE(r.max_error, r.bound) << r.note;
+    EXPECT_TRUE(r.passed) << r.note;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllGlCases, StabilityGlCaseTest, ::testing::ValuesIn(GlCaseNames()),
+                         [](const auto& param_info) { return param_info.param; });
+
+class StabilityGlTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        if (!Get().error.empty()) {
+            GTEST_SKIP() << Get().error;
+        }
+    }
+};
+
+TEST_F(StabilityGlTest, GuardsChangeTheDefaultViewsByLessThanTheirTolerance) {
+    Shared& s = Get();
+    std::string error;
+    const std::vector<GuardResult> guards =
+            MeasureGuards(*s.context, *s.config, GlStabilityOptions{kWidth, kHeight}, &error);
+    ASSERT_EQ(error, "");
+    ASSERT_EQ(guards.size(), 4U);
+    for (const GuardResult& g : guards) {
+        EXPECT_LE(g.max_channel_diff_normal_views, g.tolerance) << g.guard;
+        EXPECT_TRUE(g.passed) << g.guard;
+    }
+}
+
+TEST_F(StabilityGlTest, MediumpFallbackOfEveryShaderCompilesAndRendersFinite) {
+    Shared& s = Get();
+    RenderSettings settings;
+    settings.width = kWidth;
+    settings.height = kHeight;
+    settings.float_target = true;
+    std::string error;
+    auto renderer = WaterRenderer::Create(*s.context, *s.config, settings, &error);
+    ASSERT_NE(renderer, nullptr) << error;
+    for (std::vector<std::string> defines :
+         {std::vector<std::string>{"ENABLE_DISTORTION", "ENABLE_FOG", "ENABLE_FRESNEL",
+                                   "ENABLE_REFRACTION", "ENABLE_SCALE_DISTORTION",
+                                   "TP_FORCE_MEDIUMP"},
+          std::vector<std::string>{"ENABLE_DISTORTION", "ENABLE_FRESNEL", "ENABLE_REFRACTION",
+                                   "FRESNEL_EXACT", "TP_FORCE_MEDIUMP"}}) {
+        RenderConfiguration c;
+        c.variant = MakeVariant("water", defines);
+        c.effects = c.variant.defines;
+        c.id = ConfigurationId(c.variant, c.passes);
+        const DriverVerdict verdict = renderer->Prepare(c);
+        ASSERT_TRUE(verdict.valid) << verdict.fragment_log << verdict.link_log;
+        for (const CameraView& view : DefaultViews()) {
+            ASSERT_EQ(renderer->RenderFrame(c, view).gl_error, "");
+            for (const float v : renderer->ReadFloatPixels()) {
+                ASSERT_TRUE(std::isfinite(v)) << c.id << " at " << view.name;
+            }
+        }
+    }
+}
+
+}  // namespace
+}  // namespace tidepool::runner

@@ -1,0 +1,669 @@
+// The report generator on small hand-made inputs: whitepaper rows found by preset, verdicts with
+// tolerance and noise floor, accuracy and its Pareto frontier, static cost versus time, failed
+// configurations kept, corrupt inputs rejected with the file named, atomic publication, the
+// comparison clock (CPU time when every configuration has it) and the Scenes section.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "TempDir.h"
+#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/report/ReportModel.h"
+#include "tidepool/report/ReportWriter.h"
+#include "tidepool/report/WhitepaperTable.h"
+
+namespace {
+
+using namespace tidepool::report;
+using tidepool::testing::TempDir;
+
+std::string ReadText(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+// A flat image of one colour, with a bright square when `mark` > 0 (a visible difference).
+RgbaImage Flat(std::uint8_t grey, int mark = 0) {
+    RgbaImage image;
+    image.width = 32;
+    image.height = 24;
+    image.pixels.assign(static_cast<std::size_t>(image.width * image.height * 4), grey);
+    for (int y = 0; y < mark; ++y) {
+        for (int x = 0; x < mark; ++x) {
+            const auto i = static_cast<std::size_t>((y * image.width + x) * 4);
+            image.pixels[i] = image.pixels[i + 1] = image.pixels[i + 2] = 255;
+        }
+    }
+    for (std::size_t i = 3; i < image.pixels.size(); i += 4) {
+        image.pixels[i] = 255;
+    }
+    return image;
+}
+
+// One configuration of the hand-made results: id, presets, time per frame, image mark size.
+struct FakeConfiguration {
+    std::string id;
+    std::vector<std::string> presets;
+    double ms = 10;
+    int mark = 0;  // 0: identical to the reference
+    bool ok = true;
+    std::string program = "water";
+    int total_ops = 100;
+    std::map<std::string, nlohmann::json> passes = {};
+    double cpu_ms = 0;  // > 0: cpu_samples_ms and cpu_statistics are written at this time
+};
+
+// Writes manifest.json, results.json and images for `configurations` into `dir`.
+struct FakeRun {
+    std::filesystem::path manifest;
+    std::filesystem::path results;
+};
+
+FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& configurations,
+                     int rounds = 6) {
+    nlohmann::json variants = nlohmann::json::array();
+    nlohmann::json entries = nlohmann::json::array();
+    for (const FakeConfiguration& c : configurations) {
+        const std::string variant = c.id.substr(0, c.id.find('@'));
+        variants.push_back({{"id", variant},
+                            {"program", c.program},
+                            {"valid", true},
+                            {"stages",
+                             {{"vertex", {{"cost", {{"total_ops", 10}}}}},
+                              {"fragment", {{"cost", {{"total_ops", c.total_ops - 10}}}}}}}});
+        nlohmann::json samples = nlohmann::json::array();
+        for (int r = 0; r < rounds; ++r) {
+            // A little deterministic jitter so intervals have width.
+            const double jitter = 1.0 + 0.002 * ((r % 3) - 1);
+            samples.push_back({c.ms * jitter, c.ms * jitter * 1.001});
+        }
+        nlohmann::json cpu_samples = nlohmann::json::array();
+        for (int r = 0; r < rounds; ++r) {
+            // Jitter of another phase than the wall samples', as two clocks would give.
+            const double jitter = 1.0 + 0.002 * (((r + 1) % 3) - 1);
+            cpu_samples.push_back({c.cpu_ms * jitter, c.cpu_ms * jitter * 1.001});
+        }
+        nlohmann::json views = nlohmann::json::array();
+        if (c.ok) {
+            const std::string image = "images/" + std::to_string(entries.size()) + ".png";
+            EXPECT_EQ(WritePngAtomically(dir.Path() / "render" / image, Flat(100, c.mark)), "");
+            views.push_back({{"view", "three_quarter"}, {"image", image}});
+        }
+        nlohmann::json passes = {{"reflection_size", 256},
+                                 {"low_res_water", false},
+                                 {"clip", "oblique"},
+                                 {"culling", true}};
+        for (const auto& [k, v] : c.passes) {
+            passes[k] = v;
+        }
+        entries.push_back({{"id", c.id},
+                           {"variant", variant},
+                           {"program", c.program},
+                           {"presets", c.presets},
+                           {"passes", passes},
+                           {"driver", {{"valid", c.ok}, {"diagnostics", nlohmann::json::array()}}},
+                           {"views", views},
+                           {"samples_ms", c.ok ? samples : nlohmann::json::array()},
+                           {"statistics",
+                            {{"count", c.ok ? rounds * 2 : 0}, {"median_ms", c.ms},
+                             {"ci_low_ms", c.ms * 0.99}, {"ci_high_ms", c.ms * 1.01}}},
+                           {"gl_error", ""},
+                           {"ok", c.ok}});
+        if (c.cpu_ms > 0) {
+            entries.back()["cpu_samples_ms"] = c.ok ? cpu_samples : nlohmann::json::array();
+            entries.back()["cpu_statistics"] = {{"count", c.ok ? rounds * 2 : 0},
+                                                {"median_ms", c.cpu_ms},
+                                                {"ci_low_ms", c.cpu_ms * 0.99},
+                                                {"ci_high_ms", c.cpu_ms * 1.01}};
+        }
+    }
+    const nlohmann::json manifest = {{"schema", "tidepool.manifest"},
+                                     {"version", 1},
+                                     {"variants", variants},
+                                     {"pruned", nlohmann::json::array()},
+                                     {"counts", {{"variants", variants.size()}, {"pruned", 0}}}};
+    const nlohmann::json results = {
+            {"schema", "tidepool.render-results"},
+            {"schema_version", 1},
+            {"environment", {{"gl_renderer", "llvmpipe (test)"}, {"lp_num_threads", "2"}}},
+            {"settings",
+             {{"timing_view", "three_quarter"},
+              {"rounds", rounds},
+              {"views", {{{"name", "three_quarter"}}}}}},
+            {"configurations", entries},
+            {"disagreements", nlohmann::json::array()},
+            {"diagnostics", nlohmann::json::array()},
+            {"ok", true}};
+    FakeRun run;
+    run.manifest = dir.Write("manifest/manifest.json", manifest.dump(2));
+    run.results = dir.Write("render/results.json", results.dump(2));
+    return run;
+}
+
+// Every preset of the whitepaper table plus the reference, with times chosen per row.
+std::vector<FakeConfiguration> WhitepaperConfigurations() {
+    return {
+            {"water:", {"reflection_only"}, 10.0, 6, true, "water", 50},
+            {"water:ENABLE_REFRACTION", {"reflection_refraction"}, 24.0, 4, true, "water", 80},
+            {"water:ENABLE_WATER_COLOUR", {"reflection_water_colour"}, 10.9, 5, true, "water", 60},
+            {"water:ENABLE_ALPHA_BLEND", {"reflection_alpha_blend"}, 11.0, 5, true, "water", 55},
+            {"water:FULL", {"full"}, 30.0, 2, true, "water", 200},
+            {"water:FULL_NO_FOG", {"full_no_fog"}, 29.0, 3, true, "water", 190},
+            {"water:CONST", {"full_constant_mix"}, 25.0, 3, true, "water", 150},
+            {"water:UNSCALED", {"full_unscaled_distortion"}, 29.9, 3, true, "water", 195},
+            {"water:FULL@lowres", {"full_low_res_water"}, 26.0, 3, true, "water", 200,
+             {{"low_res_water", true}}},
+            {"water:CUBE", {"full_cubemap_normalise"}, 36.0, 2, true, "water", 190},
+            {"water_uniform:FULL", {"full_uniform_bools"}, 30.3, 2, true, "water_uniform", 400},
+            {"water:FULL@discard", {"full_clip_discard"}, 40.0, 2, true, "water", 200,
+             {{"clip", "discard"}}},
+            {"water:FULL@refl128", {"full_reflection_128"}, 27.0, 3, true, "water", 200,
+             {{"reflection_size", 128}}},
+            {"water:EXACT@refl512", {"reference"}, 45.0, 0, true, "water", 220,
+             {{"reflection_size", 512}}},
+    };
+}
+
+PairedRatio Ratio(double ratio, double low, double high) {
+    PairedRatio r;
+    r.ratio = ratio;
+    r.ci = {low, high};
+    r.rounds = 8;
+    return r;
+}
+
+const WhitepaperRow& Row(int number) { return WhitepaperRows()[static_cast<std::size_t>(number - 1)]; }
+
+TEST(ReportWhitepaperTable, HasElevenRowsWithPresetsAndDirectionOnlyRowsEightToEleven) {
+    ASSERT_EQ(WhitepaperRows().size(), 11u);
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        EXPECT_FALSE(row.baseline_preset.empty()) << row.number;
+        EXPECT_FALSE(row.candidate_preset.empty()) << row.number;
+        EXPECT_FALSE(row.llvmpipe_note.empty()) << row.number;
+        EXPECT_EQ(row.kind == FigureKind::kDirection, row.number >= 8) << row.number;
+    }
+    EXPECT_EQ(Row(1).whitepaper_percent, -60.0);
+    EXPECT_EQ(Row(4).baseline_preset, "full");
+    EXPECT_EQ(Row(4).candidate_preset, "full_no_fog");
+    EXPECT_EQ(Row(9).baseline_preset, "full_uniform_bools");
+    EXPECT_EQ(Row(10).baseline_preset, "full_clip_discard");
+}
+
+TEST(ReportInputsTest, RowPresetsResolveToTheConfigurationsCarryingThem) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        ASSERT_NE(loaded.inputs->FindByPreset(row.baseline_preset), nullptr) << row.number;
+        ASSERT_NE(loaded.inputs->FindByPreset(row.candidate_preset), nullptr) << row.number;
+    }
+    EXPECT_EQ(loaded.inputs->FindByPreset("full_clip_discard")->id, "water:FULL@discard");
+    EXPECT_EQ(loaded.inputs->FindByPreset("full_clip_discard")->clip, "discard");
+    EXPECT_EQ(loaded.inputs->FindByPreset("full_reflection_128")->reflection_size, 128);
+    EXPECT_EQ(loaded.inputs->FindByPreset("no_such_preset"), nullptr);
+}
+
+struct GradeCase {
+    const char* name;
+    int row;
+    PairedRatio ratio;
+    Verdict expected;
+};
+
+TEST(ReportGradeRow, VerdictsFollowDirectionToleranceAndNoiseFloor) {
+    // Frame-time ratio r is a performance change of (1/r - 1) * 100 %.
+    const std::vector<GradeCase> cases = {
+            {"row 1: -56.5% is within 10 points of -60%", 1, Ratio(2.3, 2.2, 2.4),
+             Verdict::kSameDirectionAndMagnitude},
+            {"row 1: -23% is slower but far from -60%", 1, Ratio(1.3, 1.25, 1.35),
+             Verdict::kSameDirectionOnly},
+            {"row 1: +25% faster is the opposite", 1, Ratio(0.8, 0.78, 0.82), Verdict::kOpposite},
+            {"row 1: interval straddles no change", 1, Ratio(1.2, 0.9, 1.5),
+             Verdict::kInconclusive},
+            {"row 2: a definite but tiny 1.5% loss is inside the noise floor", 2,
+             Ratio(1.015, 1.01, 1.02), Verdict::kInconclusive},
+            {"row 2: a wide interval cannot claim the magnitude, only the direction", 2,
+             Ratio(1.3, 1.05, 1.6), Verdict::kSameDirectionOnly},
+            {"row 2: a narrow interval around -8% agrees in magnitude", 2,
+             Ratio(1.087, 1.07, 1.1), Verdict::kSameDirectionAndMagnitude},
+            {"row 6: <1% agrees with a small change", 6, Ratio(1.02, 0.99, 1.05),
+             Verdict::kSameDirectionAndMagnitude},
+            {"row 6: a definite 30% loss is same direction only", 6, Ratio(1.43, 1.4, 1.46),
+             Verdict::kSameDirectionOnly},
+            {"row 8: qualitative faster, measured faster", 8, Ratio(0.8, 0.78, 0.82),
+             Verdict::kSameDirectionOnly},
+            {"row 8: qualitative faster, measured slower", 8, Ratio(1.2, 1.15, 1.25),
+             Verdict::kOpposite},
+            {"row 11: qualitative, inside the noise floor", 11, Ratio(0.99, 0.98, 1.0),
+             Verdict::kInconclusive},
+            {"failed measurement", 3, PairedRatio{}, Verdict::kFailed},
+    };
+    for (const GradeCase& c : cases) {
+        std::string reason;
+        EXPECT_EQ(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, 3.0, &reason), c.expected)
+                << c.name << ": " << VerdictName(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, 3.0, &reason))
+                << " (" << reason << ")";
+        EXPECT_FALSE(reason.empty()) << c.name;
+    }
+}
+
+TEST(ReportGradeRow, HalvesPointingDifferentWaysAreInconclusive) {
+    SplitHalf split;
+    split.odd = Ratio(0.7, 0.6, 0.8);   // odd rounds: faster
+    split.even = Ratio(1.1, 1.0, 1.2);  // even rounds: slower
+    std::string reason;
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 3, &reason),
+              Verdict::kInconclusive);
+    EXPECT_NE(reason.find("halves disagree"), std::string::npos) << reason;
+    split.even = Ratio(0.85, 0.8, 0.9);
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 3, &reason),
+              Verdict::kSameDirectionOnly);
+}
+
+TEST(ReportGradeRow, SingleRoundIntervalIsInconclusive) {
+    std::string reason;
+    EXPECT_EQ(GradeRow(Row(1), Ratio(2.5, 0, std::numeric_limits<double>::infinity()), nullptr, 10, 3,
+                       &reason),
+              Verdict::kInconclusive);
+}
+
+TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const ReportModel& model = *built.model;
+    ASSERT_EQ(model.rows.size(), 11u);
+    // Row 1: 10 ms -> 24 ms is a frame-time ratio of 2.4, "performance reduced by 58.3%".
+    EXPECT_NEAR(model.rows[0].ratio.ratio, 2.4, 1e-3);
+    EXPECT_NEAR(model.rows[0].change_percent, -58.33, 0.05);
+    EXPECT_EQ(model.rows[0].verdict, Verdict::kSameDirectionAndMagnitude);
+    // Row 10: discard 40 ms -> oblique 30 ms: faster, direction only.
+    EXPECT_EQ(model.rows[9].verdict, Verdict::kSameDirectionOnly);
+    // Row 8: cube map 36 ms vs 30 ms is slower: opposite to the whitepaper.
+    EXPECT_EQ(model.rows[7].verdict, Verdict::kOpposite);
+    // Row 9: 30.3 -> 30 ms is 1% faster: inside the noise floor.
+    EXPECT_EQ(model.rows[8].verdict, Verdict::kInconclusive);
+    EXPECT_TRUE(std::isfinite(model.largest_split_half_disagreement));
+}
+
+TEST(ReportModelTest, AccuracyAndParetoFrontierOnKnownImages) {
+    TempDir dir;
+    // Reference slow and exact; "cheap" fast with a small error; "bad" slower and worse than
+    // "cheap", so it is dominated; "mid" between the two on both axes.
+    const FakeRun run = WriteFakeRun(dir, {{"water:REF", {"reference"}, 50, 0},
+                                           {"water:CHEAP", {}, 10, 4},
+                                           {"water:BAD", {}, 20, 8},
+                                           {"water:MID", {}, 15, 2}});
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const ReportModel& model = *built.model;
+    ASSERT_EQ(model.accuracy.size(), 4u);
+    const AccuracyEntry& ref = model.accuracy[0];
+    EXPECT_TRUE(ref.is_reference);
+    EXPECT_TRUE(std::isinf(ref.psnr_db));
+    EXPECT_DOUBLE_EQ(ref.ssim, 1.0);
+    EXPECT_DOUBLE_EQ(ref.share_visible, 0.0);
+    // 16 of 768 pixels differ in "cheap", 64 in "bad", 4 in "mid".
+    EXPECT_NEAR(model.accuracy[1].share_visible, 16.0 / 768.0, 1e-12);
+    EXPECT_NEAR(model.accuracy[2].share_visible, 64.0 / 768.0, 1e-12);
+    EXPECT_LT(model.accuracy[2].ssim, model.accuracy[1].ssim);
+    EXPECT_TRUE(model.accuracy[0].on_frontier);
+    EXPECT_TRUE(model.accuracy[1].on_frontier);
+    EXPECT_FALSE(model.accuracy[2].on_frontier);
+    EXPECT_TRUE(model.accuracy[3].on_frontier);
+    ASSERT_EQ(model.frontier.size(), 3u);
+    EXPECT_EQ(model.frontier.front(), 1u);  // sorted by time: cheap, mid, reference
+    EXPECT_EQ(model.frontier.back(), 0u);
+}
+
+TEST(ReportStaticCost, RankCorrelationAndLargestDisagreementsOnKnownInputs) {
+    MeasuredConfiguration a, b, c, d;
+    a.id = "a";
+    b.id = "b";
+    c.id = "c";
+    d.id = "d";
+    std::vector<StaticCostEntry> entries = {{&a, 0, 0, 10, 1.0}, {&b, 0, 0, 20, 2.0},
+                                            {&c, 0, 0, 30, 3.0}, {&d, 0, 0, 40, 4.0}};
+    StaticCostAnalysis monotone = AnalyseStaticCost(entries);
+    EXPECT_DOUBLE_EQ(monotone.spearman_rho, 1.0);
+    // "d" has the most operations but is the fastest: the count misleads most there.
+    entries[3].median_ms = 0.5;
+    StaticCostAnalysis misled = AnalyseStaticCost(entries);
+    EXPECT_NEAR(misled.spearman_rho, -0.2, 1e-12);
+    ASSERT_FALSE(misled.misleading.empty());
+    EXPECT_EQ(misled.entries[misled.misleading.front()].configuration, &d);
+    EXPECT_DOUBLE_EQ(misled.entries[3].ops_rank, 4.0);
+    EXPECT_DOUBLE_EQ(misled.entries[3].time_rank, 1.0);
+    EXPECT_TRUE(std::isnan(AnalyseStaticCost({entries[0], entries[1]}).spearman_rho));
+}
+
+TEST(ReportModelTest, FailedConfigurationIsShownAsFailedNotDropped) {
+    TempDir dir;
+    std::vector<FakeConfiguration> configurations = WhitepaperConfigurations();
+    configurations[2].ok = false;  // reflection_water_colour: row 2
+    const FakeRun run = WriteFakeRun(dir, configurations);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const ReportModel& model = *built.model;
+    EXPECT_EQ(model.failed_configurations, 1);
+    EXPECT_EQ(model.accuracy.size(), configurations.size());
+    EXPECT_FALSE(model.accuracy[2].measured);
+    EXPECT_NE(model.accuracy[2].note.find("FAILED"), std::string::npos);
+    EXPECT_EQ(model.rows[1].verdict, Verdict::kFailed);
+    EXPECT_NE(model.rows[1].verdict_reason.find("water:ENABLE_WATER_COLOUR"), std::string::npos);
+    ASSERT_EQ(model.validation.failed.size(), 1u);
+
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string html = ReadText(written.folder / "index.html");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(html.find("1 configuration(s) FAILED"), std::string::npos);
+    EXPECT_NE(md.find("water:ENABLE_WATER_COLOUR | FAILED"), std::string::npos) << md;
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    EXPECT_EQ(data["whitepaper_rows"][1]["verdict"], "failed");
+    EXPECT_EQ(data["validation"]["failed_configurations"][0]["configuration"],
+              "water:ENABLE_WATER_COLOUR");
+}
+
+TEST(ReportInputsTest, CorruptManifestIsAnErrorNamingTheFile) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    dir.Write("manifest/manifest.json", "{\"schema\": \"tidepool.manifest\", \"vers");
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_FALSE(loaded.inputs);
+    EXPECT_EQ(loaded.error.rfind(run.manifest.string() + ": not valid JSON", 0), 0u)
+            << loaded.error;
+}
+
+TEST(ReportInputsTest, MissingResultsFileIsAnErrorNamingTheFile) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    std::filesystem::remove(run.results);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_FALSE(loaded.inputs);
+    EXPECT_EQ(loaded.error, run.results.string() + ": no such file");
+}
+
+TEST(ReportInputsTest, ForeignSchemaIsAnErrorNamingTheFile) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    dir.Write("render/results.json", R"({"schema": "something.else", "schema_version": 1})");
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_FALSE(loaded.inputs);
+    EXPECT_EQ(loaded.error, run.results.string() +
+                                    ": schema is 'something.else', expected "
+                                    "'tidepool.render-results'");
+}
+
+TEST(ReportModelTest, MissingImageIsAnErrorNamingTheFileAndNothingIsBuilt) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const std::filesystem::path image = dir.Path() / "render" / "images" / "3.png";
+    ASSERT_TRUE(std::filesystem::remove(image));
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    EXPECT_FALSE(built.model);
+    EXPECT_EQ(built.error.rfind(image.string(), 0), 0u) << built.error;
+}
+
+TEST(ReportWriterTest, WritesAllFormatsAndReplacesOnlyItsOwnFolder) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    ReportOptions options;
+    options.name = "t";
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, options);
+    ASSERT_TRUE(built.model) << built.error;
+    WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    for (const char* file : {"index.html", "report.md", "data.json", "charts/accuracy.svg",
+                             "charts/whitepaper.svg", "charts/static_cost.svg",
+                             "images/reference-three_quarter.png"}) {
+        EXPECT_TRUE(std::filesystem::is_regular_file(written.folder / file)) << file;
+    }
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    EXPECT_EQ(data["schema"], "tidepool.report");
+    EXPECT_EQ(data["version"], 1);
+    EXPECT_EQ(data["whitepaper_rows"].size(), 11u);
+    EXPECT_EQ(data["stability"]["present"], false);
+    const std::string html = ReadText(written.folder / "index.html");
+    EXPECT_NE(html.find("data:image/png;base64,"), std::string::npos);
+    EXPECT_NE(html.find("tidepool stability"), std::string::npos);
+    // Rewriting replaces the earlier report; no staging folder is left behind.
+    written = WriteReport(*built.model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    for (const auto& entry : std::filesystem::directory_iterator(dir.Path() / "out")) {
+        EXPECT_EQ(entry.path().filename(), "t");
+    }
+    // A folder the writer did not make is never replaced.
+    dir.Write("out2/t/precious.txt", "keep me");
+    written = WriteReport(*built.model, dir.Path() / "out2");
+    EXPECT_NE(written.error.find("not a tidepool report"), std::string::npos) << written.error;
+    EXPECT_TRUE(std::filesystem::exists(dir.Path() / "out2/t/precious.txt"));
+}
+
+TEST(ReportWriterTest, StabilityTablesAreRenderedGenerically) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    dir.Write("render/stability.json", R"js({"schema": "tidepool.stability", "version": 1,
+        "cases": [{"name": "grazing_fresnel", "description": "cos near 0", "kind": "fresnel",
+                   "variants_checked": 4, "nan_count": 0, "inf_count": 0, "max_error": 0.001,
+                   "bound": 0.01, "passed": true, "fix": "clamp"}],
+        "precision": [{"expression": "pow(1-c,5)", "max_abs_error_float": 1e-7,
+                       "max_abs_error_fp16": 0.002, "max_rel_error_fp16": 0.01,
+                       "loses_precision": false, "note": "ok"}],
+        "guards": [{"guard": "max(dot,0)", "max_channel_diff_normal_views": 0,
+                    "tolerance": 1}]})js");
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    ASSERT_TRUE(loaded.inputs->stability);
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("| grazing_fresnel | cos near 0 | fresnel | 4 | 0 | 0 | 0.001 | 0.01 | true "
+                      "| clamp |"),
+              std::string::npos)
+            << md;
+    EXPECT_NE(md.find("pow(1-c,5)"), std::string::npos);
+    EXPECT_NE(md.find("max(dot,0)"), std::string::npos);
+}
+
+// The whitepaper configurations with CPU times: 1.5x the wall time (llvmpipe's two threads)
+// except the cube-map normalisation, whose CPU time is below full's (wall: above).
+std::vector<FakeConfiguration> WithCpuTimes(std::vector<FakeConfiguration> configurations) {
+    for (FakeConfiguration& c : configurations) {
+        c.cpu_ms = c.presets.front() == "full_cubemap_normalise" ? 40.0 : c.ms * 1.5;
+    }
+    return configurations;
+}
+
+ReportModel BuildOrFail(const ReportInputs& inputs) {
+    ReportModelResult built = BuildReportModel(inputs, ReportOptions{});
+    EXPECT_TRUE(built.model) << built.error;
+    return built.model ? std::move(*built.model) : ReportModel{};
+}
+
+TEST(ReportClockTest, ResultsWithoutCpuSamplesAreComparedOnWallTime) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    EXPECT_EQ(loaded.inputs->clock, TimingClock::kWall);
+    EXPECT_NE(loaded.inputs->clock_reason.find("wall-clock"), std::string::npos);
+    const ReportModel model = BuildOrFail(*loaded.inputs);
+    EXPECT_EQ(model.clock, TimingClock::kWall);
+    EXPECT_NEAR(model.rows[0].ratio.ratio, 2.4, 1e-3);  // 24 / 10 ms on the wall clock
+    const nlohmann::json data = ReportToJson(model);
+    EXPECT_EQ(data["method"]["clock"], "wall");
+    EXPECT_EQ(data["accuracy"][0]["median_cpu_ms"], nullptr);
+}
+
+TEST(ReportClockTest, CpuSamplesOnEveryConfigurationMakeEveryComparisonUseCpuTime) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WithCpuTimes(WhitepaperConfigurations()));
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    EXPECT_EQ(loaded.inputs->clock, TimingClock::kCpu);
+    EXPECT_NE(loaded.inputs->clock_reason.find("CPU time"), std::string::npos);
+    ReportOptions options;
+    options.name = "cpu";
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, options);
+    ASSERT_TRUE(built.model) << built.error;
+    const ReportModel& model = *built.model;
+    EXPECT_EQ(model.clock, TimingClock::kCpu);
+    // Row 1 keeps its ratio (both clocks scale alike); row 8 follows the CPU clock: 40 ms on
+    // CPU against full's 45 is faster, where the wall clock (36 against 30) said slower.
+    EXPECT_NEAR(model.rows[0].ratio.ratio, 2.4, 1e-3);
+    EXPECT_EQ(model.rows[7].verdict, Verdict::kSameDirectionOnly) << model.rows[7].verdict_reason;
+    // Accuracy, Pareto and static cost are on CPU time too.
+    for (const AccuracyEntry& e : model.accuracy) {
+        EXPECT_DOUBLE_EQ(e.median_ms, e.configuration->cpu_median_ms);
+    }
+    for (const StaticCostEntry& e : model.static_cost.entries) {
+        EXPECT_DOUBLE_EQ(e.median_ms, e.configuration->cpu_median_ms);
+    }
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    EXPECT_EQ(data["method"]["clock"], "cpu");
+    EXPECT_EQ(data["whitepaper_rows"][0]["clock"], "cpu");
+    EXPECT_DOUBLE_EQ(data["accuracy"][0]["median_cpu_ms"].get<double>(), 15.0);
+    EXPECT_DOUBLE_EQ(data["accuracy"][0]["median_wall_ms"].get<double>(), 10.0);
+    // Both medians are shown, the compared one named; the Method section says why.
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("median ms (CPU, compared)"), std::string::npos);
+    EXPECT_NE(md.find("median ms (wall)"), std::string::npos);
+    EXPECT_NE(md.find("| Compared on | CPU time: process CPU time"), std::string::npos);
+}
+
+TEST(ReportClockTest, OneConfigurationWithoutCpuSamplesKeepsEveryComparisonOnWallTime) {
+    TempDir dir;
+    std::vector<FakeConfiguration> configurations = WithCpuTimes(WhitepaperConfigurations());
+    configurations[3].cpu_ms = 0;  // reflection_alpha_blend: an older writer's entry
+    const FakeRun run = WriteFakeRun(dir, configurations);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    EXPECT_EQ(loaded.inputs->clock, TimingClock::kWall);
+    EXPECT_NE(loaded.inputs->clock_reason.find("water:ENABLE_ALPHA_BLEND"), std::string::npos)
+            << loaded.inputs->clock_reason;
+    const ReportModel model = BuildOrFail(*loaded.inputs);
+    EXPECT_EQ(model.rows[7].verdict, Verdict::kOpposite);  // the wall clock's cube-map row
+}
+
+// A plans.json of two scenes as `tidepool plan --all` writes it (docs/SCENES.md).
+constexpr const char* kPlansJson = R"js({"schema": "tidepool.plans", "version": 1,
+    "size": [160, 120], "rounds": 3, "frames_per_round": 2, "plans": [
+    {"scene": "murky_pond", "description": "murky", "target": {"min_psnr_db": 30},
+     "chosen": {"id": "water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128", "variant": "water:x",
+                "passes": ["reflection", "main"]},
+     "full": {"id": "water:FULL", "variant": "water:FULL",
+              "passes": ["reflection", "refraction", "main"]},
+     "time_ms_chosen": 8.06, "time_ms_full": 15.0, "time_change_percent": -46.3,
+     "error": {"psnr_db": 41.1, "ssim": 0.998, "share_visible": 0.018}, "met": true,
+     "dropped": [{"effect": "refraction", "reason": "fog hides the floor at 0.8",
+                  "psnr_change_db": 41.1, "time_change_percent": -37}],
+     "kept": [{"effect": "fog", "reason": "fog breaks the target without it",
+               "psnr_change_db": 12.5, "time_change_percent": -2}],
+     "passes_saved": 1, "draws_saved": 5, "pixels_saved": 19200},
+    {"scene": "open_sea", "target": {"min_psnr_db": 30}, "chosen": {"id": "water:FULL"},
+     "full": {"id": "water:FULL"}, "time_ms_chosen": 7.4, "time_ms_full": 7.4,
+     "time_change_percent": 0, "error": {"psnr_db": 99, "ssim": 1, "share_visible": 0},
+     "met": false, "dropped": [], "kept": [], "passes_saved": 0, "draws_saved": 0,
+     "pixels_saved": 0}]})js";
+
+TEST(ReportScenesTest, PlansBesideTheResultsAreShownPerSceneWithEveryDecisionAndReason) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    dir.Write("render/plans.json", kPlansJson);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    ASSERT_TRUE(loaded.inputs->plans) << loaded.inputs->plans_error;
+    const ReportModel model = BuildOrFail(*loaded.inputs);
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("## 8. Scenes"), std::string::npos);
+    EXPECT_NE(md.find("| murky_pond | water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128 | water:FULL | "
+                      "8.06 / 15.00 | -46% | 41.1 dB, SSIM 0.998, 1.8% | min_psnr_db 30 | met | "
+                      "1 / 5 / 19200 |"),
+              std::string::npos)
+            << md;
+    EXPECT_NE(md.find("| refraction | dropped | 41.1 dB | -37% | fog hides the floor at 0.8 |"),
+              std::string::npos);
+    EXPECT_NE(md.find("| fog | kept | 12.5 dB | -2% | fog breaks the target without it |"),
+              std::string::npos);
+    EXPECT_NE(md.find("identical, SSIM 1.000"), std::string::npos);  // 99 dB = identical
+    EXPECT_NE(md.find("1 scene(s) NOT met"), std::string::npos);
+    const std::string html = ReadText(written.folder / "index.html");
+    EXPECT_NE(html.find("<h2 id=\"scenes\">8. Scenes</h2>"), std::string::npos);
+    EXPECT_NE(html.find("fog hides the floor at 0.8"), std::string::npos);
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    EXPECT_EQ(data["scenes"]["present"], true);
+    EXPECT_EQ(data["scenes"]["plans"].size(), 2u);
+    EXPECT_EQ(data["scenes"]["plans"][0]["dropped"][0]["effect"], "refraction");
+    EXPECT_EQ(data["inputs"]["plans"], loaded.inputs->plans_path.string());
+}
+
+TEST(ReportScenesTest, MissingPlansSayHowToProduceThem) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    EXPECT_FALSE(loaded.inputs->plans);
+    EXPECT_EQ(loaded.inputs->plans_error, "");
+    const ReportModel model = BuildOrFail(*loaded.inputs);
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("## 8. Scenes\n\nNo scene plans were found"), std::string::npos) << md;
+    EXPECT_NE(md.find("tidepool plan --all --out DIR"), std::string::npos);
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    EXPECT_EQ(data["scenes"]["present"], false);
+    EXPECT_EQ(data["inputs"]["plans"], nullptr);
+}
+
+TEST(ReportScenesTest, CorruptOrForeignPlansAreAnErrorNamingTheFileInTheReport) {
+    for (const std::string& content :
+         {std::string("{\"schema\": \"tidepool.pla"), std::string(R"({"schema": "other"})"),
+          std::string(R"({"schema": "tidepool.plans", "version": 1, "plans": [{"x": 1}]})")}) {
+        TempDir dir;
+        const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+        const std::filesystem::path plans = dir.Write("render/plans.json", content);
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        ASSERT_TRUE(loaded.inputs) << loaded.error;  // the rest of the report is still built
+        EXPECT_FALSE(loaded.inputs->plans);
+        EXPECT_EQ(loaded.inputs->plans_error.rfind(plans.string() + ": ", 0), 0u)
+                << loaded.inputs->plans_error;
+        const ReportModel model = BuildOrFail(*loaded.inputs);
+        const WrittenReport written = WriteReport(model, dir.Path() / "out");
+        ASSERT_EQ(written.error, "");
+        const std::string md = ReadText(written.folder / "report.md");
+        EXPECT_NE(md.find(loaded.inputs->plans_error), std::string::npos) << md;
+        const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+        EXPECT_EQ(data["scenes"]["error"], loaded.inputs->plans_error);
+    }
+}
+
+}  // namespace
