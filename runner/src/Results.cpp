@@ -89,7 +89,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
 
     const long count = static_cast<long>(options.configurations.size());
     const long per_config = static_cast<long>(options.views.size()) + options.warmup_frames +
-                            static_cast<long>(options.rounds) * options.frames_per_round + 1;
+                            static_cast<long>(options.rounds) *
+                                    std::max(options.frames_per_round,
+                                             options.preset_frames_per_round) +
+                            1;
     RunProgress state;
     state.total = count * per_config;
     auto step = [&](const char* stage, const std::string& id, long amount) {
@@ -208,7 +211,11 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // Rotate the order each round so no configuration always follows the same one.
             const std::size_t i = timed[(k + static_cast<std::size_t>(round)) % timed.size()];
             ConfigurationResult& r = results.configurations[i];
-            for (int f = 0; f < options.frames_per_round; ++f) {
+            const int frames = !r.configuration.presets.empty() &&
+                                               options.preset_frames_per_round > 0
+                                       ? options.preset_frames_per_round
+                                       : options.frames_per_round;
+            for (int f = 0; f < frames; ++f) {
                 const double cpu_start = ProcessCpuSeconds();
                 const Clock::time_point frame_start = Clock::now();
                 const FrameReport frame = renderer->RenderFrame(r.configuration, *timing_view);
@@ -291,6 +298,8 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         {"warmup_frames", o.warmup_frames},
         {"rounds", o.rounds},
         {"frames_per_round", o.frames_per_round},
+        {"preset_frames_per_round",
+         o.preset_frames_per_round > 0 ? o.preset_frames_per_round : o.frames_per_round},
         {"timing_method", "steady_clock (samples_ms) and CLOCK_PROCESS_CPUTIME_ID "
                           "(cpu_samples_ms) around submission + glFinish, per frame; rounds "
                           "interleave configurations, order rotated each round"},

@@ -43,6 +43,10 @@ struct RunOptions {
     int warmup_frames = 2;          // per configuration, untimed (llvmpipe compiles on first draw)
     int rounds = 3;                 // each round renders every configuration
     int frames_per_round = 3;       // timed frames per configuration per round
+    // Timed frames per round for configurations a preset asked for (the whitepaper's
+    // comparisons): their per-round medians decide the report's verdicts, so they get more
+    // frames than the rest of the matrix; 0 means frames_per_round.
+    int preset_frames_per_round = 0;
     std::filesystem::path out_dir;  // images go to out_dir/images/
     bool write_images = true;
     bool compare_with_glslang = true;  // list variants where glslang and Mesa disagree
