@@ -18,6 +18,7 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/Results.h"
 #include "tidepool/runner/WaterMath.h"
 
 namespace tidepool::runner {
@@ -307,6 +308,35 @@ TEST_F(RendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
     EXPECT_LT(with.draw_calls, without.draw_calls);
     // Same passes either way; culling changes draws, not passes.
     EXPECT_EQ(with.pass_names, without.pass_names);
+}
+
+TEST(RunRenderTest, PresetConfigurationsGetTheirOwnFrameCountPerRound) {
+    Shared& shared = Get();
+    ASSERT_TRUE(shared.context) << shared.error;
+    RenderConfiguration plain = Configuration({});
+    RenderConfiguration preset = Configuration({"ENABLE_FOG"});
+    preset.presets = {"a_preset"};
+    RunOptions options;
+    options.configurations = {plain, preset};
+    options.views = {DefaultViews().front()};
+    options.settings.width = 32;
+    options.settings.height = 24;
+    options.warmup_frames = 0;
+    options.rounds = 2;
+    options.frames_per_round = 1;
+    options.preset_frames_per_round = 3;
+    options.write_images = false;
+    options.compare_with_glslang = false;
+    const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
+    ASSERT_EQ(results.configurations.size(), 2U);
+    for (const ConfigurationResult& r : results.configurations) {
+        const std::size_t expected = r.configuration.presets.empty() ? 1U : 3U;
+        ASSERT_EQ(r.samples_ms.size(), 2U) << r.configuration.id;
+        for (std::size_t round = 0; round < 2; ++round) {
+            EXPECT_EQ(r.samples_ms[round].size(), expected) << r.configuration.id;
+            EXPECT_EQ(r.cpu_samples_ms[round].size(), expected) << r.configuration.id;
+        }
+    }
 }
 
 }  // namespace
