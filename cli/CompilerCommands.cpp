@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "CliSupport.h"
 #include "Commands.h"
 #include "tidepool/AtomicFile.h"
 #include "tidepool/GlslValidator.h"
@@ -33,12 +34,6 @@ struct CompilerOptions {
     std::string stage;               // validate: force the stage of plain files
     std::vector<std::string> defines;
 };
-
-void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
-    for (const Diagnostic& d : diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-    }
-}
 
 // The configuration and its expansion, or the exit code that explains why there is none.
 struct LoadedMatrix {

@@ -16,11 +16,15 @@
 #include <string>
 #include <vector>
 
+#include "CliSupport.h"
 #include "Commands.h"
 #include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
+
+// SSIM needs its 11x11 window inside the image several times over; 16 is the smallest side.
+constexpr int kMinPlanSide = 16;
 
 struct PlanCommandOptions {
     std::string config = "variants.yaml";
@@ -34,28 +38,6 @@ struct PlanCommandOptions {
     bool json = false;
     std::string out;
 };
-
-bool ParsePlanSize(const std::string& text, int* width, int* height) {
-    const auto x = text.find('x');
-    if (x == std::string::npos) {
-        return false;
-    }
-    try {
-        std::size_t used = 0;
-        *width = std::stoi(text.substr(0, x), &used);
-        if (used != x) {
-            return false;
-        }
-        *height = std::stoi(text.substr(x + 1), &used);
-        if (used != text.size() - x - 1) {
-            return false;
-        }
-    } catch (const std::exception&) {
-        return false;
-    }
-    // SSIM needs an 11x11 window inside the image; 8192 is the renderer's limit elsewhere.
-    return *width >= 16 && *height >= 16 && *width <= 8192 && *height <= 8192;
-}
 
 report::RgbaImage ToReportImage(const runner::ImageRgba8& image) {
     return report::RgbaImage{image.width, image.height, image.pixels};
@@ -114,7 +96,8 @@ void PrintPlan(const runner::ScenePlan& plan) {
 int RunPlan(const PlanCommandOptions& options) {
     using namespace tidepool::runner;
     PlanOptions plan_options;
-    if (!ParsePlanSize(options.size, &plan_options.settings.width, &plan_options.settings.height)) {
+    if (!ParseSize(options.size, kMinPlanSide, &plan_options.settings.width,
+                   &plan_options.settings.height)) {
         std::fprintf(stderr, "error: --size must be WxH with 16..8192 each, not '%s'\n",
                      options.size.c_str());
         return kExitUsage;

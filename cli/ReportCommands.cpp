@@ -17,6 +17,7 @@
 
 #include <fmt/format.h>
 
+#include "CliSupport.h"
 #include "Commands.h"
 #include "tidepool/AtomicFile.h"
 #include "tidepool/GlslValidator.h"
@@ -79,12 +80,6 @@ struct RunCommandOptions {
     int plan_frames = 2;
 };
 
-void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
-    for (const Diagnostic& d : diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-    }
-}
-
 std::string UtcNow() {
     const std::time_t now = std::time(nullptr);
     std::tm tm{};
@@ -92,60 +87,6 @@ std::string UtcNow() {
     char buffer[32] = {0};
     std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
     return buffer;
-}
-
-std::string CpuModel() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) {
-                return line.substr(line.find_first_not_of(' ', colon + 1));
-            }
-        }
-    }
-    return "unknown";
-}
-
-std::string GitRevision(const std::filesystem::path& folder) {
-    const std::string command =
-            fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return "unknown";
-    }
-    char buffer[128] = {0};
-    std::string revision;
-    if (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
-        revision = buffer;
-    }
-    pclose(pipe);
-    while (!revision.empty() && (revision.back() == '\n' || revision.back() == '\r')) {
-        revision.pop_back();
-    }
-    return revision.empty() ? "unknown" : revision;
-}
-
-bool ParseSize(const std::string& text, int* width, int* height) {
-    const auto x = text.find('x');
-    if (x == std::string::npos) {
-        return false;
-    }
-    try {
-        std::size_t used = 0;
-        *width = std::stoi(text.substr(0, x), &used);
-        if (used != x) {
-            return false;
-        }
-        *height = std::stoi(text.substr(x + 1), &used);
-        if (used != text.size() - x - 1) {
-            return false;
-        }
-    } catch (const std::exception&) {
-        return false;
-    }
-    return *width > 0 && *height > 0 && *width <= 8192 && *height <= 8192;
 }
 
 // Loads the inputs, builds and writes the report, prints the table; returns the exit code.
@@ -343,7 +284,7 @@ int RunAll(const RunCommandOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     int width = 0;
     int height = 0;
-    if (!ParseSize(options.size, &width, &height)) {
+    if (!ParseSize(options.size, 1, &width, &height)) {
         std::fprintf(stderr, "error: --size must be WxH with 1..8192 each, not '%s'\n",
                      options.size.c_str());
         return kExitUsage;
@@ -362,7 +303,7 @@ int RunAll(const RunCommandOptions& options) {
     }
     int stability_width = 0;
     int stability_height = 0;
-    if (!ParseSize(options.stability_size, &stability_width, &stability_height)) {
+    if (!ParseSize(options.stability_size, 1, &stability_width, &stability_height)) {
         std::fprintf(stderr, "error: --stability-size must be WxH with 1..8192 each, not '%s'\n",
                      options.stability_size.c_str());
         return kExitUsage;
@@ -370,7 +311,7 @@ int RunAll(const RunCommandOptions& options) {
     int plan_width = 0;
     int plan_height = 0;
     // SSIM needs its 11x11 window inside the image, as `tidepool plan` requires.
-    if (!ParseSize(options.plan_size, &plan_width, &plan_height) || plan_width < 16 ||
+    if (!ParseSize(options.plan_size, 1, &plan_width, &plan_height) || plan_width < 16 ||
         plan_height < 16) {
         std::fprintf(stderr, "error: --plan-size must be WxH with 16..8192 each, not '%s'\n",
                      options.plan_size.c_str());

@@ -12,6 +12,7 @@
 
 #include <fmt/format.h>
 
+#include "CliSupport.h"
 #include "Commands.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
@@ -40,77 +41,17 @@ struct RunnerOptions {
     bool no_images = false;
 };
 
-void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
-    for (const Diagnostic& d : diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-    }
-}
-
-std::string CpuModel() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) {
-                return line.substr(line.find_first_not_of(' ', colon + 1));
-            }
-        }
-    }
-    return "unknown";
-}
-
-std::string GitRevision(const std::filesystem::path& folder) {
-    const std::string command =
-        fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return "unknown";
-    }
-    char buffer[128] = {0};
-    std::string revision;
-    if (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
-        revision = buffer;
-    }
-    pclose(pipe);
-    while (!revision.empty() && (revision.back() == '\n' || revision.back() == '\r')) {
-        revision.pop_back();
-    }
-    return revision.empty() ? "unknown" : revision;
-}
-
 std::string FormatDuration(double seconds) {
     const long total = static_cast<long>(seconds + 0.5);
     return total >= 60 ? fmt::format("{}m{:02}s", total / 60, total % 60)
                        : fmt::format("{}s", total);
 }
 
-bool ParseSize(const std::string& text, int* width, int* height) {
-    const auto x = text.find('x');
-    if (x == std::string::npos) {
-        return false;
-    }
-    try {
-        std::size_t used = 0;
-        *width = std::stoi(text.substr(0, x), &used);
-        if (used != x) {
-            return false;
-        }
-        *height = std::stoi(text.substr(x + 1), &used);
-        if (used != text.size() - x - 1) {
-            return false;
-        }
-    } catch (const std::exception&) {
-        return false;
-    }
-    return *width > 0 && *height > 0 && *width <= 8192 && *height <= 8192;
-}
-
 int RunRunner(const RunnerOptions& options) {
     using namespace tidepool::runner;
     int width = 0;
     int height = 0;
-    if (!ParseSize(options.size, &width, &height)) {
+    if (!ParseSize(options.size, 1, &width, &height)) {
         std::fprintf(stderr, "error: --size must be WxH with 1..8192 each, not '%s'\n",
                      options.size.c_str());
         return kExitUsage;

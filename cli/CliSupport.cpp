@@ -1,0 +1,70 @@
+#include "CliSupport.h"
+
+#include <cstdio>
+#include <fstream>
+
+#include <fmt/format.h>
+
+namespace tidepool::cli {
+
+void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
+    for (const Diagnostic& d : diagnostics) {
+        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    }
+}
+
+std::string CpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line)) {
+        if (line.rfind("model name", 0) == 0) {
+            const auto colon = line.find(':');
+            if (colon != std::string::npos) {
+                return line.substr(line.find_first_not_of(' ', colon + 1));
+            }
+        }
+    }
+    return "unknown";
+}
+
+std::string GitRevision(const std::filesystem::path& folder) {
+    const std::string command =
+        fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return "unknown";
+    }
+    char buffer[128] = {0};
+    std::string revision;
+    if (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
+        revision = buffer;
+    }
+    pclose(pipe);
+    while (!revision.empty() && (revision.back() == '\n' || revision.back() == '\r')) {
+        revision.pop_back();
+    }
+    return revision.empty() ? "unknown" : revision;
+}
+
+bool ParseSize(const std::string& text, int min_side, int* width, int* height) {
+    const auto x = text.find('x');
+    if (x == std::string::npos) {
+        return false;
+    }
+    try {
+        std::size_t used = 0;
+        *width = std::stoi(text.substr(0, x), &used);
+        if (used != x) {
+            return false;
+        }
+        *height = std::stoi(text.substr(x + 1), &used);
+        if (used != text.size() - x - 1) {
+            return false;
+        }
+    } catch (const std::exception&) {
+        return false;
+    }
+    return *width >= min_side && *height >= min_side && *width <= 8192 && *height <= 8192;
+}
+
+}  // namespace tidepool::cli
