@@ -22,12 +22,41 @@ std::string TargetName(GlslTarget target) {
     return target == GlslTarget::kEs300 ? "300es" : "100";
 }
 
-std::string Axis::DefineFor(std::string_view value) const {
-    std::string define = name + "_";
+namespace {
+
+// `A_V` for value `v` of axis `A`, whether or not the value is the axis default.
+std::string ValueDefine(std::string_view axis, std::string_view value) {
+    std::string define = std::string(axis) + "_";
     for (char c : value) {
         define += static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     }
     return define;
+}
+
+// The axis whose default value would turn into `define` if defaults added defines, or nullptr.
+const Axis* AxisDefaultingTo(const ProgramConfig& program, std::string_view define) {
+    for (const Axis& axis : program.axes) {
+        if (!axis.default_value.empty() && ValueDefine(axis.name, axis.default_value) == define) {
+            return &axis;
+        }
+    }
+    return nullptr;
+}
+
+// Rules and presets are written over define names, and a default has none to test or to set.
+std::string DefaultNamedMessage(const std::string& define, const Axis& axis) {
+    return fmt::format("'{}' is the default of axis '{}' and adds no define; leave it out (a "
+                       "preset) or write the rule over the other values",
+                       define, axis.name);
+}
+
+}  // namespace
+
+std::string Axis::DefineFor(std::string_view value) const {
+    if (!default_value.empty() && value == default_value) {
+        return {};
+    }
+    return ValueDefine(name, value);
 }
 
 std::string Rule::Describe() const {
@@ -52,7 +81,9 @@ std::vector<std::string> ProgramConfig::AllDefines() const {
     }
     for (const Axis& axis : axes) {
         for (const std::string& value : axis.values) {
-            names.push_back(axis.DefineFor(value));
+            if (std::string define = axis.DefineFor(value); !define.empty()) {
+                names.push_back(std::move(define));
+            }
         }
     }
     return names;
@@ -122,6 +153,7 @@ private:
     void ParseTargets(const YAML::Node& node, VariantConfig& config);
     ProgramConfig ParseProgram(const std::string& name, const YAML::Node& key,
                                const YAML::Node& node);
+    Axis ParseAxis(const YAML::Node& key, const YAML::Node& node);
     void ParseRule(const YAML::Node& node, ProgramConfig& program);
     Preset ParsePreset(const std::string& name, const YAML::Node& key, const YAML::Node& node);
     PassOptions ParsePasses(const YAML::Node& node);
@@ -303,23 +335,21 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
     if (const YAML::Node axes = node["axes"]) {
         if (ExpectMap(axes, "axes")) {
             for (auto it = axes.begin(); it != axes.end(); ++it) {
-                Axis axis;
-                axis.name = it->first.Scalar();
-                axis.where = At(it->first);
-                axis.values = NameList(it->second, fmt::format("axis '{}'", axis.name));
-                if (axis.values.size() < 2) {
-                    Error(it->first, fmt::format("axis '{}' needs at least two values (a single "
-                                                 "value is a feature that is always on)",
-                                                 axis.name));
-                }
+                Axis axis = ParseAxis(it->first, it->second);
+                const YAML::Node values_node =
+                        it->second.IsMap() && it->second["values"] ? it->second["values"]
+                                                                   : it->second;
                 std::set<std::string> values;
                 for (const std::string& value : axis.values) {
                     if (!values.insert(value).second) {
-                        Error(it->second, fmt::format("axis '{}' lists value '{}' twice",
-                                                      axis.name, value));
+                        Error(values_node, fmt::format("axis '{}' lists value '{}' twice",
+                                                       axis.name, value));
                         continue;
                     }
-                    declare(axis.DefineFor(value), it->second);
+                    // The default adds no define, so there is no name to declare or validate.
+                    if (value != axis.default_value) {
+                        declare(axis.DefineFor(value), values_node);
+                    }
                 }
                 program.axes.push_back(std::move(axis));
             }
@@ -335,6 +365,46 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         }
     }
     return program;
+}
+
+// `A: [a, b]` (every value adds a define) or `A: { values: [a, b], default: a }` (the default adds
+// none).
+Axis ConfigParser::ParseAxis(const YAML::Node& key, const YAML::Node& node) {
+    Axis axis;
+    axis.name = key.Scalar();
+    axis.where = At(key);
+    const std::string what = fmt::format("axis '{}'", axis.name);
+    if (!node.IsMap()) {
+        axis.values = NameList(node, what);
+    } else {
+        CheckKeys(node, what, {"values", "default"});
+        if (!node["values"]) {
+            Error(key, fmt::format("{} has no 'values'; write `{}: {{ values: [a, b], default: a "
+                                   "}}`",
+                                   what, axis.name));
+            return axis;
+        }
+        axis.values = NameList(node["values"], what);
+        if (const YAML::Node default_node = node["default"]) {
+            if (ExpectScalar(default_node, fmt::format("the default of {}", what))) {
+                const std::string value = default_node.Scalar();
+                if (std::find(axis.values.begin(), axis.values.end(), value) ==
+                    axis.values.end()) {
+                    Error(default_node, fmt::format("the default '{}' of {} is not one of its "
+                                                    "values: {}",
+                                                    value, what, fmt::join(axis.values, ", ")));
+                } else {
+                    axis.default_value = value;
+                }
+            }
+        }
+    }
+    if (axis.values.size() < 2) {
+        Error(key, fmt::format("axis '{}' needs at least two values (a single value is a "
+                               "feature that is always on)",
+                               axis.name));
+    }
+    return axis;
 }
 
 void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
@@ -372,7 +442,12 @@ void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
     }
     const std::vector<std::string> known = program.AllDefines();
     auto check = [&](const std::string& name) {
-        if (std::find(known.begin(), known.end(), name) == known.end()) {
+        if (std::find(known.begin(), known.end(), name) != known.end()) {
+            return;
+        }
+        if (const Axis* axis = AxisDefaultingTo(program, name)) {
+            Error(node, DefaultNamedMessage(name, *axis));
+        } else {
             Error(node, fmt::format("rule names unknown feature '{}' in program '{}'; known: {}",
                                     name, program.name, fmt::join(known, ", ")));
         }
@@ -459,28 +534,42 @@ void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config
     const std::vector<std::string> known = program->AllDefines();
     bool all_known = true;
     for (const std::string& define : preset.defines) {
-        if (std::find(known.begin(), known.end(), define) == known.end()) {
+        if (std::find(known.begin(), known.end(), define) != known.end()) {
+            continue;
+        }
+        if (const Axis* axis = AxisDefaultingTo(*program, define)) {
+            Error(preset.where, DefaultNamedMessage(define, *axis));
+        } else {
             Error(preset.where, fmt::format("preset '{}' uses unknown define '{}' of program "
                                             "'{}'; known: {}",
                                             preset.name, define, program->name,
                                             fmt::join(known, ", ")));
-            all_known = false;
         }
+        all_known = false;
     }
     if (!all_known) {
         return;
     }
-    // A preset must name a variant that exists: every axis set exactly once, no rule broken.
+    // A preset must name a variant that exists: every axis set exactly once (an axis with a
+    // default at most once, none meaning the default), no rule broken.
     for (const Axis& axis : program->axes) {
         int chosen = 0;
         for (const std::string& value : axis.values) {
-            chosen += static_cast<int>(std::count(preset.defines.begin(), preset.defines.end(),
-                                                  axis.DefineFor(value)));
+            const std::string define = axis.DefineFor(value);
+            if (!define.empty()) {
+                chosen += static_cast<int>(
+                        std::count(preset.defines.begin(), preset.defines.end(), define));
+            }
         }
-        if (chosen != 1) {
+        if (axis.default_value.empty() && chosen != 1) {
             Error(preset.where, fmt::format("preset '{}' must choose exactly one value of axis "
                                             "'{}' (it chose {})",
                                             preset.name, axis.name, chosen));
+        } else if (!axis.default_value.empty() && chosen > 1) {
+            Error(preset.where, fmt::format("preset '{}' must choose at most one value of axis "
+                                            "'{}' (it chose {}); choosing none means its "
+                                            "default '{}'",
+                                            preset.name, axis.name, chosen, axis.default_value));
         }
     }
     std::vector<std::string> sorted = preset.defines;

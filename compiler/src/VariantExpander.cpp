@@ -106,7 +106,11 @@ ExpansionResult ExpandVariants(const VariantConfig& config, const ExpansionOptio
                 rest >>= 1U;
             }
             for (const Axis& axis : program.axes) {
-                defines.push_back(axis.DefineFor(axis.values[rest % axis.values.size()]));
+                // An axis default is a combination of its own that adds no define.
+                std::string define = axis.DefineFor(axis.values[rest % axis.values.size()]);
+                if (!define.empty()) {
+                    defines.push_back(std::move(define));
+                }
                 rest /= axis.values.size();
             }
             Variant variant = MakeVariant(program.name, std::move(defines));

@@ -70,6 +70,88 @@ TEST_F(VariantConfigTest, AxisValueBecomesUpperCaseDefine) {
     EXPECT_EQ(axis.DefineFor("cubeMap"), "REFLECTION_CUBEMAP");
 }
 
+TEST_F(VariantConfigTest, AxisDefaultValueBecomesNoDefine) {
+    Axis axis{"REFLECTION", {"planar", "cubemap", "fourier"}, SourceLocation{}, "planar"};
+    EXPECT_EQ(axis.DefineFor("planar"), "");
+    EXPECT_EQ(axis.DefineFor("cubemap"), "REFLECTION_CUBEMAP");
+    EXPECT_EQ(axis.DefineFor("fourier"), "REFLECTION_FOURIER");
+}
+
+TEST_F(VariantConfigTest, AxisMapFormLoadsValuesAndDefaultAndListsNoDefineForTheDefault) {
+    const std::string yaml = std::string(kProgramHead) +
+                             "    features: [ENABLE_FOG]\n"
+                             "    axes:\n"
+                             "      QUALITY: [low, high]\n"
+                             "      REFLECTION: { values: [planar, cubemap, fourier], default: "
+                             "planar }\n"
+                             "      MODE: { values: [fast, exact] }\n"
+                             "    rules:\n"
+                             "      - { if: REFLECTION_FOURIER, requires: ENABLE_FOG }\n";
+    const ConfigResult result = Parse(yaml);
+    ASSERT_TRUE(result.config.has_value()) << Errors(yaml);
+    EXPECT_TRUE(result.diagnostics.empty());
+    const ProgramConfig& p = result.config->programs.at(0);
+    ASSERT_EQ(p.axes.size(), 3U);
+    EXPECT_EQ(p.axes[0].default_value, "");
+    const Axis& reflection = p.axes[1];
+    EXPECT_EQ(reflection.name, "REFLECTION");
+    EXPECT_EQ(reflection.values, (std::vector<std::string>{"planar", "cubemap", "fourier"}));
+    EXPECT_EQ(reflection.default_value, "planar");
+    EXPECT_EQ(reflection.where.line, 8);
+    EXPECT_EQ(reflection.where.column, 7);
+    // The map form without `default:` is the list form: every value adds a define.
+    EXPECT_EQ(p.axes[2].values, (std::vector<std::string>{"fast", "exact"}));
+    EXPECT_EQ(p.axes[2].default_value, "");
+    EXPECT_EQ(p.AllDefines(),
+              (std::vector<std::string>{"ENABLE_FOG", "QUALITY_LOW", "QUALITY_HIGH",
+                                        "REFLECTION_CUBEMAP", "REFLECTION_FOURIER", "MODE_FAST",
+                                        "MODE_EXACT"}));
+}
+
+// Adding an axis with a default to a program keeps the ids of the variants it had before.
+TEST_F(VariantConfigTest, AxisWithDefaultKeepsTheIdsOfExistingVariants) {
+    const std::string before = std::string(kProgramHead) + "    features: [ENABLE_FOG]\n";
+    const std::string after =
+            before + "    axes:\n"
+                     "      REFLECTION: { values: [planar, cubemap, fourier], default: planar }\n";
+    const ConfigResult old_config = Parse(before);
+    const ConfigResult new_config = Parse(after);
+    ASSERT_TRUE(old_config.config.has_value());
+    ASSERT_TRUE(new_config.config.has_value());
+    EXPECT_EQ(CountCombinations(new_config.config->programs.at(0)), 6U);
+    const ExpansionResult old_variants = ExpandVariants(*old_config.config, ExpansionOptions{});
+    const ExpansionResult new_variants = ExpandVariants(*new_config.config, ExpansionOptions{});
+    std::vector<std::string> old_ids;
+    for (const Variant& v : old_variants.variants) {
+        old_ids.push_back(v.Id());
+    }
+    std::vector<std::string> new_ids;
+    for (const Variant& v : new_variants.variants) {
+        new_ids.push_back(v.Id());
+    }
+    EXPECT_EQ(old_ids, (std::vector<std::string>{"p:", "p:ENABLE_FOG"}));
+    EXPECT_EQ(new_ids, (std::vector<std::string>{"p:", "p:ENABLE_FOG",
+                                                 "p:ENABLE_FOG,REFLECTION_CUBEMAP",
+                                                 "p:ENABLE_FOG,REFLECTION_FOURIER",
+                                                 "p:REFLECTION_CUBEMAP", "p:REFLECTION_FOURIER"}));
+}
+
+TEST_F(VariantConfigTest, PresetThatChoosesNoValueOfAnAxisWithDefaultGetsTheDefault) {
+    const ConfigResult result =
+            Parse(std::string(kProgramHead) +
+                  "    features: [ENABLE_FOG]\n"
+                  "    axes:\n"
+                  "      REFLECTION: { values: [planar, cubemap, fourier], default: planar }\n"
+                  "presets:\n"
+                  "  planar: { program: p, defines: [ENABLE_FOG] }\n"
+                  "  cube: { program: p, defines: [ENABLE_FOG, REFLECTION_CUBEMAP] }\n");
+    ASSERT_TRUE(result.config.has_value());
+    EXPECT_TRUE(result.diagnostics.empty());
+    const Preset* planar = result.config->FindPreset("planar");
+    ASSERT_NE(planar, nullptr);
+    EXPECT_EQ(MakeVariant(planar->program, planar->defines).Id(), "p:ENABLE_FOG");
+}
+
 TEST_F(VariantConfigTest, TargetsAcceptOptionalEs300) {
     const ConfigResult result = Parse("targets: [100, 300]\n" + std::string(kProgramHead));
     ASSERT_TRUE(result.config.has_value());
@@ -153,6 +235,79 @@ INSTANTIATE_TEST_SUITE_P(
                                      "    rules: [{ if: A }]\n",
                              "v.yaml:6:13: error: a rule is either `{if: A, requires: [B]}`, "
                              "`{if: A, excludes: [B]}` or `{exclude: [A, B]}`\n"},
+                BadInputCase{"AxisMapWithUnknownKey",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar, cubemap], defualt: "
+                                     "planar }\n",
+                             "v.yaml:6:48: error: unknown key 'defualt' in axis 'REFLECTION'; "
+                             "allowed keys: values, default\n"},
+                BadInputCase{"AxisMapWithoutValues",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { default: planar }\n",
+                             "v.yaml:6:7: error: axis 'REFLECTION' has no 'values'; write "
+                             "`REFLECTION: { values: [a, b], default: a }`\n"},
+                BadInputCase{"AxisDefaultIsNotOneOfItsValues",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar, cubemap], default: "
+                                     "fourier }\n",
+                             "v.yaml:6:57: error: the default 'fourier' of axis 'REFLECTION' is "
+                             "not one of its values: planar, cubemap\n"},
+                BadInputCase{"AxisMapWithOneValue",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar], default: planar }\n",
+                             "v.yaml:6:7: error: axis 'REFLECTION' needs at least two values (a "
+                             "single value is a feature that is always on)\n"},
+                BadInputCase{"AxisListWithOneValue",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      QUALITY: [low]\n",
+                             "v.yaml:6:7: error: axis 'QUALITY' needs at least two values (a "
+                             "single value is a feature that is always on)\n"},
+                BadInputCase{"RuleNamesTheDefineOfAnAxisDefault",
+                             std::string(kProgramHead) +
+                                     "    features: [A]\n"
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar, cubemap], default: "
+                                     "planar }\n"
+                                     "    rules:\n"
+                                     "      - { if: A, requires: REFLECTION_PLANAR }\n",
+                             "v.yaml:9:9: error: 'REFLECTION_PLANAR' is the default of axis "
+                             "'REFLECTION' and adds no define; leave it out (a preset) or write "
+                             "the rule over the other values\n"},
+                BadInputCase{"PresetNamesTheDefineOfAnAxisDefault",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar, cubemap], default: "
+                                     "planar }\n"
+                                     "presets:\n"
+                                     "  bad: { program: p, defines: [REFLECTION_PLANAR] }\n",
+                             "v.yaml:8:3: error: 'REFLECTION_PLANAR' is the default of axis "
+                             "'REFLECTION' and adds no define; leave it out (a preset) or write "
+                             "the rule over the other values\n"},
+                BadInputCase{"PresetChoosesTwoValuesOfAnAxisWithDefault",
+                             std::string(kProgramHead) +
+                                     "    axes:\n"
+                                     "      REFLECTION: { values: [planar, cubemap, fourier], "
+                                     "default: planar }\n"
+                                     "presets:\n"
+                                     "  bad: { program: p, defines: [REFLECTION_CUBEMAP, "
+                                     "REFLECTION_FOURIER] }\n",
+                             "v.yaml:8:3: error: preset 'bad' must choose at most one value of "
+                             "axis 'REFLECTION' (it chose 2); choosing none means its default "
+                             "'planar'\n"},
+                BadInputCase{"PresetChoosesNoValueOfAnAxisWithoutDefault",
+                             std::string(kProgramHead) +
+                                     "    features: [A]\n"
+                                     "    axes:\n"
+                                     "      QUALITY: [low, high]\n"
+                                     "presets:\n"
+                                     "  bad: { program: p, defines: [A] }\n",
+                             "v.yaml:9:3: error: preset 'bad' must choose exactly one value of "
+                             "axis 'QUALITY' (it chose 0)\n"},
                 BadInputCase{"DesktopOnlyTargets", "targets: [330]\n" + std::string(kProgramHead),
                              "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100 or 300\n"
                              "v.yaml:1:10: error: targets must include 100 (GLSL ES 1.00 is the "

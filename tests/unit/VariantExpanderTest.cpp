@@ -131,6 +131,56 @@ TEST(VariantExpanderTest, AxisContributesExactlyOneValueDefinePerVariant) {
     EXPECT_EQ(result.pruned[0].combination.Id(), "p:A,MODE_EXACT");
 }
 
+// REFLECTION: { values: [planar, cubemap, fourier], default: planar }
+Axis ReflectionWithPlanarDefault() {
+    return Axis{"REFLECTION", {"planar", "cubemap", "fourier"}, SourceLocation{}, "planar"};
+}
+
+TEST(VariantExpanderTest, AxisDefaultValueAddsNoDefineAndStillCountsAsACombination) {
+    const ProgramConfig program = Program({"A"}, {}, {ReflectionWithPlanarDefault()});
+    EXPECT_EQ(CountCombinations(program), 6U);
+    const ExpansionResult result = ExpandVariants(Config({program}), ExpansionOptions{});
+    ASSERT_TRUE(result.diagnostics.empty());
+    // The default-valued variants carry no REFLECTION_* define: their ids are those of a program
+    // without the axis.
+    EXPECT_EQ(Ids(result.variants),
+              (std::set<std::string>{"p:", "p:A", "p:REFLECTION_CUBEMAP", "p:REFLECTION_FOURIER",
+                                     "p:A,REFLECTION_CUBEMAP", "p:A,REFLECTION_FOURIER"}));
+    EXPECT_TRUE(result.pruned.empty());
+}
+
+TEST(VariantExpanderTest, CountMultipliesByEveryAxisValueIncludingTheDefault) {
+    const ProgramConfig program =
+            Program({"A", "B"}, {},
+                    {Axis{"QUALITY", {"low", "high"}, {}}, ReflectionWithPlanarDefault()});
+    EXPECT_EQ(CountCombinations(program), 24U);
+    const ExpansionResult result = ExpandVariants(Config({program}), ExpansionOptions{});
+    EXPECT_EQ(result.variants.size(), 24U);
+    EXPECT_EQ(Ids(result.variants).size(), 24U);
+    // Every variant has exactly one QUALITY define and at most one REFLECTION define.
+    for (const Variant& v : result.variants) {
+        auto count = [&](const std::string& prefix) {
+            return std::count_if(v.defines.begin(), v.defines.end(), [&](const std::string& d) {
+                return d.rfind(prefix, 0) == 0;
+            });
+        };
+        EXPECT_EQ(count("QUALITY_"), 1) << v.Id();
+        EXPECT_LE(count("REFLECTION_"), 1) << v.Id();
+    }
+}
+
+TEST(VariantExpanderTest, RuleOverTheOtherValuesOfAnAxisWithDefaultPrunesOnlyThoseValues) {
+    const ExpansionResult result = ExpandVariants(
+            Config({Program({"A"}, {Requires("REFLECTION_FOURIER", {"A"}, 4)},
+                            {ReflectionWithPlanarDefault()})}),
+            ExpansionOptions{});
+    EXPECT_EQ(Ids(result.variants),
+              (std::set<std::string>{"p:", "p:A", "p:REFLECTION_CUBEMAP", "p:A,REFLECTION_CUBEMAP",
+                                     "p:A,REFLECTION_FOURIER"}));
+    ASSERT_EQ(result.pruned.size(), 1U);
+    EXPECT_EQ(result.pruned[0].combination.Id(), "p:REFLECTION_FOURIER");
+}
+
 TEST(VariantExpanderTest, MatrixOverTheLimitIsRefusedWithItsCountBeforeEnumeration) {
     std::vector<std::string> many;
     for (int i = 0; i < 40; ++i) {

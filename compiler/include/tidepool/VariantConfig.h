@@ -37,12 +37,17 @@ struct Feature {
 
 /// An enumerated axis: exactly one value is chosen; value `v` of axis `A` becomes `#define A_V 1`
 /// with `V` upper-cased (`REFLECTION: [planar, cubemap]` → `REFLECTION_PLANAR`, `REFLECTION_CUBEMAP`).
+/// An axis may name a default value that adds no define: the shader reads "no `A_*` define" as the
+/// default, so adding such an axis to a program leaves the ids of its existing variants unchanged.
 struct Axis {
     std::string name;
     std::vector<std::string> values;
     SourceLocation where;
+    // One of `values`, or empty when every value adds a define. The initializer lets
+    // `Axis{name, values, where}` leave it out without a -Wmissing-field-initializers warning.
+    std::string default_value = {};
 
-    /// The define a value of this axis turns into.
+    /// The define a value of this axis turns into; "" for the default value, which adds none.
     std::string DefineFor(std::string_view value) const;
 };
 
@@ -75,7 +80,7 @@ struct ProgramConfig {
     std::vector<Rule> rules;
     SourceLocation where;
 
-    /// Every define name this program can emit (features, then axis values).
+    /// Every define name this program can emit (features, then axis values but not defaults).
     std::vector<std::string> AllDefines() const;
 };
 
@@ -125,8 +130,9 @@ struct ConfigResult {
 };
 
 /// Reads and checks a variants.yaml; fails (no config, diagnostics at file:line:col) on unreadable
-/// or malformed YAML, unknown keys, duplicate keys, unknown names in rules or presets, invalid
-/// define names, missing shader files, or rules that leave a program with no variant.
+/// or malformed YAML, unknown keys, duplicate keys, unknown names in rules or presets (including
+/// the would-be define of an axis default), invalid define names, an axis default that is not one
+/// of its values, missing shader files, or rules that leave a program with no variant.
 ConfigResult LoadVariantConfig(const std::filesystem::path& path);
 
 /// The same as LoadVariantConfig for text already in memory; `file_name` is used in diagnostics
