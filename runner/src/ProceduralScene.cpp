@@ -520,6 +520,8 @@ Scene BuildDefaultScene() {
     scene.water_height = 0.0F;
     scene.sun_direction = glm::normalize(glm::vec3(0.45F, 0.6F, -0.65F));
     scene.terrain = BuildTerrain();
+    scene.terrain_columns = kTerrainSegments + 1;
+    scene.terrain_rows = kTerrainSegments + 1;
     scene.objects.push_back(BuildHull());
     const std::array<glm::vec2, 3> pillars{{{15.0F, 35.0F}, {42.0F, 40.0F}, {48.0F, 8.0F}}};
     for (std::size_t i = 0; i < pillars.size(); ++i) {
@@ -549,6 +551,7 @@ Scene BuildSceneFromDescription(const SceneDescription& description) {
         }
         return y;
     };
+    // Only heights change, so the terrain keeps BuildDefaultScene's grid layout, flat floor too.
     for (glm::vec3& p : scene.terrain.positions) {
         // Without the island the floor is flat at the water's depth (open water).
         p.y = description.above_terrain ? reshape(p.y)

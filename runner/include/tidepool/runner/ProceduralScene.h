@@ -74,6 +74,12 @@ struct Mesh {
 struct Scene {
     float water_height = 0;
     Mesh terrain;
+    /// The terrain is a regular grid of terrain_rows x terrain_columns vertices, positions
+    /// row-major (index = row * terrain_columns + column), columns along +x and rows along +z in
+    /// object space; 0 x 0 when the terrain is not such a grid. CPU passes that march the
+    /// heightfield (FourierReflection.h) read the layout from here instead of guessing it.
+    int terrain_columns = 0;
+    int terrain_rows = 0;
     std::vector<Mesh> objects;
     glm::vec3 sun_direction{0.0F, 1.0F, 0.0F};  ///< unit vector towards the sun, world space
 };
