@@ -31,7 +31,8 @@ int main() {
         fmt::print(stderr, "variants.yaml does not load\n");
         return 2;
     }
-    const ExpansionResult expansion = ExpandVariants(*loaded.config, ExpansionOptions{});
+    const ExpansionResult expansion =
+        ExpandVariants(*loaded.config, ExpansionOptions{loaded.config->max_variants});
     RunOptions options;
     options.configurations = BuildDefaultConfigurations(*loaded.config, expansion.variants)
                                  .configurations;

@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <fstream>
 
+#include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
 namespace tidepool::cli {
@@ -65,6 +66,29 @@ bool ParseSize(const std::string& text, int min_side, int* width, int* height) {
         return false;
     }
     return *width >= min_side && *height >= min_side && *width <= 8192 && *height <= 8192;
+}
+
+void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings) {
+    command
+        ->add_option("--fourier-coefficients", settings->coefficients,
+                     "REFLECTION_FOURIER: Fourier terms kept per water vertex, 1..8 "
+                     "(a0, a1, b1, a2, b2, a3, b3, a4)")
+        ->capture_default_str();
+    command
+        ->add_option("--fourier-directions", settings->directions,
+                     "REFLECTION_FOURIER: directions the terrain is marched in per vertex (>= 3)")
+        ->capture_default_str();
+}
+
+bool CheckFourierOptions(const runner::FourierSettings& settings) {
+    const std::string error = runner::CheckFourierSettings(settings);
+    if (!error.empty()) {
+        std::fprintf(stderr,
+                     "error: %s (set --fourier-coefficients 1..8 and --fourier-directions >= 3)\n",
+                     error.c_str());
+        return false;
+    }
+    return true;
 }
 
 }  // namespace tidepool::cli

@@ -6,6 +6,11 @@
 #include <vector>
 
 #include "tidepool/Diagnostic.h"
+#include "tidepool/runner/FourierReflection.h"
+
+namespace CLI {
+class App;
+}
 
 namespace tidepool::cli {
 
@@ -21,5 +26,13 @@ std::string GitRevision(const std::filesystem::path& folder);
 /// Parses "WxH"; false unless both sides are whole numbers in [min_side, 8192] (8192: the
 /// largest render target the renderer allocates).
 bool ParseSize(const std::string& text, int min_side, int* width, int* height);
+
+/// Adds --fourier-coefficients and --fourier-directions (REFLECTION_FOURIER) to `command`,
+/// writing into `settings`.
+void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings);
+
+/// Prints why `settings` cannot be used, naming the options, and returns false; true when they
+/// can.
+bool CheckFourierOptions(const runner::FourierSettings& settings);
 
 }  // namespace tidepool::cli

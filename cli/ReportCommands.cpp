@@ -78,6 +78,7 @@ struct RunCommandOptions {
     std::string plan_size = "160x120";
     int plan_rounds = 3;
     int plan_frames = 2;
+    tidepool::runner::FourierSettings fourier;
 };
 
 std::string UtcNow() {
@@ -301,6 +302,9 @@ int RunAll(const RunCommandOptions& options) {
                              "at least 1, --warmup and --threads at least 0\n");
         return kExitUsage;
     }
+    if (!CheckFourierOptions(options.fourier)) {
+        return kExitUsage;
+    }
     int stability_width = 0;
     int stability_height = 0;
     if (!ParseSize(options.stability_size, 1, &stability_width, &stability_height)) {
@@ -381,6 +385,7 @@ int RunAll(const RunCommandOptions& options) {
     run.views = DefaultViews();
     run.settings.width = width;
     run.settings.height = height;
+    run.settings.fourier = options.fourier;
     run.warmup_frames = options.warmup;
     run.rounds = options.rounds;
     run.frames_per_round = options.frames;
@@ -504,6 +509,7 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str();
     run->add_option("--threads", run_options->threads, "llvmpipe threads (LP_NUM_THREADS)")
             ->capture_default_str();
+    AddFourierOptions(run, &run_options->fourier);
     run->add_flag("--no-stability", run_options->no_stability,
                   "skip the numerical-stability catalogue (the report then says how to make it)");
     run->add_flag("--no-plans", run_options->no_plans,

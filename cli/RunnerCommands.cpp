@@ -39,6 +39,7 @@ struct RunnerOptions {
     std::string out = "reports/out/render";
     bool json = false;
     bool no_images = false;
+    tidepool::runner::FourierSettings fourier;
 };
 
 std::string FormatDuration(double seconds) {
@@ -65,6 +66,10 @@ int RunRunner(const RunnerOptions& options) {
     if (options.frames < 1 || options.rounds < 0 || options.warmup < 0 || options.threads < 0) {
         std::fprintf(stderr, "error: --frames must be at least 1; --rounds, --warmup and "
                              "--threads at least 0\n");
+        return kExitUsage;
+    }
+
+    if (!CheckFourierOptions(options.fourier)) {
         return kExitUsage;
     }
 
@@ -125,6 +130,7 @@ int RunRunner(const RunnerOptions& options) {
     run.views = views;
     run.settings.width = width;
     run.settings.height = height;
+    run.settings.fourier = options.fourier;
     run.warmup_frames = options.warmup;
     run.rounds = options.rounds;
     run.frames_per_round = options.frames;
@@ -239,6 +245,7 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
         ->capture_default_str();
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");
+    AddFourierOptions(command, &options->fourier);
 }
 
 }  // namespace

@@ -7,6 +7,11 @@
 //                     below the water plane, so submerged terrain grows murky in the refraction
 //                     pass. Costs a multiply, a clamp and a mix (whitepaper: fog overall +3.5%
 //                     when disabled).
+//   ENABLE_DEPTH_ALPHA  Writes the water depth of the fragment into alpha as
+//                     sqrt(clamp(depth / MaxWaterDepth, 0, 1)), for the depth-based optics of
+//                     water.fsh (ENABLE_EXTINCTION, ENABLE_SHORE_FOAM, ENABLE_SOFT_SHORE), which
+//                     read it from the refraction pass. The square root spends the 8 bits on
+//                     shallow water, where the shore effects change fastest. Costs a sqrt.
 //   CLIP_DISCARD      Discards fragments on the negative side of ClipPlane, the fallback for
 //                     reflection/refraction passes that do not clip with an oblique projection.
 //                     Costs a discard, which disables early depth tests on tile-based GPUs; the
@@ -27,6 +32,13 @@ varying lowp vec3 Colour;
 #ifdef ENABLE_FOG_DEPTH
 uniform mediump float RcpMaxFogDepth;
 uniform lowp vec3 FogColour;
+#endif
+
+#ifdef ENABLE_DEPTH_ALPHA
+uniform mediump float RcpMaxWaterDepth;
+#endif
+
+#if defined(ENABLE_FOG_DEPTH) || defined(ENABLE_DEPTH_ALPHA)
 varying mediump float WaterDepth;
 #endif
 
@@ -49,5 +61,10 @@ void main()
     colour = mix(colour, FogColour, clamp(WaterDepth * RcpMaxFogDepth, 0.0, 1.0));
 #endif
 
+#ifdef ENABLE_DEPTH_ALPHA
+    // Above the water (the clip offset's sliver) the depth is negative: stored as 0.
+    gl_FragColor = vec4(colour, sqrt(clamp(WaterDepth * RcpMaxWaterDepth, 0.0, 1.0)));
+#else
     gl_FragColor = vec4(colour, 1.0);
+#endif
 }

@@ -9,6 +9,8 @@
 //                     dot product per vertex.
 //   ENABLE_FOG_DEPTH  Passes the depth below the water plane for underwater fog (refraction
 //                     pass). Costs one varying.
+//   ENABLE_DEPTH_ALPHA  The same depth, for model.fsh to store in alpha (refraction pass of the
+//                     depth-based optics). Shares the varying with ENABLE_FOG_DEPTH.
 //   CLIP_DISCARD      Passes the signed distance to ClipPlane for the fragment stage to discard
 //                     on. Costs one varying (see model.fsh for the discard's cost).
 // Without ENABLE_LIGHTING the model shows its albedo unlit.
@@ -19,7 +21,11 @@ attribute lowp vec3 inColour;
 
 uniform highp mat4 ModelViewProjMatrix;
 
-#if defined(ENABLE_LIGHTING) || defined(ENABLE_FOG_DEPTH) || defined(CLIP_DISCARD)
+#if defined(ENABLE_FOG_DEPTH) || defined(ENABLE_DEPTH_ALPHA)
+#define NEEDS_WATER_DEPTH
+#endif
+
+#if defined(ENABLE_LIGHTING) || defined(NEEDS_WATER_DEPTH) || defined(CLIP_DISCARD)
 #define NEEDS_MODEL_MATRIX
 #endif
 
@@ -36,7 +42,7 @@ const mediump float cAmbient = 0.35;
 const mediump float cDiffuse = 0.65;
 #endif
 
-#ifdef ENABLE_FOG_DEPTH
+#ifdef NEEDS_WATER_DEPTH
 uniform highp float WaterHeight;
 
 // Depth below the water surface (negative above it). It is linear in the position, so per-vertex
@@ -77,7 +83,7 @@ void main()
     Colour = inColour;
 #endif
 
-#ifdef ENABLE_FOG_DEPTH
+#ifdef NEEDS_WATER_DEPTH
     WaterDepth = WaterHeight - worldPosition.y;
 #endif
 

@@ -28,12 +28,40 @@
 //                            Costs framebuffer blending (whitepaper: -11%).
 //   ENABLE_FOG               Fades the water towards FogColour with eye distance. Costs a
 //                            length and a mix (whitepaper: disabling it gave +3.5%).
+//
+// Reflection technique (the REFLECTION axis of variants.yaml; at most one of these is defined):
+//   (neither)                Planar: ReflectionTex, a mirrored render of the scene, sampled at
+//                            the screen coordinate. Shows everything; costs a whole render pass.
+//   REFLECTION_CUBEMAP       The view ray reflected about the (bumped) normal looks up SkyboxTex
+//                            (../shared/seeds/001). No reflection pass; shows only the sky, so
+//                            terrain and objects are missing from the reflection.
+//   REFLECTION_FOURIER       As cubemap, but where the reflected ray's elevation lies below the
+//                            terrain's elevation angle in its azimuth, evaluated from per-vertex
+//                            Fourier coefficients (../shared/seeds/004), it shows
+//                            TerrainReflectionColour. No reflection pass; the terrain reflects
+//                            as one flat colour and objects are missing.
+//
+// Depth-based optics (../shared/seeds/003). The refraction pass stores the vertical water depth
+// D of what it sees in its alpha channel as sqrt(D / MaxWaterDepth) (shaders/model.fsh,
+// ENABLE_DEPTH_ALPHA); each of these needs ENABLE_REFRACTION and is a no-op without it:
+//   ENABLE_EXTINCTION        Per-channel colour extinction with depth, and horizontal visibility:
+//                            r = mix(r, SurfaceColour, clamp(L / Visibility, 0, 1)), then
+//                            r = mix(r, DepthColour, clamp(D / Extinction, 0, 1)) per channel,
+//                            where r is the refracted colour and L = D / max(cos view, 0.05)
+//                            the path through the water (Extinction default 4.5, 75, 300).
+//   ENABLE_SHORE_FOAM        Foam where the water is shallow: full up to FoamDepth.x, gone at
+//                            FoamDepth.y, patterned by NormalTex reused as a noise texture.
+//   ENABLE_SOFT_SHORE        Blends back to the refraction where D * ShoreHardness < 1, so the
+//                            water meets the shore without a hard edge.
+//   ENABLE_SUN_SPECULAR      The seed's sun glare: pow(reflected-eye · sun, 512) weighted by
+//                            (1 - Fresnel) and Shininess. Needs ENABLE_FRESNEL.
 // Every combination compiles; an option whose prerequisite is missing is a no-op.
 //
 // Test-only switches (never in variants.yaml; `tidepool stability` uses them to measure what each
 // numerical guard changes, docs/HARD_CASES.md): TP_NO_COS_CLAMP, TP_NO_NORMAL_FLOOR,
 // TP_NO_EYE_FLOOR, TP_NO_EYE_SCALING each remove one guard; TP_FORCE_MEDIUMP takes the path of
-// hardware without fragment highp.
+// hardware without fragment highp. TP_OUTPUT_REFRACTION outputs the refracted colour after the
+// depth optics, so tests can check extinction against its formula.
 // water_uniform.fsh is the same shader with uniform bools; keep the two in step.
 
 precision mediump float;
@@ -58,11 +86,43 @@ precision mediump float;
 #if defined(ENABLE_ALPHA_BLEND) && defined(ENABLE_REFRACTION)
 #undef ENABLE_ALPHA_BLEND
 #endif
+#if defined(ENABLE_EXTINCTION) && !defined(ENABLE_REFRACTION)
+#undef ENABLE_EXTINCTION
+#endif
+#if defined(ENABLE_SHORE_FOAM) && !defined(ENABLE_REFRACTION)
+#undef ENABLE_SHORE_FOAM
+#endif
+#if defined(ENABLE_SOFT_SHORE) && !defined(ENABLE_REFRACTION)
+#undef ENABLE_SOFT_SHORE
+#endif
+#if defined(ENABLE_SUN_SPECULAR) && !defined(ENABLE_FRESNEL)
+#undef ENABLE_SUN_SPECULAR
+#endif
+#if defined(REFLECTION_CUBEMAP) && defined(REFLECTION_FOURIER)
+#error "REFLECTION_CUBEMAP and REFLECTION_FOURIER are values of one axis: define at most one"
+#endif
+#if defined(REFLECTION_CUBEMAP) || defined(REFLECTION_FOURIER)
+#define REFLECTS_SKY_DIRECTION
+#endif
+// (GLSL ES 1.00 has no line continuation, hence one #if per line.)
 #if defined(ENABLE_SCALE_DISTORTION) || defined(ENABLE_FRESNEL) || defined(ENABLE_FOG)
+#define NEEDS_EYE_VECTOR
+#endif
+#if defined(REFLECTS_SKY_DIRECTION) || defined(ENABLE_EXTINCTION)
+#define NEEDS_EYE_VECTOR
+#endif
+#if defined(ENABLE_SUN_SPECULAR)
 #define NEEDS_EYE_VECTOR
 #endif
 #if defined(ENABLE_SCALE_DISTORTION) || defined(ENABLE_FOG)
 #define NEEDS_EYE_DISTANCE
+#endif
+// The unit water-to-eye direction and the surface normal.
+#if defined(ENABLE_FRESNEL) || defined(REFLECTS_SKY_DIRECTION) || defined(ENABLE_EXTINCTION)
+#define NEEDS_EYE_DIRECTION
+#endif
+#if defined(ENABLE_EXTINCTION) || defined(ENABLE_SHORE_FOAM) || defined(ENABLE_SOFT_SHORE)
+#define NEEDS_WATER_DEPTH
 #endif
 
 // highp is optional in GLSL ES 1.00 fragment shaders; where it is missing, the eye vector and bump
@@ -83,11 +143,16 @@ const mediump float cBlendAlpha = 0.6;
 // 1e-3 is a normal fp16 number (the smallest is 6.1e-5).
 const HIGHP_OR_MEDIUMP float cMinEyeDistance = 1e-3;
 
+#ifndef REFLECTS_SKY_DIRECTION
 uniform sampler2D ReflectionTex;
+#endif
 uniform mediump vec2 RcpWindowSize;
 
-#ifdef ENABLE_DISTORTION
+#if defined(ENABLE_DISTORTION) || defined(ENABLE_SHORE_FOAM)
 uniform sampler2D NormalTex;
+#endif
+
+#ifdef ENABLE_DISTORTION
 uniform mediump float WaveDistortion;
 varying HIGHP_OR_MEDIUMP vec2 BumpCoord0;
 varying HIGHP_OR_MEDIUMP vec2 BumpCoord1;
@@ -112,6 +177,51 @@ uniform lowp vec4 WaterColour;
 #ifdef ENABLE_FOG
 uniform lowp vec3 FogColour;
 uniform mediump float RcpMaxFogDepth;
+#endif
+
+#ifdef REFLECTS_SKY_DIRECTION
+uniform samplerCube SkyboxTex;
+#ifdef ENABLE_FOG
+// sin(10 degrees): as in skybox.fsh, whose horizon fog the planar reflection shows.
+const mediump float cSinFogElevation = 0.173648;
+#endif
+#endif
+
+#ifdef REFLECTION_FOURIER
+uniform lowp vec3 TerrainReflectionColour;
+varying mediump vec4 FourierCoefs0;
+varying mediump vec4 FourierCoefs1;
+// Half-width (radians) of the soft edge between reflected terrain and sky.
+const mediump float cFourierEdge = 0.02;
+#endif
+
+#ifdef NEEDS_WATER_DEPTH
+uniform mediump float MaxWaterDepth;
+#endif
+
+#ifdef ENABLE_EXTINCTION
+uniform mediump vec3 Extinction;     // depth (world units) at which each channel is gone
+uniform mediump float Visibility;    // path length (world units) at which the water is opaque
+uniform lowp vec3 SurfaceColour;
+uniform lowp vec3 DepthColour;
+// Floor under the cosine of the view angle: the path length is at most 20 times the depth.
+const mediump float cMinViewCos = 0.05;
+#endif
+
+#ifdef ENABLE_SHORE_FOAM
+uniform lowp vec3 FoamColour;
+uniform mediump vec2 FoamDepth;      // (full up to, gone at), world units
+varying HIGHP_OR_MEDIUMP vec2 FoamCoord;
+#endif
+
+#ifdef ENABLE_SOFT_SHORE
+uniform mediump float ShoreHardness; // 1 / the depth over which the shore blends in
+#endif
+
+#ifdef ENABLE_SUN_SPECULAR
+uniform mediump vec3 SunDirection;   // unit vector towards the sun
+uniform lowp vec3 SunColour;
+uniform mediump float Shininess;     // seed: 0.5 to 0.7
 #endif
 
 #ifdef ENABLE_FRESNEL
@@ -146,6 +256,27 @@ mediump float fresnelReflectance(mediump float cosIncidence)
     return r0 + (1.0 - r0) * (m2 * m2 * m);
 }
 #endif
+#endif
+
+#ifdef REFLECTION_FOURIER
+// The terrain's elevation angle in the horizontal direction `azimuth` = (cos t, sin t), the
+// seed's eight-term series a0 + a1 cos t + b1 sin t + a2 cos 2t + b2 sin 2t + a3 cos 3t
+// + b3 sin 3t + a4 cos 4t. The multiple angles come from the angle-addition formulas instead of
+// the seed's atan2 and four sincos: the trigonometric substitution it names as the way to cut
+// its ~64 instruction slots.
+mediump float terrainElevation(mediump vec2 azimuth)
+{
+    mediump float c1 = azimuth.x;
+    mediump float s1 = azimuth.y;
+    mediump float c2 = c1 * c1 - s1 * s1;
+    mediump float s2 = 2.0 * s1 * c1;
+    mediump float c3 = c2 * c1 - s2 * s1;
+    mediump float s3 = s2 * c1 + c2 * s1;
+    mediump float c4 = c2 * c2 - s2 * s2;
+    return FourierCoefs0.x + FourierCoefs0.y * c1 + FourierCoefs0.z * s1
+         + FourierCoefs0.w * c2 + FourierCoefs1.x * s2 + FourierCoefs1.y * c3
+         + FourierCoefs1.z * s3 + FourierCoefs1.w * c4;
+}
 #endif
 
 void main()
@@ -195,12 +326,7 @@ void main()
     screenCoord -= bumpNormal.xz * distortion * RcpWindowSize;
 #endif
 
-    mediump vec3 colour = texture2D(ReflectionTex, screenCoord).rgb;
-
-#ifdef ENABLE_REFRACTION
-    mediump vec3 refraction = texture2D(RefractionTex, screenCoord).rgb;
-    mediump float reflectance = cReflectionShare;
-#ifdef ENABLE_FRESNEL
+#ifdef NEEDS_EYE_DIRECTION
 #ifdef NORMALISE_CUBEMAP
     // The cube map stores normalize(dir) * 0.5 + 0.5, so a lookup replaces the rsqrt.
     HIGHP_OR_MEDIUMP vec3 eyeDirection =
@@ -231,9 +357,82 @@ void main()
     // negative base is undefined in GLSL) and for a reflectance in [0, 1].
     mediump float cosIncidence = clamp(dot(normal, eyeDirection), 0.0, 1.0);
 #endif
+#endif
+
+#ifdef REFLECTS_SKY_DIRECTION
+    // The view ray reflected about the normal: reflect(-eyeDirection, normal). A back-facing
+    // bump normal can send it below the horizon; mirrored back up (its length stays 1), since
+    // the reflection of a ray leaving the water surface cannot point into the water.
+    mediump vec3 reflected = 2.0 * dot(normal, eyeDirection) * normal - eyeDirection;
+    reflected.y = abs(reflected.y);
+    mediump vec3 colour = textureCube(SkyboxTex, reflected).rgb;
+#ifdef ENABLE_FOG
+    // The horizon fog skybox.fsh gives the sky, which the planar reflection shows mirrored.
+    colour = mix(colour, FogColour, clamp(1.0 - reflected.y / cSinFogElevation, 0.0, 1.0));
+#endif
+#ifdef REFLECTION_FOURIER
+    // The reflected ray's horizontal direction, normalised with a floor: straight up it has
+    // none, and there the series' value is a0, below the ray's elevation of ~90 degrees for any
+    // terrain. 1e-4 is representable in mediump.
+    mediump vec2 horizontal = reflected.xz;
+    mediump vec2 azimuth = horizontal * inversesqrt(max(dot(horizontal, horizontal), 1e-4));
+    mediump float elevation = asin(clamp(reflected.y, 0.0, 1.0));
+    mediump float terrain = smoothstep(-cFourierEdge, cFourierEdge,
+                                       terrainElevation(azimuth) - elevation);
+    colour = mix(colour, TerrainReflectionColour, terrain);
+#endif
+#else
+    mediump vec3 colour = texture2D(ReflectionTex, screenCoord).rgb;
+#endif
+
+#ifdef ENABLE_REFRACTION
+    mediump vec4 refracted = texture2D(RefractionTex, screenCoord);
+    mediump vec3 refraction = refracted.rgb;
+#ifdef NEEDS_WATER_DEPTH
+    // The refraction pass stored sqrt(D / MaxWaterDepth): finer steps in shallow water, where
+    // the shore effects change fastest.
+    mediump float waterDepth = refracted.a * refracted.a * MaxWaterDepth;
+#endif
+#ifdef ENABLE_EXTINCTION
+    // Horizontal visibility first (the water's own colour along the path), then extinction with
+    // depth, channel by channel: red is gone at Extinction.r, blue only at Extinction.b.
+    mediump float pathLength = waterDepth / max(eyeDirection.y, cMinViewCos);
+    refraction = mix(refraction, SurfaceColour, clamp(pathLength / Visibility, 0.0, 1.0));
+    refraction = mix(refraction, DepthColour, clamp(vec3(waterDepth) / Extinction, 0.0, 1.0));
+#endif
+#ifdef TP_OUTPUT_REFRACTION
+    gl_FragColor = vec4(refraction, 1.0);
+    return;
+#endif
+    mediump float reflectance = cReflectionShare;
+#ifdef ENABLE_FRESNEL
     reflectance = fresnelReflectance(cosIncidence);
 #endif
     colour = mix(refraction, colour, reflectance);
+
+#ifdef ENABLE_SUN_SPECULAR
+    // The seed's glare: the eye direction mirrored about the normal against the sun, raised to
+    // the 512th power, weighted by (1 - Fresnel) and the sun's height. Clamped: the boost for
+    // shininess above 0.05 takes the sum past 1.
+    mediump vec3 mirrorEye = 2.0 * dot(eyeDirection, normal) * normal - eyeDirection;
+    mediump float dotSpec = clamp(dot(mirrorEye, SunDirection) * 0.5 + 0.5, 0.0, 1.0);
+    mediump float specular = (1.0 - reflectance) * clamp(SunDirection.y, 0.0, 1.0)
+                           * pow(dotSpec, 512.0) * (Shininess * 1.8 + 0.2);
+    specular += specular * 25.0 * clamp(Shininess - 0.05, 0.0, 1.0);
+    colour = min(colour + specular * SunColour, vec3(1.0));
+#endif
+
+#ifdef ENABLE_SHORE_FOAM
+    // Full up to FoamDepth.x, gone at FoamDepth.y; the normal map's x slope, thresholded, breaks
+    // it into patches.
+    mediump float foamPattern = smoothstep(0.45, 0.75, texture2D(NormalTex, FoamCoord).r);
+    mediump float foam = (1.0 - smoothstep(FoamDepth.x, FoamDepth.y, waterDepth)) * foamPattern;
+    colour = mix(colour, FoamColour, foam);
+#endif
+
+#ifdef ENABLE_SOFT_SHORE
+    colour = mix(refraction, colour, clamp(waterDepth * ShoreHardness, 0.0, 1.0));
+#endif
 #endif
 
 #ifdef ENABLE_WATER_COLOUR

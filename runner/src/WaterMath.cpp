@@ -218,6 +218,30 @@ glm::mat<4, 4, T> LookAtWithFallbackUp(const glm::vec<3, T>& eye, const glm::vec
     return glm::lookAt(eye, target, fallback);
 }
 
+namespace {
+
+// clamp(numerator / denominator, 0, 1) where a non-positive denominator means "reached at once".
+float SaturatedRatio(float numerator, float denominator) {
+    if (!(denominator > 0.0F)) {
+        return numerator > 0.0F ? 1.0F : 0.0F;
+    }
+    return std::clamp(numerator / denominator, 0.0F, 1.0F);
+}
+
+}  // namespace
+
+glm::vec3 ExtinctionColour(glm::vec3 refraction, float depth, float cos_view,
+                           const ExtinctionModel& model) {
+    const float path = depth / std::max(cos_view, kMinExtinctionViewCos);
+    glm::vec3 colour =
+        glm::mix(refraction, model.surface_colour, SaturatedRatio(path, model.visibility));
+    for (int channel = 0; channel < 3; ++channel) {
+        colour[channel] = glm::mix(colour[channel], model.depth_colour[channel],
+                                   SaturatedRatio(depth, model.extinction[channel]));
+    }
+    return colour;
+}
+
 template glm::mat<4, 4, float> LookAtWithFallbackUp(const glm::vec<3, float>&,
                                                     const glm::vec<3, float>&);
 template glm::mat<4, 4, double> LookAtWithFallbackUp(const glm::vec<3, double>&,

@@ -50,7 +50,7 @@ VariantConfig ConfigIn(const TempDir& dir, const std::string& vertex_name,
 }
 
 ValidationReport ValidateAll(const VariantConfig& config, int jobs = 1) {
-    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{});
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
     ValidationOptions options;
     options.jobs = jobs;
     options.targets = config.targets;

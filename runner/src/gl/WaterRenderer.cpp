@@ -28,6 +28,8 @@ namespace {
 constexpr GLuint kAttribVertex = 0;
 constexpr GLuint kAttribNormal = 1;
 constexpr GLuint kAttribColour = 2;
+constexpr GLuint kAttribFourier0 = 3;  // REFLECTION_FOURIER coefficients (a0, a1, b1, a2)
+constexpr GLuint kAttribFourier1 = 4;  // and (b2, a3, b3, a4)
 
 // Texture units.
 constexpr GLint kUnitReflection = 0;
@@ -63,6 +65,26 @@ std::string ReadText(const std::filesystem::path& path, bool* ok) {
     text << in.rdbuf();
     *ok = static_cast<bool>(in);
     return text.str();
+}
+
+// The colour REFLECTION_FOURIER gives reflected terrain: the mean of the terrain's vertex
+// colours above the water, lit as model.vsh lights them (albedo * (0.35 + 0.65 max(N.L, 0))).
+// Black when no terrain vertex lies above the water.
+glm::vec3 MeanLitColourAbove(const Mesh& terrain, float water_height, glm::vec3 sun_direction) {
+    const glm::mat3 rotation(terrain.model_matrix);
+    glm::dvec3 sum(0.0);
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < terrain.positions.size(); ++i) {
+        const glm::vec3 world = glm::vec3(terrain.model_matrix * glm::vec4(terrain.positions[i], 1));
+        if (world.y <= water_height) {
+            continue;
+        }
+        const glm::vec3 normal = glm::normalize(rotation * terrain.normals[i]);
+        const float light = 0.35F + 0.65F * std::max(glm::dot(normal, sun_direction), 0.0F);
+        sum += glm::dvec3(terrain.colours[i] * light);
+        ++count;
+    }
+    return count == 0 ? glm::vec3(0.0F) : glm::vec3(sum / static_cast<double>(count));
 }
 
 struct MeshBuffers {
@@ -136,6 +158,12 @@ struct WaterRenderer::Impl {
     std::vector<MeshBuffers> meshes;  // terrain first, then scene.objects
     MeshBuffers sky_cube;
     GLuint water_vertices = 0;
+    // REFLECTION_FOURIER: the tessellated water grid with per-vertex coefficients, built on the
+    // first Prepare of a Fourier configuration (it costs a heightfield march per vertex).
+    MeshBuffers fourier_grid;
+    bool fourier_grid_built = false;
+    std::string fourier_grid_error;
+    glm::vec3 terrain_reflection_colour{0.0F};
     GLuint sky_texture = 0;
     GLuint normal_map = 0;
     GLuint normalisation_cube = 0;
@@ -168,7 +196,19 @@ struct WaterRenderer::Impl {
     void DrawWater(const FramePlan& plan, const RenderConfiguration& c, PassKind pass,
                    FrameReport* report);
     void BindWaterPolygon(const FramePlan& plan);
+    std::string BuildFourierGrid();
 };
+
+// The planar reflection (a reflection pass) unless the configuration reflects the sky direction.
+bool UsesPlanarReflection(const RenderConfiguration& c) {
+    return !c.Has("REFLECTION_CUBEMAP") && !c.Has("REFLECTION_FOURIER");
+}
+
+// The depth-based optics read the water depth the refraction pass stores in alpha.
+bool NeedsWaterDepth(const RenderConfiguration& c) {
+    return c.Has("ENABLE_REFRACTION") &&
+           (c.Has("ENABLE_EXTINCTION") || c.Has("ENABLE_SHORE_FOAM") || c.Has("ENABLE_SOFT_SHORE"));
+}
 
 WaterRenderer::Impl::~Impl() {
     if (gl == nullptr || context == nullptr || !context->MakeCurrent()) {
@@ -186,6 +226,10 @@ WaterRenderer::Impl::~Impl() {
     gl->glDeleteBuffers(1, &sky_cube.vertices);
     gl->glDeleteBuffers(1, &sky_cube.indices);
     gl->glDeleteBuffers(1, &water_vertices);
+    if (fourier_grid_built) {
+        gl->glDeleteBuffers(1, &fourier_grid.vertices);
+        gl->glDeleteBuffers(1, &fourier_grid.indices);
+    }
     const GLuint textures[] = {sky_texture, normal_map, normalisation_cube};
     gl->glDeleteTextures(3, textures);
     for (RenderTarget* target : {&main, &low_res}) {
@@ -290,6 +334,8 @@ std::string WaterRenderer::Impl::Init() {
         scene = BuildDefaultScene();
     }
     meshes.push_back(UploadMesh(scene.terrain));
+    terrain_reflection_colour = MeanLitColourAbove(scene.terrain, scene.water_height,
+                                                   scene.sun_direction);
     for (const Mesh& object : scene.objects) {
         meshes.push_back(UploadMesh(object));
     }
@@ -429,6 +475,8 @@ CompiledProgram& WaterRenderer::Impl::Program(const Variant& variant) {
         gl->glBindAttribLocation(program.id, kAttribVertex, "inVertex");
         gl->glBindAttribLocation(program.id, kAttribNormal, "inNormal");
         gl->glBindAttribLocation(program.id, kAttribColour, "inColour");
+        gl->glBindAttribLocation(program.id, kAttribFourier0, "inFourier0");
+        gl->glBindAttribLocation(program.id, kAttribFourier1, "inFourier1");
         gl->glLinkProgram(program.id);
         GLint status = GL_FALSE;
         gl->glGetProgramiv(program.id, GL_LINK_STATUS, &status);
@@ -485,8 +533,13 @@ std::vector<std::string> WaterRenderer::Impl::HelperDefines(const RenderConfigur
         }
     } else {
         defines.emplace_back("ENABLE_LIGHTING");
-        if (kind == PassKind::kRefraction && fog) {
+        // Extinction replaces the whitepaper's depth fog: it is the same effect, done per
+        // channel in the water shader from the depth stored in alpha.
+        if (kind == PassKind::kRefraction && fog && !c.Has("ENABLE_EXTINCTION")) {
             defines.emplace_back("ENABLE_FOG_DEPTH");
+        }
+        if (kind == PassKind::kRefraction && NeedsWaterDepth(c)) {
+            defines.emplace_back("ENABLE_DEPTH_ALPHA");
         }
     }
     if (discard && (kind == PassKind::kReflection || kind == PassKind::kRefraction)) {
@@ -544,7 +597,7 @@ FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraVi
         }
     };
 
-    if (water_visible) {
+    if (water_visible && UsesPlanarReflection(c)) {
         PassPlan mirror;
         mirror.kind = PassKind::kReflection;
         mirror.view = view_matrix * MirrorMatrix(water_plane);
@@ -560,7 +613,8 @@ FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraVi
             mirror.meshes.push_back(i);
         }
         plan.passes.push_back(std::move(mirror));
-
+    }
+    if (water_visible) {
         if (wants_refraction) {
             PassPlan pass;
             pass.kind = PassKind::kRefraction;
@@ -648,6 +702,8 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, const RenderConfigura
     gl->glUniform3f(Uniform(program, "LightDirection"), scene.sun_direction.x,
                     scene.sun_direction.y, scene.sun_direction.z);
     gl->glUniform1f(Uniform(program, "WaterHeight"), scene.water_height);
+    gl->glUniform1f(Uniform(program, "RcpMaxWaterDepth"),
+                    MediumpFogReciprocal(1.0F / settings.max_water_depth));
     gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"),
                     MediumpFogReciprocal(settings.rcp_max_fog_depth));
     gl->glUniform3f(Uniform(program, "FogColour"), settings.underwater_colour.r,
@@ -753,6 +809,28 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
     gl->glUniform1i(Uniform(program, "RefractionTex"), kUnitRefraction);
     gl->glUniform1i(Uniform(program, "NormalTex"), kUnitNormalMap);
     gl->glUniform1i(Uniform(program, "NormalisationCubeMap"), kUnitNormalisation);
+    gl->glUniform1i(Uniform(program, "SkyboxTex"), kUnitSky);
+    gl->glUniform3f(Uniform(program, "TerrainReflectionColour"), terrain_reflection_colour.r,
+                    terrain_reflection_colour.g, terrain_reflection_colour.b);
+    gl->glUniform1f(Uniform(program, "MaxWaterDepth"), settings.max_water_depth);
+    const ExtinctionModel& extinction = settings.extinction;
+    gl->glUniform3f(Uniform(program, "Extinction"), extinction.extinction.r,
+                    extinction.extinction.g, extinction.extinction.b);
+    gl->glUniform1f(Uniform(program, "Visibility"), extinction.visibility);
+    gl->glUniform3f(Uniform(program, "SurfaceColour"), extinction.surface_colour.r,
+                    extinction.surface_colour.g, extinction.surface_colour.b);
+    gl->glUniform3f(Uniform(program, "DepthColour"), extinction.depth_colour.r,
+                    extinction.depth_colour.g, extinction.depth_colour.b);
+    gl->glUniform3f(Uniform(program, "FoamColour"), settings.foam_colour.r,
+                    settings.foam_colour.g, settings.foam_colour.b);
+    gl->glUniform2f(Uniform(program, "FoamDepth"), settings.foam_depth.x, settings.foam_depth.y);
+    gl->glUniform2f(Uniform(program, "FoamScale"), settings.foam_scale.x, settings.foam_scale.y);
+    gl->glUniform1f(Uniform(program, "ShoreHardness"), settings.shore_hardness);
+    gl->glUniform3f(Uniform(program, "SunDirection"), scene.sun_direction.x,
+                    scene.sun_direction.y, scene.sun_direction.z);
+    gl->glUniform3f(Uniform(program, "SunColour"), settings.sun_colour.r, settings.sun_colour.g,
+                    settings.sun_colour.b);
+    gl->glUniform1f(Uniform(program, "Shininess"), settings.shininess);
     if (c.UsesUniformBools()) {
         for (const char* effect : kWaterEffects) {
             gl->glUniform1i(Uniform(program, UniformBoolName(effect).c_str()),
@@ -771,9 +849,64 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
         gl->glEnable(GL_BLEND);
         gl->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     }
-    gl->glDrawArrays(GL_TRIANGLE_FAN, 0, vertex_count);
+    if (c.Has("REFLECTION_FOURIER") && fourier_grid_built) {
+        // The tessellated grid: the coefficients vary per vertex, so the single polygon that
+        // covers the view will not do.
+        constexpr GLsizei kStride = 11 * sizeof(float);
+        gl->glBindBuffer(GL_ARRAY_BUFFER, fourier_grid.vertices);
+        gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, fourier_grid.indices);
+        gl->glVertexAttribPointer(kAttribVertex, 3, GL_FLOAT, GL_FALSE, kStride, nullptr);
+        gl->glEnableVertexAttribArray(kAttribFourier0);
+        gl->glEnableVertexAttribArray(kAttribFourier1);
+        gl->glVertexAttribPointer(kAttribFourier0, 4, GL_FLOAT, GL_FALSE, kStride,
+                                  reinterpret_cast<const void*>(3 * sizeof(float)));
+        gl->glVertexAttribPointer(kAttribFourier1, 4, GL_FLOAT, GL_FALSE, kStride,
+                                  reinterpret_cast<const void*>(7 * sizeof(float)));
+        gl->glDrawElements(GL_TRIANGLES, fourier_grid.index_count, GL_UNSIGNED_SHORT, nullptr);
+        gl->glDisableVertexAttribArray(kAttribFourier0);
+        gl->glDisableVertexAttribArray(kAttribFourier1);
+    } else {
+        gl->glDrawArrays(GL_TRIANGLE_FAN, 0, vertex_count);
+    }
     ++report->draw_calls;
     gl->glDisable(GL_BLEND);
+}
+
+std::string WaterRenderer::Impl::BuildFourierGrid() {
+    if (fourier_grid_built || !fourier_grid_error.empty()) {
+        return fourier_grid_error;
+    }
+    fourier_grid_error = CheckFourierSettings(settings.fourier);
+    if (!fourier_grid_error.empty()) {
+        return fourier_grid_error;
+    }
+    const FourierWaterGrid grid = BuildFourierWaterGrid(scene, settings.fourier);
+    if (grid.positions.empty() || grid.indices.empty()) {
+        fourier_grid_error = "the Fourier water grid is empty (over 65535 vertices? raise "
+                             "fourier grid spacing)";
+        return fourier_grid_error;
+    }
+    std::vector<float> interleaved;
+    interleaved.reserve(grid.positions.size() * 11);
+    for (std::size_t i = 0; i < grid.positions.size(); ++i) {
+        const glm::vec3& p = grid.positions[i];
+        const glm::vec4& c0 = grid.coefficients0[i];
+        const glm::vec4& c1 = grid.coefficients1[i];
+        interleaved.insert(interleaved.end(),
+                           {p.x, p.y, p.z, c0.x, c0.y, c0.z, c0.w, c1.x, c1.y, c1.z, c1.w});
+    }
+    gl->glGenBuffers(1, &fourier_grid.vertices);
+    gl->glBindBuffer(GL_ARRAY_BUFFER, fourier_grid.vertices);
+    gl->glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)),
+                     interleaved.data(), GL_STATIC_DRAW);
+    gl->glGenBuffers(1, &fourier_grid.indices);
+    gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, fourier_grid.indices);
+    gl->glBufferData(GL_ELEMENT_ARRAY_BUFFER,
+                     static_cast<GLsizeiptr>(grid.indices.size() * sizeof(std::uint16_t)),
+                     grid.indices.data(), GL_STATIC_DRAW);
+    fourier_grid.index_count = static_cast<GLsizei>(grid.indices.size());
+    fourier_grid_built = true;
+    return "";
 }
 
 WaterRenderer::WaterRenderer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
@@ -812,7 +945,8 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
     std::vector<Variant> helpers;
     const bool discard = c.passes.clip == "discard";
     for (PassKind kind : {PassKind::kReflection, PassKind::kRefraction, PassKind::kMain}) {
-        if (kind == PassKind::kRefraction && !c.Has("ENABLE_REFRACTION")) {
+        if ((kind == PassKind::kRefraction && !c.Has("ENABLE_REFRACTION")) ||
+            (kind == PassKind::kReflection && !UsesPlanarReflection(c))) {
             continue;
         }
         helpers.push_back(MakeVariant("skybox", r.HelperDefines(c, kind, discard, "skybox")));
@@ -820,6 +954,13 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
     }
     if (c.passes.low_res_water) {
         helpers.push_back(MakeVariant("water_composite", {}));
+    }
+    if (c.Has("REFLECTION_FOURIER")) {
+        const std::string error = r.BuildFourierGrid();
+        if (!error.empty()) {
+            verdict.valid = false;
+            verdict.diagnostics.push_back(MakeError("", 0, 0, error));
+        }
     }
     for (const Variant& helper : helpers) {
         const DriverVerdict& helper_verdict = r.Program(helper).verdict;

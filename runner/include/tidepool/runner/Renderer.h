@@ -12,9 +12,11 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/WaterMath.h"
 
 namespace tidepool::runner {
 
@@ -48,6 +50,18 @@ struct RenderSettings {
     int sky_size = 128;             // sky cube-map face size
     int normal_map_size = 256;      // water normal map size
     int normalisation_cube_size = 32;
+    // Depth-based optics (../shared/seeds/003; shaders/water.fsh). The refraction pass stores
+    // depth up to max_water_depth; extinction is the depth at which each channel is gone.
+    float max_water_depth = 80.0F;
+    ExtinctionModel extinction;                       // ENABLE_EXTINCTION (WaterMath.h)
+    glm::vec3 foam_colour{0.9F, 0.95F, 0.95F};
+    glm::vec2 foam_depth{0.5F, 2.0F};                 // foam full up to .x, gone at .y
+    glm::vec2 foam_scale{1.0F / 6.0F, 1.0F / 6.0F};   // one foam tile per 6 units
+    float shore_hardness = 1.0F;                      // 1 / depth over which the shore blends
+    glm::vec3 sun_colour{1.0F, 0.95F, 0.85F};
+    float shininess = 0.6F;                           // seed: 0.5 to 0.7
+    // REFLECTION_FOURIER: the per-vertex coefficients and the tessellated water grid.
+    FourierSettings fourier;
     // Render the main pass into an RGBA32F target instead of RGBA8, so NaN and Inf survive to
     // the read-back (needs GlEnvironment::float_render_target).
     bool float_target = false;

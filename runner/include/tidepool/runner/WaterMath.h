@@ -90,6 +90,29 @@ inline float MediumpFogReciprocal(float reciprocal) {
     return std::fmin(std::fmax(reciprocal, 0.0F), kMaxMediump);  // fmax drops a NaN
 }
 
+/// The depth-based colour model of ../shared/seeds/003 as water.fsh evaluates it
+/// (ENABLE_EXTINCTION). Units are world units (the default scene's are metres).
+struct ExtinctionModel {
+    glm::vec3 extinction{4.5F, 75.0F, 300.0F};  ///< depth at which red, green, blue are gone
+    float visibility = 40.0F;                   ///< path length at which the water is opaque
+    glm::vec3 surface_colour{0.0078F, 0.5176F, 0.7F};  ///< the water's own colour (the seed's)
+    glm::vec3 depth_colour{0.0039F, 0.00196F, 0.145F}; ///< what deep water fades to (the seed's)
+};
+
+/// Floor under the cosine of the view angle in ExtinctionColour (and water.fsh): the path
+/// through the water is at most 20 times the depth.
+inline constexpr float kMinExtinctionViewCos = 0.05F;
+
+/// The refracted colour `refraction` seen through water of vertical depth `depth` from a view
+/// whose direction to the eye makes cosine `cos_view` with the up axis:
+///   path = depth / max(cos_view, kMinExtinctionViewCos)
+///   c = mix(refraction, surface_colour, clamp(path / visibility, 0, 1))
+///   c = mix(c, depth_colour, clamp(depth / extinction, 0, 1))   (per channel)
+/// the CPU reference for water.fsh's ENABLE_EXTINCTION. Never fails; a non-positive visibility
+/// or extinction channel counts as opaque at any depth above 0.
+glm::vec3 ExtinctionColour(glm::vec3 refraction, float depth, float cos_view,
+                           const ExtinctionModel& model);
+
 // Defined in WaterMath.cpp for float and double only.
 extern template glm::mat<4, 4, float> MirrorMatrix(const glm::vec<4, float>&);
 extern template ObliqueProjection<float> ObliqueNearPlane(const glm::mat<4, 4, float>&,
