@@ -233,10 +233,13 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
             if (!v.is_object()) {
                 return fmt::format("configuration '{}': a view is not an object", c.id);
             }
-            ViewImage image{StringOr(v, "view"), {}};
+            ViewImage image{StringOr(v, "view"), {}, StringList(v, "pass_names"), std::nullopt};
             const std::string relative = StringOr(v, "image");
             if (!relative.empty()) {
                 image.image = folder / relative;
+            }
+            if (auto draws = v.find("draw_calls"); draws != v.end() && draws->is_number()) {
+                image.draw_calls = static_cast<int>(draws->get<double>());
             }
             c.views.push_back(std::move(image));
         }
@@ -308,6 +311,15 @@ std::filesystem::path MeasuredConfiguration::ImageAt(std::string_view view) cons
         }
     }
     return {};
+}
+
+const ViewImage* MeasuredConfiguration::ViewAt(std::string_view view) const {
+    for (const ViewImage& v : views) {
+        if (v.view == view) {
+            return &v;
+        }
+    }
+    return nullptr;
 }
 
 const MeasuredConfiguration* ReportInputs::FindByPreset(std::string_view preset) const {

@@ -1,8 +1,10 @@
 #include "tidepool/report/ReportModel.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <future>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <thread>
@@ -74,7 +76,11 @@ std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::strin
     return std::move(*read.image);
 }
 
-ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache& reference) {
+// Compares every image of `c` with the image of `reference` at the same view; `whose` names
+// the other side in a size-mismatch error ("the reference's"). Fills `per_view` when not null.
+ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache& reference,
+                                std::string_view whose = "the reference's",
+                                std::vector<ViewError>* per_view = nullptr) {
     ViewErrors errors;
     for (const ViewImage& v : c.views) {
         auto ref = reference.find(v.view);
@@ -87,18 +93,300 @@ ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache
         }
         const RgbaImage& r = ref->second;
         if (image->width != r.width || image->height != r.height) {
-            errors.error = fmt::format("{}: {}x{} image, but the reference's at view '{}' is "
-                                       "{}x{}",
-                                       v.image.string(), image->width, image->height, v.view,
-                                       r.width, r.height);
+            errors.error = fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}",
+                                       v.image.string(), image->width, image->height, whose,
+                                       v.view, r.width, r.height);
             return errors;
         }
-        errors.mse_sum += MseFromPsnr(Psnr(*image, r));
-        errors.ssim_sum += Ssim(*image, r);
-        errors.share_sum += ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold);
+        const ViewError view{v.view, Psnr(*image, r), Ssim(*image, r),
+                             ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold)};
+        errors.mse_sum += MseFromPsnr(view.psnr_db);
+        errors.ssim_sum += view.ssim;
+        errors.share_sum += view.share_visible;
         ++errors.views;
+        if (per_view != nullptr) {
+            per_view->push_back(view);
+        }
     }
     return errors;
+}
+
+// Reads every image of `c`, keyed by view, or sets `error` naming the unreadable file.
+ImageCache LoadViewImages(const MeasuredConfiguration& c, std::string* error) {
+    ImageCache images;
+    for (const ViewImage& v : c.views) {
+        if (v.image.empty()) {
+            continue;
+        }
+        std::optional<RgbaImage> image = LoadImage(v.image, error);
+        if (!image) {
+            return {};
+        }
+        images[v.view] = std::move(*image);
+    }
+    return images;
+}
+
+// The change in percent of frame rate (+ = faster) and its interval from a frame-time ratio;
+// a larger ratio is a lower frame rate, so the interval's ends swap.
+void ChangeFromRatio(const PairedRatio& ratio, double* change, Interval* ci) {
+    if (!std::isfinite(ratio.ratio)) {
+        return;
+    }
+    *change = PerformanceChangePercent(ratio.ratio);
+    ci->low = PerformanceChangePercent(ratio.ci.high);
+    ci->high = ratio.ci.low > 0 ? PerformanceChangePercent(ratio.ci.low)
+                                : std::numeric_limits<double>::infinity();
+}
+
+// One technique's preset pair and what it is known to miss.
+struct TechniquePresets {
+    TechniqueKind kind;
+    const char* technique;
+    const char* context;
+    const char* baseline;
+    const char* candidate;
+};
+
+// The reflection pairs of the issue, the reflection-only pairs first; each technique replaces
+// the planar reflection pass, everything else about the frame being equal.
+constexpr TechniquePresets kReflectionPresets[] = {
+        {TechniqueKind::kCubemapReflection, "cube-map reflection", "reflection only",
+         "reflection_only", "cubemap_reflection"},
+        {TechniqueKind::kFourierReflection, "Fourier reflection", "reflection only",
+         "reflection_only", "fourier_reflection"},
+        {TechniqueKind::kCubemapReflection, "cube-map reflection", "full effect", "full",
+         "full_cubemap_reflection"},
+        {TechniqueKind::kFourierReflection, "Fourier reflection", "full effect", "full",
+         "full_fourier_reflection"},
+};
+
+constexpr TechniquePresets kOpticsPresets[] = {
+        {TechniqueKind::kDepthOptics, "depth optics", "full effect", "full", "full_depth_optics"},
+};
+
+// What each technique is known to miss (seeds/001, seeds/004) or to change (seeds/003).
+std::string KnownLimitation(TechniqueKind kind) {
+    switch (kind) {
+    case TechniqueKind::kCubemapReflection:
+        return "Local objects and terrain are missing from the reflection: only the sky cube map "
+               "is reflected.";
+    case TechniqueKind::kFourierReflection:
+        return "Only the static terrain heightfield is captured: objects (anything that moves) "
+               "are missing, and the terrain reflects as one flat colour without detail.";
+    case TechniqueKind::kDepthOptics:
+        return "An addition, not a replacement: the error is how much extinction, shore foam, "
+               "soft shore and sun specular change the full effect's image.";
+    }
+    return {};
+}
+
+std::string PsnrText(double psnr_db) {
+    return std::isinf(psnr_db) ? std::string("identical") : fmt::format("{:.1f} dB", psnr_db);
+}
+
+// Pass names, draw calls and median of one side at the timing view.
+void FillSide(const MeasuredConfiguration* c, const std::string& timing_view, TimingClock clock,
+              std::vector<std::string>* passes, std::optional<int>* draw_calls,
+              double* median_ms) {
+    if (c == nullptr || !c->ok) {
+        return;
+    }
+    if (const ViewImage* v = c->ViewAt(timing_view); v != nullptr) {
+        *passes = v->pass_names;
+        *draw_calls = v->draw_calls;
+    }
+    if (!draw_calls->has_value() && c->frame_draw_calls > 0) {
+        *draw_calls = c->frame_draw_calls;  // results without per-view draw calls
+    }
+    *median_ms = c->MedianOn(clock);
+}
+
+// Everything of a technique comparison but the image error.
+TechniqueComparison CompareTechnique(const TechniquePresets& presets, const ReportInputs& inputs,
+                                     const ReportOptions& options, TimingClock clock) {
+    TechniqueComparison t;
+    t.kind = presets.kind;
+    t.technique = presets.technique;
+    t.context = presets.context;
+    t.baseline = {presets.baseline, inputs.FindByPreset(presets.baseline)};
+    t.candidate = {presets.candidate, inputs.FindByPreset(presets.candidate)};
+    const MeasuredConfiguration* base = t.baseline.configuration;
+    const MeasuredConfiguration* cand = t.candidate.configuration;
+    FillSide(base, inputs.timing_view, clock, &t.baseline_passes, &t.baseline_draw_calls,
+             &t.baseline_median_ms);
+    FillSide(cand, inputs.timing_view, clock, &t.candidate_passes, &t.candidate_draw_calls,
+             &t.candidate_median_ms);
+    if (!t.candidate_passes.empty()) {
+        for (const std::string& pass : t.baseline_passes) {
+            if (std::find(t.candidate_passes.begin(), t.candidate_passes.end(), pass) ==
+                t.candidate_passes.end()) {
+                t.passes_dropped.push_back(pass);
+            }
+        }
+    }
+    for (const ComparisonSide* side : {&t.baseline, &t.candidate}) {
+        std::string problem;
+        if (side->configuration == nullptr) {
+            problem = fmt::format("no configuration in the results carries preset '{}'",
+                                  side->preset);
+        } else if (!side->configuration->ok) {
+            problem = fmt::format("configuration {} (preset '{}') FAILED",
+                                  side->configuration->id, side->preset);
+        }
+        if (!problem.empty()) {
+            t.note += (t.note.empty() ? "" : "; ") + problem;
+        }
+    }
+    if (t.note.empty()) {
+        t.ratio = ComparePaired(base->SamplesOn(clock), cand->SamplesOn(clock), options.seed);
+        if (!t.ratio.error.empty()) {
+            t.note = fmt::format("no paired time on the {} clock: {}", TimingClockName(clock),
+                                 t.ratio.error);
+        }
+        ChangeFromRatio(t.ratio, &t.change_percent, &t.change_ci);
+        const double floor = std::isnan(options.noise_floor_percent)
+                                     ? 0.0
+                                     : std::max(0.0, options.noise_floor_percent);
+        if (std::isfinite(t.change_ci.low) && t.change_ci.low > floor) {
+            t.direction = +1;
+        } else if (std::isfinite(t.change_ci.high) && t.change_ci.high < -floor) {
+            t.direction = -1;
+        }
+    }
+    return t;
+}
+
+// True when both sides rendered, so their images can be compared.
+bool BothRendered(const TechniqueComparison& t) {
+    return t.baseline.configuration != nullptr && t.baseline.configuration->ok &&
+           t.candidate.configuration != nullptr && t.candidate.configuration->ok;
+}
+
+// Sets the image error of `t` from per-view errors and names the worst view in `reading`.
+void FinishError(const ViewErrors& errors, TechniqueComparison* t) {
+    t->reading = KnownLimitation(t->kind);
+    if (errors.views == 0) {
+        if (BothRendered(*t)) {
+            t->note += std::string(t->note.empty() ? "" : "; ") +
+                       "no view has images of both configurations";
+        }
+        return;
+    }
+    const double n = errors.views;
+    t->views_compared = errors.views;
+    t->psnr_db = PsnrFromMse(errors.mse_sum / n);
+    t->ssim = errors.ssim_sum / n;
+    t->share_visible = errors.share_sum / n;
+    if (t->per_view.size() < 2) {
+        return;
+    }
+    const ViewError* worst = nullptr;
+    for (const ViewError& v : t->per_view) {
+        if (std::isfinite(v.psnr_db) && (worst == nullptr || v.psnr_db < worst->psnr_db)) {
+            worst = &v;
+        }
+    }
+    if (worst != nullptr) {
+        t->worst_view = worst->view;
+        t->worst_psnr_db = worst->psnr_db;
+        t->reading += fmt::format(" {}: {} ({} against {} over all views).",
+                                  t->kind == TechniqueKind::kDepthOptics ? "Most changed view"
+                                                                         : "Worst view",
+                                  worst->view, PsnrText(worst->psnr_db), PsnrText(t->psnr_db));
+    }
+}
+
+// The panel of `t`'s candidate beside its baseline at `view`; `baseline_images` are the
+// baseline's images by view. Sets `error` naming the file when an image cannot be read.
+ImagePanel TechniquePanel(const TechniqueComparison& t, const std::string& view,
+                          const ImageCache* baseline_images, std::string* error) {
+    ImagePanel panel;
+    panel.configuration = t.candidate.configuration;
+    panel.view = view;
+    panel.reference_preset = t.baseline.preset;
+    panel.reference_caption = fmt::format("planar reflection ({})", t.baseline.preset);
+    panel.title = fmt::format("{}: {} beside planar reflection ({}); the \"reference\" side is "
+                              "the planar image",
+                              t.technique, t.candidate.preset, t.baseline.preset);
+    const MeasuredConfiguration* cand = t.candidate.configuration;
+    const MeasuredConfiguration* base = t.baseline.configuration;
+    auto baseline_image = baseline_images != nullptr ? baseline_images->find(view)
+                                                     : ImageCache::const_iterator{};
+    if (cand == nullptr) {
+        panel.note = fmt::format("MISSING: no configuration carries preset '{}'",
+                                 t.candidate.preset);
+    } else if (!cand->ok) {
+        panel.note = "FAILED: no image (the configuration did not compile or render)";
+    } else if (cand->ImageAt(view).empty()) {
+        panel.note = "no image was written at this view";
+    } else if (base == nullptr || !base->ok || baseline_images == nullptr ||
+               baseline_image == baseline_images->end()) {
+        panel.note = fmt::format("no planar image ({}) at this view to compare with",
+                                 t.baseline.preset);
+    } else {
+        std::optional<RgbaImage> image = LoadImage(cand->ImageAt(view), error);
+        if (!image) {
+            return panel;
+        }
+        const RgbaImage& planar = baseline_image->second;
+        if (image->width != planar.width || image->height != planar.height) {
+            *error = fmt::format("{}: {}x{} image, but {}'s at view '{}' is {}x{}",
+                                 cand->ImageAt(view).string(), image->width, image->height,
+                                 base->id, view, planar.width, planar.height);
+            return panel;
+        }
+        panel.image = std::move(*image);
+        panel.reference = planar;
+        panel.heat_map = DifferenceHeatMap(panel.image, panel.reference, kHeatMapFullScale);
+        panel.psnr_db = Psnr(panel.image, panel.reference);
+        panel.ssim = Ssim(panel.image, panel.reference);
+        panel.share_visible =
+                ShareAboveThreshold(panel.image, panel.reference, kVisibleDifferenceThreshold);
+    }
+    return panel;
+}
+
+// Builds the technique comparisons of `presets` with their image errors, the baselines' images
+// read once and the pairs compared on the cores we have. Returns "" or the error naming a file.
+std::string BuildTechniques(const std::vector<TechniquePresets>& presets,
+                            const ReportInputs& inputs, const ReportOptions& options,
+                            TimingClock clock,
+                            std::map<const MeasuredConfiguration*, ImageCache>* baseline_images,
+                            std::vector<TechniqueComparison>* out) {
+    for (const TechniquePresets& p : presets) {
+        out->push_back(CompareTechnique(p, inputs, options, clock));
+        const MeasuredConfiguration* base = out->back().baseline.configuration;
+        if (BothRendered(out->back()) && baseline_images->count(base) == 0) {
+            std::string error;
+            (*baseline_images)[base] = LoadViewImages(*base, &error);
+            if (!error.empty()) {
+                return error;
+            }
+        }
+    }
+    std::vector<std::future<ViewErrors>> jobs;
+    for (TechniqueComparison& t : *out) {
+        if (!BothRendered(t)) {
+            jobs.push_back(std::async(std::launch::deferred, [] { return ViewErrors{}; }));
+            continue;
+        }
+        const ImageCache& images = baseline_images->at(t.baseline.configuration);
+        jobs.push_back(std::async(std::launch::async, [&t, &images] {
+            return CompareWithReference(*t.candidate.configuration, images,
+                                        fmt::format("{}'s", t.baseline.configuration->id),
+                                        &t.per_view);
+        }));
+    }
+    std::string error;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const ViewErrors errors = jobs[i].get();
+        if (error.empty() && !errors.error.empty()) {
+            error = errors.error;
+        }
+        FinishError(errors, &(*out)[i]);
+    }
+    return error;
 }
 
 std::string PresetTitle(const MeasuredConfiguration& c) {
@@ -110,6 +398,18 @@ std::string PresetTitle(const MeasuredConfiguration& c) {
 }
 
 }  // namespace
+
+std::string_view TechniqueKindName(TechniqueKind kind) {
+    switch (kind) {
+    case TechniqueKind::kCubemapReflection:
+        return "cubemap";
+    case TechniqueKind::kFourierReflection:
+        return "fourier";
+    case TechniqueKind::kDepthOptics:
+        return "depth-optics";
+    }
+    return "cubemap";
+}
 
 std::string_view VerdictName(Verdict verdict) {
     switch (verdict) {
@@ -365,14 +665,7 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
                                           options.magnitude_tolerance_percent_points,
                                           options.noise_floor_percent,
                                           &comparison.verdict_reason);
-            if (std::isfinite(comparison.ratio.ratio)) {
-                comparison.change_percent = PerformanceChangePercent(comparison.ratio.ratio);
-                comparison.change_ci.low = PerformanceChangePercent(comparison.ratio.ci.high);
-                comparison.change_ci.high =
-                        comparison.ratio.ci.low > 0
-                                ? PerformanceChangePercent(comparison.ratio.ci.low)
-                                : std::numeric_limits<double>::infinity();
-            }
+            ChangeFromRatio(comparison.ratio, &comparison.change_percent, &comparison.change_ci);
             comparison.odd_change_percent = PerformanceChangePercent(comparison.split.odd.ratio);
             comparison.even_change_percent =
                     PerformanceChangePercent(comparison.split.even.ratio);
@@ -513,6 +806,34 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
                         ShareAboveThreshold(panel.image, panel.reference, kVisibleDifferenceThreshold);
             }
             model.panels.push_back(std::move(panel));
+        }
+    }
+
+    // Reflection techniques against planar reflection, and the depth optics against full.
+    std::map<const MeasuredConfiguration*, ImageCache> baseline_images;
+    out.error = BuildTechniques({std::begin(kReflectionPresets), std::end(kReflectionPresets)},
+                                inputs, options, model.clock, &baseline_images,
+                                &model.reflections);
+    if (out.error.empty()) {
+        out.error = BuildTechniques({std::begin(kOpticsPresets), std::end(kOpticsPresets)},
+                                    inputs, options, model.clock, &baseline_images,
+                                    &model.optics);
+    }
+    if (!out.error.empty()) {
+        return out;
+    }
+    // One view keeps the section short: the first panel view, where the image panels look.
+    const std::string panel_view = views.empty() ? std::string() : views.front();
+    for (const TechniqueComparison& t : model.reflections) {
+        if (t.context != "full effect" || panel_view.empty()) {
+            continue;
+        }
+        auto images = baseline_images.find(t.baseline.configuration);
+        model.reflection_panels.push_back(TechniquePanel(
+                t, panel_view, images == baseline_images.end() ? nullptr : &images->second,
+                &out.error));
+        if (!out.error.empty()) {
+            return out;
         }
     }
     out.model = std::move(model);

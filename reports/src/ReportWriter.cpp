@@ -666,6 +666,139 @@ std::string PanelStem(const ImagePanel& panel) {
     return stem;
 }
 
+// The configuration id a panel shows, or "(missing)" when no configuration carries its preset.
+std::string PanelId(const ImagePanel& panel) {
+    return panel.configuration != nullptr ? panel.configuration->id : std::string("(missing)");
+}
+
+// The Reflection techniques section's panels follow the image section's in every per-panel
+// list (files, data: URIs), so panel j of the section is at this offset plus j.
+std::size_t ReflectionPanelOffset(const ReportModel& model) { return model.panels.size(); }
+
+// "reflection, refraction, main", or "–" when the results do not say.
+std::string PassesText(const std::vector<std::string>& passes) {
+    std::string out;
+    for (const std::string& pass : passes) {
+        out += (out.empty() ? "" : ", ") + pass;
+    }
+    return out.empty() ? std::string("–") : out;
+}
+
+std::string DrawCallsText(const std::optional<int>& draw_calls) {
+    return draw_calls ? std::to_string(*draw_calls) : std::string("–");
+}
+
+std::string PsnrCell(double psnr_db) {
+    return std::isinf(psnr_db) && psnr_db > 0 ? std::string("identical") : Fixed(psnr_db, 1);
+}
+
+// Performance change with its reading: faster, slower, or no clear change.
+std::string TechniqueChangeCell(const TechniqueComparison& t, double noise_floor_percent) {
+    if (!std::isfinite(t.change_percent)) {
+        return "–";
+    }
+    const std::string reading =
+            t.direction > 0 ? "faster"
+            : t.direction < 0
+                    ? "slower"
+                    : fmt::format("no clear change (the interval reaches within ±{:.0f}%)",
+                                  noise_floor_percent);
+    return Signed(t.change_percent, 1, "%") + ", " + reading;
+}
+
+std::string PerViewPsnrCell(const TechniqueComparison& t) {
+    std::string out;
+    for (const ViewError& v : t.per_view) {
+        out += fmt::format("{}{}: {}{}", out.empty() ? "" : "; ", v.view,
+                           std::isinf(v.psnr_db) ? std::string("identical")
+                                                 : Fixed(v.psnr_db, 1, " dB"),
+                           v.view == t.worst_view ? " (worst)" : "");
+    }
+    return out.empty() ? std::string("–") : out;
+}
+
+// The rows of the Reflection techniques and Depth optics tables (the same columns; the
+// baseline is named in the header).
+std::vector<std::string> TechniqueHeader(const ReportModel& model, const std::string& baseline,
+                                         const std::string& reading) {
+    return {"technique",
+            fmt::format("configurations ({} → candidate)", baseline),
+            "status",
+            "passes per frame",
+            "draw calls",
+            fmt::format("median ms ({}): {} / candidate", ClockName(model.clock), baseline),
+            "performance change (+ = faster)",
+            "95% interval",
+            fmt::format("PSNR vs {}", baseline),
+            "SSIM",
+            "visibly different",
+            "PSNR per view",
+            reading};
+}
+
+std::vector<std::string> TechniqueRow(const ReportModel& model, const TechniqueComparison& t) {
+    std::string passes = PassesText(t.baseline_passes) + " → " + PassesText(t.candidate_passes);
+    if (!t.passes_dropped.empty()) {
+        passes += " (no " + PassesText(t.passes_dropped) + " pass)";
+    }
+    return {fmt::format("{} ({})", t.technique, t.context),
+            fmt::format("{} [{}] → {} [{}]", t.baseline.preset, ConfigurationLabel(t.baseline),
+                        t.candidate.preset, ConfigurationLabel(t.candidate)),
+            t.note.empty() ? std::string("measured") : t.note,
+            passes,
+            DrawCallsText(t.baseline_draw_calls) + " → " + DrawCallsText(t.candidate_draw_calls),
+            Fixed(t.baseline_median_ms, 2) + " / " + Fixed(t.candidate_median_ms, 2),
+            TechniqueChangeCell(t, model.options.noise_floor_percent),
+            IntervalText(t.change_ci, 1, "%"),
+            t.HasError() ? PsnrCell(t.psnr_db) : std::string("–"),
+            Fixed(t.ssim, 4),
+            t.HasError() ? Fixed(t.share_visible * 100, 2, "%") : std::string("–"),
+            PerViewPsnrCell(t),
+            t.reading};
+}
+
+// The row class names the comparison so tools (and tests) can find each one.
+std::string TechniqueCss(const TechniqueComparison& t) {
+    return fmt::format("{}technique-{}-{}", t.note.empty() ? "" : "bad ",
+                       TechniqueKindName(t.kind), t.baseline.preset);
+}
+
+std::string ReflectionsIntro(const ReportModel& model) {
+    return fmt::format(
+            "Each reflection technique against the planar reflection it replaces (the "
+            "whitepaper's reflection pass, the REFLECTION axis default), the rest of the frame "
+            "equal: `reflection_only` → `cubemap_reflection` and `fourier_reflection`, `full` → "
+            "`full_cubemap_reflection` and `full_fourier_reflection`. Passes and draw calls are "
+            "one frame's at the timing view ({}); times are medians on the {} clock, and the "
+            "change is paired by round as in the whitepaper table (+ = faster; a direction is "
+            "called only when the whole 95% interval clears ±{:.0f}%). The error is against the "
+            "planar image, not the reference: PSNR from the mean squared error over every view "
+            "both configurations rendered, mean SSIM, the share of pixels visibly different "
+            "(more than {:.0f}/255), and PSNR per view, so the view where a technique breaks "
+            "stands out. A missing or failed configuration is listed as such.",
+            model.inputs->timing_view.empty() ? std::string("–") : model.inputs->timing_view,
+            ClockName(model.clock), model.options.noise_floor_percent,
+            kVisibleDifferenceThreshold);
+}
+
+std::string ReflectionPanelsIntro(const ReportModel& model) {
+    const std::string view = model.reflection_panels.empty()
+                                     ? std::string("–")
+                                     : model.reflection_panels.front().view;
+    return fmt::format(
+            "The full-effect candidate of each technique at view {} beside planar reflection "
+            "(preset `full`), which takes the place the reference has in the Images section, and "
+            "their difference (black = identical, red → yellow → white = up to 32/255 and "
+            "more).",
+            view);
+}
+
+std::string OpticsIntro() {
+    return "`full` → `full_depth_optics`: extinction, shore foam, soft shore and sun specular "
+           "added to the full effect. This is an addition, not a replacement, so the \"error\" "
+           "against `full` is how much the image changes, not a loss of accuracy.";
+}
+
 // ---------------------------------------------------------------------------------------------
 // Markdown and HTML share this walk: each section is emitted by both writers from one model.
 
@@ -871,7 +1004,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     nlohmann::json images = nlohmann::json::array();
     for (const ImagePanel& p : model.panels) {
         images.push_back({{"title", p.title},
-                          {"configuration", p.configuration->id},
+                          {"configuration", PanelId(p)},
                           {"view", p.view},
                           {"psnr_db", Num(p.psnr_db)},
                           {"ssim", Num(p.ssim)},
@@ -879,6 +1012,80 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                           {"note", p.note}});
     }
     json["images"] = images;
+    auto technique = [&model, &side](const TechniqueComparison& t) {
+        nlohmann::json base = side(t.baseline);
+        base["pass_names"] = t.baseline_passes;
+        base["draw_calls"] = t.baseline_draw_calls ? nlohmann::json(*t.baseline_draw_calls)
+                                                   : nlohmann::json(nullptr);
+        nlohmann::json cand = side(t.candidate);
+        cand["pass_names"] = t.candidate_passes;
+        cand["draw_calls"] = t.candidate_draw_calls ? nlohmann::json(*t.candidate_draw_calls)
+                                                    : nlohmann::json(nullptr);
+        nlohmann::json per_view = nlohmann::json::array();
+        for (const ViewError& v : t.per_view) {
+            per_view.push_back({{"view", v.view},
+                                {"psnr_db", Num(v.psnr_db)},
+                                {"identical", std::isinf(v.psnr_db)},
+                                {"ssim", Num(v.ssim)},
+                                {"share_visible", Num(v.share_visible)}});
+        }
+        return nlohmann::json{
+                {"kind", TechniqueKindName(t.kind)},
+                {"technique", t.technique},
+                {"context", t.context},
+                {"baseline", base},
+                {"candidate", cand},
+                {"passes_dropped", t.passes_dropped},
+                {"clock", TimingClockName(model.clock)},
+                {"baseline_median_ms", Num(t.baseline_median_ms)},
+                {"candidate_median_ms", Num(t.candidate_median_ms)},
+                {"frame_time_ratio", Num(t.ratio.ratio)},
+                {"frame_time_ratio_ci", {Num(t.ratio.ci.low), Num(t.ratio.ci.high)}},
+                {"rounds", t.ratio.rounds},
+                {"measured_percent", Num(t.change_percent)},
+                {"measured_percent_ci", {Num(t.change_ci.low), Num(t.change_ci.high)}},
+                {"direction", t.direction > 0   ? "faster"
+                              : t.direction < 0 ? "slower"
+                                                : "no-clear-change"},
+                {"error",
+                 {{"psnr_db", Num(t.psnr_db)},
+                  {"identical", t.HasError() && std::isinf(t.psnr_db)},
+                  {"ssim", Num(t.ssim)},
+                  {"share_visible", Num(t.share_visible)},
+                  {"views_compared", t.views_compared},
+                  {"per_view", per_view},
+                  {"worst_view", t.worst_view.empty() ? nlohmann::json(nullptr)
+                                                      : nlohmann::json(t.worst_view)},
+                  {"worst_psnr_db", Num(t.worst_psnr_db)}}},
+                {"reading", t.reading},
+                {"note", t.note}};
+    };
+    nlohmann::json reflections = nlohmann::json::array();
+    for (const TechniqueComparison& t : model.reflections) {
+        reflections.push_back(technique(t));
+    }
+    nlohmann::json reflection_images = nlohmann::json::array();
+    for (const ImagePanel& p : model.reflection_panels) {
+        reflection_images.push_back({{"title", p.title},
+                                     {"configuration", p.configuration != nullptr
+                                                               ? nlohmann::json(p.configuration->id)
+                                                               : nlohmann::json(nullptr)},
+                                     {"compared_with", p.reference_preset},
+                                     {"view", p.view},
+                                     {"psnr_db", Num(p.psnr_db)},
+                                     {"ssim", Num(p.ssim)},
+                                     {"share_visible", Num(p.share_visible)},
+                                     {"note", p.note}});
+    }
+    json["reflection_techniques"] = {{"baseline", "planar reflection"},
+                                     {"timing_view", model.inputs->timing_view},
+                                     {"comparisons", reflections},
+                                     {"images", reflection_images}};
+    nlohmann::json optics = nlohmann::json::array();
+    for (const TechniqueComparison& t : model.optics) {
+        optics.push_back(technique(t));
+    }
+    json["depth_optics"] = {{"baseline", "full"}, {"comparisons", optics}};
     if (model.inputs->stability) {
         json["stability"] = *model.inputs->stability;
     } else {
@@ -986,6 +1193,12 @@ struct Tables {
     std::vector<std::vector<std::string>> misleading;
     std::vector<std::vector<std::string>> split;
     std::vector<std::vector<std::string>> method;
+    std::vector<std::string> reflections_header;
+    std::vector<std::vector<std::string>> reflections;
+    std::vector<std::string> reflections_css;
+    std::vector<std::string> optics_header;
+    std::vector<std::vector<std::string>> optics;
+    std::vector<std::string> optics_css;
 };
 
 std::string Presets(const MeasuredConfiguration& c) {
@@ -1101,6 +1314,16 @@ Tables BuildTables(const ReportModel& model) {
     for (const auto& [key, value] : MethodFacts(model)) {
         t.method.push_back({key, value});
     }
+    t.reflections_header = TechniqueHeader(model, "planar", "where it breaks");
+    for (const TechniqueComparison& r : model.reflections) {
+        t.reflections.push_back(TechniqueRow(model, r));
+        t.reflections_css.push_back(TechniqueCss(r));
+    }
+    t.optics_header = TechniqueHeader(model, "full", "what it changes");
+    for (const TechniqueComparison& r : model.optics) {
+        t.optics.push_back(TechniqueRow(model, r));
+        t.optics_css.push_back(TechniqueCss(r));
+    }
     return t;
 }
 
@@ -1155,6 +1378,21 @@ std::string AtAGlance(const ReportModel& model) {
             model.failed_configurations > 0
                     ? fmt::format(" {} configuration(s) FAILED.", model.failed_configurations)
                     : std::string());
+}
+
+// One image panel as Markdown: heading, figures, and the three images side by side.
+std::string PanelMarkdown(const ImagePanel& p, const PanelFiles& files) {
+    std::string md = fmt::format("### {} — view {}\n\n`{}`", p.title, p.view, PanelId(p));
+    if (!p.note.empty()) {
+        return md + fmt::format(": **{}**\n\n", p.note);
+    }
+    md += fmt::format(" — PSNR {} dB, SSIM {}, {} of pixels visibly different\n\n",
+                      std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
+                      Fixed(p.share_visible * 100, 2, "%"));
+    md += fmt::format("| this configuration | {} | difference |\n|---|---|---|\n"
+                      "| ![]({}) | ![]({}) | ![]({}) |\n\n",
+                      Cell(p.reference_caption), files.image, files.reference, files.heat);
+    return md;
 }
 
 std::string Markdown(const ReportModel& model, const Tables& t, const std::vector<PanelFiles>& files) {
@@ -1224,18 +1462,7 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     md += "## 5. Images\n\nEach key configuration beside the reference, and their difference "
           "(black = identical, red → yellow → white = up to 32/255 and more).\n\n";
     for (std::size_t i = 0; i < model.panels.size(); ++i) {
-        const ImagePanel& p = model.panels[i];
-        md += fmt::format("### {} — view {}\n\n`{}`", p.title, p.view, p.configuration->id);
-        if (!p.note.empty()) {
-            md += fmt::format(": **{}**\n\n", p.note);
-            continue;
-        }
-        md += fmt::format(" — PSNR {} dB, SSIM {}, {} of pixels visibly different\n\n",
-                          std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
-                          Fixed(p.share_visible * 100, 2, "%"));
-        md += fmt::format("| this configuration | reference | difference |\n|---|---|---|\n"
-                          "| ![]({}) | ![]({}) | ![]({}) |\n\n",
-                          files[i].image, files[i].reference, files[i].heat);
+        md += PanelMarkdown(model.panels[i], files[i]);
     }
     md += "## 6. Method and noise\n\n" + ClockText(model) + "\n\n" +
           MarkdownTable({"setting", "value"}, t.method);
@@ -1290,6 +1517,15 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
                                 : MarkdownTable(SceneEffectHeader(), rows));
         }
     }
+    md += "## 9. Reflection techniques\n\n" + ReflectionsIntro(model) + "\n\n";
+    md += MarkdownTable(t.reflections_header, t.reflections);
+    md += "### Where the reflection breaks: full effect beside planar reflection\n\n" +
+          ReflectionPanelsIntro(model) + "\n\n";
+    for (std::size_t j = 0; j < model.reflection_panels.size(); ++j) {
+        md += PanelMarkdown(model.reflection_panels[j], files[ReflectionPanelOffset(model) + j]);
+    }
+    md += "### Depth optics\n\n" + OpticsIntro() + "\n\n";
+    md += MarkdownTable(t.optics_header, t.optics);
     return md;
 }
 
@@ -1338,6 +1574,30 @@ std::string HtmlNote(std::string_view text) {
     return open ? out + "</code>" : out;
 }
 
+// One image panel as HTML: heading, figures, and the three embedded images linking to the files.
+std::string PanelHtml(const ImagePanel& p, const PanelFiles& files,
+                      const std::array<std::string, 3>& uri) {
+    std::string h = fmt::format(
+            "<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
+            Html(p.title), Html(p.view), Html(PanelId(p)));
+    if (!p.note.empty()) {
+        return h + "<p class=\"warn\">" + Html(p.note) + "</p></div>";
+    }
+    h += fmt::format("<p class=\"note\">PSNR {} dB, SSIM {}, {} of pixels visibly different</p>",
+                     std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
+                     Fixed(p.share_visible * 100, 2, "%"));
+    const std::array<std::string, 3> links = {files.image, files.reference, files.heat};
+    const std::array<std::string, 3> captions = {"this configuration", p.reference_caption,
+                                                 "difference"};
+    for (std::size_t k = 0; k < 3; ++k) {
+        h += fmt::format("<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
+                         "<figcaption>{}</figcaption></figure>",
+                         Html(links[k]), uri[k], Html(p.title), Html(captions[k]),
+                         Html(captions[k]));
+    }
+    return h + "</div>";
+}
+
 std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page) {
     std::string h = "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
                     "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
@@ -1353,7 +1613,8 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     h += "<nav><a href=\"#whitepaper\">Whitepaper table</a><a href=\"#accuracy\">Accuracy vs "
          "time</a><a href=\"#static\">Static cost</a><a href=\"#validation\">Validation</a><a "
          "href=\"#images\">Images</a><a href=\"#method\">Method and noise</a><a "
-         "href=\"#stability\">Numerical stability</a><a href=\"#scenes\">Scenes</a></nav>";
+         "href=\"#stability\">Numerical stability</a><a href=\"#scenes\">Scenes</a><a "
+         "href=\"#reflections\">Reflection techniques</a></nav>";
     if (model.failed_configurations > 0) {
         h += fmt::format("<p class=\"warn\"><b>{} configuration(s) FAILED</b> to compile or "
                          "render; they are shown as failed below.</p>",
@@ -1434,27 +1695,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
          "32/255 and more). Click an image for the full-size file (when the report folder is "
          "intact).</p>";
     for (std::size_t i = 0; i < model.panels.size(); ++i) {
-        const ImagePanel& p = model.panels[i];
-        h += fmt::format("<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
-                         Html(p.title), Html(p.view), Html(p.configuration->id));
-        if (!p.note.empty()) {
-            h += "<p class=\"warn\">" + Html(p.note) + "</p></div>";
-            continue;
-        }
-        h += fmt::format("<p class=\"note\">PSNR {} dB, SSIM {}, {} of pixels visibly different</p>",
-                         std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
-                         Fixed(p.share_visible * 100, 2, "%"));
-        const std::array<std::string, 3>& uri = (*page.uris)[i];
-        const std::array<std::string, 3> links = {page.files[i].image, page.files[i].reference,
-                                                  page.files[i].heat};
-        const std::array<const char*, 3> captions = {"this configuration", "reference",
-                                                     "difference"};
-        for (std::size_t k = 0; k < 3; ++k) {
-            h += fmt::format("<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
-                             "<figcaption>{}</figcaption></figure>",
-                             Html(links[k]), uri[k], Html(p.title), captions[k], captions[k]);
-        }
-        h += "</div>";
+        h += PanelHtml(model.panels[i], page.files[i], (*page.uris)[i]);
     }
 
     h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" + HtmlNote(ClockText(model)) +
@@ -1518,6 +1759,17 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
                                : HtmlTable(SceneEffectHeader(), rows));
         }
     }
+    h += "<h2 id=\"reflections\">9. Reflection techniques</h2><p class=\"note\">" +
+         HtmlNote(ReflectionsIntro(model)) + "</p>";
+    h += HtmlTable(t.reflections_header, t.reflections, t.reflections_css);
+    h += "<h3>Where the reflection breaks: full effect beside planar reflection</h3>"
+         "<p class=\"note\">" + HtmlNote(ReflectionPanelsIntro(model)) + "</p>";
+    for (std::size_t j = 0; j < model.reflection_panels.size(); ++j) {
+        const std::size_t i = ReflectionPanelOffset(model) + j;
+        h += PanelHtml(model.reflection_panels[j], page.files[i], (*page.uris)[i]);
+    }
+    h += "<h3 id=\"depth-optics\">Depth optics</h3><p class=\"note\">" + HtmlNote(OpticsIntro()) +
+         "</p>" + HtmlTable(t.optics_header, t.optics, t.optics_css);
     h += "</body></html>\n";
     return h;
 }
@@ -1580,26 +1832,42 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
         return error;
     };
 
-    // Full-size PNGs beside report.md; the reference once per view.
-    std::vector<PanelFiles> files(model.panels.size());
+    // Every panel in one list, the Images section's first and the Reflection techniques
+    // section's after them (ReflectionPanelOffset), so files[i] and uris[i] belong to panel i.
+    std::vector<const ImagePanel*> panels;
+    for (const ImagePanel& p : model.panels) {
+        panels.push_back(&p);
+    }
+    for (const ImagePanel& p : model.reflection_panels) {
+        panels.push_back(&p);
+    }
+
+    // Full-size PNGs beside report.md; each compared-with image (the reference, or the planar
+    // configuration a reflection technique replaces) once per view.
+    std::vector<PanelFiles> files(panels.size());
     std::map<std::string, std::string> reference_files;
-    for (std::size_t i = 0; i < model.panels.size(); ++i) {
-        const ImagePanel& p = model.panels[i];
+    for (std::size_t i = 0; i < panels.size(); ++i) {
+        const ImagePanel& p = *panels[i];
         if (!p.note.empty()) {
             continue;
         }
-        const std::string stem = PanelStem(p) + "-" + p.view;
+        const bool technique = i >= ReflectionPanelOffset(model);
+        const std::string stem = (technique ? "reflection-" : "") + PanelStem(p) + "-" + p.view;
         files[i].image = "images/" + stem + ".png";
         files[i].heat = "images/" + stem + "-diff.png";
-        if (reference_files.count(p.view) == 0) {
-            reference_files[p.view] = "images/reference-" + p.view + ".png";
-            if (std::string e = WritePngAtomically(staging / reference_files[p.view], p.reference);
+        const std::string key = p.reference_preset + "/" + p.view;
+        if (reference_files.count(key) == 0) {
+            reference_files[key] = p.reference_preset == kReferencePreset
+                                           ? "images/reference-" + p.view + ".png"
+                                           : "images/planar-" + p.reference_preset + "-" +
+                                                     p.view + ".png";
+            if (std::string e = WritePngAtomically(staging / reference_files[key], p.reference);
                 !e.empty()) {
                 return fail(e);
             }
-            written.files.emplace_back(reference_files[p.view]);
+            written.files.emplace_back(reference_files[key]);
         }
-        files[i].reference = reference_files[p.view];
+        files[i].reference = reference_files[key];
         for (const auto& [relative, image] :
              {std::pair{files[i].image, &p.image}, std::pair{files[i].heat, &p.heat_map}}) {
             if (std::string e = WritePngAtomically(staging / relative, *image); !e.empty()) {
@@ -1610,12 +1878,12 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
     }
 
     // Embedded copies for index.html, downscaled until they fit the budget.
-    std::vector<std::array<std::string, 3>> uris(model.panels.size());
+    std::vector<std::array<std::string, 3>> uris(panels.size());
     const std::filesystem::path scratch = staging / ".embed.png";
     for (int factor = 1; factor <= 8; ++factor) {
         std::uintmax_t total = 0;
-        for (std::size_t i = 0; i < model.panels.size(); ++i) {
-            const ImagePanel& p = model.panels[i];
+        for (std::size_t i = 0; i < panels.size(); ++i) {
+            const ImagePanel& p = *panels[i];
             if (!p.note.empty()) {
                 continue;
             }

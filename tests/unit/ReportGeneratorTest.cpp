@@ -1,11 +1,14 @@
 // The report generator on small hand-made inputs: whitepaper rows found by preset, verdicts with
 // tolerance and noise floor, accuracy and its Pareto frontier, static cost versus time, failed
 // configurations kept, corrupt inputs rejected with the file named, atomic publication, the
-// comparison clock (CPU time when every configuration has it) and the Scenes section.
+// comparison clock (CPU time when every configuration has it), the Scenes section, and the
+// Reflection techniques section (cube-map and Fourier reflections against planar, depth optics).
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -61,6 +64,9 @@ struct FakeConfiguration {
     int total_ops = 100;
     std::map<std::string, nlohmann::json> passes = {};
     double cpu_ms = 0;  // > 0: cpu_samples_ms and cpu_statistics are written at this time
+    std::vector<std::string> pass_names = {};  // written per view when not empty
+    int draw_calls = -1;                       // written per view when >= 0
+    int grazing_mark = -1;                     // >= 0: a second view, "grazing", this mark
 };
 
 // Writes manifest.json, results.json and images for `configurations` into `dir`.
@@ -95,9 +101,23 @@ FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& c
         }
         nlohmann::json views = nlohmann::json::array();
         if (c.ok) {
-            const std::string image = "images/" + std::to_string(entries.size()) + ".png";
-            EXPECT_EQ(WritePngAtomically(dir.Path() / "render" / image, Flat(100, c.mark)), "");
-            views.push_back({{"view", "three_quarter"}, {"image", image}});
+            std::vector<std::pair<std::string, int>> marks = {{"three_quarter", c.mark}};
+            if (c.grazing_mark >= 0) {
+                marks.emplace_back("grazing", c.grazing_mark);
+            }
+            for (const auto& [view, mark] : marks) {
+                const std::string image = "images/" + std::to_string(entries.size()) +
+                                          (view == "three_quarter" ? "" : "-" + view) + ".png";
+                EXPECT_EQ(WritePngAtomically(dir.Path() / "render" / image, Flat(100, mark)), "");
+                views.push_back({{"view", view}, {"image", image}});
+                if (!c.pass_names.empty()) {
+                    views.back()["pass_names"] = c.pass_names;
+                    views.back()["passes"] = c.pass_names.size();
+                }
+                if (c.draw_calls >= 0) {
+                    views.back()["draw_calls"] = c.draw_calls;
+                }
+            }
         }
         nlohmann::json passes = {{"reflection_size", 256},
                                  {"low_res_water", false},
@@ -664,6 +684,323 @@ TEST(ReportScenesTest, CorruptOrForeignPlansAreAnErrorNamingTheFileInTheReport) 
         const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
         EXPECT_EQ(data["scenes"]["error"], loaded.inputs->plans_error);
     }
+}
+
+// The whitepaper configurations plus the reflection techniques and the depth optics, with the
+// passes each runs: cube map and Fourier have no reflection pass. Images: reflection_only has
+// mark 6 at both views; cubemap_reflection draws the same image (identical), fourier_reflection
+// a different one (mark 0 at both); full has mark 2 at both views; full_cubemap_reflection
+// matches it at three_quarter but not at grazing (the view where it breaks);
+// full_fourier_reflection differs at both; full_depth_optics changes three_quarter only.
+std::vector<FakeConfiguration> ReflectionConfigurations() {
+    std::vector<FakeConfiguration> configurations = WhitepaperConfigurations();
+    for (FakeConfiguration& c : configurations) {
+        c.pass_names = {"reflection", "main"};
+        c.draw_calls = 20;
+        if (c.presets.front() == "reflection_only") {
+            c.grazing_mark = 6;
+        }
+        if (c.presets.front() == "full") {
+            c.pass_names = {"reflection", "refraction", "main"};
+            c.draw_calls = 30;
+            c.grazing_mark = 2;
+        }
+    }
+    const std::vector<std::string> main_only = {"main"};
+    const std::vector<std::string> refraction_main = {"refraction", "main"};
+    configurations.push_back({"water:REFLECTION_CUBEMAP", {"cubemap_reflection"}, 8.0, 6, true,
+                              "water", 45, {}, 0, main_only, 12, 6});
+    configurations.push_back({"water:REFLECTION_FOURIER", {"fourier_reflection"}, 12.5, 0, true,
+                              "water", 70, {}, 0, main_only, 12, 0});
+    configurations.push_back({"water:CUBE_FULL", {"full_cubemap_reflection"}, 24.0, 2, true,
+                              "water", 190, {}, 0, refraction_main, 22, 9});
+    configurations.push_back({"water:FOURIER_FULL", {"full_fourier_reflection"}, 26.0, 5, true,
+                              "water", 230, {}, 0, refraction_main, 22, 7});
+    configurations.push_back({"water:OPTICS", {"full_depth_optics"}, 33.0, 4, true, "water", 260,
+                              {}, 0, {"reflection", "refraction", "main"}, 30, 2});
+    return configurations;
+}
+
+ReportModel BuildFrom(const FakeRun& run, std::optional<ReportInputs>* keep) {
+    ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_TRUE(loaded.inputs) << loaded.error;
+    if (!loaded.inputs) {
+        return {};
+    }
+    *keep = std::move(loaded.inputs);
+    return BuildOrFail(**keep);
+}
+
+TEST(ReportReflectionTest, SectionListsTheFourComparisonsWithPassesFromThePassNames) {
+    TempDir dir;
+    std::optional<ReportInputs> inputs;
+    const ReportModel model = BuildFrom(WriteFakeRun(dir, ReflectionConfigurations()), &inputs);
+    ASSERT_EQ(model.reflections.size(), 4u);
+    const std::vector<std::pair<std::string, std::string>> pairs = {
+            {"reflection_only", "cubemap_reflection"},
+            {"reflection_only", "fourier_reflection"},
+            {"full", "full_cubemap_reflection"},
+            {"full", "full_fourier_reflection"}};
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+        const TechniqueComparison& t = model.reflections[i];
+        EXPECT_EQ(t.baseline.preset, pairs[i].first) << i;
+        EXPECT_EQ(t.candidate.preset, pairs[i].second) << i;
+        ASSERT_NE(t.candidate.configuration, nullptr) << i;
+        EXPECT_EQ(t.note, "") << i;
+        EXPECT_EQ(t.passes_dropped, std::vector<std::string>{"reflection"}) << i;
+        EXPECT_FALSE(t.reading.empty()) << i;
+    }
+    EXPECT_EQ(model.reflections[0].kind, TechniqueKind::kCubemapReflection);
+    EXPECT_EQ(model.reflections[1].kind, TechniqueKind::kFourierReflection);
+    EXPECT_EQ(model.reflections[0].baseline_passes,
+              (std::vector<std::string>{"reflection", "main"}));
+    EXPECT_EQ(model.reflections[0].candidate_passes, std::vector<std::string>{"main"});
+    EXPECT_EQ(model.reflections[2].baseline_passes,
+              (std::vector<std::string>{"reflection", "refraction", "main"}));
+    EXPECT_EQ(model.reflections[2].candidate_passes,
+              (std::vector<std::string>{"refraction", "main"}));
+    EXPECT_EQ(model.reflections[2].baseline_draw_calls, 30);
+    EXPECT_EQ(model.reflections[2].candidate_draw_calls, 22);
+    // 10 ms -> 8 ms is a frame-time ratio of 0.8, "performance increased by 25%"; 10 -> 12.5
+    // is 1.25, "reduced by 20%": the same sign convention as the whitepaper rows.
+    EXPECT_NEAR(model.reflections[0].change_percent, 25.0, 0.05);
+    EXPECT_EQ(model.reflections[0].direction, +1);
+    EXPECT_DOUBLE_EQ(model.reflections[0].baseline_median_ms, 10.0);
+    EXPECT_DOUBLE_EQ(model.reflections[0].candidate_median_ms, 8.0);
+    EXPECT_NEAR(model.reflections[1].change_percent, -20.0, 0.05);
+    EXPECT_EQ(model.reflections[1].direction, -1);
+    // Both sides share their rounds' jitter, so the paired interval is narrow but finite.
+    EXPECT_LE(model.reflections[1].change_ci.low, model.reflections[1].change_percent);
+    EXPECT_GE(model.reflections[1].change_ci.high, model.reflections[1].change_percent);
+    EXPECT_TRUE(std::isfinite(model.reflections[1].change_ci.low));
+    EXPECT_EQ(model.reflections[1].ratio.rounds, 6);
+    // What each technique misses, in the words of the issue.
+    EXPECT_NE(model.reflections[0].reading.find("Local objects and terrain are missing"),
+              std::string::npos);
+    EXPECT_NE(model.reflections[1].reading.find("objects (anything that moves) are missing"),
+              std::string::npos);
+    // The depth optics: an addition to full, no pass dropped.
+    ASSERT_EQ(model.optics.size(), 1u);
+    EXPECT_EQ(model.optics[0].kind, TechniqueKind::kDepthOptics);
+    EXPECT_EQ(model.optics[0].baseline.preset, "full");
+    EXPECT_EQ(model.optics[0].candidate.preset, "full_depth_optics");
+    EXPECT_TRUE(model.optics[0].passes_dropped.empty());
+    EXPECT_NEAR(model.optics[0].change_percent, (30.0 / 33.0 - 1) * 100, 0.05);
+    EXPECT_TRUE(std::isfinite(model.optics[0].psnr_db));
+    EXPECT_NE(model.optics[0].reading.find("Most changed view: three_quarter"),
+              std::string::npos)
+            << model.optics[0].reading;
+    // One panel per technique: its full-effect candidate beside planar full.
+    ASSERT_EQ(model.reflection_panels.size(), 2u);
+    EXPECT_EQ(model.reflection_panels[0].configuration->id, "water:CUBE_FULL");
+    EXPECT_EQ(model.reflection_panels[0].reference_preset, "full");
+    EXPECT_NE(model.reflection_panels[0].title.find("planar"), std::string::npos);
+    EXPECT_EQ(model.reflection_panels[1].configuration->id, "water:FOURIER_FULL");
+    EXPECT_TRUE(std::isfinite(model.reflection_panels[1].psnr_db));
+}
+
+TEST(ReportReflectionTest, ErrorAgainstPlanarIsIdenticalWhenImagesMatchAndFiniteWhenTheyDiffer) {
+    TempDir dir;
+    std::optional<ReportInputs> inputs;
+    const ReportModel model = BuildFrom(WriteFakeRun(dir, ReflectionConfigurations()), &inputs);
+    ASSERT_EQ(model.reflections.size(), 4u);
+    const TechniqueComparison& same = model.reflections[0];  // cube map: identical images
+    EXPECT_EQ(same.views_compared, 2);
+    EXPECT_TRUE(std::isinf(same.psnr_db) && same.psnr_db > 0) << same.psnr_db;
+    EXPECT_DOUBLE_EQ(same.ssim, 1.0);
+    EXPECT_DOUBLE_EQ(same.share_visible, 0.0);
+    EXPECT_EQ(same.worst_view, "");  // nothing differs, so no view breaks
+    const TechniqueComparison& differs = model.reflections[1];  // Fourier: mark 0 against 6
+    EXPECT_EQ(differs.views_compared, 2);
+    EXPECT_TRUE(std::isfinite(differs.psnr_db));
+    EXPECT_LT(differs.ssim, 1.0);
+    EXPECT_NEAR(differs.share_visible, 36.0 / 768.0, 1e-12);
+    // Full cube map: identical at three_quarter, broken at grazing, which the reading names.
+    const TechniqueComparison& full = model.reflections[2];
+    ASSERT_EQ(full.per_view.size(), 2u);
+    EXPECT_EQ(full.per_view[0].view, "three_quarter");
+    EXPECT_TRUE(std::isinf(full.per_view[0].psnr_db));
+    EXPECT_EQ(full.per_view[1].view, "grazing");
+    EXPECT_TRUE(std::isfinite(full.per_view[1].psnr_db));
+    EXPECT_TRUE(std::isfinite(full.psnr_db));
+    EXPECT_GT(full.psnr_db, full.per_view[1].psnr_db);  // the mean MSE halves the error
+    EXPECT_EQ(full.worst_view, "grazing");
+    EXPECT_DOUBLE_EQ(full.worst_psnr_db, full.per_view[1].psnr_db);
+    EXPECT_NE(full.reading.find("Worst view: grazing"), std::string::npos) << full.reading;
+    // The panel is at the timing view, where the full cube map matches planar exactly.
+    EXPECT_TRUE(std::isinf(model.reflection_panels[0].psnr_db));
+}
+
+TEST(ReportReflectionTest, MissingOrFailedCandidateIsShownAsSuchNotDropped) {
+    TempDir dir;
+    std::vector<FakeConfiguration> configurations = ReflectionConfigurations();
+    configurations.erase(std::remove_if(configurations.begin(), configurations.end(),
+                                        [](const FakeConfiguration& c) {
+                                            return c.presets.front() == "fourier_reflection";
+                                        }),
+                         configurations.end());
+    for (FakeConfiguration& c : configurations) {
+        if (c.presets.front() == "full_cubemap_reflection") {
+            c.ok = false;
+        }
+    }
+    std::optional<ReportInputs> inputs;
+    const ReportModel model = BuildFrom(WriteFakeRun(dir, configurations), &inputs);
+    ASSERT_EQ(model.reflections.size(), 4u);
+    const TechniqueComparison& missing = model.reflections[1];
+    EXPECT_EQ(missing.candidate.preset, "fourier_reflection");
+    EXPECT_EQ(missing.candidate.configuration, nullptr);
+    EXPECT_EQ(missing.note, "no configuration in the results carries preset 'fourier_reflection'");
+    EXPECT_TRUE(std::isnan(missing.change_percent));
+    EXPECT_FALSE(missing.HasError());
+    // The baseline's side is still shown.
+    EXPECT_EQ(missing.baseline_passes, (std::vector<std::string>{"reflection", "main"}));
+    EXPECT_DOUBLE_EQ(missing.baseline_median_ms, 10.0);
+    const TechniqueComparison& failed = model.reflections[2];
+    ASSERT_NE(failed.candidate.configuration, nullptr);
+    EXPECT_NE(failed.note.find("water:CUBE_FULL (preset 'full_cubemap_reflection') FAILED"),
+              std::string::npos)
+            << failed.note;
+    EXPECT_TRUE(std::isnan(failed.psnr_db));
+    ASSERT_EQ(model.reflection_panels.size(), 2u);
+    EXPECT_NE(model.reflection_panels[0].note.find("FAILED"), std::string::npos);
+
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("| Fourier reflection (reflection only) | reflection_only [water:] → "
+                      "fourier_reflection [fourier_reflection (missing)] | no configuration in "
+                      "the results carries preset 'fourier_reflection' | reflection, main → – |"),
+              std::string::npos)
+            << md;
+    EXPECT_NE(md.find("full_cubemap_reflection [water:CUBE_FULL FAILED]"), std::string::npos);
+    const std::string html = ReadText(written.folder / "index.html");
+    EXPECT_NE(html.find("<tr class=\"bad technique-fourier-reflection_only\">"), std::string::npos);
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    const nlohmann::json& entry = data["reflection_techniques"]["comparisons"][1];
+    EXPECT_EQ(entry["candidate"]["configuration"], nullptr);
+    EXPECT_EQ(entry["candidate"]["ok"], false);
+    EXPECT_EQ(entry["measured_percent"], nullptr);
+    EXPECT_EQ(entry["note"], missing.note);
+}
+
+TEST(ReportReflectionTest, SectionAppearsInHtmlMarkdownAndDataJson) {
+    TempDir dir;
+    std::optional<ReportInputs> inputs;
+    const ReportModel model = BuildFrom(WriteFakeRun(dir, ReflectionConfigurations()), &inputs);
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("## 9. Reflection techniques"), std::string::npos);
+    EXPECT_NE(md.find("| cube-map reflection (reflection only) | reflection_only [water:] → "
+                      "cubemap_reflection [water:REFLECTION_CUBEMAP] | measured | reflection, "
+                      "main → main (no reflection pass) | 20 → 12 | 10.00 / 8.00 | +25.0%, "
+                      "faster |"),
+              std::string::npos)
+            << md;
+    EXPECT_NE(md.find("| identical | 1.0000 | 0.00% | three_quarter: identical; grazing: "
+                      "identical |"),
+              std::string::npos);
+    EXPECT_NE(md.find("grazing: "), std::string::npos);
+    EXPECT_NE(md.find("(worst)"), std::string::npos);
+    EXPECT_NE(md.find("### Depth optics"), std::string::npos);
+    EXPECT_NE(md.find("| depth optics (full effect) | full [water:FULL] → full_depth_optics "
+                      "[water:OPTICS] | measured |"),
+              std::string::npos);
+    EXPECT_NE(md.find("| this configuration | planar reflection (full) | difference |"),
+              std::string::npos);
+    EXPECT_NE(md.find("images/reflection-full_fourier_reflection-three_quarter.png"),
+              std::string::npos);
+    EXPECT_TRUE(std::filesystem::is_regular_file(written.folder /
+                                                 "images/planar-full-three_quarter.png"));
+    EXPECT_TRUE(std::filesystem::is_regular_file(
+            written.folder / "images/reflection-full_cubemap_reflection-three_quarter-diff.png"));
+
+    const std::string html = ReadText(written.folder / "index.html");
+    EXPECT_NE(html.find("<h2 id=\"reflections\">9. Reflection techniques</h2>"),
+              std::string::npos);
+    EXPECT_NE(html.find("<a href=\"#reflections\">Reflection techniques</a>"), std::string::npos);
+    EXPECT_NE(html.find("<h3 id=\"depth-optics\">Depth optics</h3>"), std::string::npos);
+    EXPECT_NE(html.find("<tr class=\"technique-cubemap-full\">"), std::string::npos);
+    EXPECT_NE(html.find("<figcaption>planar reflection (full)</figcaption>"), std::string::npos);
+    // Every tag the section opens is closed (the page stays valid), and its panels' images
+    // are embedded like the others.
+    const std::string section = html.substr(html.find("<h2 id=\"reflections\">"));
+    for (const auto& [open, close] : std::vector<std::pair<std::string, std::string>>{
+                 {"<table", "</table>"}, {"<tr", "</tr>"}, {"<div", "</div>"},
+                 {"<figure>", "</figure>"}, {"<p", "</p>"}, {"<h3", "</h3>"}}) {
+        std::size_t opened = 0;
+        std::size_t closed = 0;
+        for (std::size_t at = section.find(open); at != std::string::npos;
+             at = section.find(open, at + 1)) {
+            // "<p" also starts "<path"; the section has no SVG, but count only <p> and <p ...>.
+            const char next = section[at + open.size()];
+            if (open != "<p" || next == '>' || next == ' ') {
+                ++opened;
+            }
+        }
+        for (std::size_t at = section.find(close); at != std::string::npos;
+             at = section.find(close, at + 1)) {
+            ++closed;
+        }
+        EXPECT_EQ(opened, closed) << open;
+    }
+    std::size_t embedded = 0;
+    for (std::size_t at = section.find("src=\"data:image/png;base64,"); at != std::string::npos;
+         at = section.find("src=\"data:image/png;base64,", at + 1)) {
+        ++embedded;
+    }
+    EXPECT_EQ(embedded, 6u);  // two panels of three images
+
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    const nlohmann::json& section_json = data["reflection_techniques"];
+    ASSERT_EQ(section_json["comparisons"].size(), 4u);
+    const nlohmann::json& cubemap = section_json["comparisons"][0];
+    EXPECT_EQ(cubemap["kind"], "cubemap");
+    EXPECT_EQ(cubemap["baseline"]["pass_names"], nlohmann::json({"reflection", "main"}));
+    EXPECT_EQ(cubemap["candidate"]["pass_names"], nlohmann::json({"main"}));
+    EXPECT_EQ(cubemap["candidate"]["draw_calls"], 12);
+    EXPECT_EQ(cubemap["passes_dropped"], nlohmann::json({"reflection"}));
+    EXPECT_NEAR(cubemap["measured_percent"].get<double>(), 25.0, 0.05);
+    EXPECT_EQ(cubemap["direction"], "faster");
+    EXPECT_EQ(cubemap["error"]["identical"], true);
+    EXPECT_EQ(cubemap["error"]["psnr_db"], nullptr);
+    const nlohmann::json& fourier = section_json["comparisons"][1];
+    EXPECT_EQ(fourier["error"]["identical"], false);
+    EXPECT_TRUE(fourier["error"]["psnr_db"].is_number());
+    EXPECT_EQ(section_json["comparisons"][2]["error"]["worst_view"], "grazing");
+    EXPECT_EQ(section_json["comparisons"][2]["error"]["per_view"].size(), 2u);
+    EXPECT_EQ(section_json["images"].size(), 2u);
+    EXPECT_EQ(section_json["images"][0]["compared_with"], "full");
+    ASSERT_EQ(data["depth_optics"]["comparisons"].size(), 1u);
+    EXPECT_EQ(data["depth_optics"]["comparisons"][0]["candidate"]["configuration"], "water:OPTICS");
+}
+
+TEST(ReportReflectionTest, ResultsWithoutPassNamesStillLoadAndShowPassesAsUnknown) {
+    TempDir dir;
+    std::optional<ReportInputs> inputs;
+    const ReportModel model = BuildFrom(WriteFakeRun(dir, WhitepaperConfigurations()), &inputs);
+    ASSERT_TRUE(inputs);
+    const ViewImage* view = inputs->FindByPreset("full")->ViewAt("three_quarter");
+    ASSERT_NE(view, nullptr);
+    EXPECT_TRUE(view->pass_names.empty());
+    EXPECT_FALSE(view->draw_calls.has_value());
+    ASSERT_EQ(model.reflections.size(), 4u);  // every candidate missing, none dropped
+    for (const TechniqueComparison& t : model.reflections) {
+        EXPECT_EQ(t.candidate.configuration, nullptr);
+        EXPECT_TRUE(t.baseline_passes.empty());
+        EXPECT_NE(t.note.find("carries preset"), std::string::npos);
+    }
+    ASSERT_EQ(model.reflection_panels.size(), 2u);
+    EXPECT_NE(model.reflection_panels[0].note.find("MISSING"), std::string::npos);
+    const WrittenReport written = WriteReport(model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("`(missing)`: **MISSING: no configuration carries preset "
+                      "'full_cubemap_reflection'**"),
+              std::string::npos)
+            << md;
 }
 
 }  // namespace

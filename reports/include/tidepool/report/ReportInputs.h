@@ -38,10 +38,14 @@ enum class TimingClock {
 /// "cpu" or "wall"; never fails.
 std::string_view TimingClockName(TimingClock clock);
 
-/// One camera view of a configuration and the image rendered at it.
+/// One camera view of a configuration, the image rendered at it and the passes that drew it.
 struct ViewImage {
     std::string view;
     std::filesystem::path image;  // absolute (resolved against the results folder); empty if none
+    // The frame's passes in order ("reflection", "refraction", "main"); empty when the results
+    // predate `pass_names` (the field is optional in tidepool.render-results v1).
+    std::vector<std::string> pass_names;
+    std::optional<int> draw_calls;  // draw calls of one frame; absent in older results
 };
 
 /// One render configuration (variant + pass options) as the runner recorded it.
@@ -80,6 +84,8 @@ struct MeasuredConfiguration {
     std::string PassLabel() const;
     /// The image at `view`, or an empty path when there is none.
     std::filesystem::path ImageAt(std::string_view view) const;
+    /// The view called `view`, or null when the configuration has none of that name.
+    const ViewImage* ViewAt(std::string_view view) const;
     /// The per-round samples on `clock`.
     const std::vector<std::vector<double>>& SamplesOn(TimingClock clock) const;
     /// The median frame time on `clock` (NaN when not timed on it).

@@ -1,7 +1,9 @@
 // Everything the report shows, computed once from the saved inputs: the whitepaper table with
 // verdicts, accuracy against the reference versus time with its Pareto frontier, static cost
-// versus measured time, the validation summary, image panels, method and noise. The writers
-// (ReportWriter.h) only format this model, so HTML, Markdown and data.json always agree.
+// versus measured time, the validation summary, image panels, method and noise, and the
+// reflection techniques (cube map, Fourier) against planar reflection with the depth optics.
+// The writers (ReportWriter.h) only format this model, so HTML, Markdown and data.json always
+// agree.
 #pragma once
 
 #include <cstdint>
@@ -139,15 +141,83 @@ struct ValidationSummary {
 /// A configuration's image at a view beside the reference's and their difference.
 struct ImagePanel {
     std::string title;       // the preset(s), e.g. "full_no_fog (row 4)"
-    const MeasuredConfiguration* configuration = nullptr;
+    const MeasuredConfiguration* configuration = nullptr;  // null when no configuration has it
     std::string view;
     RgbaImage image;
     RgbaImage reference;
     RgbaImage heat_map;
+    // Whose image `reference` is: the reference preset, or (in the Reflection techniques
+    // section) the planar counterpart the candidate is compared with.
+    std::string reference_preset = std::string(kReferencePreset);
+    std::string reference_caption = "reference";
     double psnr_db = std::numeric_limits<double>::quiet_NaN();
     double ssim = std::numeric_limits<double>::quiet_NaN();
     double share_visible = std::numeric_limits<double>::quiet_NaN();
     std::string note;  // why there is no image, when there is none
+};
+
+/// What a TechniqueComparison measures.
+enum class TechniqueKind {
+    kCubemapReflection,  // the sky cube map instead of the planar reflection pass (seeds/001)
+    kFourierReflection,  // per-vertex Fourier terrain horizon instead of the pass (seeds/004)
+    kDepthOptics,        // extinction, shore foam, soft shore and sun specular added (seeds/003)
+};
+
+/// A stable lower-case name of `kind` for JSON and CSS ("cubemap", "fourier", "depth-optics");
+/// never fails.
+std::string_view TechniqueKindName(TechniqueKind kind);
+
+/// One view's image error of a candidate against its baseline.
+struct ViewError {
+    std::string view;
+    double psnr_db = std::numeric_limits<double>::quiet_NaN();  // +infinity when identical
+    double ssim = std::numeric_limits<double>::quiet_NaN();
+    double share_visible = std::numeric_limits<double>::quiet_NaN();  // 0..1
+};
+
+/// A technique against its baseline: a reflection technique against the planar reflection it
+/// replaces, or the depth optics against the full effect they are added to. Missing or failed
+/// configurations keep their entry, with `note` saying which and NaN figures.
+struct TechniqueComparison {
+    TechniqueKind kind = TechniqueKind::kCubemapReflection;
+    std::string technique;  // "cube-map reflection", "Fourier reflection", "depth optics"
+    std::string context;    // what both sides share: "reflection only", "full effect"
+    ComparisonSide baseline;   // the planar reflection (or the full effect, for the optics)
+    ComparisonSide candidate;
+    // Pass names of one frame at the timing view (empty when unknown: older results, missing
+    // or failed configuration) and the baseline's passes the candidate does not run.
+    std::vector<std::string> baseline_passes;
+    std::vector<std::string> candidate_passes;
+    std::vector<std::string> passes_dropped;
+    std::optional<int> baseline_draw_calls;  // per frame at the timing view
+    std::optional<int> candidate_draw_calls;
+    double baseline_median_ms = std::numeric_limits<double>::quiet_NaN();  // model's clock
+    double candidate_median_ms = std::numeric_limits<double>::quiet_NaN();
+    PairedRatio ratio;  // candidate / baseline frame time, paired by round
+    double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
+    Interval change_ci;  // of change_percent
+    // +1 faster, -1 slower: the whole interval clears ±noise floor (as GradeRow's direction);
+    // 0 when it does not or nothing was measured.
+    int direction = 0;
+    // Image error of the candidate against the baseline over every view both have images for:
+    // PSNR from the mean squared error over views (+infinity when identical), mean SSIM, mean
+    // share of visibly different pixels; NaN when no view was compared.
+    double psnr_db = std::numeric_limits<double>::quiet_NaN();
+    double ssim = std::numeric_limits<double>::quiet_NaN();
+    double share_visible = std::numeric_limits<double>::quiet_NaN();
+    int views_compared = 0;
+    std::vector<ViewError> per_view;  // in the candidate's view order
+    std::string worst_view;  // the view of lowest PSNR when 2+ views differ; else empty
+    double worst_psnr_db = std::numeric_limits<double>::quiet_NaN();
+    // One line: where the technique breaks (reflections) or what the addition changes (optics),
+    // naming the worst view when there is one.
+    std::string reading;
+    // Why figures are missing (a configuration missing or FAILED, no paired time, no common
+    // view); "" when everything was measured.
+    std::string note;
+
+    /// True when both sides rendered and at least one view was compared.
+    bool HasError() const { return views_compared > 0; }
 };
 
 /// Options of a report build.
@@ -173,6 +243,14 @@ struct ReportModel {
     StaticCostAnalysis static_cost;
     ValidationSummary validation;
     std::vector<ImagePanel> panels;
+    // Reflection techniques against planar reflection: (reflection_only -> cubemap_reflection),
+    // (reflection_only -> fourier_reflection), (full -> full_cubemap_reflection),
+    // (full -> full_fourier_reflection), in that order, always all four.
+    std::vector<TechniqueComparison> reflections;
+    // The full_* candidate of each reflection technique beside planar `full` at the panel view;
+    // `reference` here is the planar image, not the reference preset's.
+    std::vector<ImagePanel> reflection_panels;
+    std::vector<TechniqueComparison> optics;  // (full -> full_depth_optics)
     double largest_split_half_disagreement = std::numeric_limits<double>::quiet_NaN();
     int largest_split_half_row = 0;
     int failed_configurations = 0;
@@ -186,8 +264,9 @@ struct ReportModelResult {
 
 /// Computes every section from `inputs`. Fails (no model, `error` starting with the path) when
 /// an image a configuration that rendered claims cannot be read, or when two images of one view
-/// differ in size. Failed configurations are kept and marked, never dropped. A missing reference
-/// leaves the accuracy figures NaN with a note.
+/// differ in size (against the reference, or within a technique's pair). Failed or missing
+/// configurations are kept and marked, never dropped. A missing reference leaves the accuracy
+/// figures NaN with a note.
 ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptions& options);
 
 /// Rank correlation and largest rank gaps of static counts versus times, for tests and the
