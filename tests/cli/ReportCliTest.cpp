@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -57,28 +58,42 @@ std::string ReadText(const std::filesystem::path& path) {
 
 // One small `tidepool run` shared by every test of the suite (it is the slow part): 160x120,
 // 2 rounds of 1 frame, no warm-up; the stability catalogue at its default 64x48 and the scene
-// plans at 64x48 with 1 round of 1 frame (the test checks the sections, not the times).
+// plans at 64x48 with 1 round of 1 frame (the test checks the sections, not the times). Under
+// CTest a fixture (tests/cli/ReportRunFixture.cmake) makes it once and names its folder in
+// TIDEPOOL_REPORT_RUN_DIR; run directly, the suite makes its own.
 class ReportCliTest : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
+        run_ = new CommandResult();
+        if (const char* made = std::getenv("TIDEPOOL_REPORT_RUN_DIR")) {
+            out_ = new std::filesystem::path(made);
+            const std::string exit_code = ReadText(out_->string() + ".exit");
+            run_->exit_code = exit_code.empty() ? -1 : std::stoi(exit_code);
+            run_->out = ReadText(out_->string() + ".log");
+            return;
+        }
         dir_ = new TempDir();
-        run_ = new CommandResult(RunTidepool("run --size 160x120 --rounds 2 --frames 1 --warmup 0 "
-                                             "--plan-size 64x48 --plan-rounds 1 --plan-frames 1 "
-                                             "--out '" + dir_->Path().string() + "'"));
+        out_ = new std::filesystem::path(dir_->Path());
+        *run_ = RunTidepool(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" +
+                            out_->string() + "'");
     }
     static void TearDownTestSuite() {
         delete run_;
+        delete out_;
         delete dir_;
         run_ = nullptr;
+        out_ = nullptr;
         dir_ = nullptr;
     }
-    static std::filesystem::path Out() { return dir_->Path(); }
+    static std::filesystem::path Out() { return *out_; }
 
     static TempDir* dir_;
+    static std::filesystem::path* out_;
     static CommandResult* run_;
 };
 
 TempDir* ReportCliTest::dir_ = nullptr;
+std::filesystem::path* ReportCliTest::out_ = nullptr;
 CommandResult* ReportCliTest::run_ = nullptr;
 
 TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
@@ -136,6 +151,8 @@ TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepa
     // run wrote stability.json and plans.json, so both sections show their tables, not how-tos.
     EXPECT_NE(dom.out.find("<h2 id=\"stability\">7. Numerical stability</h2>"), std::string::npos);
     EXPECT_NE(dom.out.find("<h2 id=\"scenes\">8. Scenes</h2>"), std::string::npos);
+    EXPECT_NE(dom.out.find("<h2 id=\"reflections\">9. Reflection techniques</h2>"),
+              std::string::npos);
     EXPECT_EQ(dom.out.find("No numerical-stability catalogue was found"), std::string::npos);
     EXPECT_EQ(dom.out.find("No scene plans were found"), std::string::npos);
     EXPECT_NE(dom.out.find("murky_pond"), std::string::npos);
