@@ -136,6 +136,8 @@ void ApplyDrop(const std::string& effect, std::vector<std::string>* defines, Pas
         *defines = Without(*defines, {"ENABLE_SCALE_DISTORTION"});
     } else if (effect == "fog") {
         *defines = Without(*defines, {"ENABLE_FOG"});
+    } else if (effect == "planar_reflection") {
+        *defines = With(Without(*defines, {"REFLECTION_FOURIER"}), {"REFLECTION_CUBEMAP"});
     } else if (effect == "reflection_resolution") {
         passes->reflection_size = std::max(1, passes->reflection_size / 2);
     } else if (effect == "full_resolution_water") {
@@ -160,6 +162,9 @@ bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
     }
     if (effect == "fog") {
         return chosen.Has("ENABLE_FOG");
+    }
+    if (effect == "planar_reflection") {
+        return !chosen.Has("REFLECTION_CUBEMAP") && !chosen.Has("REFLECTION_FOURIER");
     }
     if (effect == "reflection_resolution") {
         return chosen.passes.reflection_size >= full.passes.reflection_size;
@@ -242,6 +247,12 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     add(Without(f, {"ENABLE_SCALE_DISTORTION"}), p, "distortion not scaled by distance",
         "distortion_scaling");
     add(Without(f, {"ENABLE_FOG"}), p, "no distance fog", "fog");
+    const bool only_sky_above = !scene.above_terrain && !scene.above_objects;
+    add(With(f, {"REFLECTION_CUBEMAP"}), p,
+        only_sky_above ? "the sky cube map instead of a reflection pass: only sky is above"
+                       : "the sky cube map instead of a reflection pass (the rules expect the "
+                         "island and objects to show in the reflection)",
+        "planar_reflection");
     add(f, refl128, "a reflection texture of half the size", "reflection_resolution");
     add(f, low_res, "the water rendered at low resolution", "full_resolution_water");
 
@@ -262,6 +273,10 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
         add(Without(f, {"ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION",
                         "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
             p, "seen from high up: constant mix, waves too small to see", "");
+    }
+    if (only_sky_above && !below) {
+        add(With(colour, {"REFLECTION_CUBEMAP"}), p,
+            "only sky above and nothing below: the sky cube map, no refraction", "");
     }
     if (!scene.above_terrain) {
         add(colour, refl128, "only sky above: the reflection is the smooth sky", "");
