@@ -450,64 +450,57 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
         return Verdict::kInconclusive;
     }
     const std::string interval = fmt::format("[{:+.1f}%, {:+.1f}%]", low, high);
-    // Magnitude agreement is an equivalence test: the whole interval, not just the estimate,
-    // must lie within the tolerance of the figure, so a noisy run cannot agree by luck.
-    auto within = [&](double figure) {
-        return low >= figure - tolerance && high <= figure + tolerance;
-    };
-    if (row.kind == FigureKind::kNegligible && within(0.0)) {
-        *reason = fmt::format("the whole interval {} lies within ±{:.0f} points of no change, as "
-                              "the whitepaper's <1%",
-                              interval, tolerance);
-        return Verdict::kSameDirectionAndMagnitude;
+    // The category comes from the estimate; how firmly the run supports it is said beside it
+    // (the interval, and whether the odd and even rounds agree), never by changing category:
+    // between consecutive runs the estimate of one comparison moves by several points, more
+    // than its within-run interval shows, so interval-based categories flipped from run to run.
+    std::string evidence;
+    if (low <= 0.0 && high >= 0.0) {
+        evidence = fmt::format("; weakly supported: the interval {} includes no change", interval);
+    } else {
+        evidence = fmt::format("; interval {}", interval);
     }
-    int direction = 0;
-    if (low > floor) {
-        direction = +1;
-    } else if (high < -floor) {
-        direction = -1;
-    }
-    if (direction == 0) {
-        *reason = fmt::format("the 95% interval {} reaches within ±{:.0f}% of no change (the "
-                              "noise floor)",
-                              interval, floor);
-        return Verdict::kInconclusive;
-    }
-    // Both halves of the rounds must point the same way, or one disturbed stretch of the run
-    // could be deciding the direction.
     if (split != nullptr) {
         const double odd = PerformanceChangePercent(split->odd.ratio);
         const double even = PerformanceChangePercent(split->even.ratio);
-        if (std::isfinite(odd) && std::isfinite(even) &&
-            (odd * direction <= 0 || even * direction <= 0)) {
-            *reason = fmt::format("odd rounds say {:+.1f}%, even rounds {:+.1f}%: the halves "
-                                  "disagree on the direction",
-                                  odd, even);
-            return Verdict::kInconclusive;
+        if (std::isfinite(odd) && std::isfinite(even) && odd * even < 0) {
+            evidence += fmt::format("; the odd rounds say {:+.1f}%, the even {:+.1f}%", odd, even);
         }
     }
+    if (row.kind == FigureKind::kNegligible && std::fabs(change) <= tolerance) {
+        *reason = fmt::format("{:+.1f}% lies within {:.0f} points of no change, as the "
+                              "whitepaper's <1%{}",
+                              change, tolerance, evidence);
+        return Verdict::kSameDirectionAndMagnitude;
+    }
+    if (std::fabs(change) < floor) {
+        *reason = fmt::format("{:+.1f}% is below the {:.0f}% floor: no direction to compare{}",
+                              change, floor, evidence);
+        return Verdict::kInconclusive;
+    }
+    const int direction = change > 0 ? +1 : -1;
     if (direction != row.expected_sign) {
-        *reason = fmt::format("definitely {} ({}) where the whitepaper says {}",
-                              direction > 0 ? "faster" : "slower", interval,
-                              row.expected_sign > 0 ? "faster" : "slower");
+        *reason = fmt::format("{:+.1f}% is {} where the whitepaper says {}{}", change,
+                              direction > 0 ? "faster" : "slower",
+                              row.expected_sign > 0 ? "faster" : "slower", evidence);
         return Verdict::kOpposite;
     }
     if (row.kind == FigureKind::kDirection) {
-        *reason = "the whitepaper's figure is qualitative: direction only";
+        *reason = fmt::format("the whitepaper's figure is qualitative: direction only{}",
+                              evidence);
         return Verdict::kSameDirectionOnly;
     }
     const double figure = row.kind == FigureKind::kNegligible ? 0.0 : row.whitepaper_percent;
-    if (within(figure)) {
-        *reason = fmt::format("the whole interval {} lies within {:.0f} points of the "
-                              "whitepaper's {:+.1f}%",
-                              interval, tolerance, figure);
+    if (std::fabs(change - figure) <= tolerance) {
+        *reason = fmt::format("{:+.1f}% lies within {:.0f} points of the whitepaper's {:+.1f}%{}",
+                              change, tolerance, figure, evidence);
         return Verdict::kSameDirectionAndMagnitude;
     }
-    *reason = fmt::format("{:+.1f}% (interval {}) is not within {:.0f} points of the "
-                          "whitepaper's {}",
-                          change, interval, tolerance,
+    *reason = fmt::format("{:+.1f}% is not within {:.0f} points of the whitepaper's {}{}", change,
+                          tolerance,
                           row.kind == FigureKind::kNegligible ? std::string("<1%")
-                                                              : fmt::format("{:+.1f}%", figure));
+                                                              : fmt::format("{:+.1f}%", figure),
+                          evidence);
     return Verdict::kSameDirectionOnly;
 }
 

@@ -249,12 +249,14 @@ TEST(ReportGradeRow, VerdictsFollowDirectionToleranceAndNoiseFloor) {
             {"row 1: -23% is slower but far from -60%", 1, Ratio(1.3, 1.25, 1.35),
              Verdict::kSameDirectionOnly},
             {"row 1: +25% faster is the opposite", 1, Ratio(0.8, 0.78, 0.82), Verdict::kOpposite},
-            {"row 1: interval straddles no change", 1, Ratio(1.2, 0.9, 1.5),
+            {"row 1: -16.7% is a direction even when the interval straddles no change", 1,
+             Ratio(1.2, 0.9, 1.5), Verdict::kSameDirectionOnly},
+            {"row 2: a 0.5% loss is below the 1% floor", 2, Ratio(1.005, 1.0, 1.01),
              Verdict::kInconclusive},
-            {"row 2: a definite but tiny 1.5% loss is inside the noise floor", 2,
-             Ratio(1.015, 1.01, 1.02), Verdict::kInconclusive},
-            {"row 2: a wide interval cannot claim the magnitude, only the direction", 2,
-             Ratio(1.3, 1.05, 1.6), Verdict::kSameDirectionOnly},
+            {"row 2: a small 1.5% loss is within 10 points of -9%", 2, Ratio(1.015, 1.01, 1.02),
+             Verdict::kSameDirectionAndMagnitude},
+            {"row 2: -23% is beyond 10 points of -9%", 2, Ratio(1.3, 1.05, 1.6),
+             Verdict::kSameDirectionOnly},
             {"row 2: a narrow interval around -8% agrees in magnitude", 2,
              Ratio(1.087, 1.07, 1.1), Verdict::kSameDirectionAndMagnitude},
             {"row 6: <1% agrees with a small change", 6, Ratio(1.02, 0.99, 1.05),
@@ -265,30 +267,40 @@ TEST(ReportGradeRow, VerdictsFollowDirectionToleranceAndNoiseFloor) {
              Verdict::kSameDirectionOnly},
             {"row 8: qualitative faster, measured slower", 8, Ratio(1.2, 1.15, 1.25),
              Verdict::kOpposite},
-            {"row 11: qualitative, inside the noise floor", 11, Ratio(0.99, 0.98, 1.0),
-             Verdict::kInconclusive},
+            {"row 11: qualitative, +0.5% is inside the noise floor", 11,
+             Ratio(0.995, 0.985, 1.005), Verdict::kInconclusive},
             {"failed measurement", 3, PairedRatio{}, Verdict::kFailed},
     };
     for (const GradeCase& c : cases) {
         std::string reason;
-        EXPECT_EQ(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, 3.0, &reason), c.expected)
-                << c.name << ": " << VerdictName(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, 3.0, &reason))
+        EXPECT_EQ(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, kNoiseFloorPercent, &reason),
+                  c.expected)
+                << c.name << ": "
+                << VerdictName(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, kNoiseFloorPercent,
+                                        &reason))
                 << " (" << reason << ")";
         EXPECT_FALSE(reason.empty()) << c.name;
     }
 }
 
-TEST(ReportGradeRow, HalvesPointingDifferentWaysAreInconclusive) {
+TEST(ReportGradeRow, HalvesAndIntervalsSayHowFirmlyNotWhichCategory) {
+    // The category follows the estimate; disagreeing halves and an interval through no change
+    // are said in the reason, so a noisy run cannot move a row between categories by them.
     SplitHalf split;
     split.odd = Ratio(0.7, 0.6, 0.8);   // odd rounds: faster
     split.even = Ratio(1.1, 1.0, 1.2);  // even rounds: slower
     std::string reason;
-    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 3, &reason),
-              Verdict::kInconclusive);
-    EXPECT_NE(reason.find("halves disagree"), std::string::npos) << reason;
-    split.even = Ratio(0.85, 0.8, 0.9);
-    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 3, &reason),
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 1, &reason),
               Verdict::kSameDirectionOnly);
+    EXPECT_NE(reason.find("the odd rounds say"), std::string::npos) << reason;
+    split.even = Ratio(0.85, 0.8, 0.9);
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 1, &reason),
+              Verdict::kSameDirectionOnly);
+    EXPECT_EQ(reason.find("the odd rounds say"), std::string::npos) << reason;
+    EXPECT_EQ(reason.find("includes no change"), std::string::npos) << reason;
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 1.1), &split, 10, 1, &reason),
+              Verdict::kSameDirectionOnly);
+    EXPECT_NE(reason.find("includes no change"), std::string::npos) << reason;
 }
 
 TEST(ReportGradeRow, SingleRoundIntervalIsInconclusive) {
@@ -315,8 +327,8 @@ TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
     EXPECT_EQ(model.rows[9].verdict, Verdict::kSameDirectionOnly);
     // Row 8: cube map 36 ms vs 30 ms is slower: opposite to the whitepaper.
     EXPECT_EQ(model.rows[7].verdict, Verdict::kOpposite);
-    // Row 9: 30.3 -> 30 ms is 1% faster: inside the noise floor.
-    EXPECT_EQ(model.rows[8].verdict, Verdict::kInconclusive);
+    // Row 9: 30.3 -> 30 ms is 1% faster: at the noise floor, so a direction.
+    EXPECT_EQ(model.rows[8].verdict, Verdict::kSameDirectionOnly);
     EXPECT_TRUE(std::isfinite(model.largest_split_half_disagreement));
 }
 

@@ -45,7 +45,9 @@ struct RunOptions {
     int frames_per_round = 3;       // timed frames per configuration per round
     // Timed frames per round for configurations a preset asked for (the whitepaper's
     // comparisons): their per-round medians decide the report's verdicts, so they get more
-    // frames than the rest of the matrix; 0 means frames_per_round.
+    // frames than the rest of the matrix, and are timed as a group of their own at the start
+    // of every round, so the pairs a verdict compares are measured close together in time;
+    // 0 means frames_per_round and one group.
     int preset_frames_per_round = 0;
     std::filesystem::path out_dir;  // images go to out_dir/images/
     bool write_images = true;
