@@ -21,6 +21,7 @@
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/WaterMath.h"
+#include "GlTestEnvironment.h"
 
 namespace tidepool::runner {
 namespace {
@@ -28,32 +29,9 @@ namespace {
 constexpr int kWidth = 160;
 constexpr int kHeight = 120;
 
-struct Shared {
-    std::unique_ptr<GlContext> context;
-    std::optional<VariantConfig> config;
-    std::string error;
-};
+using test_support::GlTestEnvironment;
 
-Shared& Get() {
-    static Shared shared = [] {
-        Shared s;
-        GlContextResult created = CreateGlContext(BackendKind::kAuto);
-        if (!created.context) {
-            s.error = created.error;
-            return s;
-        }
-        s.context = std::move(created.context);
-        ConfigResult loaded =
-            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
-        if (!loaded.config) {
-            s.error = "variants.yaml does not load";
-            return s;
-        }
-        s.config = std::move(loaded.config);
-        return s;
-    }();
-    return shared;
-}
+GlTestEnvironment& Get() { return test_support::SharedGlEnvironment(); }
 
 class ReflectionOpticsGlTest : public ::testing::Test {
 protected:
@@ -85,7 +63,7 @@ Scene OnlySkyAbove(float depth) {
 }
 
 std::unique_ptr<WaterRenderer> MakeRenderer(const Scene* scene) {
-    Shared& s = Get();
+    GlTestEnvironment& s = Get();
     RenderSettings settings;
     settings.width = kWidth;
     settings.height = kHeight;

@@ -20,6 +20,7 @@
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/Results.h"
 #include "tidepool/runner/WaterMath.h"
+#include "GlTestEnvironment.h"
 
 namespace tidepool::runner {
 namespace {
@@ -32,8 +33,8 @@ constexpr int kHeight = 96;
 // One context, configuration and renderer for the whole file: creating them costs more than
 // most tests.
 struct Shared {
-    std::unique_ptr<GlContext> context;
-    std::optional<VariantConfig> config;
+    GlContext* context = nullptr;
+    const VariantConfig* config = nullptr;
     std::vector<Variant> variants;
     std::unique_ptr<WaterRenderer> renderer;
     std::unique_ptr<WaterRenderer> float_renderer;
@@ -43,19 +44,13 @@ struct Shared {
 Shared& Get() {
     static Shared shared = [] {
         Shared s;
-        GlContextResult created = CreateGlContext(BackendKind::kAuto);
-        if (!created.context) {
-            s.error = created.error;
+        test_support::GlTestEnvironment& environment = test_support::SharedGlEnvironment();
+        if (!environment.error.empty()) {
+            s.error = environment.error;
             return s;
         }
-        s.context = std::move(created.context);
-        ConfigResult loaded =
-            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
-        if (!loaded.config) {
-            s.error = "variants.yaml does not load";
-            return s;
-        }
-        s.config = std::move(loaded.config);
+        s.context = environment.context.get();
+        s.config = &*environment.config;
         s.variants = ExpandVariants(*s.config, ExpansionOptions{s.config->max_variants}).variants;
         RenderSettings settings;
         settings.width = kWidth;

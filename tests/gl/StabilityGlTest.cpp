@@ -15,6 +15,7 @@
 #include "tidepool/runner/HardCases.h"
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/StabilityReport.h"
+#include "GlTestEnvironment.h"
 
 namespace tidepool::runner {
 namespace {
@@ -24,8 +25,8 @@ constexpr int kWidth = 32;
 constexpr int kHeight = 24;
 
 struct Shared {
-    std::unique_ptr<GlContext> context;
-    std::optional<VariantConfig> config;
+    GlContext* context = nullptr;
+    const VariantConfig* config = nullptr;
     std::vector<RenderConfiguration> configurations;
     std::string error;
 };
@@ -33,21 +34,15 @@ struct Shared {
 Shared& Get() {
     static Shared shared = [] {
         Shared s;
-        GlContextResult created = CreateGlContext(BackendKind::kAuto);
-        if (!created.context) {
-            s.error = created.error;
+        test_support::GlTestEnvironment& environment = test_support::SharedGlEnvironment();
+        if (!environment.error.empty()) {
+            s.error = environment.error;
             return s;
         }
-        s.context = std::move(created.context);
-        ConfigResult loaded =
-                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
-        if (!loaded.config) {
-            s.error = "variants.yaml does not load";
-            return s;
-        }
-        s.config = std::move(loaded.config);
-        s.configurations =
-                WaterVariantConfigurations(ExpandVariants(*s.config, ExpansionOptions{s.config->max_variants}).variants);
+        s.context = environment.context.get();
+        s.config = &*environment.config;
+        s.configurations = WaterVariantConfigurations(
+                ExpandVariants(*s.config, ExpansionOptions{s.config->max_variants}).variants);
         if (!s.context->Environment().float_render_target) {
             s.error = "the context cannot render to RGBA32F";
         }
