@@ -49,10 +49,9 @@ struct ReportCommandOptions {
 // `run` renders with more rounds than `render` so the paired intervals mean something: 20 rounds
 // of 2 frames (40 samples; 20 paired ratios per comparison, above the 10 that percentile
 // intervals of a median need, see Statistics.h) after 2 warm-up frames. Measured on the default
-// matrix (59 configurations x 4 views at 640x480, 2 cores): about 1.5 minutes for the whole run
-// on a quiet machine, about 3.5 minutes with other builds competing for the cores, inside the
-// 4-minute budget of the main command. More rounds of fewer frames pair baseline and candidate
-// more often, which is what cancels drift; 12 rounds left verdicts flipping between runs.
+// matrix (146 configurations x 4 views at 640x480, 2 quiet cores): about 6 minutes for the whole
+// run, 5 of them rendering. More rounds of fewer frames pair baseline and candidate more often,
+// which is what cancels drift; 12 rounds left verdicts flipping between runs.
 struct RunCommandOptions {
     std::string config = "variants.yaml";
     std::string name = "default";
@@ -67,7 +66,7 @@ struct RunCommandOptions {
     std::string backend = "auto";
     int threads = 2;
     // Stability and plans run after the render so the report has every section. Their sizes
-    // keep the whole default run within its 4-minute budget: the stability cases look for NaN,
+    // keep them to under a minute of the default run: the stability cases look for NaN,
     // Inf and bounds, which do not depend on resolution (64x48 is `tidepool stability`'s own
     // default); the plans compare images against the scene's full-effect image at 160x120
     // (above the 11x11 SSIM window many times over) with 3 rounds of 2 frames, enough to rank

@@ -819,16 +819,19 @@ std::string GlossaryText() {
 
 std::string VerdictRuleText(const ReportModel& model) {
     return fmt::format(
-            "Verdict: inconclusive when the 95% interval reaches within ±{0:.0f}% of no change (a "
-            "noise floor: on a shared 2-core machine smaller effects move between runs) or when "
-            "the odd and the even rounds point different ways; otherwise the direction is the "
-            "side of 0% the interval lies on. Same direction and magnitude only when the whole "
-            "interval lies within {1:.0f} percentage points of the whitepaper's figure (an "
-            "equivalence test: noise widens the interval and loses the agreement instead of "
-            "flipping it; {1:.0f} points absorbs the platform difference between an SGX GPU and "
-            "llvmpipe). Row 6's \"<1%\" agrees when the whole interval lies within ±{1:.0f} "
-            "points of 0%. Rows 8-11 quote no number, so only the direction is compared "
-            "(\"same-direction-only\" is the best they can get).",
+            "Verdict, from the estimate (the median of the per-round paired ratios): "
+            "inconclusive when it is within ±{0:.0f}% of no change; otherwise its sign is the "
+            "direction. Same direction and magnitude when it lies within {1:.0f} percentage points "
+            "of the whitepaper's figure ({1:.0f} points absorbs the platform difference between an "
+            "SGX GPU and llvmpipe). Row 6's \"<1%\" agrees when it lies within ±{1:.0f} points of "
+            "0%. Rows 8-11 quote no number, so only the direction is compared "
+            "(\"same-direction-only\" is the best they can get). How firmly the run supports a "
+            "verdict is said beside it, not folded into it: the 95% interval, whether it includes "
+            "no change, and whether the odd and even rounds disagree. Why: between consecutive "
+            "runs on a shared 2-core machine the estimate of one comparison moves by several "
+            "points, more than its within-run interval shows, so verdicts that required the "
+            "whole interval to clear a threshold flipped between runs; the estimates kept their "
+            "sign and their side of the tolerance.",
             model.options.noise_floor_percent, model.options.magnitude_tolerance_percent_points);
 }
 
@@ -1367,7 +1370,7 @@ std::string AtAGlance(const ReportModel& model) {
     }
     return fmt::format(
             "At a glance: of the whitepaper's 11 rows, {} agree in direction and magnitude, {} in "
-            "direction only, {} go the opposite way, {} are inconclusive at this run's noise and "
+            "direction only, {} go the opposite way, {} are inconclusive (under the noise floor) and "
             "{} failed. {} of {} configurations are on the time/accuracy Pareto frontier{}. The "
             "static operation count ranks configurations by time with Spearman rho {}.{}",
             counts[Verdict::kSameDirectionAndMagnitude], counts[Verdict::kSameDirectionOnly],
@@ -1703,9 +1706,9 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     h += fmt::format("<p>Split-half reliability: every comparison computed again from the odd "
                      "rounds and from the even rounds. Largest disagreement: <b>{}</b> (row {}). "
                      "A verdict is only as firm as its interval; rows whose halves disagree by "
-                     "more than the noise floor ({:.0f}%) deserve a longer run.</p>",
+                     "more than a few points deserve a longer run (--rounds).</p>",
                      Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
-                     model.largest_split_half_row, model.options.noise_floor_percent);
+                     model.largest_split_half_row);
     h += HtmlTable({"#", "comparison", "all rounds", "odd rounds", "even rounds", "disagreement",
                     "rounds"},
                    t.split);
