@@ -47,7 +47,7 @@ std::string GitRevision(const std::filesystem::path& folder) {
     return revision.empty() ? "unknown" : revision;
 }
 
-bool ParseSize(const std::string& text, int min_side, int* width, int* height) {
+bool ParseSize(const std::string& text, int min_side, int* width, int* height, int max_side) {
     const auto x = text.find('x');
     if (x == std::string::npos) {
         return false;
@@ -65,7 +65,26 @@ bool ParseSize(const std::string& text, int min_side, int* width, int* height) {
     } catch (const std::exception&) {
         return false;
     }
-    return *width >= min_side && *height >= min_side && *width <= 8192 && *height <= 8192;
+    return *width >= min_side && *height >= min_side && *width <= max_side && *height <= max_side;
+}
+
+bool ParseSizeOption(std::string_view flag, const std::string& text, int min_side, int* width,
+                     int* height, int max_side) {
+    if (ParseSize(text, min_side, width, height, max_side)) {
+        return true;
+    }
+    std::fprintf(stderr, "error: %.*s must be WxH with %d..%d each, not '%s'\n",
+                 static_cast<int>(flag.size()), flag.data(), min_side, max_side, text.c_str());
+    return false;
+}
+
+bool ParseBackendOption(const std::string& text, runner::BackendKind* backend) {
+    if (runner::ParseBackendKind(text, backend)) {
+        return true;
+    }
+    std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
+                 text.c_str());
+    return false;
 }
 
 void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings) {

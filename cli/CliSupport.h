@@ -3,10 +3,12 @@
 
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "tidepool/Diagnostic.h"
 #include "tidepool/runner/FourierReflection.h"
+#include "tidepool/runner/GlBackend.h"
 
 namespace CLI {
 class App;
@@ -23,9 +25,21 @@ std::string CpuModel();
 /// `git rev-parse HEAD` in `folder`, or "unknown" outside a repository or without git.
 std::string GitRevision(const std::filesystem::path& folder);
 
-/// Parses "WxH"; false unless both sides are whole numbers in [min_side, 8192] (8192: the
-/// largest render target the renderer allocates).
-bool ParseSize(const std::string& text, int min_side, int* width, int* height);
+/// The largest render target side the commands accept.
+inline constexpr int kMaxRenderSide = 8192;
+
+/// Parses "WxH"; false unless both sides are whole numbers in [min_side, max_side].
+bool ParseSize(const std::string& text, int min_side, int* width, int* height,
+               int max_side = kMaxRenderSide);
+
+/// ParseSize for the value of option `flag` (e.g. "--plan-size"); on failure prints
+/// "error: FLAG must be WxH with MIN..MAX each, not 'TEXT'" and returns false.
+bool ParseSizeOption(std::string_view flag, const std::string& text, int min_side, int* width,
+                     int* height, int max_side = kMaxRenderSide);
+
+/// Parses --backend; on failure prints "error: --backend must be auto, egl or osmesa, not
+/// 'TEXT'" and returns false.
+bool ParseBackendOption(const std::string& text, runner::BackendKind* backend);
 
 /// Adds --fourier-coefficients and --fourier-directions (REFLECTION_FOURIER) to `command`,
 /// writing into `settings`.

@@ -96,16 +96,12 @@ void PrintPlan(const runner::ScenePlan& plan) {
 int RunPlan(const PlanCommandOptions& options) {
     using namespace tidepool::runner;
     PlanOptions plan_options;
-    if (!ParseSize(options.size, kMinPlanSide, &plan_options.settings.width,
-                   &plan_options.settings.height)) {
-        std::fprintf(stderr, "error: --size must be WxH with 16..8192 each, not '%s'\n",
-                     options.size.c_str());
+    if (!ParseSizeOption("--size", options.size, kMinPlanSide, &plan_options.settings.width,
+                         &plan_options.settings.height)) {
         return kExitUsage;
     }
     BackendKind backend = BackendKind::kAuto;
-    if (!ParseBackendKind(options.backend, &backend)) {
-        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
-                     options.backend.c_str());
+    if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
     if (options.rounds < 1 || options.frames < 1 || options.threads < 0) {

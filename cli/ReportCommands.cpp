@@ -284,15 +284,11 @@ int RunAll(const RunCommandOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     int width = 0;
     int height = 0;
-    if (!ParseSize(options.size, 1, &width, &height)) {
-        std::fprintf(stderr, "error: --size must be WxH with 1..8192 each, not '%s'\n",
-                     options.size.c_str());
+    if (!ParseSizeOption("--size", options.size, 1, &width, &height)) {
         return kExitUsage;
     }
     BackendKind backend = BackendKind::kAuto;
-    if (!ParseBackendKind(options.backend, &backend)) {
-        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
-                     options.backend.c_str());
+    if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
     if (options.frames < 1 || options.rounds < 1 || options.warmup < 0 || options.threads < 0 ||
@@ -306,18 +302,14 @@ int RunAll(const RunCommandOptions& options) {
     }
     int stability_width = 0;
     int stability_height = 0;
-    if (!ParseSize(options.stability_size, 1, &stability_width, &stability_height)) {
-        std::fprintf(stderr, "error: --stability-size must be WxH with 1..8192 each, not '%s'\n",
-                     options.stability_size.c_str());
+    if (!ParseSizeOption("--stability-size", options.stability_size, 1, &stability_width,
+                         &stability_height)) {
         return kExitUsage;
     }
     int plan_width = 0;
     int plan_height = 0;
     // SSIM needs its 11x11 window inside the image, as `tidepool plan` requires.
-    if (!ParseSize(options.plan_size, 1, &plan_width, &plan_height) || plan_width < 16 ||
-        plan_height < 16) {
-        std::fprintf(stderr, "error: --plan-size must be WxH with 16..8192 each, not '%s'\n",
-                     options.plan_size.c_str());
+    if (!ParseSizeOption("--plan-size", options.plan_size, 16, &plan_width, &plan_height)) {
         return kExitUsage;
     }
     if (options.name.empty() || options.name.find('/') != std::string::npos ||

@@ -52,15 +52,11 @@ int RunRunner(const RunnerOptions& options) {
     using namespace tidepool::runner;
     int width = 0;
     int height = 0;
-    if (!ParseSize(options.size, 1, &width, &height)) {
-        std::fprintf(stderr, "error: --size must be WxH with 1..8192 each, not '%s'\n",
-                     options.size.c_str());
+    if (!ParseSizeOption("--size", options.size, 1, &width, &height)) {
         return kExitUsage;
     }
     BackendKind backend = BackendKind::kAuto;
-    if (!ParseBackendKind(options.backend, &backend)) {
-        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
-                     options.backend.c_str());
+    if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
     if (options.frames < 1 || options.rounds < 0 || options.warmup < 0 || options.threads < 0) {

@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include "CliSupport.h"
 #include "Commands.h"
 #include "tidepool/AtomicFile.h"
 #include "tidepool/VariantConfig.h"
@@ -28,32 +29,26 @@ struct StabilityOptions {
     bool json = false;
 };
 
-bool ParseWxH(const std::string& text, int* width, int* height) {
-    int consumed = 0;
-    if (std::sscanf(text.c_str(), "%dx%d%n", width, height, &consumed) != 2 ||
-        static_cast<std::size_t>(consumed) != text.size()) {
-        return false;
-    }
-    return *width > 0 && *height > 0 && *width <= 4096 && *height <= 4096;
-}
+// RGBA32F targets: 4096² is already 256 MiB each.
+constexpr int kMaxStabilitySide = 4096;
 
 int RunStability(const StabilityOptions& options) {
     using namespace tidepool::runner;
     GlStabilityOptions gl_options;
-    if (!ParseWxH(options.size, &gl_options.width, &gl_options.height)) {
-        std::fprintf(stderr, "error: --size must be WxH with 1..4096 each, not '%s'\n",
-                     options.size.c_str());
+    if (!ParseSizeOption("--size", options.size, 1, &gl_options.width, &gl_options.height,
+                         kMaxStabilitySide)) {
         return kExitUsage;
     }
     BackendKind backend = BackendKind::kAuto;
-    if (!ParseBackendKind(options.backend, &backend) || options.threads < 0) {
-        std::fprintf(stderr, "error: --backend must be auto, egl or osmesa and --threads >= 0\n");
+    if (!ParseBackendOption(options.backend, &backend)) {
+        return kExitUsage;
+    }
+    if (options.threads < 0) {
+        std::fprintf(stderr, "error: --threads must be at least 0, not %d\n", options.threads);
         return kExitUsage;
     }
     ConfigResult loaded = LoadVariantConfig(options.config);
-    for (const Diagnostic& d : loaded.diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-    }
+    PrintDiagnostics(loaded.diagnostics);
     if (!loaded.config) {
         return kExitUsage;
     }
@@ -61,9 +56,7 @@ int RunStability(const StabilityOptions& options) {
     expansion_options.max_variants = loaded.config->max_variants;
     const ExpansionResult expansion = ExpandVariants(*loaded.config, expansion_options);
     if (HasErrors(expansion.diagnostics)) {
-        for (const Diagnostic& d : expansion.diagnostics) {
-            std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-        }
+        PrintDiagnostics(expansion.diagnostics);
         return kExitUsage;
     }
 
