@@ -2,9 +2,13 @@
 
 #include <cstdio>
 #include <fstream>
+#include <thread>
+#include <utility>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+
+#include "Commands.h"
 
 namespace tidepool::cli {
 
@@ -85,6 +89,32 @@ bool ParseBackendOption(const std::string& text, runner::BackendKind* backend) {
     std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
                  text.c_str());
     return false;
+}
+
+LoadedMatrix LoadAndExpand(const std::string& config_path, std::uint64_t max_variants) {
+    LoadedMatrix loaded;
+    ConfigResult config = LoadVariantConfig(config_path);
+    PrintDiagnostics(config.diagnostics);
+    if (!config.config) {
+        loaded.exit_code = kExitUsage;
+        return loaded;
+    }
+    ExpansionOptions expansion_options;
+    expansion_options.max_variants =
+            max_variants != 0 ? max_variants : config.config->max_variants;
+    loaded.expansion = ExpandVariants(*config.config, expansion_options);
+    PrintDiagnostics(loaded.expansion.diagnostics);
+    if (HasErrors(loaded.expansion.diagnostics)) {
+        loaded.exit_code = kExitUsage;
+        return loaded;
+    }
+    loaded.config = std::move(config.config);
+    return loaded;
+}
+
+int DefaultJobs() {
+    const unsigned cores = std::thread::hardware_concurrency();
+    return cores == 0 ? 1 : static_cast<int>(cores);
 }
 
 void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings) {

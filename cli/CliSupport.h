@@ -1,12 +1,16 @@
 // Small pieces every `tidepool` command shares: printing diagnostics, reading the host, sizes.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "tidepool/Diagnostic.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 
@@ -40,6 +44,21 @@ bool ParseSizeOption(std::string_view flag, const std::string& text, int min_sid
 /// Parses --backend; on failure prints "error: --backend must be auto, egl or osmesa, not
 /// 'TEXT'" and returns false.
 bool ParseBackendOption(const std::string& text, runner::BackendKind* backend);
+
+/// A configuration file loaded and expanded, or the exit code of why not.
+struct LoadedMatrix {
+    std::optional<VariantConfig> config;
+    ExpansionResult expansion;
+    int exit_code = 0;  // kExitOk, or kExitUsage when config is missing
+};
+
+/// Loads `config_path` and expands it (to at most `max_variants` combinations, or the file's own
+/// max_variants when 0), printing every diagnostic; fails through exit_code kExitUsage (and no
+/// config) when the file does not load or the expansion has errors.
+LoadedMatrix LoadAndExpand(const std::string& config_path, std::uint64_t max_variants = 0);
+
+/// Validation jobs when the user gives none: one per core (1 when unknown).
+int DefaultJobs();
 
 /// Adds --fourier-coefficients and --fourier-directions (REFLECTION_FOURIER) to `command`,
 /// writing into `settings`.

@@ -28,7 +28,7 @@ struct CompilerOptions {
     std::string config = "variants.yaml";
     bool json = false;
     std::string out;
-    std::uint64_t max_variants = 0;  // 0: the file's own limit (default 4096)
+    std::uint64_t max_variants = 0;  // 0: the file's own max_variants
     int jobs = 0;                    // 0: one per core
     std::vector<std::string> files;  // validate: plain shader files
     std::string stage;               // validate: force the stage of plain files
@@ -36,37 +36,6 @@ struct CompilerOptions {
 };
 
 // The configuration and its expansion, or the exit code that explains why there is none.
-struct LoadedMatrix {
-    std::optional<VariantConfig> config;
-    ExpansionResult expansion;
-    int exit_code = kExitOk;
-};
-
-LoadedMatrix LoadAndExpand(const CompilerOptions& options) {
-    LoadedMatrix loaded;
-    ConfigResult config = LoadVariantConfig(options.config);
-    PrintDiagnostics(config.diagnostics);
-    if (!config.config) {
-        loaded.exit_code = kExitUsage;
-        return loaded;
-    }
-    ExpansionOptions expansion_options;
-    expansion_options.max_variants =
-            options.max_variants != 0 ? options.max_variants : config.config->max_variants;
-    loaded.expansion = ExpandVariants(*config.config, expansion_options);
-    PrintDiagnostics(loaded.expansion.diagnostics);
-    if (HasErrors(loaded.expansion.diagnostics)) {
-        loaded.exit_code = kExitUsage;
-        return loaded;
-    }
-    loaded.config = std::move(config.config);
-    return loaded;
-}
-
-int DefaultJobs() {
-    const unsigned cores = std::thread::hardware_concurrency();
-    return cores == 0 ? 1 : static_cast<int>(cores);
-}
 
 std::string SafeFileName(const std::string& id) {
     std::string name;
@@ -106,7 +75,7 @@ std::string PublishFolder(const std::filesystem::path& staging, const std::files
 }
 
 int RunExpand(const CompilerOptions& options) {
-    LoadedMatrix loaded = LoadAndExpand(options);
+    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
     if (!loaded.config) {
         return loaded.exit_code;
     }
@@ -228,7 +197,7 @@ int RunValidate(const CompilerOptions& options) {
     if (!options.files.empty()) {
         return RunValidateFiles(options);
     }
-    LoadedMatrix loaded = LoadAndExpand(options);
+    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
     if (!loaded.config) {
         return loaded.exit_code;
     }
@@ -266,7 +235,7 @@ int RunValidate(const CompilerOptions& options) {
 }
 
 int RunStats(const CompilerOptions& options) {
-    LoadedMatrix loaded = LoadAndExpand(options);
+    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
     if (!loaded.config) {
         return loaded.exit_code;
     }

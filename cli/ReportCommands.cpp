@@ -324,22 +324,14 @@ int RunAll(const RunCommandOptions& options) {
     const std::filesystem::path render_dir = out / "render";
 
     // 1. Validate: the manifest.
-    ConfigResult loaded = LoadVariantConfig(options.config);
-    PrintDiagnostics(loaded.diagnostics);
+    const LoadedMatrix loaded = LoadAndExpand(options.config);
     if (!loaded.config) {
-        return kExitUsage;
+        return loaded.exit_code;
     }
     const VariantConfig& config = *loaded.config;
-    ExpansionOptions expansion_options;
-    expansion_options.max_variants = config.max_variants;
-    const ExpansionResult expansion = ExpandVariants(config, expansion_options);
-    PrintDiagnostics(expansion.diagnostics);
-    if (HasErrors(expansion.diagnostics)) {
-        return kExitUsage;
-    }
+    const ExpansionResult& expansion = loaded.expansion;
     ValidationOptions validation_options;
-    const unsigned cores = std::thread::hardware_concurrency();
-    validation_options.jobs = cores == 0 ? 1 : static_cast<int>(cores);
+    validation_options.jobs = DefaultJobs();
     validation_options.targets = config.targets;
     const ValidationReport validation =
             ValidateVariants(config, expansion.variants, validation_options);

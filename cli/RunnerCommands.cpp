@@ -69,19 +69,12 @@ int RunRunner(const RunnerOptions& options) {
         return kExitUsage;
     }
 
-    ConfigResult loaded = LoadVariantConfig(options.config);
-    PrintDiagnostics(loaded.diagnostics);
+    const LoadedMatrix loaded = LoadAndExpand(options.config);
     if (!loaded.config) {
-        return kExitUsage;
+        return loaded.exit_code;
     }
     const VariantConfig& config = *loaded.config;
-    ExpansionOptions expansion_options;
-    expansion_options.max_variants = config.max_variants;
-    const ExpansionResult expansion = ExpandVariants(config, expansion_options);
-    PrintDiagnostics(expansion.diagnostics);
-    if (HasErrors(expansion.diagnostics)) {
-        return kExitUsage;
-    }
+    const ExpansionResult& expansion = loaded.expansion;
     const ConfigurationSet all = BuildDefaultConfigurations(config, expansion.variants);
     const ConfigurationSet selected =
         FilterConfigurations(all, ConfigurationFilter{options.filters, options.presets});

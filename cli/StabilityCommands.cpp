@@ -47,18 +47,11 @@ int RunStability(const StabilityOptions& options) {
         std::fprintf(stderr, "error: --threads must be at least 0, not %d\n", options.threads);
         return kExitUsage;
     }
-    ConfigResult loaded = LoadVariantConfig(options.config);
-    PrintDiagnostics(loaded.diagnostics);
+    const LoadedMatrix loaded = LoadAndExpand(options.config);
     if (!loaded.config) {
-        return kExitUsage;
+        return loaded.exit_code;
     }
-    ExpansionOptions expansion_options;
-    expansion_options.max_variants = loaded.config->max_variants;
-    const ExpansionResult expansion = ExpandVariants(*loaded.config, expansion_options);
-    if (HasErrors(expansion.diagnostics)) {
-        PrintDiagnostics(expansion.diagnostics);
-        return kExitUsage;
-    }
+    const ExpansionResult& expansion = loaded.expansion;
 
     StabilityReport report;
     const std::vector<HardCase> catalogue = HardCaseCatalogue();
