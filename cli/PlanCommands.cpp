@@ -31,10 +31,9 @@ struct PlanCommandOptions {
     std::vector<std::string> scenes;
     bool all = false;
     std::string size = "320x240";
-    int rounds = 5;
-    int frames = 3;
+    double resolution = 3.0;
     std::string backend = "auto";
-    int threads = 2;
+    int threads = 0;
     bool json = false;
     std::string out;
 };
@@ -104,18 +103,17 @@ int RunPlan(const PlanCommandOptions& options) {
     if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
-    if (options.rounds < 1 || options.frames < 1 || options.threads < 0) {
-        std::fprintf(stderr,
-                     "error: --rounds and --frames must be at least 1, --threads at "
-                     "least 0\n");
+    if (!(options.resolution > 0 && options.resolution <= 50) || options.threads < 0 ||
+        options.threads > 64) {
+        std::fprintf(stderr, "error: --resolution must be above 0 and at most 50 percent points, "
+                             "--threads between 0 and 64\n");
         return kExitUsage;
     }
     if (options.all == !options.scenes.empty()) {
         std::fprintf(stderr, "error: give either --scene NAME (repeatable) or --all\n");
         return kExitUsage;
     }
-    plan_options.rounds = options.rounds;
-    plan_options.frames_per_round = options.frames;
+    plan_options.rule.resolution_points = options.resolution;
 
     ConfigResult loaded = LoadVariantConfig(options.config);
     for (const Diagnostic& d : loaded.diagnostics) {
@@ -169,6 +167,9 @@ int RunPlan(const PlanCommandOptions& options) {
         std::fprintf(stderr, "error: %s\n", context.error.c_str());
         return kExitEnvironment;
     }
+    plan_options.clock = ChooseFrameClock(context.context->Environment().renderer, threads,
+                                          context.context->Environment().timer_query)
+                                 .clock;
     std::string out = options.out;
     if (out.empty() && options.all) {
         out = "reports/out/plan";
@@ -215,8 +216,9 @@ void RegisterPlanCommands(CLI::App& app, int& exit_code) {
     plan->add_option("--scene", options->scenes, "plan scenes/NAME.yaml (repeatable)");
     plan->add_flag("--all", options->all, "plan every scenes/*.yaml and write plans.json");
     plan->add_option("--size", options->size, "render size WxH")->capture_default_str();
-    plan->add_option("--rounds", options->rounds, "paired timing rounds")->capture_default_str();
-    plan->add_option("--frames", options->frames, "timed frames per candidate per round")
+    plan->add_option("--resolution", options->resolution,
+                     "time each candidate against the full effect, pair by pair, until its 95% "
+                     "interval is this narrow (half-width, percent points)")
             ->capture_default_str();
     plan->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
             ->capture_default_str();

@@ -46,37 +46,26 @@ struct ReportCommandOptions {
     std::string out = "reports/out";
 };
 
-// `run` renders with more rounds than `render` so the paired intervals mean something: 20 rounds
-// of 2 frames (40 samples; 20 paired ratios per comparison, above the 10 that percentile
-// intervals of a median need, see Statistics.h) after 2 warm-up frames. Measured on the default
-// matrix (146 configurations x 4 views at 640x480, 2 quiet cores): about 6 minutes for the whole
-// run, 5 of them rendering. More rounds of fewer frames pair baseline and candidate more often,
-// which is what cancels drift; 12 rounds left verdicts flipping between runs.
+// `run` times through the one timing engine (TimingFlags): each configuration coarsely on its
+// own, each compared pair of presets pair by pair until its interval is +/-1.5 points.
 struct RunCommandOptions {
     std::string config = "variants.yaml";
     std::string name = "default";
     std::string out = "reports/out";
     std::string size = "640x480";
-    int rounds = 20;
-    int frames = 2;
-    // The 14 preset configurations decide the whitepaper verdicts; with 2 frames a round their
-    // per-round medians were noisy enough that two quiet runs disagreed on 3 of 11 verdicts.
-    int preset_frames = 8;
-    int warmup = 2;
+    TimingFlags timing;
     std::string backend = "auto";
-    int threads = 2;
     // Stability and plans run after the render so the report has every section. Their sizes
     // keep them to under a minute of the default run: the stability cases look for NaN,
     // Inf and bounds, which do not depend on resolution (64x48 is `tidepool stability`'s own
     // default); the plans compare images against the scene's full-effect image at 160x120
-    // (above the 11x11 SSIM window many times over) with 3 rounds of 2 frames, enough to rank
-    // candidates whose times differ by tens of percent (docs/SCENES.md), not to quote them.
+    // (above the 11x11 SSIM window many times over), each candidate timed against the full
+    // effect pair by pair to +/-plan_resolution points (docs/SCENES.md).
     bool no_stability = false;
     bool no_plans = false;
     std::string stability_size = "64x48";
     std::string plan_size = "160x120";
-    int plan_rounds = 3;
-    int plan_frames = 2;
+    double plan_resolution = 3.0;
     tidepool::runner::FourierSettings fourier;
 };
 
@@ -223,7 +212,7 @@ runner::ImageError MeasureImageError(const runner::ImageRgba8& reference,
 // Every scenes/*.yaml planned (the library calls `tidepool plan --all` makes) into
 // render_dir/plans.json, candidate images under render_dir/images/.
 StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& config, int width,
-                          int height, int rounds, int frames,
+                          int height, const base::StoppingRule& rule,
                           const std::filesystem::path& render_dir) {
     using namespace tidepool::runner;
     StageOutcome outcome;
@@ -245,8 +234,12 @@ StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& confi
     PlanOptions plan_options;
     plan_options.settings.width = width;
     plan_options.settings.height = height;
-    plan_options.rounds = rounds;
-    plan_options.frames_per_round = frames;
+    plan_options.rule = rule;
+    const char* threads = std::getenv("LP_NUM_THREADS");
+    plan_options.clock = ChooseFrameClock(context.Environment().renderer,
+                                          threads != nullptr ? threads : "",
+                                          context.Environment().timer_query)
+                                 .clock;
     plan_options.out_dir = render_dir;
     std::vector<ScenePlan> plans;
     for (const std::filesystem::path& path : paths) {
@@ -271,9 +264,9 @@ StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& confi
         outcome.environment_error = true;
         return outcome;
     }
-    std::fprintf(stderr, "plans: %zu scenes at %dx%d, %d rounds x %d frames, %d not met, %.0f s; "
-                         "%s\n",
-                 plans.size(), width, height, rounds, frames, outcome.failures,
+    std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d not "
+                         "met, %.0f s; %s\n",
+                 plans.size(), width, height, rule.resolution_points, outcome.failures,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
                  path.c_str());
     return outcome;
@@ -291,10 +284,13 @@ int RunAll(const RunCommandOptions& options) {
     if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
-    if (options.frames < 1 || options.rounds < 1 || options.warmup < 0 || options.threads < 0 ||
-        options.plan_rounds < 1 || options.plan_frames < 1) {
-        std::fprintf(stderr, "error: --frames, --rounds, --plan-rounds and --plan-frames must be "
-                             "at least 1, --warmup and --threads at least 0\n");
+    if (!CheckTimingFlags(options.timing)) {
+        return kExitUsage;
+    }
+    if (!(options.plan_resolution > 0 && options.plan_resolution <= 50)) {
+        std::fprintf(stderr, "error: --plan-resolution must be above 0 and at most 50 percent "
+                             "points, not %g\n",
+                     options.plan_resolution);
         return kExitUsage;
     }
     if (!CheckFourierOptions(options.fourier)) {
@@ -355,40 +351,28 @@ int RunAll(const RunCommandOptions& options) {
     if (HasErrors(configurations.diagnostics) || configurations.configurations.empty()) {
         return kExitUsage;
     }
-    const std::string threads = std::to_string(options.threads);
-    // llvmpipe reads its thread count when the first context is created.
-    setenv("LP_NUM_THREADS", threads.c_str(), 1);
-    GlContextResult context = CreateGlContext(backend);
-    if (!context.context) {
-        std::fprintf(stderr, "error: %s\n", context.error.c_str());
-        return kExitEnvironment;
-    }
     RunOptions run;
     run.configurations = configurations.configurations;
     run.views = DefaultViews();
     run.settings.width = width;
     run.settings.height = height;
     run.settings.fourier = options.fourier;
-    run.warmup_frames = options.warmup;
-    run.rounds = options.rounds;
-    run.frames_per_round = options.frames;
-    run.preset_frames_per_round = options.preset_frames;
     run.out_dir = render_dir;
     run.config_path = options.config;
-    run.host.cpu_model = CpuModel();
-    run.host.lp_num_threads = threads;
-#ifdef NDEBUG
-    run.host.build_type = "release (NDEBUG)";
-#else
-    run.host.build_type = "debug (assertions on)";
-#endif
-    run.host.git_revision = GitRevision(std::filesystem::absolute(options.config).parent_path());
-    run.host.command = "run";
+    run.host = DescribeHost("run", options.config);
+    ApplyTimingFlags(options.timing, backend, &run);
+    const std::string threads = run.host.lp_num_threads;
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        return kExitEnvironment;
+    }
     const GlEnvironment& gl = context.context->Environment();
     std::fprintf(stderr, "render: %zu configurations x %zu views at %dx%d on %s, "
-                         "LP_NUM_THREADS=%s, %d warm-up frames, %d rounds x %d frames\n",
+                         "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
                  run.configurations.size(), run.views.size(), width, height, gl.renderer.c_str(),
-                 threads.c_str(), options.warmup, options.rounds, options.frames);
+                 threads.c_str(), run.workers, run.comparisons.size(),
+                 run.rule.resolution_points);
     std::string last_stage;
     double last_print = -1e9;
     auto progress = [&](const RunProgress& p) {
@@ -406,9 +390,14 @@ int RunAll(const RunCommandOptions& options) {
     const RunResults results = RunRender(*context.context, config, run, progress);
     PrintDiagnostics(results.diagnostics);
     const std::filesystem::path results_path = render_dir / "results.json";
+    for (const std::string& e : results.write_errors) {
+        std::fprintf(stderr, "error: %s\n", e.c_str());
+    }
     if (std::string error = WriteJsonAtomically(results_path, ResultsToJson(results));
-        !error.empty()) {
-        std::fprintf(stderr, "error: %s\n", error.c_str());
+        !error.empty() || !results.write_errors.empty()) {
+        if (!error.empty()) {
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+        }
         return kExitEnvironment;
     }
     int failed = 0;
@@ -428,8 +417,10 @@ int RunAll(const RunCommandOptions& options) {
     }
     StageOutcome plans;
     if (!options.no_plans) {
-        plans = RunPlanStage(*context.context, config, plan_width, plan_height,
-                             options.plan_rounds, options.plan_frames, render_dir);
+        base::StoppingRule plan_rule = run.rule;
+        plan_rule.resolution_points = options.plan_resolution;
+        plans = RunPlanStage(*context.context, config, plan_width, plan_height, plan_rule,
+                             render_dir);
     }
 
     // 5. Report (written even when a stage above failed: it says what is missing and why).
@@ -479,18 +470,8 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str();
     run->add_option("--out", run_options->out, "output folder")->capture_default_str();
     run->add_option("--size", run_options->size, "render size WxH")->capture_default_str();
-    run->add_option("--rounds", run_options->rounds, "timing rounds")->capture_default_str();
-    run->add_option("--preset-frames", run_options->preset_frames,
-                    "timed frames per round for the presets' configurations (the whitepaper "
-                    "comparisons; 0: as --frames)")
-            ->capture_default_str();
-    run->add_option("--frames", run_options->frames, "timed frames per configuration per round")
-            ->capture_default_str();
-    run->add_option("--warmup", run_options->warmup, "untimed frames per configuration first")
-            ->capture_default_str();
+    AddTimingFlags(run, &run_options->timing);
     run->add_option("--backend", run_options->backend, "auto (EGL, then OSMesa), egl or osmesa")
-            ->capture_default_str();
-    run->add_option("--threads", run_options->threads, "llvmpipe threads (LP_NUM_THREADS)")
             ->capture_default_str();
     AddFourierOptions(run, &run_options->fourier);
     run->add_flag("--no-stability", run_options->no_stability,
@@ -502,10 +483,9 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str();
     run->add_option("--plan-size", run_options->plan_size, "render size WxH of the scene plans")
             ->capture_default_str();
-    run->add_option("--plan-rounds", run_options->plan_rounds, "paired timing rounds per plan")
-            ->capture_default_str();
-    run->add_option("--plan-frames", run_options->plan_frames,
-                    "timed frames per plan candidate per round")
+    run->add_option("--plan-resolution", run_options->plan_resolution,
+                    "time each plan candidate against the full effect to this half-width "
+                    "(percent points)")
             ->capture_default_str();
     run->callback([run_options, &exit_code] { exit_code = RunAll(*run_options); });
 }

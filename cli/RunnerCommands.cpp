@@ -31,11 +31,8 @@ struct RunnerOptions {
     std::vector<std::string> presets;
     std::vector<std::string> views;
     std::string size = "640x480";
-    int frames = 3;
-    int rounds = 3;
-    int warmup = 2;
+    TimingFlags timing;
     std::string backend = "auto";
-    int threads = 2;
     std::string out = "reports/out/render";
     bool json = false;
     bool no_images = false;
@@ -59,13 +56,7 @@ int RunRunner(const RunnerOptions& options) {
     if (!ParseBackendOption(options.backend, &backend)) {
         return kExitUsage;
     }
-    if (options.frames < 1 || options.rounds < 0 || options.warmup < 0 || options.threads < 0) {
-        std::fprintf(stderr, "error: --frames must be at least 1; --rounds, --warmup and "
-                             "--threads at least 0\n");
-        return kExitUsage;
-    }
-
-    if (!CheckFourierOptions(options.fourier)) {
+    if (!CheckTimingFlags(options.timing) || !CheckFourierOptions(options.fourier)) {
         return kExitUsage;
     }
 
@@ -105,44 +96,31 @@ int RunRunner(const RunnerOptions& options) {
         views = default_views;
     }
 
-    // llvmpipe reads its thread count when the first context is created.
-    const std::string threads = std::to_string(options.threads);
-    setenv("LP_NUM_THREADS", threads.c_str(), 1);
-    GlContextResult context = CreateGlContext(backend);
-    if (!context.context) {
-        std::fprintf(stderr, "error: %s\n", context.error.c_str());
-        return kExitEnvironment;
-    }
-
     RunOptions run;
     run.configurations = selected.configurations;
     run.views = views;
     run.settings.width = width;
     run.settings.height = height;
     run.settings.fourier = options.fourier;
-    run.warmup_frames = options.warmup;
-    run.rounds = options.rounds;
-    run.frames_per_round = options.frames;
     run.out_dir = options.out;
     run.write_images = !options.no_images;
     run.config_path = options.config;
-    run.host.cpu_model = CpuModel();
-    run.host.lp_num_threads = threads;
-#ifdef NDEBUG
-    run.host.build_type = "release (NDEBUG)";
-#else
-    run.host.build_type = "debug (assertions on)";
-#endif
-    run.host.git_revision =
-        GitRevision(std::filesystem::absolute(options.config).parent_path());
-    run.host.command = options.command;
+    run.host = DescribeHost(options.command, options.config);
+    ApplyTimingFlags(options.timing, backend, &run);
+    const std::string& threads = run.host.lp_num_threads;
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        return kExitEnvironment;
+    }
 
     const GlEnvironment& gl = context.context->Environment();
     std::fprintf(stderr, "%s: %zu configurations x %zu views at %dx%d on %s (%s, %s), "
-                         "LP_NUM_THREADS=%s\n",
+                         "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
                  options.command.c_str(), run.configurations.size(), run.views.size(), width,
                  height, gl.renderer.c_str(), gl.backend.c_str(), gl.version.c_str(),
-                 threads.c_str());
+                 threads.c_str(), run.workers, run.comparisons.size(),
+                 run.rule.resolution_points);
     const bool terminal = isatty(fileno(stderr)) != 0;
     std::string last_stage;
     double last_print = -1e9;
@@ -179,19 +157,35 @@ int RunRunner(const RunnerOptions& options) {
     if (options.json) {
         std::printf("%s\n", json.dump(2).c_str());
     }
+    for (const std::string& e : results.write_errors) {
+        std::fprintf(stderr, "error: %s\n", e.c_str());
+    }
 
     int failed = 0;
     for (const ConfigurationResult& r : results.configurations) {
         failed += r.Ok() ? 0 : 1;
         if (!options.json && r.Ok() && r.statistics.count > 0) {
-            std::printf("%-72s median %7.2f ms  95%% CI [%.2f, %.2f]  IQR %.2f  passes %d  "
-                        "draws %d\n",
-                        r.configuration.id.c_str(), r.statistics.median, r.statistics.ci_low,
-                        r.statistics.ci_high, r.statistics.iqr, r.passes, r.draw_calls);
+            std::printf("%-72s median %7.2f ms %s (wall %.2f)  passes %d  draws %d\n",
+                        r.configuration.id.c_str(), r.cpu_statistics.median,
+                        std::string(FrameClockName(results.clock.clock)).c_str(),
+                        r.statistics.median, r.passes, r.draw_calls);
         } else if (!options.json && !r.Ok()) {
             std::printf("%-72s FAILED%s%s\n", r.configuration.id.c_str(),
                         r.verdict.valid ? "" : " (driver compile/link)",
                         r.gl_error.empty() ? "" : (" (" + r.gl_error + ")").c_str());
+        }
+    }
+    for (const ComparisonResult& c : results.comparisons) {
+        const base::PairedEstimate& e = c.timing.estimate;
+        if (options.json) {
+            break;
+        }
+        if (!c.error.empty()) {
+            std::printf("%-40s no estimate: %s\n", c.comparison.label.c_str(), c.error.c_str());
+        } else {
+            std::printf("%-40s %+6.1f%% [%+.1f, %+.1f] frame rate, %d pairs (%s)\n",
+                        c.comparison.label.c_str(), e.change_percent, e.change_low,
+                        e.change_high, e.pairs, base::StopDecisionName(c.timing.decision));
         }
     }
     for (const VerdictDisagreement& d : results.disagreements) {
@@ -204,7 +198,7 @@ int RunRunner(const RunnerOptions& options) {
                  options.command.c_str(), results.configurations.size(), failed,
                  results.disagreements.size(), FormatDuration(results.wall_seconds).c_str(),
                  results_path.c_str());
-    if (!write_error.empty()) {
+    if (!write_error.empty() || !results.write_errors.empty()) {
         return kExitEnvironment;
     }
     return failed > 0 ? kExitShaderErrors : kExitOk;
@@ -220,15 +214,8 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
     command->add_option("--view", options->views,
                         "render this view only (repeatable): three_quarter, grazing, high, shore");
     command->add_option("--size", options->size, "render size WxH")->capture_default_str();
-    command->add_option("--frames", options->frames, "timed frames per configuration per round")
-        ->capture_default_str();
-    command->add_option("--rounds", options->rounds, "timing rounds")->capture_default_str();
-    command->add_option("--warmup", options->warmup, "untimed frames per configuration first")
-        ->capture_default_str();
+    AddTimingFlags(command, &options->timing);
     command->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
-        ->capture_default_str();
-    command->add_option("--threads", options->threads,
-                        "llvmpipe threads (LP_NUM_THREADS; 0 renders on the calling thread)")
         ->capture_default_str();
     command->add_option("--out", options->out, "folder for results.json and images/")
         ->capture_default_str();
@@ -250,15 +237,16 @@ void RegisterRunnerCommands(CLI::App& app, int& exit_code) {
 
     auto bench_options = std::make_shared<RunnerOptions>();
     bench_options->command = "bench";
-    // Timing focus: more rounds and frames, images only where they are cheap to keep.
-    bench_options->warmup = 3;
-    bench_options->rounds = 10;
-    bench_options->frames = 5;
+    // Timing focus: a finer resolution and more frames alone, images only where cheap to keep.
+    bench_options->timing.warmup = 3;
+    bench_options->timing.resolution = 1.0;
+    bench_options->timing.coarse_frames = 15;
     bench_options->views = {"three_quarter"};
     bench_options->out = "reports/out/bench";
     CLI::App* bench = app.add_subcommand(
-        "bench", "time configurations through Mesa: warm-up, then interleaved rounds; median, "
-                 "IQR and a 95% confidence interval of the median per configuration");
+        "bench", "time configurations through Mesa: each configuration's median on the run's "
+                 "clock, and every compared pair of presets timed pair by pair to a stated "
+                 "resolution");
     AddRunnerFlags(bench, bench_options.get());
     bench->callback([bench_options, &exit_code] { exit_code = RunRunner(*bench_options); });
 }

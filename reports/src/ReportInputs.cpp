@@ -266,7 +266,58 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
     }
     c.frame_passes = static_cast<int>(NumberOr(entry, "frame_passes", 0));
     c.frame_draw_calls = static_cast<int>(NumberOr(entry, "frame_draw_calls", 0));
+    if (auto passes = entry.find("pass_ms"); passes != entry.end()) {
+        if (!passes->is_object()) {
+            return fmt::format("configuration {}: 'pass_ms' is not an object of numbers", c.id);
+        }
+        for (const auto& [pass, ms] : passes->items()) {
+            if (!ms.is_number()) {
+                return fmt::format("configuration {}: 'pass_ms.{}' is not a number", c.id, pass);
+            }
+            c.pass_ms[pass] = ms.get<double>();
+        }
+    }
+    if (auto frame = entry.find("instrumented_frame_ms");
+        frame != entry.end() && frame->is_number() && frame->get<double>() > 0) {
+        c.instrumented_frame_ms = frame->get<double>();
+    }
     return {};
+}
+
+// Reads one `comparisons` entry; returns "" or what is wrong with it, naming the field.
+std::string ParseComparison(const nlohmann::json& entry, std::size_t index,
+                            MeasuredComparison* c) {
+    if (!entry.is_object()) {
+        return fmt::format("comparisons[{}] is not an object", index);
+    }
+    for (const char* key : {"label", "baseline", "candidate"}) {
+        if (!entry.contains(key) || !entry[key].is_string()) {
+            return fmt::format("comparisons[{}].{} is not a string", index, key);
+        }
+    }
+    c->label = entry["label"].get<std::string>();
+    c->baseline = entry["baseline"].get<std::string>();
+    c->candidate = entry["candidate"].get<std::string>();
+    c->decision = StringOr(entry, "decision");
+    c->error = StringOr(entry, "error");
+    for (const auto& [key, out] : {std::pair{"baseline_ms", &c->baseline_ms},
+                                   std::pair{"candidate_ms", &c->candidate_ms}}) {
+        auto samples = entry.find(key);
+        if (samples == entry.end() || !samples->is_array()) {
+            return fmt::format("comparisons[{}].{} is not an array of times", index, key);
+        }
+        for (const nlohmann::json& v : *samples) {
+            if (!v.is_number()) {
+                return fmt::format("comparisons[{}].{} holds a value that is not a number", index,
+                                   key);
+            }
+            out->push_back(v.get<double>());
+        }
+    }
+    if (c->baseline_ms.size() != c->candidate_ms.size()) {
+        return fmt::format("comparisons[{}]: baseline_ms and candidate_ms differ in length", index);
+    }
+    return "";
 }
 
 }  // namespace
@@ -294,6 +345,16 @@ std::string MeasuredConfiguration::PassLabel() const {
 const std::vector<std::vector<double>>& MeasuredConfiguration::SamplesOn(
         TimingClock clock) const {
     return clock == TimingClock::kCpu ? cpu_samples_ms : samples_ms;
+}
+
+const MeasuredComparison* ReportInputs::FindComparison(std::string_view baseline,
+                                                      std::string_view candidate) const {
+    for (const MeasuredComparison& c : comparisons) {
+        if (c.baseline == baseline && c.candidate == candidate) {
+            return &c;
+        }
+    }
+    return nullptr;
 }
 
 double MeasuredConfiguration::MedianOn(TimingClock clock) const {
@@ -430,9 +491,35 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (inputs.timing_view.empty() && !inputs.view_names.empty()) {
         inputs.timing_view = inputs.view_names.front();
     }
+    if (auto comparisons = results->find("comparisons"); comparisons != results->end()) {
+        if (!comparisons->is_array()) {
+            out.error = fmt::format("{}: 'comparisons' is not an array", results_path.string());
+            return out;
+        }
+        for (std::size_t i = 0; i < comparisons->size(); ++i) {
+            MeasuredComparison c;
+            if (std::string problem = ParseComparison((*comparisons)[i], i, &c);
+                !problem.empty()) {
+                out.error = fmt::format("{}: {}", results_path.string(), problem);
+                return out;
+            }
+            inputs.comparisons.push_back(std::move(c));
+        }
+    }
     inputs.results = std::move(*results);
 
     ChooseClock(&inputs);
+    if (auto timing = inputs.results.find("timing");
+        timing != inputs.results.end() && timing->is_object()) {
+        inputs.clock_name = StringOr(*timing, "clock");
+        inputs.resolution_points = NumberOr(*timing, "resolution_points", inputs.resolution_points);
+        if (!inputs.clock_name.empty() && inputs.clock == TimingClock::kCpu) {
+            inputs.clock_reason = fmt::format("{} ({}): {}", inputs.clock_name == "thread_cpu"
+                                                                 ? "the rendering thread's CPU time"
+                                                                 : "the run's clock",
+                                              inputs.clock_name, StringOr(*timing, "clock_reason"));
+        }
+    }
 
     inputs.stability_path = folder / kStabilityFileName;
     // The stability schema's version is not checked: the section renders its tables generically.

@@ -139,6 +139,98 @@ void ChangeFromRatio(const PairedRatio& ratio, double* change, Interval* ci) {
                                 : std::numeric_limits<double>::infinity();
 }
 
+// The paired frames behind a comparison of two configurations.
+struct PairsOfFrames {
+    std::vector<double> baseline_ms;
+    std::vector<double> candidate_ms;
+    std::string source;  // where the pairs come from, for the method text
+    std::string error;   // why there are none
+};
+
+// The runner's pairs when results.json records this comparison (they are on the run's clock,
+// which is the CPU clock ChooseClock picks for such results); otherwise one pair per round from
+// the per-round medians of `clock`'s samples, as results written before the runner recorded
+// pairs allow.
+PairsOfFrames PairsFor(const ReportInputs& inputs, const MeasuredConfiguration& base,
+                       const MeasuredConfiguration& cand, TimingClock clock) {
+    PairsOfFrames pairs;
+    if (const MeasuredComparison* c = inputs.FindComparison(base.id, cand.id);
+        c != nullptr && clock == TimingClock::kCpu) {
+        if (!c->error.empty()) {
+            pairs.error = c->error;
+            return pairs;
+        }
+        pairs.baseline_ms = c->baseline_ms;
+        pairs.candidate_ms = c->candidate_ms;
+        pairs.source = "pairs of frames rendered back to back";
+        return pairs;
+    }
+    pairs.error = PairsFromRounds(base.SamplesOn(clock), cand.SamplesOn(clock),
+                                  &pairs.baseline_ms, &pairs.candidate_ms);
+    pairs.source = "one pair per timing round (results without recorded pairs)";
+    return pairs;
+}
+
+// Each pass's time in both configurations and the pass whose time changed most, with its share
+// of the frame it belongs to: the measured reason a row's change is what it is.
+std::string MeasuredWhy(const MeasuredConfiguration& base, const MeasuredConfiguration& cand) {
+    if (base.pass_ms.empty() || cand.pass_ms.empty()) {
+        return "";
+    }
+    std::vector<std::string> passes;
+    for (const MeasuredConfiguration* c : {&base, &cand}) {
+        for (const ViewImage& v : c->views) {
+            for (const std::string& name : v.pass_names) {
+                if (std::find(passes.begin(), passes.end(), name) == passes.end()) {
+                    passes.push_back(name);
+                }
+            }
+        }
+    }
+    for (const auto* c : {&base, &cand}) {
+        for (const auto& [name, ms] : c->pass_ms) {
+            if (std::find(passes.begin(), passes.end(), name) == passes.end()) {
+                passes.push_back(name);
+            }
+        }
+    }
+    auto at = [](const MeasuredConfiguration& c, const std::string& pass) {
+        auto found = c.pass_ms.find(pass);
+        return found == c.pass_ms.end() ? 0.0 : found->second;
+    };
+    auto total = [](const MeasuredConfiguration& c) {
+        double sum = 0;
+        for (const auto& [name, ms] : c.pass_ms) {
+            sum += ms;
+        }
+        return sum;
+    };
+    std::string list;
+    std::string largest;
+    double largest_change = 0;
+    for (const std::string& pass : passes) {
+        const double a = at(base, pass);
+        const double b = at(cand, pass);
+        list += fmt::format("{}{} {} -> {} ms", list.empty() ? "" : "; ", pass,
+                            a > 0 ? fmt::format("{:.1f}", a) : std::string("none"),
+                            b > 0 ? fmt::format("{:.1f}", b) : std::string("none"));
+        if (std::fabs(b - a) > std::fabs(largest_change)) {
+            largest_change = b - a;
+            largest = pass;
+        }
+    }
+    if (largest.empty()) {
+        return "measured per pass: " + list;
+    }
+    // The share of the frame the changed pass takes on the side where it is larger.
+    const MeasuredConfiguration& side = largest_change > 0 ? cand : base;
+    const double share = 100.0 * at(side, largest) / std::max(total(side), 1e-9);
+    return fmt::format("measured per pass: {}. The {} pass changes most ({:+.1f} ms); it is "
+                       "{:.0f}% of the {}'s frame",
+                       list, largest, largest_change, share,
+                       largest_change > 0 ? "candidate" : "baseline");
+}
+
 // One technique's preset pair and what it is known to miss.
 struct TechniquePresets {
     TechniqueKind kind;
@@ -204,7 +296,7 @@ void FillSide(const MeasuredConfiguration* c, const std::string& timing_view, Ti
 
 // Everything of a technique comparison but the image error.
 TechniqueComparison CompareTechnique(const TechniquePresets& presets, const ReportInputs& inputs,
-                                     const ReportOptions& options, TimingClock clock) {
+                                     TimingClock clock) {
     TechniqueComparison t;
     t.kind = presets.kind;
     t.technique = presets.technique;
@@ -239,18 +331,17 @@ TechniqueComparison CompareTechnique(const TechniquePresets& presets, const Repo
         }
     }
     if (t.note.empty()) {
-        t.ratio = ComparePaired(base->SamplesOn(clock), cand->SamplesOn(clock), options.seed);
-        if (!t.ratio.error.empty()) {
+        const PairsOfFrames pairs = PairsFor(inputs, *base, *cand, clock);
+        t.ratio = pairs.error.empty() ? ComparePairs(pairs.baseline_ms, pairs.candidate_ms)
+                                      : PairedRatio{};
+        if (!pairs.error.empty() || !t.ratio.error.empty()) {
             t.note = fmt::format("no paired time on the {} clock: {}", TimingClockName(clock),
-                                 t.ratio.error);
+                                 pairs.error.empty() ? t.ratio.error : pairs.error);
         }
         ChangeFromRatio(t.ratio, &t.change_percent, &t.change_ci);
-        const double floor = std::isnan(options.noise_floor_percent)
-                                     ? 0.0
-                                     : std::max(0.0, options.noise_floor_percent);
-        if (std::isfinite(t.change_ci.low) && t.change_ci.low > floor) {
+        if (std::isfinite(t.change_ci.low) && t.change_ci.low > 0) {
             t.direction = +1;
-        } else if (std::isfinite(t.change_ci.high) && t.change_ci.high < -floor) {
+        } else if (std::isfinite(t.change_ci.high) && t.change_ci.high < 0) {
             t.direction = -1;
         }
     }
@@ -350,12 +441,11 @@ ImagePanel TechniquePanel(const TechniqueComparison& t, const std::string& view,
 // Builds the technique comparisons of `presets` with their image errors, the baselines' images
 // read once and the pairs compared on the cores we have. Returns "" or the error naming a file.
 std::string BuildTechniques(const std::vector<TechniquePresets>& presets,
-                            const ReportInputs& inputs, const ReportOptions& options,
-                            TimingClock clock,
+                            const ReportInputs& inputs, TimingClock clock,
                             std::map<const MeasuredConfiguration*, ImageCache>* baseline_images,
                             std::vector<TechniqueComparison>* out) {
     for (const TechniquePresets& p : presets) {
-        out->push_back(CompareTechnique(p, inputs, options, clock));
+        out->push_back(CompareTechnique(p, inputs, clock));
         const MeasuredConfiguration* base = out->back().baseline.configuration;
         if (BothRendered(out->back()) && baseline_images->count(base) == 0) {
             std::string error;
@@ -399,6 +489,21 @@ std::string PresetTitle(const MeasuredConfiguration& c) {
 
 }  // namespace
 
+std::vector<PresetPair> ComparedPresetPairs() {
+    std::vector<PresetPair> pairs;
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        pairs.push_back({fmt::format("row {}", row.number), row.baseline_preset,
+                         row.candidate_preset});
+    }
+    auto add = [&](const TechniquePresets& t) {
+        pairs.push_back({fmt::format("{} ({})", t.technique, t.context), t.baseline,
+                         t.candidate});
+    };
+    std::for_each(std::begin(kReflectionPresets), std::end(kReflectionPresets), add);
+    std::for_each(std::begin(kOpticsPresets), std::end(kOpticsPresets), add);
+    return pairs;
+}
+
 std::string_view TechniqueKindName(TechniqueKind kind) {
     switch (kind) {
     case TechniqueKind::kCubemapReflection:
@@ -415,92 +520,116 @@ std::string_view VerdictName(Verdict verdict) {
     switch (verdict) {
     case Verdict::kSameDirectionAndMagnitude:
         return "same-direction-and-magnitude";
+    case Verdict::kSameDirectionDifferentMagnitude:
+        return "same-direction-different-magnitude";
     case Verdict::kSameDirectionOnly:
         return "same-direction-only";
+    case Verdict::kNegligibleAsClaimed:
+        return "negligible-as-claimed";
     case Verdict::kOpposite:
         return "opposite";
-    case Verdict::kInconclusive:
-        return "inconclusive";
+    case Verdict::kBelowResolution:
+        return "below-resolution";
     case Verdict::kFailed:
         return "failed";
     }
     return "failed";
 }
 
+bool IsFirmVerdict(Verdict verdict, FigureKind kind) {
+    switch (verdict) {
+    case Verdict::kSameDirectionAndMagnitude:
+    case Verdict::kSameDirectionDifferentMagnitude:
+    case Verdict::kNegligibleAsClaimed:
+    case Verdict::kOpposite:
+        return true;
+    case Verdict::kSameDirectionOnly:
+        return kind == FigureKind::kDirection;
+    case Verdict::kBelowResolution:
+    case Verdict::kFailed:
+        return false;
+    }
+    return false;
+}
+
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
-                 double magnitude_tolerance_percent_points, double noise_floor_percent,
                  std::string* reason) {
-    const double tolerance = std::isnan(magnitude_tolerance_percent_points)
-                                     ? 0.0
-                                     : std::max(0.0, magnitude_tolerance_percent_points);
-    const double floor =
-            std::isnan(noise_floor_percent) ? 0.0 : std::max(0.0, noise_floor_percent);
-    if (!std::isfinite(measured.ratio) || measured.rounds == 0) {
+    if (!std::isfinite(measured.ratio) || measured.pairs == 0) {
         *reason = measured.error.empty() ? "no measurement" : measured.error;
         return Verdict::kFailed;
     }
-    const double change = PerformanceChangePercent(measured.ratio);
     // A larger frame-time ratio is a lower frame rate, so the interval's ends swap.
     const double low = PerformanceChangePercent(measured.ci.high);
-    const double high = std::isfinite(measured.ci.low) && measured.ci.low > 0
-                                ? PerformanceChangePercent(measured.ci.low)
-                                : std::numeric_limits<double>::infinity();
-    if (!std::isfinite(low) || !std::isfinite(high)) {
-        *reason = "the interval is unbounded (too few rounds)";
-        return Verdict::kInconclusive;
-    }
-    const std::string interval = fmt::format("[{:+.1f}%, {:+.1f}%]", low, high);
-    // The category comes from the estimate; how firmly the run supports it is said beside it
-    // (the interval, and whether the odd and even rounds agree), never by changing category:
-    // between consecutive runs the estimate of one comparison moves by several points, more
-    // than its within-run interval shows, so interval-based categories flipped from run to run.
-    std::string evidence;
-    if (low <= 0.0 && high >= 0.0) {
-        evidence = fmt::format("; weakly supported: the interval {} includes no change", interval);
-    } else {
-        evidence = fmt::format("; interval {}", interval);
-    }
-    if (split != nullptr) {
+    const double high = PerformanceChangePercent(measured.ci.low);
+    const double change = PerformanceChangePercent(measured.ratio);
+    const std::string interval = fmt::format("{:+.1f}% [{:+.1f}%, {:+.1f}%], {} pairs", change,
+                                             low, high, measured.pairs);
+    std::string halves;
+    if (split != nullptr && std::isfinite(split->odd.ratio) && std::isfinite(split->even.ratio)) {
         const double odd = PerformanceChangePercent(split->odd.ratio);
         const double even = PerformanceChangePercent(split->even.ratio);
-        if (std::isfinite(odd) && std::isfinite(even) && odd * even < 0) {
-            evidence += fmt::format("; the odd rounds say {:+.1f}%, the even {:+.1f}%", odd, even);
+        if (odd * even < 0) {
+            halves = fmt::format("; the two halves of the pairs disagree in sign ({:+.1f}% with "
+                                 "the baseline first, {:+.1f}% with the candidate first)",
+                                 even, odd);
         }
     }
-    if (row.kind == FigureKind::kNegligible && std::fabs(change) <= tolerance) {
-        *reason = fmt::format("{:+.1f}% lies within {:.0f} points of no change, as the "
-                              "whitepaper's <1%{}",
-                              change, tolerance, evidence);
-        return Verdict::kSameDirectionAndMagnitude;
+    const double bound = std::max(std::fabs(low), std::fabs(high));
+    const bool includes_no_change = low <= 0.0 && high >= 0.0;
+    if (row.kind == FigureKind::kNegligible) {
+        const double band = 1.0 * kMagnitudeFactor;  // the whitepaper's "<1%", times the factor
+        if (bound <= band) {
+            *reason = fmt::format("|change| < {:.1f}%, within {:.0f}% as the whitepaper's <1%: {}{}",
+                                  bound, band, interval, halves);
+            return Verdict::kNegligibleAsClaimed;
+        }
     }
-    if (std::fabs(change) < floor) {
-        *reason = fmt::format("{:+.1f}% is below the {:.0f}% floor: no direction to compare{}",
-                              change, floor, evidence);
-        return Verdict::kInconclusive;
+    if (includes_no_change) {
+        *reason = fmt::format("below resolution: |change| < {:.1f}%; the interval includes no "
+                              "change, so no direction is claimed: {}{}",
+                              bound, interval, halves);
+        return Verdict::kBelowResolution;
     }
-    const int direction = change > 0 ? +1 : -1;
+    const int direction = low > 0.0 ? +1 : -1;
     if (direction != row.expected_sign) {
-        *reason = fmt::format("{:+.1f}% is {} where the whitepaper says {}{}", change,
+        *reason = fmt::format("{} where the whitepaper says {}: {}{}",
                               direction > 0 ? "faster" : "slower",
-                              row.expected_sign > 0 ? "faster" : "slower", evidence);
+                              row.expected_sign > 0 ? "faster" : "slower", interval, halves);
         return Verdict::kOpposite;
     }
     if (row.kind == FigureKind::kDirection) {
-        *reason = fmt::format("the whitepaper's figure is qualitative: direction only{}",
-                              evidence);
+        *reason = fmt::format("the whitepaper's figure is qualitative, so only the direction is "
+                              "compared: {}{}",
+                              interval, halves);
         return Verdict::kSameDirectionOnly;
     }
-    const double figure = row.kind == FigureKind::kNegligible ? 0.0 : row.whitepaper_percent;
-    if (std::fabs(change - figure) <= tolerance) {
-        *reason = fmt::format("{:+.1f}% lies within {:.0f} points of the whitepaper's {:+.1f}%{}",
-                              change, tolerance, figure, evidence);
+    // The interval's magnitudes against the band [f / factor, f x factor] (for "<1%": up to
+    // 1% x factor, the direction already established above).
+    const double magnitude_low = std::min(std::fabs(low), std::fabs(high));
+    const double magnitude_high = bound;
+    const double figure = row.kind == FigureKind::kNegligible ? 0.0 : std::fabs(row.whitepaper_percent);
+    const double band_low = figure / kMagnitudeFactor;
+    const double band_high = row.kind == FigureKind::kNegligible ? kMagnitudeFactor
+                                                                 : figure * kMagnitudeFactor;
+    const std::string band = row.kind == FigureKind::kNegligible
+                                     ? fmt::format("|change| <= {:.0f}%", band_high)
+                                     : fmt::format("{:.1f}% to {:.0f}%", band_low, band_high);
+    if (magnitude_low >= band_low && magnitude_high <= band_high) {
+        *reason = fmt::format("the whole interval lies within half to twice the whitepaper's "
+                              "figure ({}): {}{}",
+                              band, interval, halves);
         return Verdict::kSameDirectionAndMagnitude;
     }
-    *reason = fmt::format("{:+.1f}% is not within {:.0f} points of the whitepaper's {}{}", change,
-                          tolerance,
-                          row.kind == FigureKind::kNegligible ? std::string("<1%")
-                                                              : fmt::format("{:+.1f}%", figure),
-                          evidence);
+    if (magnitude_high < band_low || magnitude_low > band_high) {
+        *reason = fmt::format("the whole interval lies outside half to twice the whitepaper's "
+                              "figure ({}): {}{}",
+                              band, interval, halves);
+        return Verdict::kSameDirectionDifferentMagnitude;
+    }
+    *reason = fmt::format("the direction holds, but the interval straddles an edge of half to "
+                          "twice the whitepaper's figure ({}), so the magnitude is not resolved: "
+                          "{}{}",
+                          band, interval, halves);
     return Verdict::kSameDirectionOnly;
 }
 
@@ -650,15 +779,19 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
             comparison.verdict_reason = fmt::format("configuration {} failed",
                                                     !base->ok ? base->id : cand->id);
         } else {
-            comparison.ratio = ComparePaired(base->SamplesOn(model.clock),
-                                             cand->SamplesOn(model.clock), options.seed);
-            comparison.split = CompareSplitHalves(base->SamplesOn(model.clock),
-                                                  cand->SamplesOn(model.clock), options.seed);
+            const PairsOfFrames pairs = PairsFor(inputs, *base, *cand, model.clock);
+            comparison.pairs_source = pairs.source;
+            if (pairs.error.empty()) {
+                comparison.ratio = ComparePairs(pairs.baseline_ms, pairs.candidate_ms);
+                comparison.split = CompareSplitPairs(pairs.baseline_ms, pairs.candidate_ms);
+            } else {
+                comparison.ratio.error = pairs.error;
+            }
             comparison.verdict = GradeRow(row, comparison.ratio, &comparison.split,
-                                          options.magnitude_tolerance_percent_points,
-                                          options.noise_floor_percent,
                                           &comparison.verdict_reason);
             ChangeFromRatio(comparison.ratio, &comparison.change_percent, &comparison.change_ci);
+            comparison.resolution_points = (comparison.change_ci.high - comparison.change_ci.low) / 2;
+            comparison.measured_why = MeasuredWhy(*base, *cand);
             comparison.odd_change_percent = PerformanceChangePercent(comparison.split.odd.ratio);
             comparison.even_change_percent =
                     PerformanceChangePercent(comparison.split.even.ratio);
@@ -805,12 +938,10 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
     // Reflection techniques against planar reflection, and the depth optics against full.
     std::map<const MeasuredConfiguration*, ImageCache> baseline_images;
     out.error = BuildTechniques({std::begin(kReflectionPresets), std::end(kReflectionPresets)},
-                                inputs, options, model.clock, &baseline_images,
-                                &model.reflections);
+                                inputs, model.clock, &baseline_images, &model.reflections);
     if (out.error.empty()) {
         out.error = BuildTechniques({std::begin(kOpticsPresets), std::end(kOpticsPresets)},
-                                    inputs, options, model.clock, &baseline_images,
-                                    &model.optics);
+                                    inputs, model.clock, &baseline_images, &model.optics);
     }
     if (!out.error.empty()) {
         return out;

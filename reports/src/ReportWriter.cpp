@@ -622,9 +622,11 @@ std::string ScenesIntro(const nlohmann::json& plans) {
 std::string VerdictCss(Verdict verdict) {
     switch (verdict) {
     case Verdict::kSameDirectionAndMagnitude: return "good";
+    case Verdict::kNegligibleAsClaimed: return "good";
+    case Verdict::kSameDirectionDifferentMagnitude: return "fair";
     case Verdict::kSameDirectionOnly: return "fair";
     case Verdict::kOpposite: return "bad";
-    case Verdict::kInconclusive: return "unknown";
+    case Verdict::kBelowResolution: return "unknown";
     case Verdict::kFailed: return "bad";
     }
     return "unknown";
@@ -693,7 +695,7 @@ std::string PsnrCell(double psnr_db) {
 }
 
 // Performance change with its reading: faster, slower, or no clear change.
-std::string TechniqueChangeCell(const TechniqueComparison& t, double noise_floor_percent) {
+std::string TechniqueChangeCell(const TechniqueComparison& t) {
     if (!std::isfinite(t.change_percent)) {
         return "–";
     }
@@ -701,8 +703,8 @@ std::string TechniqueChangeCell(const TechniqueComparison& t, double noise_floor
             t.direction > 0 ? "faster"
             : t.direction < 0
                     ? "slower"
-                    : fmt::format("no clear change (the interval reaches within ±{:.0f}%)",
-                                  noise_floor_percent);
+                    : fmt::format("below resolution: |change| < {:.1f}%",
+                                  std::max(std::fabs(t.change_ci.low), std::fabs(t.change_ci.high)));
     return Signed(t.change_percent, 1, "%") + ", " + reading;
 }
 
@@ -736,7 +738,7 @@ std::vector<std::string> TechniqueHeader(const ReportModel& model, const std::st
             reading};
 }
 
-std::vector<std::string> TechniqueRow(const ReportModel& model, const TechniqueComparison& t) {
+std::vector<std::string> TechniqueRow(const TechniqueComparison& t) {
     std::string passes = PassesText(t.baseline_passes) + " → " + PassesText(t.candidate_passes);
     if (!t.passes_dropped.empty()) {
         passes += " (no " + PassesText(t.passes_dropped) + " pass)";
@@ -748,7 +750,7 @@ std::vector<std::string> TechniqueRow(const ReportModel& model, const TechniqueC
             passes,
             DrawCallsText(t.baseline_draw_calls) + " → " + DrawCallsText(t.candidate_draw_calls),
             Fixed(t.baseline_median_ms, 2) + " / " + Fixed(t.candidate_median_ms, 2),
-            TechniqueChangeCell(t, model.options.noise_floor_percent),
+            TechniqueChangeCell(t),
             IntervalText(t.change_ci, 1, "%"),
             t.HasError() ? PsnrCell(t.psnr_db) : std::string("–"),
             Fixed(t.ssim, 4),
@@ -770,15 +772,15 @@ std::string ReflectionsIntro(const ReportModel& model) {
             "equal: `reflection_only` → `cubemap_reflection` and `fourier_reflection`, `full` → "
             "`full_cubemap_reflection` and `full_fourier_reflection`. Passes and draw calls are "
             "one frame's at the timing view ({}); times are medians on the {} clock, and the "
-            "change is paired by round as in the whitepaper table (+ = faster; a direction is "
-            "called only when the whole 95% interval clears ±{:.0f}%). The error is against the "
+            "change is estimated from pairs of frames as in the whitepaper table (+ = faster; a "
+            "direction is called only when the whole 95% interval excludes no change). The error "
+            "is against the "
             "planar image, not the reference: PSNR from the mean squared error over every view "
             "both configurations rendered, mean SSIM, the share of pixels visibly different "
             "(more than {:.0f}/255), and PSNR per view, so the view where a technique breaks "
             "stands out. A missing or failed configuration is listed as such.",
             model.inputs->timing_view.empty() ? std::string("–") : model.inputs->timing_view,
-            ClockName(model.clock), model.options.noise_floor_percent,
-            kVisibleDifferenceThreshold);
+            ClockName(model.clock), kVisibleDifferenceThreshold);
 }
 
 std::string ReflectionPanelsIntro(const ReportModel& model) {
@@ -811,28 +813,32 @@ struct Page {
 std::string GlossaryText() {
     return fmt::format(
             "Performance change is in percent of frame rate as the whitepaper words it (+ = faster; "
-            "\"reduced by 60%\" = -60% = 2.5x the frame time), computed from frame-time ratios "
-            "paired by timing round (median of per-round ratios, {:.0f}% percentile-bootstrap "
-            "interval over rounds, {} resamples).",
-            kConfidenceLevel * 100, kBootstrapResamples);
+            "\"reduced by 60%\" = -60% = 2.5x the frame time), estimated from pairs of frames "
+            "rendered back to back (Hodges-Lehmann estimate of the per-pair log ratios, {:.0f}% "
+            "Wilcoxon signed-rank interval); each comparison took pairs until its interval's "
+            "half-width reached the stated resolution or the cap, and the table states the "
+            "resolution each row reached.",
+            kConfidenceLevel * 100);
 }
 
-std::string VerdictRuleText(const ReportModel& model) {
+std::string VerdictRuleText(const ReportModel& /*model*/) {
     return fmt::format(
-            "Verdict, from the estimate (the median of the per-round paired ratios): "
-            "inconclusive when it is within ±{0:.0f}% of no change; otherwise its sign is the "
-            "direction. Same direction and magnitude when it lies within {1:.0f} percentage points "
-            "of the whitepaper's figure ({1:.0f} points absorbs the platform difference between an "
-            "SGX GPU and llvmpipe). Row 6's \"<1%\" agrees when it lies within ±{1:.0f} points of "
-            "0%. Rows 8-11 quote no number, so only the direction is compared "
-            "(\"same-direction-only\" is the best they can get). How firmly the run supports a "
-            "verdict is said beside it, not folded into it: the 95% interval, whether it includes "
-            "no change, and whether the odd and even rounds disagree. Why: between consecutive "
-            "runs on a shared 2-core machine the estimate of one comparison moves by several "
-            "points, more than its within-run interval shows, so verdicts that required the "
-            "whole interval to clear a threshold flipped between runs; the estimates kept their "
-            "sign and their side of the tolerance.",
-            model.options.noise_floor_percent, model.options.magnitude_tolerance_percent_points);
+            "Verdicts are decided by the 95% interval, never by the estimate alone. Below "
+            "resolution when the interval includes no change: no direction is claimed, and the "
+            "verdict says how small the change must be (|change| < X%, X the interval's larger "
+            "end). Opposite when the whole interval lies on the other side of no change. For a "
+            "figure in percent, magnitude agreement is relative: same direction and magnitude "
+            "when the whole interval lies between half and twice the whitepaper's figure "
+            "(factor {0:.0f}), different magnitude when it lies wholly outside, and direction "
+            "only when it straddles an edge of that band (the magnitude is then unresolved). "
+            "Row 6's \"<1%\" is negligible as claimed when the whole interval lies within "
+            "±{0:.0f}%. Rows 8-11 quote no number, so only the direction is compared. Why: a "
+            "fixed tolerance in points called -1.9% \"the same magnitude\" as -11%, and "
+            "verdicts from the estimate alone flipped between runs whenever the estimate sat "
+            "near a boundary; a verdict the interval decides changes between two runs only when "
+            "their intervals disagree. The halves of the pairs (baseline first, candidate "
+            "first) are compared too, and a disagreement in sign is said in the reason.",
+            kMagnitudeFactor);
 }
 
 }  // namespace
@@ -872,12 +878,12 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                                         : nlohmann::json(nullptr)}};
     json["method"] = {{"clock", TimingClockName(model.clock)},
                       {"clock_reason", model.inputs->clock_reason},
-                      {"magnitude_tolerance_percent_points",
-                       model.options.magnitude_tolerance_percent_points},
-                      {"noise_floor_percent", model.options.noise_floor_percent},
+                      {"clock_name", model.inputs->clock_name},
+                      {"magnitude_factor", kMagnitudeFactor},
+                      {"resolution_points", Num(model.inputs->resolution_points)},
                       {"confidence_level", kConfidenceLevel},
-                      {"bootstrap_resamples", kBootstrapResamples},
-                      {"bootstrap_seed", model.options.seed},
+                      {"estimator", "Hodges-Lehmann estimate of per-pair log frame-time ratios, "
+                                    "Wilcoxon signed-rank interval"},
                       {"visible_difference_threshold", kVisibleDifferenceThreshold},
                       {"reference_preset", kReferencePreset},
                       {"largest_split_half_disagreement_percent_points",
@@ -915,7 +921,10 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                         {"candidate", side(r.candidate)},
                         {"frame_time_ratio", Num(r.ratio.ratio)},
                         {"frame_time_ratio_ci", {Num(r.ratio.ci.low), Num(r.ratio.ci.high)}},
-                        {"rounds", r.ratio.rounds},
+                        {"pairs", r.ratio.pairs},
+                        {"resolution_points", Num(r.resolution_points)},
+                        {"pairs_source", r.pairs_source},
+                        {"measured_why", r.measured_why},
                         {"clock", TimingClockName(model.clock)},
                         {"measured_percent", Num(r.change_percent)},
                         {"measured_percent_ci", {Num(r.change_ci.low), Num(r.change_ci.high)}},
@@ -1044,7 +1053,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                 {"candidate_median_ms", Num(t.candidate_median_ms)},
                 {"frame_time_ratio", Num(t.ratio.ratio)},
                 {"frame_time_ratio_ci", {Num(t.ratio.ci.low), Num(t.ratio.ci.high)}},
-                {"rounds", t.ratio.rounds},
+                {"pairs", t.ratio.pairs},
                 {"measured_percent", Num(t.change_percent)},
                 {"measured_percent_ci", {Num(t.change_ci.low), Num(t.change_ci.high)}},
                 {"direction", t.direction > 0   ? "faster"
@@ -1312,19 +1321,19 @@ Tables BuildTables(const ReportModel& model) {
                            Signed(r.change_percent, 1, "%"), Signed(r.odd_change_percent, 1, "%"),
                            Signed(r.even_change_percent, 1, "%"),
                            Fixed(r.split.disagreement_percent_points, 1, " pt"),
-                           std::to_string(r.ratio.rounds)});
+                           std::to_string(r.ratio.pairs)});
     }
     for (const auto& [key, value] : MethodFacts(model)) {
         t.method.push_back({key, value});
     }
     t.reflections_header = TechniqueHeader(model, "planar", "where it breaks");
     for (const TechniqueComparison& r : model.reflections) {
-        t.reflections.push_back(TechniqueRow(model, r));
+        t.reflections.push_back(TechniqueRow(r));
         t.reflections_css.push_back(TechniqueCss(r));
     }
     t.optics_header = TechniqueHeader(model, "full", "what it changes");
     for (const TechniqueComparison& r : model.optics) {
-        t.optics.push_back(TechniqueRow(model, r));
+        t.optics.push_back(TechniqueRow(r));
         t.optics_css.push_back(TechniqueCss(r));
     }
     return t;
@@ -1370,11 +1379,12 @@ std::string AtAGlance(const ReportModel& model) {
     }
     return fmt::format(
             "At a glance: of the whitepaper's 11 rows, {} agree in direction and magnitude, {} in "
-            "direction only, {} go the opposite way, {} are inconclusive (under the noise floor) and "
+            "direction only, {} go the opposite way, {} are below the resolution reached and "
             "{} failed. {} of {} configurations are on the time/accuracy Pareto frontier{}. The "
             "static operation count ranks configurations by time with Spearman rho {}.{}",
-            counts[Verdict::kSameDirectionAndMagnitude], counts[Verdict::kSameDirectionOnly],
-            counts[Verdict::kOpposite], counts[Verdict::kInconclusive], counts[Verdict::kFailed],
+            counts[Verdict::kSameDirectionAndMagnitude] + counts[Verdict::kNegligibleAsClaimed],
+            counts[Verdict::kSameDirectionOnly] + counts[Verdict::kSameDirectionDifferentMagnitude],
+            counts[Verdict::kOpposite], counts[Verdict::kBelowResolution], counts[Verdict::kFailed],
             model.frontier.size(), model.accuracy.size(),
             frontier.empty() ? "" : " (presets among them: " + frontier + ")",
             Fixed(model.static_cost.spearman_rho, 2),

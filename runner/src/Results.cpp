@@ -4,6 +4,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <mutex>
+#include <thread>
 #include <chrono>
 #include <ctime>
 #include <fstream>
@@ -12,21 +16,17 @@
 #include <system_error>
 
 #include "tidepool/GlslValidator.h"
+#include "tidepool/base/SampleStatistics.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/ImageIo.h"
 
 namespace tidepool::runner {
 namespace {
 
-using Clock = std::chrono::steady_clock;
+using base::EstimatePaired;
+using base::PairedEstimate;
 
-// CPU time of this whole process: llvmpipe rasterises on worker threads of this process, so the
-// sum over threads is the work a frame costs, whatever else the machine is running.
-double ProcessCpuSeconds() {
-    timespec now{};
-    ::clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return static_cast<double>(now.tv_sec) + static_cast<double>(now.tv_nsec) * 1e-9;
-}
+using Clock = std::chrono::steady_clock;
 
 double Seconds(Clock::duration duration) {
     return std::chrono::duration<double>(duration).count();
@@ -63,6 +63,69 @@ bool RunResults::AllOk() const {
                        [](const ConfigurationResult& c) { return c.Ok(); });
 }
 
+namespace {
+
+// Progress shared by the rendering threads: frames done against frames expected, where a
+// comparison's expected pairs follow its interval (pairs needed ~ pairs so far x (half-width /
+// resolution)^2, the square-root law of an interval's width).
+class ProgressMeter {
+public:
+    ProgressMeter(const ProgressCallback& callback, Clock::time_point start)
+        : callback_(callback), start_(start) {}
+
+    void AddExpected(long frames) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        state_.total += frames;
+    }
+
+    // Replaces `old_expected` frames of the total by `new_expected`.
+    void Reestimate(long old_expected, long new_expected) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        state_.total += new_expected - old_expected;
+    }
+
+    void Step(const char* stage, const std::string& what, long frames) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        state_.stage = stage;
+        state_.configuration = what;
+        state_.done += frames;
+        state_.total = std::max(state_.total, state_.done);
+        state_.elapsed_seconds = Seconds(Clock::now() - start_);
+        state_.eta_seconds = state_.done > 0 ? state_.elapsed_seconds /
+                                                       static_cast<double>(state_.done) *
+                                                       static_cast<double>(state_.total -
+                                                                           state_.done)
+                                             : 0.0;
+        if (callback_) {
+            callback_(state_);
+        }
+    }
+
+private:
+    const ProgressCallback& callback_;
+    Clock::time_point start_;
+    std::mutex mutex_;
+    RunProgress state_;
+};
+
+// One rendering thread's context, renderer and timer, and what it has compiled.
+struct RenderWorker {
+    std::unique_ptr<GlContext> owned_context;  // null for the calling thread's worker
+    std::unique_ptr<WaterRenderer> renderer;
+    std::unique_ptr<FrameTimer> timer;
+    std::map<std::size_t, DriverVerdict> prepared;  // by configuration index
+};
+
+// A unit of work: one configuration's images and coarse time, or one comparison.
+struct WorkUnit {
+    bool comparison = false;
+    std::size_t index = 0;
+};
+
+constexpr long kInitialPairGuess = 60;  // until a comparison's first look says otherwise
+
+}  // namespace
+
 RunResults RunRender(GlContext& context, const VariantConfig& config, const RunOptions& options,
                      const ProgressCallback& progress) {
     RunResults results;
@@ -70,15 +133,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     results.host = options.host;
     results.options = options;
     results.started_utc = UtcNow();
+    results.clock = ChooseFrameClock(results.gl.renderer, options.host.lp_num_threads,
+                                     results.gl.timer_query);
     const Clock::time_point start = Clock::now();
 
-    std::string error;
-    std::unique_ptr<WaterRenderer> renderer =
-        WaterRenderer::Create(context, config, options.settings, &error);
-    if (!renderer) {
-        results.diagnostics.push_back(MakeError("", 0, 0, "cannot set up the renderer: " + error));
-        return results;
-    }
     const CameraView* timing_view = nullptr;
     for (const CameraView& view : options.views) {
         if (options.timing_view.empty() || view.name == options.timing_view) {
@@ -86,42 +144,23 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             break;
         }
     }
-
-    const long count = static_cast<long>(options.configurations.size());
-    const long per_config = static_cast<long>(options.views.size()) + options.warmup_frames +
-                            static_cast<long>(options.rounds) *
-                                    std::max(options.frames_per_round,
-                                             options.preset_frames_per_round) +
-                            1;
-    RunProgress state;
-    state.total = count * per_config;
-    auto step = [&](const char* stage, const std::string& id, long amount) {
-        state.stage = stage;
-        state.configuration = id;
-        state.done += amount;
-        state.elapsed_seconds = Seconds(Clock::now() - start);
-        state.eta_seconds = state.done > 0 ? state.elapsed_seconds /
-                                                 static_cast<double>(state.done) *
-                                                 static_cast<double>(state.total - state.done)
-                                           : 0.0;
-        if (progress) {
-            progress(state);
-        }
-    };
-
-    // Driver compile and link of every configuration.
     for (const RenderConfiguration& configuration : options.configurations) {
         ConfigurationResult result;
         result.configuration = configuration;
-        result.verdict = renderer->Prepare(configuration);
-        for (const Diagnostic& d : result.verdict.diagnostics) {
-            results.diagnostics.push_back(d);
-        }
         results.configurations.push_back(std::move(result));
-        step("compile", configuration.id, 1);
+    }
+    for (const TimedComparison& c : options.comparisons) {
+        ComparisonResult r;
+        r.comparison = c;
+        if (c.baseline >= options.configurations.size() ||
+            c.candidate >= options.configurations.size()) {
+            r.error = "the comparison names a configuration the run does not have";
+        }
+        results.comparisons.push_back(std::move(r));
     }
 
     // glslang's verdict on the same variants, to list where the two compilers disagree.
+    std::map<std::string, bool> glslang;
     if (options.compare_with_glslang) {
         std::vector<Variant> variants;
         std::set<std::string> seen;
@@ -131,37 +170,85 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             }
         }
         const ValidationReport report = ValidateVariants(config, variants, ValidationOptions{});
-        std::map<std::string, bool> glslang;
         for (const VariantVerdict& v : report.verdicts) {
             glslang[v.variant.Id()] = v.valid;
         }
-        std::set<std::string> listed;
-        for (ConfigurationResult& r : results.configurations) {
-            const std::string id = r.configuration.variant.Id();
-            auto found = glslang.find(id);
-            if (found == glslang.end()) {
-                continue;
-            }
-            r.glslang_valid = found->second;
-            // Only the variant's own program counts: a helper program's failure is not its fault.
-            const bool mesa_valid = r.verdict.linked;
-            if (found->second != mesa_valid && listed.insert(id).second) {
-                results.disagreements.push_back(VerdictDisagreement{id, found->second, mesa_valid});
-            }
-        }
     }
 
-    // One image per configuration per view.
-    for (ConfigurationResult& r : results.configurations) {
-        for (const CameraView& view : options.views) {
-            if (!r.verdict.valid) {
-                step("images", r.configuration.id, 1);
-                continue;
+    ProgressMeter meter(progress, start);
+    const long per_configuration = static_cast<long>(options.views.size()) +
+                                   options.warmup_frames + options.coarse_frames;
+    meter.AddExpected(per_configuration * static_cast<long>(options.configurations.size()));
+    std::vector<long> expected_frames(results.comparisons.size(), 2 * kInitialPairGuess);
+    meter.AddExpected(2 * kInitialPairGuess * static_cast<long>(results.comparisons.size()));
+
+    // Comparisons first: they are the long units, and a queue that ends on short ones keeps
+    // both threads busy to the end.
+    std::vector<WorkUnit> units;
+    for (std::size_t i = 0; i < results.comparisons.size(); ++i) {
+        units.push_back({true, i});
+    }
+    for (std::size_t i = 0; i < results.configurations.size(); ++i) {
+        units.push_back({false, i});
+    }
+    std::atomic<std::size_t> next_unit{0};
+    std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
+    std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
+
+    // Compiles configuration `i` in `w`'s context once, with warm-up frames (llvmpipe compiles
+    // shader variants on first draw, which must not land in a timed frame).
+    auto prepare = [&](RenderWorker& w, std::size_t i) -> const DriverVerdict& {
+        auto found = w.prepared.find(i);
+        if (found != w.prepared.end()) {
+            return found->second;
+        }
+        const RenderConfiguration& c = options.configurations[i];
+        DriverVerdict verdict = w.renderer->Prepare(c);
+        if (verdict.valid && timing_view != nullptr) {
+            for (int f = 0; f < options.warmup_frames; ++f) {
+                w.renderer->RenderFrame(c, *timing_view);
+                w.renderer->Finish();
             }
+        }
+        return w.prepared.emplace(i, std::move(verdict)).first->second;
+    };
+
+    auto time_passes = [&](RenderWorker& w, std::size_t i) {
+        if (pass_timed[i].exchange(true) || timing_view == nullptr) {
+            return;
+        }
+        std::map<std::string, std::vector<double>> per_pass;
+        for (int f = 0; f < options.pass_frames; ++f) {
+            for (const auto& [pass, ms] :
+                 w.timer->TimePasses(options.configurations[i], *timing_view)) {
+                per_pass[pass].push_back(ms);
+            }
+        }
+        ConfigurationResult& r = results.configurations[i];
+        for (auto& [pass, samples] : per_pass) {
+            const double median = base::Median(samples);
+            if (pass == "frame") {
+                r.instrumented_frame_ms = median;
+            } else {
+                r.pass_ms[pass] = median;
+            }
+        }
+    };
+
+    auto run_configuration = [&](RenderWorker& w, std::size_t i) {
+        ConfigurationResult& r = results.configurations[i];
+        r.verdict = prepare(w, i);
+        meter.Step("images", r.configuration.id, options.warmup_frames);
+        if (!r.verdict.valid) {
+            meter.Step("images", r.configuration.id,
+                       per_configuration - options.warmup_frames);
+            return;
+        }
+        for (const CameraView& view : options.views) {
             ViewResult view_result;
             view_result.view = view.name;
-            view_result.frame = renderer->RenderFrame(r.configuration, view);
-            renderer->Finish();
+            view_result.frame = w.renderer->RenderFrame(r.configuration, view);
+            w.renderer->Finish();
             if (!view_result.frame.gl_error.empty() && r.gl_error.empty()) {
                 r.gl_error = fmt::format("{} (view {})", view_result.frame.gl_error, view.name);
             }
@@ -169,11 +256,12 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                 const std::string name = fmt::format(
                     "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
                 const std::string write_error =
-                    WritePng(options.out_dir / name, renderer->ReadImage());
+                    WritePng(options.out_dir / name, w.renderer->ReadImage());
                 if (write_error.empty()) {
                     view_result.image_path = name;
                 } else {
-                    results.diagnostics.push_back(MakeError("", 0, 0, write_error));
+                    std::lock_guard<std::mutex> lock(results_mutex);
+                    results.write_errors.push_back(write_error);
                 }
             }
             if (&view == timing_view) {
@@ -181,83 +269,149 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                 r.draw_calls = view_result.frame.draw_calls;
             }
             r.views.push_back(std::move(view_result));
-            step("images", r.configuration.id, 1);
+            meter.Step("images", r.configuration.id, 1);
         }
-    }
-
-    // Timing at one view: warm-up, then rounds that each render every configuration.
-    std::vector<std::size_t> timed;
-    for (std::size_t i = 0; i < results.configurations.size(); ++i) {
-        if (results.configurations[i].verdict.valid && timing_view != nullptr) {
-            timed.push_back(i);
+        if (timing_view == nullptr) {
+            meter.Step("images", r.configuration.id, options.coarse_frames);
+            return;
         }
-    }
-    std::vector<std::vector<double>> plan_ms(results.configurations.size());
-    for (std::size_t i : timed) {
-        ConfigurationResult& r = results.configurations[i];
-        for (int f = 0; f < options.warmup_frames; ++f) {
-            const FrameReport frame = renderer->RenderFrame(r.configuration, *timing_view);
-            renderer->Finish();
+        std::vector<double> plan_ms;
+        for (int f = 0; f < options.coarse_frames; ++f) {
+            FrameReport frame;
+            const FrameTime t = w.timer->Time(r.configuration, *timing_view, &frame);
+            r.samples_ms.push_back({t.wall_ms});
+            r.cpu_samples_ms.push_back({t.ms});
+            plan_ms.push_back(frame.plan_seconds * 1000.0);
             if (!frame.gl_error.empty() && r.gl_error.empty()) {
                 r.gl_error = frame.gl_error;
             }
-            step("warmup", r.configuration.id, 1);
+            meter.Step("images", r.configuration.id, 1);
         }
-        r.samples_ms.assign(static_cast<std::size_t>(std::max(options.rounds, 0)), {});
-        r.cpu_samples_ms.assign(r.samples_ms.size(), {});
-    }
-    // With preset frames set, the configurations a preset asked for form a group of their own,
-    // timed first in every round: the whitepaper verdicts compare them in pairs, and within
-    // their group a pair's samples lie a few seconds apart instead of a whole matrix round
-    // (minutes, with every variant in it), so drift on a shared machine mostly cancels in the
-    // per-round ratio. Without preset frames every configuration is one group.
-    const bool preset_group = options.preset_frames_per_round > 0;
-    std::vector<std::vector<std::size_t>> groups(2);
-    for (std::size_t i : timed) {
-        const bool preset = preset_group && !results.configurations[i].configuration.presets.empty();
-        groups[preset ? 0 : 1].push_back(i);
-    }
-    for (int round = 0; round < options.rounds; ++round) {
-        for (std::size_t g = 0; g < groups.size(); ++g) {
-            const std::vector<std::size_t>& group = groups[g];
-            const int frames = g == 0 ? options.preset_frames_per_round : options.frames_per_round;
-            for (std::size_t k = 0; k < group.size(); ++k) {
-                // Rotate the order each round so no configuration always follows the same one.
-                const std::size_t i = group[(k + static_cast<std::size_t>(round)) % group.size()];
-                ConfigurationResult& r = results.configurations[i];
-                for (int f = 0; f < frames; ++f) {
-                    const double cpu_start = ProcessCpuSeconds();
-                    const Clock::time_point frame_start = Clock::now();
-                    const FrameReport frame = renderer->RenderFrame(r.configuration, *timing_view);
-                    renderer->Finish();
-                    const double ms = Seconds(Clock::now() - frame_start) * 1000.0;
-                    const double cpu_ms = (ProcessCpuSeconds() - cpu_start) * 1000.0;
-                    r.samples_ms[static_cast<std::size_t>(round)].push_back(ms);
-                    r.cpu_samples_ms[static_cast<std::size_t>(round)].push_back(cpu_ms);
-                    plan_ms[i].push_back(frame.plan_seconds * 1000.0);
-                    if (!frame.gl_error.empty() && r.gl_error.empty()) {
-                        r.gl_error = frame.gl_error;
-                    }
-                    step("timing", r.configuration.id, 1);
+        r.plan_ms_median = base::Median(plan_ms);
+    };
+
+    auto run_comparison = [&](RenderWorker& w, std::size_t k) {
+        ComparisonResult& out = results.comparisons[k];
+        const TimedComparison& c = out.comparison;
+        if (out.error.empty() && timing_view == nullptr) {
+            out.error = "no timing view";
+        }
+        if (out.error.empty()) {
+            for (std::size_t i : {c.baseline, c.candidate}) {
+                if (!prepare(w, i).valid) {
+                    out.error = fmt::format("configuration {} did not compile in Mesa",
+                                            options.configurations[i].id);
+                    break;
                 }
             }
         }
+        if (!out.error.empty()) {
+            meter.Reestimate(expected_frames[k], 0);
+            return;
+        }
+        const RenderConfiguration& baseline = options.configurations[c.baseline];
+        const RenderConfiguration& candidate = options.configurations[c.candidate];
+        long done = 0;
+        out.timing = TimeComparison(
+            [&](bool is_candidate) {
+                return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
+            },
+            options.rule, [&](int pairs) {
+                // Frames this look took, and a new guess of the pairs the interval needs.
+                const PairedEstimate e =
+                    EstimatePaired(out.timing.samples.baseline_ms, out.timing.samples.candidate_ms);
+                const long frames = 2L * pairs;
+                meter.Step("comparisons", c.label, frames - done);
+                done = frames;
+                long needed = kInitialPairGuess;
+                if (e.Valid() && e.HalfWidthPoints() > 0) {
+                    const double ratio = e.HalfWidthPoints() / options.rule.resolution_points;
+                    needed = static_cast<long>(std::ceil(pairs * ratio * ratio));
+                }
+                needed = std::clamp(needed, static_cast<long>(pairs),
+                                    static_cast<long>(options.rule.max_pairs));
+                meter.Reestimate(expected_frames[k], 2 * needed);
+                expected_frames[k] = 2 * needed;
+            });
+        time_passes(w, c.baseline);
+        time_passes(w, c.candidate);
+    };
+
+    // A rendering thread: its own context (but the calling thread's), renderer and timer; takes
+    // units from the queue until it is empty.
+    auto run_worker = [&](RenderWorker& w, GlContext& gl_context) {
+        std::string error;
+        w.renderer = WaterRenderer::Create(gl_context, config, options.settings, &error);
+        if (!w.renderer) {
+            std::lock_guard<std::mutex> lock(results_mutex);
+            results.diagnostics.push_back(
+                MakeError("", 0, 0, "cannot set up the renderer: " + error));
+            return;
+        }
+        w.timer = std::make_unique<FrameTimer>(*w.renderer, results.clock.clock);
+        for (std::size_t u = next_unit++; u < units.size(); u = next_unit++) {
+            if (units[u].comparison) {
+                run_comparison(w, units[u].index);
+            } else {
+                run_configuration(w, units[u].index);
+            }
+        }
+    };
+
+    const int workers = std::max(1, options.workers);
+    std::vector<RenderWorker> worker_state(static_cast<std::size_t>(workers));
+    std::vector<std::thread> threads;
+    std::atomic<int> started{1};
+    for (int t = 1; t < workers && options.make_context; ++t) {
+        threads.emplace_back([&, t] {
+            RenderWorker& w = worker_state[static_cast<std::size_t>(t)];
+            w.owned_context = options.make_context();
+            if (!w.owned_context) {
+                return;  // the calling thread's worker does the work alone
+            }
+            ++started;
+            run_worker(w, *w.owned_context);
+            w.timer.reset();
+            w.renderer.reset();
+            w.owned_context.reset();
+        });
     }
-    for (std::size_t i : timed) {
-        ConfigurationResult& r = results.configurations[i];
+    run_worker(worker_state[0], context);
+    for (std::thread& t : threads) {
+        t.join();
+    }
+    results.workers = started.load();
+    if (!worker_state[0].renderer) {
+        return results;  // the diagnostic says why
+    }
+    context.MakeCurrent();
+
+    for (ConfigurationResult& r : results.configurations) {
+        for (const Diagnostic& d : r.verdict.diagnostics) {
+            results.diagnostics.push_back(d);
+        }
         std::vector<double> all;
         for (const std::vector<double>& round : r.samples_ms) {
             all.insert(all.end(), round.begin(), round.end());
         }
         r.statistics = ComputeSampleStatistics(all);
-        std::vector<double> all_cpu;
+        std::vector<double> all_clock;
         for (const std::vector<double>& round : r.cpu_samples_ms) {
-            all_cpu.insert(all_cpu.end(), round.begin(), round.end());
+            all_clock.insert(all_clock.end(), round.begin(), round.end());
         }
-        r.cpu_statistics = ComputeSampleStatistics(all_cpu);
-        r.plan_ms_median = ComputeSampleStatistics(plan_ms[i]).median;
-    }
-    for (const ConfigurationResult& r : results.configurations) {
+        r.cpu_statistics = ComputeSampleStatistics(all_clock);
+        const std::string id = r.configuration.variant.Id();
+        if (auto found = glslang.find(id); found != glslang.end()) {
+            r.glslang_valid = found->second;
+            // Only the variant's own program counts: a helper program's failure is not its fault.
+            const bool mesa_valid = r.verdict.linked;
+            const bool listed = std::any_of(
+                results.disagreements.begin(), results.disagreements.end(),
+                [&](const VerdictDisagreement& d) { return d.variant == id; });
+            if (found->second != mesa_valid && !listed) {
+                results.disagreements.push_back(VerdictDisagreement{id, found->second, mesa_valid});
+            }
+        }
         if (!r.gl_error.empty()) {
             results.diagnostics.push_back(Diagnostic{
                 Severity::kError, "", 0, 0, "GL error while rendering: " + r.gl_error,
@@ -284,6 +438,7 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         {"glsl_version", results.gl.shading_language},
         {"mesa_version", results.gl.mesa_version},
         {"float_render_target", results.gl.float_render_target},
+        {"timer_query", results.gl.timer_query},
         {"cpu_model", results.host.cpu_model},
         {"lp_num_threads", results.host.lp_num_threads},
         {"build_type", results.host.build_type},
@@ -307,15 +462,15 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         {"timing_view", o.timing_view.empty() && !o.views.empty() ? o.views.front().name
                                                                    : o.timing_view},
         {"warmup_frames", o.warmup_frames},
-        {"rounds", o.rounds},
-        {"frames_per_round", o.frames_per_round},
-        {"preset_frames_per_round",
-         o.preset_frames_per_round > 0 ? o.preset_frames_per_round : o.frames_per_round},
-        {"timing_method", "steady_clock (samples_ms) and CLOCK_PROCESS_CPUTIME_ID "
-                          "(cpu_samples_ms) around submission + glFinish, per frame; rounds "
-                          "interleave configurations, order rotated each round; with "
-                          "preset_frames_per_round the preset configurations are timed as a "
-                          "group of their own at the start of each round"},
+        {"coarse_frames", o.coarse_frames},
+        {"pass_frames", o.pass_frames},
+        {"workers", results.workers},
+        {"timing_method",
+         "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
+         "it); each configuration gets coarse_frames frames on its own; each comparison is "
+         "timed in pairs of frames rendered back to back on one thread, the side going first "
+         "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as narrow "
+         "as timing.resolution_points or timing.max_pairs is reached"},
         {"animation_time_s", s.animation_time},
         {"clip_plane_offset", s.clip_plane_offset},
         {"wave_distortion", s.wave_distortion},
@@ -401,12 +556,54 @@ nlohmann::json ResultsToJson(const RunResults& results) {
             {"cpu_samples_ms", r.cpu_samples_ms},
             {"cpu_statistics", StatisticsJson(r.cpu_statistics)},
             {"plan_ms_median", r.plan_ms_median},
+            {"pass_ms", r.pass_ms},
+            {"instrumented_frame_ms", r.instrumented_frame_ms},
             {"gl_error", r.gl_error},
             {"ok", r.Ok()},
         };
         configurations.push_back(std::move(entry));
     }
     json["configurations"] = std::move(configurations);
+    json["timing"] = {{"clock", FrameClockName(results.clock.clock)},
+                      {"clock_reason", results.clock.reason},
+                      {"resolution_points", o.rule.resolution_points},
+                      {"min_pairs", o.rule.min_pairs},
+                      {"max_pairs", o.rule.max_pairs},
+                      {"batch_pairs", o.rule.batch_pairs},
+                      {"confidence", base::kConfidenceLevel},
+                      {"estimator", "Hodges-Lehmann median of Walsh averages of per-pair log "
+                                    "ratios; Wilcoxon signed-rank interval"}};
+    nlohmann::json comparisons = nlohmann::json::array();
+    for (const ComparisonResult& c : results.comparisons) {
+        const base::PairedEstimate& e = c.timing.estimate;
+        auto number = [](double v) {
+            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+        };
+        const bool indices_ok = c.comparison.baseline < results.configurations.size() &&
+                                c.comparison.candidate < results.configurations.size();
+        comparisons.push_back({
+            {"label", c.comparison.label},
+            {"baseline", indices_ok ? results.configurations[c.comparison.baseline].configuration.id
+                                    : std::string()},
+            {"candidate", indices_ok
+                                  ? results.configurations[c.comparison.candidate].configuration.id
+                                  : std::string()},
+            {"error", c.error},
+            {"pairs", e.pairs},
+            {"decision", base::StopDecisionName(c.timing.decision)},
+            {"ratio", number(e.ratio)},
+            {"ratio_low", number(e.ratio_low)},
+            {"ratio_high", number(e.ratio_high)},
+            {"change_percent", number(e.change_percent)},
+            {"change_low", number(e.change_low)},
+            {"change_high", number(e.change_high)},
+            {"baseline_ms", c.timing.samples.baseline_ms},
+            {"candidate_ms", c.timing.samples.candidate_ms},
+            {"baseline_wall_ms", c.timing.samples.baseline_wall_ms},
+            {"candidate_wall_ms", c.timing.samples.candidate_wall_ms},
+        });
+    }
+    json["comparisons"] = std::move(comparisons);
     nlohmann::json disagreements = nlohmann::json::array();
     for (const VerdictDisagreement& d : results.disagreements) {
         disagreements.push_back(

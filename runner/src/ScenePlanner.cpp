@@ -2,6 +2,9 @@
 // is made on the measurements, so a rule that guesses wrong costs time, never quality.
 #include "tidepool/runner/ScenePlanner.h"
 
+#include "tidepool/base/SampleStatistics.h"
+#include "tidepool/runner/FrameTimer.h"
+
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/ImageIo.h"
@@ -16,7 +19,6 @@
 namespace tidepool::runner {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 // The longest candidate list: the budget for a short search, which keeps a plan at the
 // default size under a minute on two llvmpipe threads.
@@ -57,15 +59,6 @@ std::vector<std::string> With(std::vector<std::string> defines,
         }
     }
     return defines;
-}
-
-double Median(std::vector<double> values) {
-    if (values.empty()) {
-        return std::nan("");
-    }
-    std::sort(values.begin(), values.end());
-    const std::size_t n = values.size();
-    return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 bool MeetsQuality(const QualityTarget& target, const ImageError& error) {
@@ -295,6 +288,86 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     return candidates;
 }
 
+CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
+                                bool quality_bounds, std::optional<double> frame_budget_ms) {
+    CandidateChoice choice;
+    auto at = [&](int i) -> const CandidateMeasure& {
+        return candidates[static_cast<std::size_t>(i)];
+    };
+    const int count = static_cast<int>(candidates.size());
+    if (quality_bounds) {
+        // Faster than full beyond the interval: its whole interval lies below no change.
+        int fastest = -1;
+        for (int i = 1; i < count; ++i) {
+            const CandidateMeasure& c = at(i);
+            if (c.valid && c.meets_quality && c.time_change_high < 0 &&
+                (fastest < 0 || c.time_change_percent < at(fastest).time_change_percent)) {
+                fastest = i;
+            }
+        }
+        if (fastest < 0) {
+            if (count > 0 && at(0).valid && at(0).meets_quality &&
+                (!frame_budget_ms || at(0).time_ms <= *frame_budget_ms)) {
+                choice.index = 0;
+                choice.reason = "no candidate that meets the target is faster than the full "
+                                "effect beyond its 95% interval, so the full effect is kept";
+                return choice;
+            }
+        } else {
+            // Among the qualifying candidates indistinguishable from the fastest in time, the
+            // most accurate.
+            int kept = fastest;
+            for (int i = 1; i < count; ++i) {
+                const CandidateMeasure& c = at(i);
+                const bool overlaps = c.time_change_low <= at(fastest).time_change_high &&
+                                      at(fastest).time_change_low <= c.time_change_high;
+                if (i != fastest && c.valid && c.meets_quality && c.time_change_high < 0 &&
+                    overlaps && c.psnr_db > at(kept).psnr_db) {
+                    kept = i;
+                }
+            }
+            choice.index = kept;
+            choice.reason =
+                    kept == fastest
+                            ? fmt::format("the fastest candidate that meets the target: "
+                                          "{:+.1f}% [{:+.1f}, {:+.1f}] frame time vs full",
+                                          at(kept).time_change_percent,
+                                          at(kept).time_change_low, at(kept).time_change_high)
+                            : fmt::format("the fastest qualifying candidate ({:+.1f}%) and this "
+                                          "one ({:+.1f}%) differ by less than their 95% "
+                                          "intervals, so the more accurate one is kept "
+                                          "({:.1f} dB against {:.1f} dB)",
+                                          at(fastest).time_change_percent,
+                                          at(kept).time_change_percent, at(kept).psnr_db,
+                                          at(fastest).psnr_db);
+            if (!frame_budget_ms || at(kept).time_ms <= *frame_budget_ms) {
+                return choice;
+            }
+        }
+    } else if (frame_budget_ms) {
+        for (int i = 0; i < count; ++i) {
+            const CandidateMeasure& c = at(i);
+            if (c.valid && c.time_ms <= *frame_budget_ms &&
+                (choice.index < 0 || c.psnr_db > at(choice.index).psnr_db ||
+                 (c.psnr_db == at(choice.index).psnr_db && c.time_ms < at(choice.index).time_ms))) {
+                choice.index = i;
+            }
+        }
+        if (choice.index >= 0) {
+            choice.reason = "the most accurate candidate within the frame budget";
+            return choice;
+        }
+    }
+    choice.index = -1;
+    for (int i = 0; i < count; ++i) {
+        if (at(i).valid && (choice.index < 0 || at(i).time_ms < at(choice.index).time_ms)) {
+            choice.index = i;
+        }
+    }
+    choice.reason = "nothing meets the target; the fastest candidate is reported as not met";
+    return choice;
+}
+
 ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
                     const PlanOptions& options, const ImageErrorFunction& measure) {
     ScenePlan plan;
@@ -477,74 +550,52 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         }
     }
 
-    // Paired rounds: every valid candidate once per round, the order rotated each round.
-    std::vector<std::size_t> timed;
-    for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
-        if (plan.candidates[i].valid) {
-            timed.push_back(i);
-        }
-    }
-    const int rounds = std::max(options.rounds, 1);
-    const int frames = std::max(options.frames_per_round, 1);
-    std::vector<std::vector<double>> round_ms(plan.candidates.size());
-    for (int round = 0; round < rounds; ++round) {
-        for (std::size_t k = 0; k < timed.size(); ++k) {
-            const std::size_t i = timed[(k + static_cast<std::size_t>(round)) % timed.size()];
-            std::vector<double> samples;
-            use_settings(plan.candidates[i]);
-            for (int f = 0; f < frames; ++f) {
-                const Clock::time_point start = Clock::now();
-                renderer->RenderFrame(plan.candidates[i].configuration, view);
-                renderer->Finish();
-                samples.push_back(
-                        std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-            }
-            round_ms[i].push_back(Median(samples));
-        }
-    }
-    for (std::size_t i : timed) {
+    // Every valid candidate against the full configuration, pair by pair, through the timing
+    // engine on the clock the renderer calls for.
+    FrameTimer timer(*renderer, options.clock);
+    PlanCandidate& full_candidate = plan.candidates.front();
+    std::vector<double> full_samples;
+    for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
         PlanCandidate& c = plan.candidates[i];
-        c.time_ms = Median(round_ms[i]);
-        std::vector<double> ratios;
-        for (std::size_t r = 0; r < round_ms[i].size(); ++r) {
-            ratios.push_back(round_ms[i][r] / round_ms[0][r]);
+        if (!c.valid) {
+            continue;
         }
-        c.time_change_percent = (Median(ratios) - 1.0) * 100.0;
+        const ComparisonTiming timing = TimeComparison(
+                [&](bool candidate) {
+                    const PlanCandidate& side = candidate ? c : full_candidate;
+                    use_settings(side);
+                    return timer.Time(side.configuration, view);
+                },
+                options.rule);
+        const base::PairedEstimate& e = timing.estimate;
+        c.time_ms = base::Median(timing.samples.candidate_ms);
+        c.time_change_percent = (e.ratio - 1.0) * 100.0;
+        c.time_change_low = (e.ratio_low - 1.0) * 100.0;
+        c.time_change_high = (e.ratio_high - 1.0) * 100.0;
+        c.pairs = e.pairs;
+        full_samples.insert(full_samples.end(), timing.samples.baseline_ms.begin(),
+                            timing.samples.baseline_ms.end());
     }
+    if (full_samples.empty()) {
+        for (int f = 0; f < options.rule.min_pairs; ++f) {
+            use_settings(full_candidate);
+            full_samples.push_back(timer.Time(full_candidate.configuration, view).ms);
+        }
+    }
+    full_candidate.time_ms = base::Median(full_samples);
 
     // The choice, on the measurements only.
     plan.full = 0;
     const QualityTarget& target = scene.target;
     const bool quality_bounds = target.min_psnr_db || target.max_share_visible;
-    int best = -1;
-    for (std::size_t i : timed) {
-        const PlanCandidate& c = plan.candidates[i];
-        const int index = static_cast<int>(i);
-        if (quality_bounds) {
-            // The cheapest that is accurate enough.
-            if (c.meets_quality &&
-                (best < 0 || c.time_ms < plan.candidates[static_cast<std::size_t>(best)].time_ms)) {
-                best = index;
-            }
-        } else if (c.time_ms <= *target.frame_budget_ms) {
-            // Only a budget: the most accurate within it (SSIM breaks PSNR ties at the cap).
-            const PlanCandidate* b =
-                    best < 0 ? nullptr : &plan.candidates[static_cast<std::size_t>(best)];
-            if (b == nullptr || c.error.psnr_db > b->error.psnr_db ||
-                (c.error.psnr_db == b->error.psnr_db && c.time_ms < b->time_ms)) {
-                best = index;
-            }
-        }
+    std::vector<CandidateMeasure> measures;
+    for (const PlanCandidate& c : plan.candidates) {
+        measures.push_back({c.valid, c.meets_quality, c.time_ms, c.time_change_low,
+                            c.time_change_high, c.time_change_percent, c.error.psnr_db});
     }
-    if (best < 0) {
-        // Nothing meets the budget: the fastest, reported as not met.
-        for (std::size_t i : timed) {
-            if (best < 0 || plan.candidates[i].time_ms <
-                                    plan.candidates[static_cast<std::size_t>(best)].time_ms) {
-                best = static_cast<int>(i);
-            }
-        }
-    }
+    const CandidateChoice choice = ChooseCandidate(measures, quality_bounds, target.frame_budget_ms);
+    const int best = choice.index;
+    plan.choice_reason = choice.reason;
     plan.chosen = best;
     const PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(best)];
     const PlanCandidate& full = plan.candidates.front();
@@ -657,8 +708,9 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
     out["schema"] = "tidepool.plans";
     out["version"] = 1;
     out["size"] = {options.settings.width, options.settings.height};
-    out["rounds"] = options.rounds;
-    out["frames_per_round"] = options.frames_per_round;
+    out["timing"] = {{"resolution_points", options.rule.resolution_points},
+                     {"min_pairs", options.rule.min_pairs},
+                     {"max_pairs", options.rule.max_pairs}};
     out["plans"] = nlohmann::json::array();
     auto configuration = [](const PlanCandidate& c) {
         long long pixels = 0;
@@ -709,6 +761,8 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
         p["time_ms_chosen"] = chosen.time_ms;
         p["time_ms_full"] = full.time_ms;
         p["time_change_percent"] = chosen.time_change_percent;
+        p["time_change_interval"] = {chosen.time_change_low, chosen.time_change_high};
+        p["choice_reason"] = plan.choice_reason;
         p["error"] = {{"psnr_db", chosen.error.psnr_db},
                       {"ssim", chosen.error.ssim},
                       {"share_visible", chosen.error.share_visible}};
@@ -746,6 +800,8 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
                 j["share_visible"] = c.error.share_visible;
                 j["time_ms"] = c.time_ms;
                 j["time_change_percent"] = c.time_change_percent;
+                j["time_change_interval"] = {c.time_change_low, c.time_change_high};
+                j["pairs"] = c.pairs;
                 j["meets_quality"] = c.meets_quality;
             } else {
                 std::vector<std::string> messages;

@@ -76,7 +76,7 @@ struct FakeRun {
 };
 
 FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& configurations,
-                     int rounds = 6) {
+                     int rounds = 24) {
     nlohmann::json variants = nlohmann::json::array();
     nlohmann::json entries = nlohmann::json::array();
     for (const FakeConfiguration& c : configurations) {
@@ -198,7 +198,7 @@ PairedRatio Ratio(double ratio, double low, double high) {
     PairedRatio r;
     r.ratio = ratio;
     r.ci = {low, high};
-    r.rounds = 8;
+    r.pairs = 40;
     return r;
 }
 
@@ -241,73 +241,79 @@ struct GradeCase {
     Verdict expected;
 };
 
-TEST(ReportGradeRow, VerdictsFollowDirectionToleranceAndNoiseFloor) {
+TEST(ReportGradeRow, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure) {
     // Frame-time ratio r is a performance change of (1/r - 1) * 100 %.
     const std::vector<GradeCase> cases = {
-            {"row 1: -56.5% is within 10 points of -60%", 1, Ratio(2.3, 2.2, 2.4),
+            {"row 1: [-58.3, -54.5] lies within 30..120% of -60%", 1, Ratio(2.3, 2.2, 2.4),
              Verdict::kSameDirectionAndMagnitude},
-            {"row 1: -23% is slower but far from -60%", 1, Ratio(1.3, 1.25, 1.35),
-             Verdict::kSameDirectionOnly},
+            {"row 1: [-25.9, -20] is slower but wholly under half of 60%", 1,
+             Ratio(1.3, 1.25, 1.35), Verdict::kSameDirectionDifferentMagnitude},
+            {"row 1: [-33.3, -25.9] straddles half of 60%: magnitude unresolved", 1,
+             Ratio(1.4, 1.35, 1.5), Verdict::kSameDirectionOnly},
             {"row 1: +25% faster is the opposite", 1, Ratio(0.8, 0.78, 0.82), Verdict::kOpposite},
-            {"row 1: -16.7% is a direction even when the interval straddles no change", 1,
-             Ratio(1.2, 0.9, 1.5), Verdict::kSameDirectionOnly},
-            {"row 2: a 0.5% loss is below the 1% floor", 2, Ratio(1.005, 1.0, 1.01),
-             Verdict::kInconclusive},
-            {"row 2: a small 1.5% loss is within 10 points of -9%", 2, Ratio(1.015, 1.01, 1.02),
+            {"row 1: an interval through no change claims no direction", 1, Ratio(1.2, 0.9, 1.5),
+             Verdict::kBelowResolution},
+            {"row 2: [-1, 0] reaches no change", 2, Ratio(1.005, 1.0, 1.01),
+             Verdict::kBelowResolution},
+            {"row 2: [-9.1, -6.5] lies within 4.5..18% of -9%", 2, Ratio(1.087, 1.07, 1.1),
              Verdict::kSameDirectionAndMagnitude},
-            {"row 2: -23% is beyond 10 points of -9%", 2, Ratio(1.3, 1.05, 1.6),
-             Verdict::kSameDirectionOnly},
-            {"row 2: a narrow interval around -8% agrees in magnitude", 2,
-             Ratio(1.087, 1.07, 1.1), Verdict::kSameDirectionAndMagnitude},
-            {"row 6: <1% agrees with a small change", 6, Ratio(1.02, 0.99, 1.05),
-             Verdict::kSameDirectionAndMagnitude},
-            {"row 6: a definite 30% loss is same direction only", 6, Ratio(1.43, 1.4, 1.46),
-             Verdict::kSameDirectionOnly},
+            {"row 2: [-2, -1] is a fifth of -9%, not its magnitude", 2, Ratio(1.015, 1.01, 1.02),
+             Verdict::kSameDirectionDifferentMagnitude},
+            {"row 6: [-1.5, +0.5] is negligible as the whitepaper's <1%", 6,
+             Ratio(1.005, 0.995, 1.015), Verdict::kNegligibleAsClaimed},
+            {"row 6: a definite 30% loss is not <1%", 6, Ratio(1.43, 1.4, 1.46),
+             Verdict::kSameDirectionDifferentMagnitude},
+            {"row 6: [-4.8, +1] is neither negligible nor a direction", 6,
+             Ratio(1.02, 0.99, 1.05), Verdict::kBelowResolution},
             {"row 8: qualitative faster, measured faster", 8, Ratio(0.8, 0.78, 0.82),
              Verdict::kSameDirectionOnly},
             {"row 8: qualitative faster, measured slower", 8, Ratio(1.2, 1.15, 1.25),
              Verdict::kOpposite},
-            {"row 11: qualitative, +0.5% is inside the noise floor", 11,
-             Ratio(0.995, 0.985, 1.005), Verdict::kInconclusive},
+            {"row 11: qualitative, [-0.5, +1.5] includes no change", 11,
+             Ratio(0.995, 0.985, 1.005), Verdict::kBelowResolution},
             {"failed measurement", 3, PairedRatio{}, Verdict::kFailed},
     };
     for (const GradeCase& c : cases) {
         std::string reason;
-        EXPECT_EQ(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, kNoiseFloorPercent, &reason),
-                  c.expected)
-                << c.name << ": "
-                << VerdictName(GradeRow(Row(c.row), c.ratio, nullptr, 10.0, kNoiseFloorPercent,
-                                        &reason))
-                << " (" << reason << ")";
+        const Verdict verdict = GradeRow(Row(c.row), c.ratio, nullptr, &reason);
+        EXPECT_EQ(verdict, c.expected) << c.name << ": " << VerdictName(verdict) << " ("
+                                       << reason << ")";
         EXPECT_FALSE(reason.empty()) << c.name;
     }
 }
 
-TEST(ReportGradeRow, HalvesAndIntervalsSayHowFirmlyNotWhichCategory) {
-    // The category follows the estimate; disagreeing halves and an interval through no change
-    // are said in the reason, so a noisy run cannot move a row between categories by them.
-    SplitHalf split;
-    split.odd = Ratio(0.7, 0.6, 0.8);   // odd rounds: faster
-    split.even = Ratio(1.1, 1.0, 1.2);  // even rounds: slower
+TEST(ReportGradeRow, BelowResolutionSaysHowSmallTheChangeIs) {
     std::string reason;
-    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 1, &reason),
-              Verdict::kSameDirectionOnly);
-    EXPECT_NE(reason.find("the odd rounds say"), std::string::npos) << reason;
-    split.even = Ratio(0.85, 0.8, 0.9);
-    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, 10, 1, &reason),
-              Verdict::kSameDirectionOnly);
-    EXPECT_EQ(reason.find("the odd rounds say"), std::string::npos) << reason;
-    EXPECT_EQ(reason.find("includes no change"), std::string::npos) << reason;
-    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 1.1), &split, 10, 1, &reason),
-              Verdict::kSameDirectionOnly);
-    EXPECT_NE(reason.find("includes no change"), std::string::npos) << reason;
+    ASSERT_EQ(GradeRow(Row(3), Ratio(1.005, 0.99, 1.02), nullptr, &reason),
+              Verdict::kBelowResolution);
+    // The interval [-1.96%, +1.01%]: |change| < 2.0%.
+    EXPECT_NE(reason.find("below resolution: |change| < 2.0%"), std::string::npos) << reason;
 }
 
-TEST(ReportGradeRow, SingleRoundIntervalIsInconclusive) {
+TEST(ReportGradeRow, HalvesThatDisagreeInSignAreSaidNotFoldedIntoTheCategory) {
+    SplitHalf split;
+    split.odd = Ratio(0.7, 0.6, 0.8);   // candidate first: faster
+    split.even = Ratio(1.1, 1.0, 1.2);  // baseline first: slower
     std::string reason;
-    EXPECT_EQ(GradeRow(Row(1), Ratio(2.5, 0, std::numeric_limits<double>::infinity()), nullptr, 10, 3,
-                       &reason),
-              Verdict::kInconclusive);
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, &reason),
+              Verdict::kSameDirectionOnly);
+    EXPECT_NE(reason.find("the two halves of the pairs disagree in sign"), std::string::npos)
+            << reason;
+    split.even = Ratio(0.85, 0.8, 0.9);
+    EXPECT_EQ(GradeRow(Row(10), Ratio(0.8, 0.7, 0.9), &split, &reason),
+              Verdict::kSameDirectionOnly);
+    EXPECT_EQ(reason.find("disagree"), std::string::npos) << reason;
+}
+
+TEST(ReportGradeRow, FirmVerdictsAreTheOnesASecondRunCouldContradict) {
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionAndMagnitude, FigureKind::kPercent));
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionDifferentMagnitude, FigureKind::kPercent));
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kOpposite, FigureKind::kPercent));
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kNegligibleAsClaimed, FigureKind::kNegligible));
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionOnly, FigureKind::kDirection));
+    EXPECT_FALSE(IsFirmVerdict(Verdict::kSameDirectionOnly, FigureKind::kPercent));
+    EXPECT_FALSE(IsFirmVerdict(Verdict::kBelowResolution, FigureKind::kDirection));
+    EXPECT_FALSE(IsFirmVerdict(Verdict::kFailed, FigureKind::kPercent));
 }
 
 TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
@@ -785,7 +791,7 @@ TEST(ReportReflectionTest, SectionListsTheFourComparisonsWithPassesFromThePassNa
     EXPECT_LE(model.reflections[1].change_ci.low, model.reflections[1].change_percent);
     EXPECT_GE(model.reflections[1].change_ci.high, model.reflections[1].change_percent);
     EXPECT_TRUE(std::isfinite(model.reflections[1].change_ci.low));
-    EXPECT_EQ(model.reflections[1].ratio.rounds, 6);
+    EXPECT_EQ(model.reflections[1].ratio.pairs, 24);
     // What each technique misses, in the words of the issue.
     EXPECT_NE(model.reflections[0].reading.find("Local objects and terrain are missing"),
               std::string::npos);

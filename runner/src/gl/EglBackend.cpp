@@ -103,7 +103,7 @@ std::unique_ptr<GlContext::Impl> CreateEglContext(std::string* failure) {
         eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
         eglDestroyContext(display, context);
     };
-    QueryEnvironment(impl.get(), true);
+    QueryEnvironment(impl.get(), true, &EglProc);
     return impl;
 }
 

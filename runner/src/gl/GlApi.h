@@ -7,6 +7,7 @@
 #pragma once
 
 #include <GLES3/gl3.h>
+#include <GLES2/gl2ext.h>
 
 #include <string>
 
@@ -90,8 +91,29 @@ struct GlApi {
 #undef TIDEPOOL_GL_DECLARE
 };
 
+/// GL_EXT_disjoint_timer_query's entry points: optional, for GPU frame times where a hardware
+/// driver offers them; every pointer is null when the context lacks one of them.
+struct GlTimerQueryApi {
+    PFNGLGENQUERIESEXTPROC glGenQueriesEXT = nullptr;
+    PFNGLDELETEQUERIESEXTPROC glDeleteQueriesEXT = nullptr;
+    PFNGLBEGINQUERYEXTPROC glBeginQueryEXT = nullptr;
+    PFNGLENDQUERYEXTPROC glEndQueryEXT = nullptr;
+    PFNGLGETQUERYOBJECTUI64VEXTPROC glGetQueryObjectui64vEXT = nullptr;
+
+    /// True when every entry point was found.
+    bool Available() const {
+        return glGenQueriesEXT != nullptr && glDeleteQueriesEXT != nullptr &&
+               glBeginQueryEXT != nullptr && glEndQueryEXT != nullptr &&
+               glGetQueryObjectui64vEXT != nullptr;
+    }
+};
+
 /// Loads every entry point through `loader`; returns the name of the first one missing, or ""
 /// when all were found.
 std::string LoadGlApi(ProcLoader loader, GlApi* api);
+
+/// Loads the timer-query entry points when `extensions` (GL_EXTENSIONS) lists
+/// GL_EXT_disjoint_timer_query; leaves them null otherwise. Never fails.
+void LoadTimerQueryApi(ProcLoader loader, const std::string& extensions, GlTimerQueryApi* api);
 
 }  // namespace tidepool::runner::gl

@@ -118,11 +118,11 @@ std::unique_ptr<GlContext::Impl> CreateOsMesaContext(std::string* failure) {
     impl->environment.backend = "osmesa";
     impl->make_current = [session] { return MakeOsMesaSessionCurrent(session); };
     impl->destroy = [session] { DestroyOsMesaSession(session); };
-    QueryEnvironment(impl.get(), false);
+    QueryEnvironment(impl.get(), false, &OsMesaProc);
     return impl;
 }
 
-void QueryEnvironment(GlContext::Impl* impl, bool is_gles) {
+void QueryEnvironment(GlContext::Impl* impl, bool is_gles, ProcLoader loader) {
     const GlApi& api = impl->api;
     auto text = [&](GLenum name) {
         const GLubyte* value = api.glGetString(name);
@@ -146,6 +146,25 @@ void QueryEnvironment(GlContext::Impl* impl, bool is_gles) {
     env.float_render_target =
         is_gles ? (major >= 3 && extensions.find("GL_EXT_color_buffer_float") != std::string::npos)
                 : major >= 3;
+    LoadTimerQueryApi(loader, extensions, &impl->timer_query);
+    env.timer_query = impl->timer_query.Available();
+}
+
+void LoadTimerQueryApi(ProcLoader loader, const std::string& extensions, GlTimerQueryApi* api) {
+    *api = GlTimerQueryApi{};
+    if ((" " + extensions + " ").find(" GL_EXT_disjoint_timer_query ") == std::string::npos) {
+        return;
+    }
+    api->glGenQueriesEXT = reinterpret_cast<PFNGLGENQUERIESEXTPROC>(loader("glGenQueriesEXT"));
+    api->glDeleteQueriesEXT =
+        reinterpret_cast<PFNGLDELETEQUERIESEXTPROC>(loader("glDeleteQueriesEXT"));
+    api->glBeginQueryEXT = reinterpret_cast<PFNGLBEGINQUERYEXTPROC>(loader("glBeginQueryEXT"));
+    api->glEndQueryEXT = reinterpret_cast<PFNGLENDQUERYEXTPROC>(loader("glEndQueryEXT"));
+    api->glGetQueryObjectui64vEXT = reinterpret_cast<PFNGLGETQUERYOBJECTUI64VEXTPROC>(
+        loader("glGetQueryObjectui64vEXT"));
+    if (!api->Available()) {
+        *api = GlTimerQueryApi{};
+    }
 }
 
 }  // namespace gl

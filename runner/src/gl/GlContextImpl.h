@@ -12,6 +12,7 @@ namespace tidepool::runner {
 
 struct GlContext::Impl {
     gl::GlApi api;
+    gl::GlTimerQueryApi timer_query;  // null pointers without GL_EXT_disjoint_timer_query
     GlEnvironment environment;
     std::function<bool()> make_current;  // binds the backend context to this thread
     std::function<void()> destroy;       // releases the backend context
@@ -26,7 +27,7 @@ std::unique_ptr<GlContext::Impl> CreateEglContext(std::string* failure);
 std::unique_ptr<GlContext::Impl> CreateOsMesaContext(std::string* failure);
 
 /// Fills `impl->environment` from the current context (strings, Mesa version, float targets).
-void QueryEnvironment(GlContext::Impl* impl, bool is_gles);
+void QueryEnvironment(GlContext::Impl* impl, bool is_gles, ProcLoader loader);
 
 }  // namespace gl
 }  // namespace tidepool::runner

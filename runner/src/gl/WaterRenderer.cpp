@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -150,6 +151,9 @@ struct FramePlan {
 struct WaterRenderer::Impl {
     GlContext* context = nullptr;
     const gl::GlApi* gl = nullptr;
+    const gl::GlTimerQueryApi* timer_query = nullptr;
+    GLuint gpu_query = 0;  // the GPU timer query, made on first use
+    bool gpu_query_running = false;
     VariantConfig config;
     RenderSettings settings;
     Scene scene;
@@ -924,6 +928,7 @@ std::unique_ptr<WaterRenderer> WaterRenderer::Create(GlContext& context,
     auto impl = std::make_unique<Impl>();
     impl->context = &context;
     impl->gl = &context.Internal().api;
+    impl->timer_query = &context.Internal().timer_query;
     impl->config = config;
     impl->settings = settings;
     if (scene != nullptr) {
@@ -992,7 +997,8 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
     return verdict;
 }
 
-FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const CameraView& view) {
+FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const CameraView& view,
+                                       const PassCallback& after_pass) {
     Impl& r = *impl_;
     const gl::GlApi& gl = *r.gl;
     FrameReport report;
@@ -1059,8 +1065,43 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
         if (error != GL_NO_ERROR && report.gl_error.empty()) {
             report.gl_error = fmt::format("{} after pass {}", ErrorName(error), PassName(pass.kind));
         }
+        if (after_pass) {
+            after_pass(report.pass_names.back());
+        }
     }
     return report;
+}
+
+bool WaterRenderer::BeginGpuTimer() {
+    Impl& r = *impl_;
+    const gl::GlTimerQueryApi& q = *r.timer_query;
+    if (!q.Available() || r.gpu_query_running) {
+        return false;
+    }
+    if (r.gpu_query == 0) {
+        q.glGenQueriesEXT(1, &r.gpu_query);
+    }
+    GLint disjoint = 0;
+    r.gl->glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);  // reading it clears the flag
+    q.glBeginQueryEXT(GL_TIME_ELAPSED_EXT, r.gpu_query);
+    r.gpu_query_running = true;
+    return true;
+}
+
+double WaterRenderer::EndGpuTimerMs() {
+    Impl& r = *impl_;
+    const gl::GlTimerQueryApi& q = *r.timer_query;
+    if (!r.gpu_query_running) {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    q.glEndQueryEXT(GL_TIME_ELAPSED_EXT);
+    r.gpu_query_running = false;
+    GLuint64 nanoseconds = 0;
+    q.glGetQueryObjectui64vEXT(r.gpu_query, GL_QUERY_RESULT_EXT, &nanoseconds);  // waits
+    GLint disjoint = 0;
+    r.gl->glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
+    return disjoint != 0 ? std::numeric_limits<double>::quiet_NaN()
+                         : static_cast<double>(nanoseconds) * 1e-6;
 }
 
 void WaterRenderer::UpdateFrameSettings(const RenderSettings& settings) {

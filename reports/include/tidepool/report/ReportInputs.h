@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -77,6 +78,10 @@ struct MeasuredConfiguration {
     double cpu_ci_high_ms = std::numeric_limits<double>::quiet_NaN();
     int frame_passes = 0;
     int frame_draw_calls = 0;
+    // Per-pass medians of instrumented frames (a glFinish after every pass) on the run's clock,
+    // and those frames' median as a whole; empty / NaN when the results do not have them.
+    std::map<std::string, double> pass_ms;
+    double instrumented_frame_ms = std::numeric_limits<double>::quiet_NaN();
 
     /// True when `preset` asked for this configuration.
     bool HasPreset(std::string_view preset) const;
@@ -90,6 +95,17 @@ struct MeasuredConfiguration {
     const std::vector<std::vector<double>>& SamplesOn(TimingClock clock) const;
     /// The median frame time on `clock` (NaN when not timed on it).
     double MedianOn(TimingClock clock) const;
+};
+
+/// Two configurations the runner timed pair by pair (results.json `comparisons`).
+struct MeasuredComparison {
+    std::string label;
+    std::string baseline;   // configuration ids
+    std::string candidate;
+    std::vector<double> baseline_ms;  // on the run's clock, pair i = (baseline_ms[i],
+    std::vector<double> candidate_ms;  // candidate_ms[i])
+    std::string decision;   // "resolved" or "capped"
+    std::string error;      // why the runner has no pairs ("" when it has)
 };
 
 /// Everything a report is built from.
@@ -110,7 +126,14 @@ struct ReportInputs {
     // The clock every comparison uses: CPU time when every timed configuration has CPU samples
     // (wall time on a shared machine is disturbed by other processes), else wall time.
     TimingClock clock = TimingClock::kWall;
+    std::string clock_name;                    // as results.json names it ("thread_cpu", ...)
     std::string clock_reason;                  // one sentence: why this clock
+    std::vector<MeasuredComparison> comparisons;
+    double resolution_points = std::numeric_limits<double>::quiet_NaN();  // asked of each pair
+
+    /// The pairs the runner recorded for (baseline, candidate) ids, or null.
+    const MeasuredComparison* FindComparison(std::string_view baseline,
+                                             std::string_view candidate) const;
 
     /// The configuration `preset` asked for, or null when no configuration carries it.
     const MeasuredConfiguration* FindByPreset(std::string_view preset) const;

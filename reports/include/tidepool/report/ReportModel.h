@@ -26,40 +26,49 @@ namespace tidepool::report {
 /// The preset whose images every other configuration is compared with.
 inline constexpr std::string_view kReferencePreset = "reference";
 
-/// Below this change (in %) a row's estimate is called inconclusive: too small to have a
-/// direction. Categories come from the estimate, not the interval: over six consecutive runs of
-/// the whitepaper presets on a shared 2-core machine, the estimate of one comparison moved by
-/// up to 6 points between runs while each run's interval was narrower, so interval-based
-/// categories (a 3% floor on the whole interval, from session 1) flipped between firm and
-/// inconclusive from run to run; every row's estimate kept its sign and its side of the
-/// magnitude tolerance. The interval and the split halves are reported beside the verdict.
-inline constexpr double kNoiseFloorPercent = 1.0;
+/// Magnitude agreement is relative: a measured change agrees with a whitepaper figure f when
+/// its whole 95% interval lies between f / kMagnitudeFactor and f x kMagnitudeFactor, and
+/// differs when the whole interval lies outside; an interval across either edge leaves the
+/// magnitude unresolved. For the "<1%" row the band is |change| <= 1% x kMagnitudeFactor.
+/// Why relative and decided by the interval: a fixed tolerance in points called -1.9% "the
+/// same magnitude" as -11%, and verdicts decided by the estimate alone flipped between runs
+/// whenever the estimate sat near a boundary; a verdict the interval decides can only flip when
+/// two runs' intervals disagree, which correct intervals make rare.
+inline constexpr double kMagnitudeFactor = 2.0;
 
 /// How many configurations the static-cost section lists as most misleading.
 inline constexpr std::size_t kMisleadingCount = 6;
 
-/// The verdict of one whitepaper row.
+/// The verdict of one whitepaper row, decided by its 95% interval.
 enum class Verdict {
-    kSameDirectionAndMagnitude,  // same direction, and the estimate within the tolerance
-    kSameDirectionOnly,          // same direction; the size differs, or the figure is qualitative
-    kOpposite,                   // a definite change the other way
-    kInconclusive,               // the estimate is below the noise floor (or no interval)
-    kFailed,                     // a configuration failed to compile or render, or is missing
+    kSameDirectionAndMagnitude,        // the whole interval lies in the figure's magnitude band
+    kSameDirectionDifferentMagnitude,  // the figure's direction, the whole interval outside it
+    kSameDirectionOnly,                // the figure's direction; the figure is qualitative, or
+                                       // the interval straddles an edge of the band
+    kNegligibleAsClaimed,              // a "<1%" row whose interval lies within the band
+    kOpposite,                         // the whole interval on the other side of no change
+    kBelowResolution,                  // the interval includes no change: no direction
+    kFailed,                           // a configuration failed or is missing
 };
 
 /// A stable lower-case name of `verdict` for tables and JSON; never fails.
 std::string_view VerdictName(Verdict verdict);
 
-/// Grades a measured paired ratio against a row by its estimate (the median of the per-round
-/// ratios, as a performance change): inconclusive when |change| < noise_floor_percent (except
-/// "<1%" rows, which agree when |change| is within the tolerance of 0); opposite when its sign
-/// is not the whitepaper's; same direction and magnitude when it lies within the tolerance of
-/// the figure; same direction only otherwise, and always for qualitative rows. `reason` says
-/// why in one line and how firmly the run supports it: the 95% interval, whether it includes no
-/// change, and whether `split` (may be null) shows the odd and even rounds disagreeing. Never
-/// fails (no ratio is kFailed; an unbounded interval is kInconclusive).
+/// True when `verdict` makes a claim another run could contradict: a magnitude (agreeing,
+/// different, negligible), the opposite direction, or the direction of a qualitative figure.
+/// "Below resolution" and "direction only, magnitude unresolved" of a quantitative figure are
+/// not firm. Never fails.
+bool IsFirmVerdict(Verdict verdict, FigureKind kind);
+
+/// Grades a measured paired ratio against a row by its 95% interval (as a performance change,
+/// + = faster): below resolution when the interval includes no change ("|change| < X%", X
+/// the larger end); opposite when it lies on the other side; for a percent figure, same
+/// direction and magnitude, different magnitude or direction only by kMagnitudeFactor's band;
+/// for "<1%", negligible as claimed when the interval lies within the band; direction only for
+/// qualitative figures. `reason` says why in one line, with the interval and, when `split`
+/// (may be null) shows the two halves of the pairs on opposite sides, that too. Never fails
+/// (no ratio is kFailed).
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
-                 double magnitude_tolerance_percent_points, double noise_floor_percent,
                  std::string* reason);
 
 /// One side of a comparison.
@@ -73,9 +82,14 @@ struct RowComparison {
     WhitepaperRow row;
     ComparisonSide baseline;
     ComparisonSide candidate;
-    PairedRatio ratio;  // candidate / baseline frame time, paired by round
+    PairedRatio ratio;  // candidate / baseline frame time over the pairs
     double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
     Interval change_ci;  // of change_percent
+    double resolution_points = std::numeric_limits<double>::quiet_NaN();  // achieved half-width
+    std::string pairs_source;  // "the runner's pairs" or "one pair per round (older results)"
+    // Measured "why": each pass's time in both configurations and the pass that changed most,
+    // with its share of the frame; "" when the results have no per-pass times.
+    std::string measured_why;
     SplitHalf split;
     double odd_change_percent = std::numeric_limits<double>::quiet_NaN();
     double even_change_percent = std::numeric_limits<double>::quiet_NaN();
@@ -196,11 +210,11 @@ struct TechniqueComparison {
     std::optional<int> candidate_draw_calls;
     double baseline_median_ms = std::numeric_limits<double>::quiet_NaN();  // model's clock
     double candidate_median_ms = std::numeric_limits<double>::quiet_NaN();
-    PairedRatio ratio;  // candidate / baseline frame time, paired by round
+    PairedRatio ratio;  // candidate / baseline frame time over the pairs
     double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
     Interval change_ci;  // of change_percent
-    // +1 faster, -1 slower: the whole interval clears ±noise floor (as GradeRow's direction);
-    // 0 when it does not or nothing was measured.
+    // +1 faster, -1 slower: the whole interval lies on that side of no change (as GradeRow's
+    // direction); 0 when it does not or nothing was measured.
     int direction = 0;
     // Image error of the candidate against the baseline over every view both have images for:
     // PSNR from the mean squared error over views (+infinity when identical), mean SSIM, mean
@@ -226,9 +240,6 @@ struct TechniqueComparison {
 /// Options of a report build.
 struct ReportOptions {
     std::string name = "default";
-    double magnitude_tolerance_percent_points = kWhitepaperMagnitudeTolerancePercentPoints;
-    double noise_floor_percent = kNoiseFloorPercent;
-    std::uint64_t seed = 1;
     std::string generated_utc;  // supplied by the caller (the library reads no clock)
     std::vector<std::string> panel_views;  // views shown in the image panels; empty: timing view
 };
@@ -271,6 +282,17 @@ struct ReportModelResult {
 /// configurations are kept and marked, never dropped. A missing reference leaves the accuracy
 /// figures NaN with a note.
 ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptions& options);
+
+/// Two presets whose configurations the report compares in time.
+struct PresetPair {
+    std::string label;      // "row 4", or "cube-map reflection (full effect)"
+    std::string baseline;   // preset names
+    std::string candidate;
+};
+
+/// Every pair the report compares: the 11 whitepaper rows, then the reflection techniques and
+/// the depth optics; the runner times exactly these pairs. Never fails.
+std::vector<PresetPair> ComparedPresetPairs();
 
 /// Rank correlation and largest rank gaps of static counts versus times, for tests and the
 /// model. Ranks average ties. Fails softly: rho NaN and `note` set when fewer than 3 entries.

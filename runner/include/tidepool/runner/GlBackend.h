@@ -28,6 +28,7 @@ struct GlEnvironment {
     std::string shading_language;  // GL_SHADING_LANGUAGE_VERSION
     std::string mesa_version;      // the "Mesa x.y.z" part of GL_VERSION, "" when not Mesa
     bool float_render_target = false;  // RGBA32F colour attachments render (NaN/Inf checks)
+    bool timer_query = false;  // GL_EXT_disjoint_timer_query is offered and loaded
 };
 
 /// One backend that was tried and why it failed ("" when it worked).

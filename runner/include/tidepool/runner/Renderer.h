@@ -3,6 +3,7 @@
 // variant under test through the real GL driver.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -94,6 +95,10 @@ struct FrameReport {
     double plan_seconds = 0;        // CPU time computing the frame (matrices, polygon, culling)
 };
 
+/// Called after each pass of a frame is submitted, with the pass's name ("reflection", ...):
+/// the timing engine finishes the GL work there and reads its clock, to time each pass.
+using PassCallback = std::function<void(const std::string& pass)>;
+
 /// The renderer of one GL context: scene resources, render targets and compiled programs.
 class WaterRenderer {
 public:
@@ -117,7 +122,16 @@ public:
     /// first (it makes the context current; RenderFrame does not, to keep eglMakeCurrent out of
     /// timed frames, so re-current the context if another was made current since); fails through FrameReport::gl_error (glGetError after each pass) or, when the
     /// programs are invalid, by drawing nothing and saying so there.
-    FrameReport RenderFrame(const RenderConfiguration& configuration, const CameraView& view);
+    FrameReport RenderFrame(const RenderConfiguration& configuration, const CameraView& view,
+                            const PassCallback& after_pass = {});
+
+    /// Starts a GPU timer query (GL_EXT_disjoint_timer_query) around the commands that follow.
+    /// Fails (false) when the context offers no timer queries or one is already running.
+    bool BeginGpuTimer();
+    /// Ends the query begun by BeginGpuTimer, waits for its result and returns the GPU time in
+    /// milliseconds. Fails (NaN) when no query runs or the GPU reported a disjoint interval
+    /// (the measurement was disturbed, e.g. by a frequency change).
+    double EndGpuTimerMs();
 
     /// Replaces the settings that only move uniforms and the frame plan (animation time and
     /// wrapping, fog, distortion, bump scales and velocities, colours, clip offset); the sizes

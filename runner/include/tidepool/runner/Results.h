@@ -3,6 +3,8 @@
 #pragma once
 
 #include <filesystem>
+#include <map>
+#include <memory>
 #include <functional>
 #include <optional>
 #include <string>
@@ -12,6 +14,8 @@
 
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -34,21 +38,38 @@ struct HostInfo {
     std::string command;         // "render" or "bench"
 };
 
+/// Two configurations whose frame times a report compares: they are timed pair by pair until
+/// the interval is as narrow as the stopping rule asks.
+struct TimedComparison {
+    std::string label;          // e.g. "row 4" or "full -> full_cubemap_reflection"
+    std::size_t baseline = 0;   // indices into RunOptions::configurations
+    std::size_t candidate = 0;
+};
+
+/// Creates a further GL context for another rendering thread; null when it cannot.
+using GlContextFactory = std::function<std::unique_ptr<GlContext>()>;
+
 /// What a run renders and how.
 struct RunOptions {
     std::vector<RenderConfiguration> configurations;
     std::vector<CameraView> views;  // an image per configuration per view
     std::string timing_view;        // the view timed; "" means the first of `views`
     RenderSettings settings;
-    int warmup_frames = 2;          // per configuration, untimed (llvmpipe compiles on first draw)
-    int rounds = 3;                 // each round renders every configuration
-    int frames_per_round = 3;       // timed frames per configuration per round
-    // Timed frames per round for configurations a preset asked for (the whitepaper's
-    // comparisons): their per-round medians decide the report's verdicts, so they get more
-    // frames than the rest of the matrix, and are timed as a group of their own at the start
-    // of every round, so the pairs a verdict compares are measured close together in time;
-    // 0 means frames_per_round and one group.
-    int preset_frames_per_round = 0;
+    int warmup_frames = 2;          // per configuration and thread, untimed (llvmpipe compiles
+                                    // on first draw)
+    // Timed frames of every configuration on its own: enough for the accuracy-versus-time chart
+    // (a coarse time), not for a comparison, which `comparisons` time in pairs.
+    int coarse_frames = 5;
+    std::vector<TimedComparison> comparisons;
+    base::StoppingRule rule;        // when a comparison has enough pairs
+    // Frames with a glFinish after each pass, per compared configuration: the per-pass times
+    // behind the report's "why" column (medians over these frames).
+    int pass_frames = 5;
+    // Rendering threads, each with a GL context of its own (`make_context` makes all but the
+    // first, which is the context RunRender is given, used on the calling thread). Both sides
+    // of a comparison are always timed on one thread.
+    int workers = 1;
+    GlContextFactory make_context;
     std::filesystem::path out_dir;  // images go to out_dir/images/
     bool write_images = true;
     bool compare_with_glslang = true;  // list variants where glslang and Mesa disagree
@@ -69,12 +90,17 @@ struct ConfigurationResult {
     DriverVerdict verdict;
     std::optional<bool> glslang_valid;  // glslang's verdict on the same variant, when compared
     std::vector<ViewResult> views;
-    std::vector<std::vector<double>> samples_ms;  // frame times per round, milliseconds
-    SampleStatistics statistics;                  // over every sample of every round
-    // The same frames measured as this process's CPU time (every llvmpipe thread included):
-    // the work a frame costs, which other processes on a shared machine barely disturb.
+    // The coarse frames' wall-clock times, one "round" of one frame each (the v1 layout, which
+    // readers pair by round when a results file has no comparisons).
+    std::vector<std::vector<double>> samples_ms;
+    SampleStatistics statistics;
+    // The same frames on the run's clock (RunResults::clock): CPU time on a software renderer.
     std::vector<std::vector<double>> cpu_samples_ms;
     SampleStatistics cpu_statistics;
+    // Per-pass medians on the run's clock over RunOptions::pass_frames instrumented frames
+    // (compared configurations only), and the median of those frames as a whole.
+    std::map<std::string, double> pass_ms;
+    double instrumented_frame_ms = 0;
     int passes = 0;                               // per frame at the timing view
     int draw_calls = 0;
     std::string gl_error;                         // the first GL error seen, "" when none
@@ -82,6 +108,13 @@ struct ConfigurationResult {
 
     /// True when the driver accepted every program and no frame raised a GL error.
     bool Ok() const { return verdict.valid && gl_error.empty(); }
+};
+
+/// A comparison as timed.
+struct ComparisonResult {
+    TimedComparison comparison;
+    ComparisonTiming timing;
+    std::string error;  // "" when both sides rendered; otherwise why there is no estimate
 };
 
 /// A variant on which glslang and Mesa reach different verdicts.
@@ -97,8 +130,13 @@ struct RunResults {
     HostInfo host;
     RunOptions options;  // settings as used (configurations are repeated in `configurations`)
     std::vector<ConfigurationResult> configurations;
+    std::vector<ComparisonResult> comparisons;
+    FrameClockChoice clock;  // the clock every time is on
+    int workers = 1;         // rendering threads that actually ran
     std::vector<VerdictDisagreement> disagreements;
     std::vector<Diagnostic> diagnostics;  // every driver diagnostic and run-level problem
+    // Files that could not be written (a PNG, for instance): an environment failure, exit 3.
+    std::vector<std::string> write_errors;
     double wall_seconds = 0;
     std::string started_utc;  // ISO 8601
 
@@ -108,10 +146,11 @@ struct RunResults {
 
 /// Where a run is, for the CLI's progress line.
 struct RunProgress {
-    std::string stage;          // "compile", "images", "warmup", "timing"
-    std::string configuration;  // id of the configuration being worked on
-    long done = 0;              // frames (or compiles) finished
-    long total = 0;
+    std::string stage;          // "images", "comparisons"
+    std::string configuration;  // id of the configuration (or label of the comparison)
+    long done = 0;              // frames finished
+    long total = 0;             // frames expected: comparisons' pairs are re-estimated at
+                                // every look from the interval's width
     double elapsed_seconds = 0;
     double eta_seconds = 0;     // elapsed / done × remaining; 0 until something is done
 };
@@ -119,11 +158,12 @@ struct RunProgress {
 /// Called after every unit of work; may print, must not throw.
 using ProgressCallback = std::function<void(const RunProgress&)>;
 
-/// Compiles every configuration in Mesa, renders an image per view (written as PNG when asked),
-/// then times warm-up frames and interleaved rounds (each frame: submission + glFinish on a
-/// steady clock; the configuration order rotates every round so drift spreads evenly). Fails
-/// through the results: a configuration that does not compile is skipped for images and timing,
-/// and any problem is a diagnostic.
+/// Compiles every configuration in Mesa, renders an image per view (written as PNG when asked)
+/// and times `coarse_frames` frames of it; times every comparison pair by pair until the
+/// stopping rule ends it, with per-pass times of each compared configuration; all on the clock
+/// ChooseFrameClock picks for the context, spread over `workers` threads. Fails through the
+/// results: a configuration that does not compile is skipped for images and timing, a
+/// comparison with a failed side has an error, and any problem is a diagnostic.
 RunResults RunRender(GlContext& context, const VariantConfig& config, const RunOptions& options,
                      const ProgressCallback& progress);
 

@@ -7,6 +7,8 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -14,6 +16,7 @@
 
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,8 +45,13 @@ using ImageErrorFunction =
 struct PlanOptions {
     RenderSettings settings;           // size and the defaults the description does not move
     int warmup_frames = 1;             // untimed frames per candidate before its image
-    int rounds = 3;                    // paired timing rounds (every candidate once per round)
-    int frames_per_round = 3;          // timed frames per candidate per round
+    // Each candidate is timed against the full configuration pair by pair until its interval
+    // is this narrow (the timing engine, FrameTimer.h); 3 points is plenty to rank candidates
+    // that differ by tens of percent, and the choice rule never picks on a smaller difference.
+    base::StoppingRule rule{3.0, 20, 200, 10};
+    // The clock frames are timed on: ChooseFrameClock for the context (the caller knows
+    // LP_NUM_THREADS; the library reads no environment).
+    FrameClock clock = FrameClock::kWall;
     std::string full_preset = "full";  // the full-effect configuration every error is against
     // When set, every candidate's image is written to out_dir/images/SCENE-ID.png (ids
     // sanitised), named relative to out_dir, where plans.json goes, so the report can show what
@@ -64,8 +72,13 @@ struct PlanCandidate {
     std::vector<Diagnostic> diagnostics;  // why it is invalid
     ImageError error;
     std::string image_path;          // relative to PlanOptions::out_dir; "" when not written
-    double time_ms = 0;              // median over rounds of the round's median frame time
-    double time_change_percent = 0;  // frame time vs the full configuration, paired by round
+    double time_ms = 0;              // median frame time on the timing clock
+    // Frame time vs the full configuration in percent (+ = slower), paired frame by frame, with
+    // its 95% interval; 0 and [0, 0] for the full configuration itself.
+    double time_change_percent = 0;
+    double time_change_low = 0;
+    double time_change_high = 0;
+    int pairs = 0;                   // pairs of frames behind the figure
     FrameReport frame;               // passes, draws and pixels of one frame
     bool meets_quality = false;      // the image-error bounds of the target hold
 };
@@ -85,6 +98,7 @@ struct ScenePlan {
     std::vector<PlanCandidate> candidates;
     int full = -1;  // index into candidates; -1 when the plan failed
     int chosen = -1;
+    std::string choice_reason;  // ChooseCandidate's reason
     bool met = false;  // the chosen candidate meets every bound of the target
     std::vector<DroppedEffect> dropped;
     // Effects the rules offered to drop but the measurement kept, with the same fields: the
@@ -95,6 +109,33 @@ struct ScenePlan {
     long long pixels_saved = 0;
     std::vector<Diagnostic> diagnostics;  // errors end the plan (full invalid, GL failures)
 };
+
+/// What the choice rule reads of a candidate.
+struct CandidateMeasure {
+    bool valid = false;
+    bool meets_quality = false;
+    double time_ms = 0;
+    double time_change_low = 0;   // interval of the frame-time change vs full, percent
+    double time_change_high = 0;  // (+ = slower)
+    double time_change_percent = 0;
+    double psnr_db = 0;
+};
+
+/// The planner's choice and why.
+struct CandidateChoice {
+    int index = -1;
+    std::string reason;
+};
+
+/// Chooses among measured candidates (index 0 is the full configuration). With quality bounds:
+/// the fastest candidate that meets them and is faster than full beyond its interval; but a
+/// more accurate one that also qualifies is kept instead whenever the two intervals overlap,
+/// since then the time difference is within the measurement's own uncertainty (and it says
+/// so). Full is kept when no candidate is faster beyond its interval. With only a budget: the
+/// most accurate within it. When nothing qualifies: the fastest, which misses the target.
+/// Never fails; -1 when no candidate is valid.
+CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
+                                bool quality_bounds, std::optional<double> frame_budget_ms);
 
 /// The candidate list the rules propose for `scene` (at most 11, the full configuration first,
 /// then every effect dropped alone, then combinations the scene suggests),

@@ -1,0 +1,93 @@
+// The one way tidepool compares two configurations' frame times: pairs of frames rendered
+// back to back (milliseconds apart, so slow drift on a shared machine hits both sides), the
+// per-pair log ratio, its Hodges-Lehmann estimate and the Wilcoxon signed-rank interval, and
+// the sequential rule that decides when a comparison has enough pairs.
+//
+// Why this estimator: the pair differences of log frame times are symmetric about the effect
+// (the two sides alternate who goes first, so neither order nor drift favours a side), which is
+// what the signed-rank interval assumes; the Hodges-Lehmann estimate keeps 95% of the mean's
+// efficiency on normal noise yet ignores the odd disturbed frame (breakdown point 29%), where
+// the mean does not and the plain median needs about 1.5x the pairs for the same interval.
+//
+// Units: a frame-time ratio is candidate / baseline (2.5: the candidate takes 2.5x as long).
+// A performance change is in percent of frame rate, + = faster, as the whitepaper words it:
+// (1 / ratio - 1) * 100. Failures are values: never throws, never prints.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace tidepool::base {
+
+/// Coverage of every interval PairedEstimate reports (two-sided).
+inline constexpr double kConfidenceLevel = 0.95;
+
+/// Fewer pairs than this give no interval: the signed-rank interval's normal approximation
+/// (used for every n, so coverage does not jump between an exact table and the formula) is
+/// within a point of its nominal coverage from about 10 pairs on.
+inline constexpr int kMinimumPairs = 10;
+
+/// A paired comparison of candidate against baseline frame times.
+struct PairedEstimate {
+    int pairs = 0;
+    double ratio = std::numeric_limits<double>::quiet_NaN();  // candidate / baseline
+    double ratio_low = std::numeric_limits<double>::quiet_NaN();
+    double ratio_high = std::numeric_limits<double>::quiet_NaN();
+    double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
+    double change_low = std::numeric_limits<double>::quiet_NaN();      // ends of its interval
+    double change_high = std::numeric_limits<double>::quiet_NaN();
+    std::string error;  // "" on success, otherwise why the figures are NaN
+
+    /// True when an estimate and a bounded interval exist.
+    bool Valid() const { return error.empty() && pairs >= kMinimumPairs; }
+    /// Half the interval's width in percent points of performance change; NaN when invalid.
+    double HalfWidthPoints() const;
+    /// True when the interval lies entirely on one side of no change.
+    bool ExcludesNoChange() const;
+};
+
+/// Estimates the paired ratio of `candidate_ms[i] / baseline_ms[i]` over every pair i:
+/// exp(Hodges-Lehmann estimate of the log ratios) with the `confidence` Wilcoxon signed-rank
+/// interval (normal approximation, ranks of the Walsh averages). Fails (NaN figures, `error`
+/// set) when the sides differ in length, a time is not finite and positive, or there are
+/// fewer than kMinimumPairs pairs (then `ratio` is still the estimate when there is one pair).
+PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
+                              const std::vector<double>& candidate_ms,
+                              double confidence = kConfidenceLevel);
+
+/// Converts a frame-time ratio to a performance change in percent of frame rate,
+/// (1 / ratio - 1) * 100 (+ = faster). Fails (NaN) when the ratio is not finite and positive.
+double PerformanceChangePercent(double frame_time_ratio);
+
+/// When a comparison has enough pairs: its interval's half-width is at most
+/// `resolution_points`, or it has `max_pairs`. Never fewer than `min_pairs`.
+struct StoppingRule {
+    double resolution_points = 1.5;  // half-width of the 95% interval, percent points
+    int min_pairs = 20;
+    int max_pairs = 400;
+    // Pairs taken between two looks at the interval: at least this many, and a quarter of the
+    // pairs so far, so a comparison needing n pairs is looked at about 5 ln(n / min_pairs)
+    // times (each look costs O(n^2) Walsh averages, and fewer looks bias the stop less).
+    int batch_pairs = 10;
+};
+
+/// What the sequential rule says after a look.
+enum class StopDecision {
+    kContinue,  // take another batch
+    kResolved,  // the interval is as narrow as the resolution
+    kCapped,    // max_pairs reached first; the achieved resolution is wider than asked
+};
+
+/// Applies `rule` to the estimate of the pairs so far. Never fails: an invalid estimate below
+/// max_pairs continues, at max_pairs it is capped.
+StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
+/// then max(batch_pairs, pairs / 4), never past max_pairs. Never fails (0 at max_pairs).
+int PairsBeforeNextLook(int pairs, const StoppingRule& rule);
+
+/// "resolved", "capped" or "continue"; never fails.
+const char* StopDecisionName(StopDecision decision);
+
+}  // namespace tidepool::base

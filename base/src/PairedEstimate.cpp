@@ -1,0 +1,157 @@
+#include "tidepool/base/PairedEstimate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace tidepool::base {
+namespace {
+
+// The standard normal quantile by Acklam's rational approximation (relative error < 1.2e-9),
+// enough for the z of an interval's coverage.
+double NormalQuantile(double p) {
+    constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
+                            -2.759285104469687e+02, 1.383577518672690e+02,
+                            -3.066479806614716e+01, 2.506628277459239e+00};
+    constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
+                            -1.556989798598866e+02, 6.680131188771972e+01,
+                            -1.328068155288572e+01};
+    constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
+                            -2.400758277161838e+00, -2.549732539343734e+00,
+                            4.374664141464968e+00,  2.938163982698783e+00};
+    constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
+                            3.754408661907416e+00};
+    constexpr double low = 0.02425;
+    if (p < low) {
+        const double q = std::sqrt(-2 * std::log(p));
+        return (((((c[0] * q + c[1]) * q + c[2]) * q + c[3]) * q + c[4]) * q + c[5]) /
+               ((((d[0] * q + d[1]) * q + d[2]) * q + d[3]) * q + 1);
+    }
+    if (p > 1 - low) {
+        return -NormalQuantile(1 - p);
+    }
+    const double q = p - 0.5;
+    const double r = q * q;
+    return (((((a[0] * r + a[1]) * r + a[2]) * r + a[3]) * r + a[4]) * r + a[5]) * q /
+           (((((b[0] * r + b[1]) * r + b[2]) * r + b[3]) * r + b[4]) * r + 1);
+}
+
+// The k-th smallest (0-based) of `values`, reordering them.
+double KthSmallest(std::vector<double>& values, std::size_t k) {
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
+                     values.end());
+    return values[k];
+}
+
+}  // namespace
+
+double PerformanceChangePercent(double frame_time_ratio) {
+    if (!std::isfinite(frame_time_ratio) || frame_time_ratio <= 0) {
+        return std::numeric_limits<double>::quiet_NaN();
+    }
+    return (1.0 / frame_time_ratio - 1.0) * 100.0;
+}
+
+double PairedEstimate::HalfWidthPoints() const {
+    return Valid() ? (change_high - change_low) / 2.0 : std::numeric_limits<double>::quiet_NaN();
+}
+
+bool PairedEstimate::ExcludesNoChange() const {
+    return Valid() && (change_low > 0.0 || change_high < 0.0);
+}
+
+PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
+                              const std::vector<double>& candidate_ms, double confidence) {
+    PairedEstimate out;
+    if (baseline_ms.size() != candidate_ms.size()) {
+        out.error = "the two sides have " + std::to_string(baseline_ms.size()) + " and " +
+                    std::to_string(candidate_ms.size()) + " samples";
+        return out;
+    }
+    std::vector<double> d;
+    d.reserve(baseline_ms.size());
+    for (std::size_t i = 0; i < baseline_ms.size(); ++i) {
+        const double a = baseline_ms[i];
+        const double b = candidate_ms[i];
+        if (!std::isfinite(a) || !std::isfinite(b) || a <= 0 || b <= 0) {
+            out.error = "pair " + std::to_string(i) + " holds a time that is not finite and "
+                        "positive";
+            return out;
+        }
+        d.push_back(std::log(b) - std::log(a));
+    }
+    const std::size_t n = d.size();
+    out.pairs = static_cast<int>(n);
+    if (n == 0) {
+        out.error = "no pairs";
+        return out;
+    }
+    // Walsh averages (d_i + d_j) / 2 for i <= j: their median is the Hodges-Lehmann estimate,
+    // their order statistics the signed-rank interval.
+    std::vector<double> walsh;
+    walsh.reserve(n * (n + 1) / 2);
+    for (std::size_t i = 0; i < n; ++i) {
+        for (std::size_t j = i; j < n; ++j) {
+            walsh.push_back((d[i] + d[j]) / 2.0);
+        }
+    }
+    const std::size_t m = walsh.size();
+    const double hl = m % 2 == 1
+                              ? KthSmallest(walsh, m / 2)
+                              : (KthSmallest(walsh, m / 2 - 1) + KthSmallest(walsh, m / 2)) / 2;
+    out.ratio = std::exp(hl);
+    out.change_percent = PerformanceChangePercent(out.ratio);
+    if (n < static_cast<std::size_t>(kMinimumPairs)) {
+        out.error = "fewer than " + std::to_string(kMinimumPairs) + " pairs give no interval";
+        return out;
+    }
+    // The signed-rank statistic has mean M/2 and variance n(n+1)(2n+1)/24 under the
+    // hypothesis; the interval is [W(C), W(M+1-C)] (1-based) with C = M/2 - z sigma rounded
+    // down (Hollander and Wolfe's large-sample C_alpha), so it drops C-1 Walsh averages at
+    // each end.
+    const double nn = static_cast<double>(n);
+    const double z = NormalQuantile(0.5 + confidence / 2.0);
+    const double sigma = std::sqrt(nn * (nn + 1) * (2 * nn + 1) / 24.0);
+    const double c = std::floor(static_cast<double>(m) / 2.0 - z * sigma);
+    const auto cut =
+            static_cast<std::size_t>(std::clamp(c - 1.0, 0.0, static_cast<double>(m - 1) / 2));
+    const double low = KthSmallest(walsh, cut);
+    const double high = KthSmallest(walsh, m - 1 - cut);
+    out.ratio_low = std::exp(low);
+    out.ratio_high = std::exp(high);
+    // A larger ratio is a lower frame rate, so the interval's ends swap.
+    out.change_low = PerformanceChangePercent(out.ratio_high);
+    out.change_high = PerformanceChangePercent(out.ratio_low);
+    return out;
+}
+
+StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
+    if (estimate.pairs >= rule.min_pairs && estimate.Valid() &&
+        estimate.HalfWidthPoints() <= rule.resolution_points) {
+        return StopDecision::kResolved;
+    }
+    if (estimate.pairs >= rule.max_pairs) {
+        return StopDecision::kCapped;
+    }
+    return StopDecision::kContinue;
+}
+
+int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
+    const int target = pairs < rule.min_pairs ? rule.min_pairs
+                                              : pairs + std::max(rule.batch_pairs, pairs / 4);
+    return std::max(0, std::min(target, rule.max_pairs) - pairs);
+}
+
+const char* StopDecisionName(StopDecision decision) {
+    switch (decision) {
+    case StopDecision::kContinue:
+        return "continue";
+    case StopDecision::kResolved:
+        return "resolved";
+    case StopDecision::kCapped:
+        return "capped";
+    }
+    return "continue";
+}
+
+}  // namespace tidepool::base

@@ -1,0 +1,108 @@
+// The one timing engine: which clock a frame is timed on, how one frame (and each of its passes)
+// is timed, and how two configurations are compared pair by pair until the interval is as
+// narrow as asked. `render`, `bench`, `run` and the scene planner all time through here.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+
+namespace tidepool::runner {
+
+/// A clock a frame can be timed on.
+enum class FrameClock {
+    kThreadCpu,   // CPU time of the rendering thread (software renderer on the calling thread)
+    kProcessCpu,  // CPU time of the whole process (software renderer with worker threads)
+    kGpuTimer,    // GL_EXT_disjoint_timer_query around the frame (a GPU's own clock)
+    kWall,        // steady clock around submission + glFinish
+};
+
+/// "thread_cpu", "process_cpu", "gpu_timer_query" or "wall"; never fails.
+std::string_view FrameClockName(FrameClock clock);
+
+/// A clock and why it was chosen, recorded in results.json.
+struct FrameClockChoice {
+    FrameClock clock = FrameClock::kWall;
+    std::string reason;
+};
+
+/// Picks the clock for a renderer from its GL_RENDERER string. A software rasteriser (llvmpipe,
+/// softpipe, swrast, Mesa's offscreen renderer) does its work on the CPU: thread CPU time when
+/// it renders on the calling thread (`lp_num_threads` "0"), process CPU time otherwise, because
+/// CPU time is the work a frame costs whatever else the machine runs, and GL timer queries on
+/// llvmpipe do not measure whole draws. A GPU's work is not CPU time: timer queries when the
+/// driver offers them (`has_timer_query`), otherwise the wall clock around glFinish. Never fails.
+FrameClockChoice ChooseFrameClock(std::string_view gl_renderer, std::string_view lp_num_threads,
+                                  bool has_timer_query);
+
+/// One timed frame.
+struct FrameTime {
+    double ms = 0;       // on the timer's clock
+    double wall_ms = 0;  // steady clock around the same frame, always recorded beside it
+};
+
+/// Times frames of one renderer on one clock. Not thread-safe: one timer per rendering thread.
+class FrameTimer {
+public:
+    /// Times through `renderer` (whose context must be current on this thread) on `clock`.
+    FrameTimer(WaterRenderer& renderer, FrameClock clock);
+
+    /// Renders one frame of `configuration` at `view`, waits for it (glFinish) and returns its
+    /// time; `report` receives the frame's description when not null. Fails softly: a frame
+    /// whose GPU query was disjoint is timed on the wall clock instead (rare, and only on GPUs).
+    FrameTime Time(const RenderConfiguration& configuration, const CameraView& view,
+                   FrameReport* report = nullptr);
+
+    /// Renders one frame with a glFinish after every pass and returns each pass's time in
+    /// milliseconds by pass name (on the CPU clocks as asked; on the wall clock when the timer
+    /// uses GPU queries, which cannot nest), plus the whole instrumented frame under "frame".
+    std::map<std::string, double> TimePasses(const RenderConfiguration& configuration,
+                                             const CameraView& view);
+
+    /// The renderer timed.
+    WaterRenderer& Renderer() { return renderer_; }
+    /// The clock frames are timed on.
+    FrameClock Clock() const { return clock_; }
+
+private:
+    double ReadMs() const;  // the clock now (CPU and wall clocks)
+
+    WaterRenderer& renderer_;
+    FrameClock clock_;
+};
+
+/// Every frame of a paired comparison, in the order they were taken.
+struct PairSamples {
+    std::vector<double> baseline_ms;  // on the timer's clock
+    std::vector<double> candidate_ms;
+    std::vector<double> baseline_wall_ms;
+    std::vector<double> candidate_wall_ms;
+};
+
+/// The outcome of comparing two configurations.
+struct ComparisonTiming {
+    PairSamples samples;
+    base::PairedEstimate estimate;  // over every pair, on the timer's clock
+    base::StopDecision decision = base::StopDecision::kContinue;
+};
+
+/// Times one side of a pair: false for the baseline, true for the candidate.
+using TimeSide = std::function<FrameTime(bool candidate)>;
+
+/// Compares two configurations pair by pair: pair i renders the baseline then the candidate
+/// when i is even, the other way round when odd, so neither side always goes first and the two
+/// frames of a pair lie milliseconds apart (drift on a shared machine cancels in their ratio).
+/// Looks at the interval after PairsBeforeNextLook pairs each time and stops as `rule` says.
+/// `after_look` (may be empty) sees the pairs so far after every look. Never fails: a side
+/// whose frames cannot be timed makes the estimate's error say so.
+ComparisonTiming TimeComparison(const TimeSide& time_side, const base::StoppingRule& rule,
+                                const std::function<void(int pairs)>& after_look = {});
+
+}  // namespace tidepool::runner

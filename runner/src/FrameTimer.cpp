@@ -1,0 +1,155 @@
+#include "tidepool/runner/FrameTimer.h"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <ctime>
+
+namespace tidepool::runner {
+namespace {
+
+double ClockMs(clockid_t id) {
+    timespec now{};
+    ::clock_gettime(id, &now);
+    return static_cast<double>(now.tv_sec) * 1e3 + static_cast<double>(now.tv_nsec) * 1e-6;
+}
+
+double WallMs() {
+    return std::chrono::duration<double, std::milli>(
+                   std::chrono::steady_clock::now().time_since_epoch())
+            .count();
+}
+
+bool Contains(std::string_view text, std::string_view word) {
+    std::string lower(text);
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
+    return lower.find(word) != std::string::npos;
+}
+
+}  // namespace
+
+std::string_view FrameClockName(FrameClock clock) {
+    switch (clock) {
+    case FrameClock::kThreadCpu:
+        return "thread_cpu";
+    case FrameClock::kProcessCpu:
+        return "process_cpu";
+    case FrameClock::kGpuTimer:
+        return "gpu_timer_query";
+    case FrameClock::kWall:
+        return "wall";
+    }
+    return "wall";
+}
+
+FrameClockChoice ChooseFrameClock(std::string_view gl_renderer, std::string_view lp_num_threads,
+                                  bool has_timer_query) {
+    const bool software = Contains(gl_renderer, "llvmpipe") || Contains(gl_renderer, "softpipe") ||
+                          Contains(gl_renderer, "swrast") ||
+                          Contains(gl_renderer, "offscreen") ||
+                          Contains(gl_renderer, "software rasterizer");
+    if (software) {
+        if (lp_num_threads == "0") {
+            return {FrameClock::kThreadCpu,
+                    "a software renderer rendering on the calling thread (LP_NUM_THREADS=0): "
+                    "the thread's CPU time is the frame's whole work, and other processes on "
+                    "the machine barely move it"};
+        }
+        return {FrameClock::kProcessCpu,
+                "a software renderer with worker threads: the process's CPU time sums every "
+                "rasteriser thread's work"};
+    }
+    if (has_timer_query) {
+        return {FrameClock::kGpuTimer,
+                "a GPU: its own clock through GL_EXT_disjoint_timer_query, since CPU time does "
+                "not measure GPU work"};
+    }
+    return {FrameClock::kWall,
+            "a GPU without timer queries: the wall clock around submission and glFinish"};
+}
+
+FrameTimer::FrameTimer(WaterRenderer& renderer, FrameClock clock)
+    : renderer_(renderer), clock_(clock) {}
+
+double FrameTimer::ReadMs() const {
+    switch (clock_) {
+    case FrameClock::kThreadCpu:
+        return ClockMs(CLOCK_THREAD_CPUTIME_ID);
+    case FrameClock::kProcessCpu:
+        return ClockMs(CLOCK_PROCESS_CPUTIME_ID);
+    case FrameClock::kGpuTimer:
+    case FrameClock::kWall:
+        return WallMs();
+    }
+    return WallMs();
+}
+
+FrameTime FrameTimer::Time(const RenderConfiguration& configuration, const CameraView& view,
+                           FrameReport* report) {
+    FrameTime time;
+    const bool gpu = clock_ == FrameClock::kGpuTimer && renderer_.BeginGpuTimer();
+    const double wall_start = WallMs();
+    const double start = ReadMs();
+    FrameReport frame = renderer_.RenderFrame(configuration, view);
+    const double gpu_ms = gpu ? renderer_.EndGpuTimerMs() : std::nan("");
+    renderer_.Finish();
+    time.ms = ReadMs() - start;
+    time.wall_ms = WallMs() - wall_start;
+    if (gpu && std::isfinite(gpu_ms)) {
+        time.ms = gpu_ms;
+    }
+    if (report != nullptr) {
+        *report = std::move(frame);
+    }
+    return time;
+}
+
+std::map<std::string, double> FrameTimer::TimePasses(const RenderConfiguration& configuration,
+                                                     const CameraView& view) {
+    std::map<std::string, double> out;
+    renderer_.Finish();
+    const double start = ReadMs();
+    double last = start;
+    renderer_.RenderFrame(configuration, view, [&](const std::string& pass) {
+        renderer_.Finish();
+        const double now = ReadMs();
+        out[pass] += now - last;
+        last = now;
+    });
+    renderer_.Finish();
+    out["frame"] = ReadMs() - start;
+    return out;
+}
+
+ComparisonTiming TimeComparison(const TimeSide& time_side, const base::StoppingRule& rule,
+                                const std::function<void(int pairs)>& after_look) {
+    ComparisonTiming out;
+    PairSamples& s = out.samples;
+    for (;;) {
+        const int batch = base::PairsBeforeNextLook(static_cast<int>(s.baseline_ms.size()), rule);
+        for (int k = 0; k < batch; ++k) {
+            const bool baseline_first = s.baseline_ms.size() % 2 == 0;
+            const FrameTime first = time_side(!baseline_first);
+            const FrameTime second = time_side(baseline_first);
+            const FrameTime& baseline = baseline_first ? first : second;
+            const FrameTime& candidate = baseline_first ? second : first;
+            s.baseline_ms.push_back(baseline.ms);
+            s.candidate_ms.push_back(candidate.ms);
+            s.baseline_wall_ms.push_back(baseline.wall_ms);
+            s.candidate_wall_ms.push_back(candidate.wall_ms);
+        }
+        out.estimate = base::EstimatePaired(s.baseline_ms, s.candidate_ms);
+        out.decision = batch == 0 ? base::StopDecision::kCapped
+                                  : base::DecideStop(out.estimate, rule);
+        if (after_look) {
+            after_look(static_cast<int>(s.baseline_ms.size()));
+        }
+        if (out.decision != base::StopDecision::kContinue) {
+            return out;
+        }
+    }
+}
+
+}  // namespace tidepool::runner

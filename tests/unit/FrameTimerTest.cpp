@@ -1,0 +1,118 @@
+// The timing engine's parts that need no GL: the clock chosen from a renderer string, the
+// pairing order of a comparison and its stopping, and the planner's choice on a tie
+// (runner/include/tidepool/runner/FrameTimer.h, ScenePlanner.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "tidepool/runner/FrameTimer.h"
+#include "tidepool/runner/ScenePlanner.h"
+
+namespace tidepool::runner {
+namespace {
+
+struct ClockCase {
+    const char* renderer;
+    const char* lp_num_threads;
+    bool timer_query;
+    FrameClock expected;
+};
+
+TEST(FrameClockTest, ClockFollowsTheRendererString) {
+    const std::vector<ClockCase> cases = {
+            {"llvmpipe (LLVM 15.0.6, 256 bits)", "0", true, FrameClock::kThreadCpu},
+            {"llvmpipe (LLVM 15.0.6, 256 bits)", "2", true, FrameClock::kProcessCpu},
+            {"softpipe", "0", false, FrameClock::kThreadCpu},
+            {"Mesa OffScreen", "", false, FrameClock::kProcessCpu},
+            {"Software Rasterizer", "", false, FrameClock::kProcessCpu},
+            {"AMD Radeon RX 6600 (navi23, LLVM 15.0.6, DRM 3.49, 6.1.0)", "0", true,
+             FrameClock::kGpuTimer},
+            {"Mali-G78", "", true, FrameClock::kGpuTimer},
+            {"Mesa Intel(R) UHD Graphics 620 (KBL GT2)", "", false, FrameClock::kWall},
+            {"PowerVR Rogue GE8320", "", false, FrameClock::kWall},
+    };
+    for (const ClockCase& c : cases) {
+        const FrameClockChoice choice = ChooseFrameClock(c.renderer, c.lp_num_threads, c.timer_query);
+        EXPECT_EQ(choice.clock, c.expected) << c.renderer << " LP_NUM_THREADS=" << c.lp_num_threads;
+        EXPECT_FALSE(choice.reason.empty());
+    }
+    EXPECT_EQ(FrameClockName(FrameClock::kThreadCpu), "thread_cpu");
+    EXPECT_EQ(FrameClockName(FrameClock::kGpuTimer), "gpu_timer_query");
+}
+
+TEST(TimeComparisonTest, SidesAlternateWhoGoesFirstAndStopAtTheResolution) {
+    std::vector<bool> order;
+    const TimeSide side = [&](bool candidate) {
+        order.push_back(candidate);
+        // 10% longer candidate frames, with a little deterministic jitter.
+        const double jitter = 1.0 + 0.003 * static_cast<double>(order.size() % 7);
+        return FrameTime{(candidate ? 11.0 : 10.0) * jitter, 0.0};
+    };
+    base::StoppingRule rule;
+    rule.resolution_points = 1.5;
+    const ComparisonTiming t = TimeComparison(side, rule);
+    ASSERT_GE(order.size(), 4U);
+    EXPECT_EQ(order[0], false);  // pair 0: baseline first
+    EXPECT_EQ(order[1], true);
+    EXPECT_EQ(order[2], true);  // pair 1: candidate first
+    EXPECT_EQ(order[3], false);
+    EXPECT_EQ(t.decision, base::StopDecision::kResolved);
+    EXPECT_EQ(t.estimate.pairs, rule.min_pairs);  // this little noise needs no more
+    EXPECT_NEAR(t.estimate.ratio, 1.1, 0.01);
+}
+
+TEST(TimeComparisonTest, ACapStopsAComparisonThatCannotResolve) {
+    std::uint64_t state = 12345;
+    const TimeSide side = [&](bool) {
+        // Frame times spread uniformly over 10..20 ms: noise far above the asked resolution.
+        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+        return FrameTime{10.0 + 10.0 * static_cast<double>(state >> 11) * 0x1.0p-53, 0.0};
+    };
+    base::StoppingRule rule{0.5, 10, 30, 10};
+    const ComparisonTiming t = TimeComparison(side, rule);
+    EXPECT_EQ(t.decision, base::StopDecision::kCapped);
+    EXPECT_EQ(t.estimate.pairs, 30);
+}
+
+CandidateMeasure Candidate(double change, double low, double high, double psnr) {
+    return {true, true, 10.0 * (1 + change / 100), low, high, change, psnr};
+}
+
+TEST(PlannerChoiceTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
+    // Candidate 1 is 20% faster, candidate 2 21% faster but less accurate; their intervals
+    // overlap, so the difference is inside the measurement's own uncertainty.
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(-20, -22, -18, 40), Candidate(-21, -23, -19, 30)};
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    EXPECT_EQ(choice.index, 1);
+    EXPECT_NE(choice.reason.find("differ by less than their 95% intervals"), std::string::npos)
+            << choice.reason;
+}
+
+TEST(PlannerChoiceTest, AClearlyFasterCandidateWins) {
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(-10, -11, -9, 40), Candidate(-30, -32, -28, 30)};
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 2);
+}
+
+TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
+    // "+34% slower" and "-2% within noise" are never preferred to the full effect.
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(34, 30, 38, 40), Candidate(-2, -5, 1, 35)};
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    EXPECT_EQ(choice.index, 0);
+    EXPECT_NE(choice.reason.find("full effect is kept"), std::string::npos) << choice.reason;
+}
+
+TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
+    std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
+                                                Candidate(-40, -42, -38, 20)};
+    candidates[1].meets_quality = false;
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+}
+
+}  // namespace
+}  // namespace tidepool::runner
