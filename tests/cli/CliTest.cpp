@@ -100,19 +100,133 @@ TEST_F(CliTest, MatrixOverTheLimitIsRefusedUnlessTheFlagRaisesIt) {
                          "    features: [A, C, D]\n");
     const CommandResult refused = RunTidepool("expand --config v.yaml --max-variants 4", dir_.Path());
     EXPECT_EQ(refused.exit_code, 2);
-    EXPECT_NE(refused.out.find("the matrix has 8 combinations, over the limit of 4"),
+    EXPECT_NE(refused.out.find("v.yaml:2:3: error: program 'p' takes the matrix over 4 valid "
+                               "variants, the limit set by --max-variants; add rules, remove "
+                               "features, or raise the limit"),
               std::string::npos)
             << refused.out;
     EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 8", dir_.Path()).exit_code, 0);
 }
 
-TEST_F(CliTest, ExpandListsPrunedCombinationsWithTheirRule) {
+TEST_F(CliTest, MatrixOverTheFileLimitIsRefusedAtTheLimitsLine) {
+    dir_.Write("v.yaml", "max_variants: 4\nprograms:\n  p:\n    vertex: s.vsh\n"
+                         "    fragment: s.fsh\n    features: [A, C, D]\n");
+    const CommandResult refused = RunTidepool("expand --config v.yaml", dir_.Path());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_NE(refused.out.find("v.yaml:1:15: error: program 'p' takes the matrix over 4 valid "
+                               "variants, the limit set by max_variants; add rules, remove "
+                               "features, or raise the limit"),
+              std::string::npos)
+            << refused.out;
+}
+
+TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    for (const char* value : {"-1", "-5", "0", "65537", "18446744073709551616",
+                              "100000000000000000000000", "1e3", "4x"}) {
+        const CommandResult r =
+                RunTidepool(std::string("expand --config v.yaml --max-variants=") + value,
+                            dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << value << r.out;
+        EXPECT_EQ(r.out, std::string("error: --max-variants must be a whole number from 1 to "
+                                     "65536 (up to 16777216 with --allow-large-matrix), not '") +
+                                 value + "'\n")
+                << value;
+    }
+}
+
+TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 100000 --allow-large-matrix",
+                          dir_.Path())
+                      .exit_code,
+              0);
+    const CommandResult r = RunTidepool(
+            "expand --config v.yaml --max-variants 16777217 --allow-large-matrix", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "error: --max-variants must be a whole number from 1 to 16777216, not "
+                     "'16777217'\n");
+}
+
+TEST_F(CliTest, FileLimitAboveTheCeilingNeedsAllowLargeMatrix) {
+    dir_.Write("v.yaml", "max_variants: 100000\nprograms:\n  p:\n    vertex: s.vsh\n"
+                         "    fragment: s.fsh\n");
+    const CommandResult refused = RunTidepool("expand --config v.yaml", dir_.Path());
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_EQ(refused.out, "v.yaml:1:15: error: max_variants of 100000 is over the ceiling of "
+                           "65536 valid variants; lower it, or pass --allow-large-matrix to "
+                           "allow up to 16777216\n");
+    EXPECT_EQ(RunTidepool("expand --config v.yaml --allow-large-matrix", dir_.Path()).exit_code,
+              0);
+}
+
+TEST_F(CliTest, FileLimitThatWouldWrapIsAConfigurationError) {
+    dir_.Write("v.yaml", "max_variants: 2147483647\nprograms:\n  p:\n    vertex: s.vsh\n"
+                         "    fragment: s.fsh\n");
+    const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "v.yaml:1:15: error: max_variants must be a whole number from 1 to 16777216 "
+                     "(valid variants; above 65536 only with --allow-large-matrix), not "
+                     "'2147483647'\n");
+}
+
+TEST_F(CliTest, ExpandCountsPrunedCombinationsPerRuleWithoutListingThem) {
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
                          "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_NE(r.out.find("pruned p:C  (C requires A, v.yaml:6)"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out, "p:\np:A\np:A,C\n1 pruned by p: C requires A  (v.yaml:6)\n"
+                     "3 variants, 1 pruned combinations\n");
+}
+
+TEST_F(CliTest, ExpandPrunedListsPrunedCombinationsWithTheirRule) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
+    const CommandResult r = RunTidepool("expand --config v.yaml --pruned", dir_.Path());
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find("pruned p:C  (C requires A, v.yaml:6)\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("3 variants, 1 pruned combinations"), std::string::npos);
+}
+
+TEST_F(CliTest, ExpandPrunedLimitListsThatManyAndSaysHowManyAreLeft) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "    features: [A, B, C]\n"
+                         "    rules: [{ if: B, requires: A }, { if: C, requires: A }]\n");
+    const CommandResult r =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit 1 --json", dir_.Path());
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["pruned"].size(), 1U);
+    EXPECT_EQ(json["pruned_unlisted"], 2);
+    EXPECT_EQ(json["counts"]["pruned"], 3);
+    EXPECT_EQ(json["pruned_by_rule"][0]["count"], 2);
+    EXPECT_EQ(json["pruned_by_rule"][1]["count"], 1);
+    const CommandResult text =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit 1", dir_.Path());
+    EXPECT_NE(text.out.find("... 2 more pruned combinations not listed (raise --pruned-limit)"),
+              std::string::npos)
+            << text.out;
+}
+
+TEST_F(CliTest, ManifestKeepsPrunedCountsPerRuleNotTheCombinations) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
+    const CommandResult r = RunTidepool("expand --config v.yaml --json", dir_.Path());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(json.contains("pruned"));
+    EXPECT_EQ(json["pruned_by_rule"],
+              nlohmann::json::parse(R"([{"program": "p", "rule": "C requires A", "file": "v.yaml",
+                                         "line": 6, "count": 1}])"));
+    EXPECT_EQ(json["counts"]["pruned"], 1);
+}
+
+TEST_F(CliTest, PrunedLimitOutOfRangeIsAUsageError) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    const CommandResult r =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit=-1", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "error: --pruned-limit must be a whole number from 1 to 65536, not '-1'\n");
 }
 
 TEST_F(CliTest, ExpandOutWritesDriverReadySourcesAndManifest) {

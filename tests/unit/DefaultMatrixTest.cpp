@@ -102,6 +102,45 @@ TEST_F(DefaultMatrixTest, ReflectionAxisValuesNeverCombineAndPresetsNameThem) {
     }
 }
 
+TEST_F(DefaultMatrixTest, PrunedCountsPerRuleMatchEveryCombinationCheckedOneByOne) {
+    const ExpansionResult expansion =
+            ExpandVariants(config_, ExpansionOptions{config_.max_variants});
+    ASSERT_TRUE(expansion.diagnostics.empty());
+    EXPECT_EQ(expansion.variants.size(), 157U);
+    EXPECT_EQ(expansion.pruned_total, 24441U);
+    std::size_t row = 0;
+    for (const ProgramConfig& program : config_.programs) {
+        std::vector<std::uint64_t> expected(program.rules.size(), 0);
+        for (std::uint64_t index = 0; index < CountCombinations(program); ++index) {
+            std::vector<std::string> defines;
+            std::uint64_t rest = index;
+            for (const Feature& feature : program.features) {
+                if ((rest & 1U) != 0) {
+                    defines.push_back(feature.name);
+                }
+                rest >>= 1U;
+            }
+            for (const Axis& axis : program.axes) {
+                if (std::string d = axis.DefineFor(axis.values[rest % axis.values.size()]);
+                    !d.empty()) {
+                    defines.push_back(std::move(d));
+                }
+                rest /= axis.values.size();
+            }
+            if (const Rule* rule = FirstBrokenRule(program, MakeVariant("", defines).defines)) {
+                ++expected[static_cast<std::size_t>(rule - program.rules.data())];
+            }
+        }
+        for (std::size_t r = 0; r < program.rules.size(); ++r, ++row) {
+            ASSERT_LT(row, expansion.pruned_by_rule.size());
+            EXPECT_EQ(expansion.pruned_by_rule[row].program, program.name);
+            EXPECT_EQ(expansion.pruned_by_rule[row].count, expected[r])
+                    << program.rules[r].Describe();
+        }
+    }
+    EXPECT_EQ(row, expansion.pruned_by_rule.size());
+}
+
 TEST(ExtinctionColourTest, MatchesTheFormulaAtSampledDepths) {
     const runner::ExtinctionModel model;
     const glm::vec3 floor(0.8F, 0.7F, 0.5F);
