@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ExpandOneByOne.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/WaterMath.h"
@@ -110,27 +111,7 @@ TEST_F(DefaultMatrixTest, PrunedCountsPerRuleMatchEveryCombinationCheckedOneByOn
     EXPECT_EQ(expansion.pruned_total, 24441U);
     std::size_t row = 0;
     for (const ProgramConfig& program : config_.programs) {
-        std::vector<std::uint64_t> expected(program.rules.size(), 0);
-        for (std::uint64_t index = 0; index < CountCombinations(program); ++index) {
-            std::vector<std::string> defines;
-            std::uint64_t rest = index;
-            for (const Feature& feature : program.features) {
-                if ((rest & 1U) != 0) {
-                    defines.push_back(feature.name);
-                }
-                rest >>= 1U;
-            }
-            for (const Axis& axis : program.axes) {
-                if (std::string d = axis.DefineFor(axis.values[rest % axis.values.size()]);
-                    !d.empty()) {
-                    defines.push_back(std::move(d));
-                }
-                rest /= axis.values.size();
-            }
-            if (const Rule* rule = FirstBrokenRule(program, MakeVariant("", defines).defines)) {
-                ++expected[static_cast<std::size_t>(rule - program.rules.data())];
-            }
-        }
+        const std::vector<std::uint64_t> expected = testing::ExpandOneByOne(program).counts;
         for (std::size_t r = 0; r < program.rules.size(); ++r, ++row) {
             ASSERT_LT(row, expansion.pruned_by_rule.size());
             EXPECT_EQ(expansion.pruned_by_rule[row].program, program.name);

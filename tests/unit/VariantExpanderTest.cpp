@@ -7,6 +7,8 @@
 
 #include <gtest/gtest.h>
 
+#include "ExpandOneByOne.h"
+
 namespace tidepool {
 namespace {
 
@@ -303,46 +305,6 @@ TEST(VariantExpanderTest, RulesThatLeaveNoVariantAreAnErrorAtTheProgram) {
     EXPECT_TRUE(none.variants.empty());
 }
 
-// What the depth-first walk must agree with: every combination, one by one, like the expander
-// before it (mixed radix; the first broken rule decides where a pruned combination is counted).
-struct BruteForceExpansion {
-    std::vector<Variant> variants;  // sorted by id
-    std::vector<std::uint64_t> counts;  // per rule
-    std::set<std::pair<std::string, std::string>> pruned;  // (id, rule)
-};
-
-BruteForceExpansion ExpandOneByOne(const ProgramConfig& program) {
-    BruteForceExpansion expected;
-    expected.counts.assign(program.rules.size(), 0);
-    for (std::uint64_t index = 0; index < CountCombinations(program); ++index) {
-        std::vector<std::string> defines;
-        std::uint64_t rest = index;
-        for (const Feature& feature : program.features) {
-            if ((rest & 1U) != 0) {
-                defines.push_back(feature.name);
-            }
-            rest >>= 1U;
-        }
-        for (const Axis& axis : program.axes) {
-            if (std::string define = axis.DefineFor(axis.values[rest % axis.values.size()]);
-                !define.empty()) {
-                defines.push_back(std::move(define));
-            }
-            rest /= axis.values.size();
-        }
-        Variant variant = MakeVariant(program.name, std::move(defines));
-        if (const Rule* rule = FirstBrokenRule(program, variant.defines)) {
-            ++expected.counts[static_cast<std::size_t>(rule - program.rules.data())];
-            expected.pruned.emplace(variant.Id(), rule->Describe());
-        } else {
-            expected.variants.push_back(std::move(variant));
-        }
-    }
-    std::sort(expected.variants.begin(), expected.variants.end(),
-              [](const Variant& a, const Variant& b) { return a.Id() < b.Id(); });
-    return expected;
-}
-
 // A random program: up to 12 features, up to 2 axes (some with a default), and up to 10 rules of
 // every kind over its define names, written as a user might (repeats and self-references too).
 ProgramConfig RandomProgram(std::mt19937& random) {
@@ -391,7 +353,7 @@ TEST(VariantExpanderTest, PrunedCountsPerRuleEqualABruteForceOnRandomConfigs) {
     std::mt19937 random(20261123);  // fixed: a failure must reproduce
     for (int trial = 0; trial < 200; ++trial) {
         const ProgramConfig program = RandomProgram(random);
-        const BruteForceExpansion expected = ExpandOneByOne(program);
+        const testing::BruteForceExpansion expected = testing::ExpandOneByOne(program);
         ExpansionOptions options = ListingEveryPruned();
         options.max_variants = kVariantCeiling;
         const ExpansionResult result = ExpandVariants(Config({program}), options);
