@@ -114,10 +114,13 @@ bool ParseCountOption(std::string_view flag, const std::string& text, std::uint6
 }
 
 void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits) {
-    command->add_option("--max-variants", limits->max_variants,
-                        fmt::format("refuse matrices with more valid variants than this, 1..{} "
-                                    "(default: the file's max_variants, else 4096)",
-                                    kVariantCeiling));
+    // A callback, not a bound string, so that `--max-variants=` (empty) is refused, not taken
+    // for "not given".
+    command->add_option_function<std::string>(
+            "--max-variants", [limits](const std::string& text) { limits->max_variants = text; },
+            fmt::format("refuse matrices with more valid variants than this, 1..{} "
+                        "(default: the file's max_variants, else 4096)",
+                        kVariantCeiling));
     command->add_flag("--allow-large-matrix", limits->allow_large_matrix,
                       fmt::format("allow a limit above {} valid variants (up to {})",
                                   kVariantCeiling, kLargeVariantCeiling));
@@ -128,14 +131,14 @@ LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& l
     ExpansionOptions expansion_options;
     expansion_options.allow_large_matrix = limits.allow_large_matrix;
     expansion_options.pruned_limit = limits.pruned_limit;
-    if (!limits.max_variants.empty()) {
+    if (limits.max_variants) {
         const std::uint64_t ceiling =
                 limits.allow_large_matrix ? kLargeVariantCeiling : kVariantCeiling;
         const std::string hint =
                 limits.allow_large_matrix
                         ? std::string()
                         : fmt::format("(up to {} with --allow-large-matrix)", kLargeVariantCeiling);
-        if (!ParseCountOption("--max-variants", limits.max_variants, 1, ceiling, hint,
+        if (!ParseCountOption("--max-variants", *limits.max_variants, 1, ceiling, hint,
                               &expansion_options.max_variants)) {
             loaded.exit_code = kExitUsage;
             return loaded;
@@ -148,7 +151,7 @@ LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& l
         loaded.exit_code = kExitUsage;
         return loaded;
     }
-    if (limits.max_variants.empty()) {
+    if (!limits.max_variants) {
         expansion_options.max_variants = config.config->max_variants;
         if (!config.config->max_variants_where.file.empty()) {
             expansion_options.limit_origin = "max_variants";

@@ -60,7 +60,7 @@ bool ParseCountOption(std::string_view flag, const std::string& text, std::uint6
 
 /// How many valid variants a command may expand, and how many pruned combinations it lists.
 struct MatrixLimits {
-    std::string max_variants;         // --max-variants as typed; "" means the file's max_variants
+    std::optional<std::string> max_variants;  // --max-variants as typed; none: the file's
     bool allow_large_matrix = false;  // --allow-large-matrix: limits above kVariantCeiling
     std::uint64_t pruned_limit = 0;   // pruned combinations to list (expand --pruned)
 };

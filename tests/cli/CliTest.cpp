@@ -133,6 +133,10 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
                                  value + "'\n")
                 << value;
     }
+    // Empty is not "not given" (which would silently mean the file's limit).
+    const CommandResult empty = RunTidepool("expand --config v.yaml --max-variants=", dir_.Path());
+    EXPECT_EQ(empty.exit_code, 2);
+    EXPECT_EQ(empty.out.rfind("--max-variants: 1 required TEXT missing", 0), 0U) << empty.out;
 }
 
 TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
