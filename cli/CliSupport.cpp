@@ -1,6 +1,7 @@
 #include "CliSupport.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -94,17 +95,71 @@ bool ParseBackendOption(const std::string& text, runner::BackendKind* backend) {
     return false;
 }
 
-LoadedMatrix LoadAndExpand(const std::string& config_path, std::uint64_t max_variants) {
+bool ParseCountOption(std::string_view flag, const std::string& text, std::uint64_t min,
+                      std::uint64_t max, std::string_view hint, std::uint64_t* value) {
+    // Digits only: CLI11 and strtoull would wrap "-1" into 2^64-1 and accept "1e3" as 1.
+    std::uint64_t parsed = 0;
+    const char* end = text.data() + text.size();
+    const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+        return c >= '0' && c <= '9';
+    });
+    if (digits && std::from_chars(text.data(), end, parsed).ec == std::errc() && parsed >= min &&
+        parsed <= max) {
+        *value = parsed;
+        return true;
+    }
+    std::fprintf(stderr, "error: %.*s must be a whole number from %llu to %llu%s%.*s, not '%s'\n",
+                 static_cast<int>(flag.size()), flag.data(), static_cast<unsigned long long>(min),
+                 static_cast<unsigned long long>(max), hint.empty() ? "" : " ",
+                 static_cast<int>(hint.size()), hint.data(), text.c_str());
+    return false;
+}
+
+void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits) {
+    // A callback, not a bound string, so that `--max-variants=` (empty) is refused, not taken
+    // for "not given".
+    command->add_option_function<std::string>(
+            "--max-variants", [limits](const std::string& text) { limits->max_variants = text; },
+            fmt::format("refuse matrices with more valid variants than this, 1..{} "
+                        "(default: the file's max_variants, else 4096)",
+                        kVariantCeiling));
+    command->add_flag("--allow-large-matrix", limits->allow_large_matrix,
+                      fmt::format("allow a limit above {} valid variants (up to {})",
+                                  kVariantCeiling, kLargeVariantCeiling));
+}
+
+LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits) {
     LoadedMatrix loaded;
+    ExpansionOptions expansion_options;
+    expansion_options.allow_large_matrix = limits.allow_large_matrix;
+    expansion_options.pruned_limit = limits.pruned_limit;
+    if (limits.max_variants) {
+        const std::uint64_t ceiling =
+                limits.allow_large_matrix ? kLargeVariantCeiling : kVariantCeiling;
+        const std::string hint =
+                limits.allow_large_matrix
+                        ? std::string()
+                        : fmt::format("(up to {} with --allow-large-matrix)", kLargeVariantCeiling);
+        if (!ParseCountOption("--max-variants", *limits.max_variants, 1, ceiling, hint,
+                              &expansion_options.max_variants)) {
+            loaded.exit_code = kExitUsage;
+            return loaded;
+        }
+        expansion_options.limit_origin = "--max-variants";
+    }
     ConfigResult config = LoadVariantConfig(config_path);
     PrintDiagnostics(config.diagnostics);
     if (!config.config) {
         loaded.exit_code = kExitUsage;
         return loaded;
     }
-    ExpansionOptions expansion_options;
-    expansion_options.max_variants =
-            max_variants != 0 ? max_variants : config.config->max_variants;
+    if (!limits.max_variants) {
+        expansion_options.max_variants = config.config->max_variants;
+        if (!config.config->max_variants_where.file.empty()) {
+            expansion_options.limit_origin = "max_variants";
+            expansion_options.limit_where = config.config->max_variants_where;
+        }
+    }
     loaded.expansion = ExpandVariants(*config.config, expansion_options);
     PrintDiagnostics(loaded.expansion.diagnostics);
     if (HasErrors(loaded.expansion.diagnostics)) {

@@ -53,10 +53,27 @@ struct LoadedMatrix {
     int exit_code = 0;  // kExitOk, or kExitUsage when config is missing
 };
 
-/// Loads `config_path` and expands it (to at most `max_variants` combinations, or the file's own
-/// max_variants when 0), printing every diagnostic; fails through exit_code kExitUsage (and no
-/// config) when the file does not load or the expansion has errors.
-LoadedMatrix LoadAndExpand(const std::string& config_path, std::uint64_t max_variants = 0);
+/// Parses a whole number in [min, max] for option `flag`, refusing signs, fractions, exponents
+/// and values that overflow; on failure prints "error: FLAG must be a whole number from MIN to
+/// MAX[ HINT], not 'TEXT'" and returns false.
+bool ParseCountOption(std::string_view flag, const std::string& text, std::uint64_t min,
+                      std::uint64_t max, std::string_view hint, std::uint64_t* value);
+
+/// How many valid variants a command may expand, and how many pruned combinations it lists.
+struct MatrixLimits {
+    std::optional<std::string> max_variants;  // --max-variants as typed; none: the file's
+    bool allow_large_matrix = false;  // --allow-large-matrix: limits above kVariantCeiling
+    std::uint64_t pruned_limit = 0;   // pruned combinations to list (expand --pruned)
+};
+
+/// Adds --max-variants and --allow-large-matrix to `command`, writing into `limits`.
+void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits);
+
+/// Loads `config_path` and expands it (to at most --max-variants valid variants, or the file's
+/// own max_variants), printing every diagnostic; fails through exit_code kExitUsage (and no
+/// config) when --max-variants is out of range, the file does not load or the expansion has
+/// errors.
+LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits = {});
 
 /// Validation jobs when the user gives none: one per core (1 when unknown).
 int DefaultJobs();

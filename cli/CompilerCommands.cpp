@@ -28,7 +28,9 @@ struct CompilerOptions {
     std::string config = "variants.yaml";
     bool json = false;
     std::string out;
-    std::uint64_t max_variants = 0;  // 0: the file's own max_variants
+    MatrixLimits limits;
+    bool pruned = false;                       // expand: list pruned combinations
+    std::string pruned_limit = "1000";         // expand: at most this many
     int jobs = 0;                    // 0: one per core
     std::vector<std::string> files;  // validate: plain shader files
     std::string stage;               // validate: force the stage of plain files
@@ -75,24 +77,55 @@ std::string PublishFolder(const std::filesystem::path& staging, const std::files
 }
 
 int RunExpand(const CompilerOptions& options) {
-    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
+    MatrixLimits limits = options.limits;
+    if (options.pruned && !ParseCountOption("--pruned-limit", options.pruned_limit, 1,
+                                            kVariantCeiling, "", &limits.pruned_limit)) {
+        return kExitUsage;
+    }
+    LoadedMatrix loaded = LoadAndExpand(options.config, limits);
     if (!loaded.config) {
         return loaded.exit_code;
     }
     const VariantConfig& config = *loaded.config;
-    const nlohmann::json manifest = BuildManifest(config, loaded.expansion, nullptr);
+    const ExpansionResult& expansion = loaded.expansion;
+    const nlohmann::json manifest = BuildManifest(config, expansion, nullptr);
+    // Listed combinations go to the printed JSON only: the manifest keeps counts per rule.
+    const std::uint64_t unlisted = expansion.pruned_total - expansion.pruned.size();
     if (options.json) {
-        std::printf("%s\n", manifest.dump(2).c_str());
+        nlohmann::json printed = manifest;
+        if (options.pruned) {
+            nlohmann::json list = nlohmann::json::array();
+            for (const PrunedCombination& p : expansion.pruned) {
+                list.push_back({{"id", p.combination.Id()},
+                                {"program", p.combination.program},
+                                {"defines", p.combination.defines},
+                                {"rule", p.rule},
+                                {"file", p.where.file},
+                                {"line", p.where.line}});
+            }
+            printed["pruned"] = list;
+            printed["pruned_unlisted"] = unlisted;
+        }
+        std::printf("%s\n", printed.dump(2).c_str());
     } else {
-        for (const Variant& variant : loaded.expansion.variants) {
+        for (const Variant& variant : expansion.variants) {
             std::printf("%s\n", variant.Id().c_str());
         }
-        for (const PrunedCombination& p : loaded.expansion.pruned) {
+        for (const PrunedCombination& p : expansion.pruned) {
             std::printf("pruned %s  (%s, %s:%d)\n", p.combination.Id().c_str(), p.rule.c_str(),
                         p.where.file.c_str(), p.where.line);
         }
-        std::printf("%zu variants, %zu pruned combinations\n", loaded.expansion.variants.size(),
-                    loaded.expansion.pruned.size());
+        if (options.pruned && unlisted > 0) {
+            std::printf("... %llu more pruned combinations not listed (raise --pruned-limit)\n",
+                        static_cast<unsigned long long>(unlisted));
+        }
+        for (const RulePruneCount& rule : expansion.pruned_by_rule) {
+            std::printf("%llu pruned by %s: %s  (%s:%d)\n",
+                        static_cast<unsigned long long>(rule.count), rule.program.c_str(),
+                        rule.rule.c_str(), rule.where.file.c_str(), rule.where.line);
+        }
+        std::printf("%zu variants, %llu pruned combinations\n", expansion.variants.size(),
+                    static_cast<unsigned long long>(expansion.pruned_total));
     }
     if (options.out.empty()) {
         return kExitOk;
@@ -197,7 +230,7 @@ int RunValidate(const CompilerOptions& options) {
     if (!options.files.empty()) {
         return RunValidateFiles(options);
     }
-    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
+    LoadedMatrix loaded = LoadAndExpand(options.config, options.limits);
     if (!loaded.config) {
         return loaded.exit_code;
     }
@@ -224,9 +257,10 @@ int RunValidate(const CompilerOptions& options) {
     if (options.json) {
         std::printf("%s\n", manifest.dump(2).c_str());
     } else {
-        std::printf("%zu variants (%zu pruned combinations) x %zu target(s): %d stage slots -> "
+        std::printf("%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
                     "%zu distinct stage programs (%d shared), %d links; %s\n",
-                    loaded.expansion.variants.size(), loaded.expansion.pruned.size(),
+                    loaded.expansion.variants.size(),
+                    static_cast<unsigned long long>(loaded.expansion.pruned_total),
                     config.targets.size(), report.stage_slots, report.stage_programs.size(),
                     report.SharedStageSlots(), report.links,
                     invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid).c_str());
@@ -235,7 +269,7 @@ int RunValidate(const CompilerOptions& options) {
 }
 
 int RunStats(const CompilerOptions& options) {
-    LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
+    LoadedMatrix loaded = LoadAndExpand(options.config, options.limits);
     if (!loaded.config) {
         return loaded.exit_code;
     }
@@ -291,9 +325,7 @@ void AddCommonFlags(CLI::App* command, CompilerOptions& options) {
     command->add_option("--config", options.config, "variant matrix file")
             ->capture_default_str();
     command->add_flag("--json", options.json, "print JSON instead of text");
-    command->add_option("--max-variants", options.max_variants,
-                        "refuse matrices with more combinations than this (default: the file's "
-                        "max_variants, 4096)");
+    AddMatrixLimitOptions(command, &options.limits);
 }
 
 }  // namespace
@@ -305,9 +337,18 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
     static CompilerOptions stats_options;
 
     CLI::App* expand = app.add_subcommand(
-            "expand", "List every variant and every pruned combination with the rule that "
-                      "pruned it; with --out, write each variant's driver-ready sources");
+            "expand", "List every variant and how many combinations each rule pruned (with "
+                      "--pruned, the combinations too); with --out, write each variant's "
+                      "driver-ready sources");
     AddCommonFlags(expand, expand_options);
+    CLI::Option* pruned = expand->add_flag(
+            "--pruned", expand_options.pruned,
+            "also list pruned combinations, each with the first rule it breaks");
+    expand->add_option("--pruned-limit", expand_options.pruned_limit,
+                       fmt::format("list at most this many pruned combinations, 1..{}",
+                                   kVariantCeiling))
+            ->capture_default_str()
+            ->needs(pruned);
     expand->add_option("--out", expand_options.out,
                        "folder for <target>/<program>/<variant>.vert|.frag and manifest.json");
     expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });

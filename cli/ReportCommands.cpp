@@ -341,8 +341,9 @@ int RunAll(const RunCommandOptions& options) {
         std::fprintf(stderr, "error: %s\n", error.c_str());
         return kExitUsage;
     }
-    std::fprintf(stderr, "validate: %zu variants, %zu pruned, %d invalid; manifest in %s\n",
-                 expansion.variants.size(), expansion.pruned.size(), validation.InvalidCount(),
+    std::fprintf(stderr, "validate: %zu variants, %llu pruned, %d invalid; manifest in %s\n",
+                 expansion.variants.size(),
+                 static_cast<unsigned long long>(expansion.pruned_total), validation.InvalidCount(),
                  manifest_path.c_str());
 
     // 2. Render: images at every view and interleaved timing rounds.

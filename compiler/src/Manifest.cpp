@@ -102,19 +102,20 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
     }
     manifest["variants"] = variants;
 
-    nlohmann::json pruned = nlohmann::json::array();
-    for (const PrunedCombination& p : expansion.pruned) {
-        pruned.push_back({{"id", p.combination.Id()},
-                          {"program", p.combination.program},
-                          {"defines", p.combination.defines},
-                          {"rule", p.rule},
-                          {"file", p.where.file},
-                          {"line", p.where.line}});
+    // Counts per rule, not the combinations: their number grows with 2^features, while the
+    // rules and their counts say all a reader needs (`expand --pruned` lists combinations).
+    nlohmann::json pruned_by_rule = nlohmann::json::array();
+    for (const RulePruneCount& p : expansion.pruned_by_rule) {
+        pruned_by_rule.push_back({{"program", p.program},
+                                  {"rule", p.rule},
+                                  {"file", p.where.file},
+                                  {"line", p.where.line},
+                                  {"count", p.count}});
     }
-    manifest["pruned"] = pruned;
+    manifest["pruned_by_rule"] = pruned_by_rule;
 
     nlohmann::json counts = {{"variants", expansion.variants.size()},
-                             {"pruned", expansion.pruned.size()}};
+                             {"pruned", expansion.pruned_total}};
     if (validation != nullptr) {
         nlohmann::json stage_programs = nlohmann::json::array();
         for (const StageProgram& program : validation->stage_programs) {

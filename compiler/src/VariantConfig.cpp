@@ -639,12 +639,21 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
                                                    config.version));
             }
         }
-        if (root["max_variants"]) {
-            const int limit = ReadInt(root["max_variants"], "max_variants", 4096);
-            if (limit < 1) {
-                Error(root["max_variants"], "max_variants must be at least 1");
+        if (const YAML::Node limit_node = root["max_variants"]) {
+            // Read wider than int so that 2^31 or 10^23 is named as out of range, not as "not a
+            // number". Above the ceiling is legal here: the file may ask, and expansion refuses
+            // it unless the command line passes --allow-large-matrix.
+            long long limit = 0;
+            if (!limit_node.IsScalar() || !YAML::convert<long long>::decode(limit_node, limit) ||
+                limit < 1 || static_cast<unsigned long long>(limit) > kLargeVariantCeiling) {
+                Error(limit_node,
+                      fmt::format("max_variants must be a whole number from 1 to {} (valid "
+                                  "variants; above {} only with --allow-large-matrix), not '{}'",
+                                  kLargeVariantCeiling, kVariantCeiling,
+                                  limit_node.IsScalar() ? limit_node.Scalar() : "a list or map"));
             } else {
                 config.max_variants = static_cast<std::uint64_t>(limit);
+                config.max_variants_where = At(limit_node);
             }
         }
         if (root["targets"]) {

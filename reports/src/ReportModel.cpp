@@ -487,6 +487,47 @@ std::string PresetTitle(const MeasuredConfiguration& c) {
     return title.empty() ? c.id : title;
 }
 
+// The validation summary's rows from the manifest's `pruned_by_rule`; a manifest written before
+// it (a `pruned` list of combinations) is summarised the same way, by grouping its list.
+std::vector<PrunedRuleRow> PrunedRuleRows(const nlohmann::json& manifest) {
+    std::vector<PrunedRuleRow> rows;
+    auto text = [](const nlohmann::json& item, const char* key) {
+        auto it = item.find(key);
+        return it != item.end() && it->is_string() ? it->get<std::string>() : std::string();
+    };
+    auto number = [](const nlohmann::json& item, const char* key) -> std::uint64_t {
+        auto it = item.find(key);
+        return it != item.end() && it->is_number_unsigned() ? it->get<std::uint64_t>() : 0;
+    };
+    if (auto by_rule = manifest.find("pruned_by_rule");
+        by_rule != manifest.end() && by_rule->is_array()) {
+        for (const nlohmann::json& item : *by_rule) {
+            if (item.is_object()) {
+                rows.push_back({text(item, "program"), text(item, "rule"), text(item, "file"),
+                                static_cast<int>(number(item, "line")), number(item, "count")});
+            }
+        }
+    } else if (auto pruned = manifest.find("pruned");
+               pruned != manifest.end() && pruned->is_array()) {
+        for (const nlohmann::json& item : *pruned) {
+            if (!item.is_object()) {
+                continue;
+            }
+            PrunedRuleRow row{text(item, "program"), text(item, "rule"), text(item, "file"),
+                              static_cast<int>(number(item, "line")), 1};
+            auto same = std::find_if(rows.begin(), rows.end(), [&](const PrunedRuleRow& r) {
+                return r.program == row.program && r.rule == row.rule && r.line == row.line;
+            });
+            if (same == rows.end()) {
+                rows.push_back(std::move(row));
+            } else {
+                ++same->count;
+            }
+        }
+    }
+    return rows;
+}
+
 }  // namespace
 
 std::vector<PresetPair> ComparedPresetPairs() {
@@ -855,15 +896,7 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
             validation.glslang_invalid.push_back(v.value("id", std::string("?")));
         }
     }
-    if (auto pruned = inputs.manifest.find("pruned");
-        pruned != inputs.manifest.end() && pruned->is_array()) {
-        for (const nlohmann::json& p : *pruned) {
-            if (p.is_object()) {
-                validation.pruned.emplace_back(p.value("id", std::string()),
-                                               p.value("rule", std::string()));
-            }
-        }
-    }
+    validation.pruned_by_rule = PrunedRuleRows(inputs.manifest);
     validation.configurations = static_cast<int>(inputs.configurations.size());
     for (const MeasuredConfiguration& c : inputs.configurations) {
         if (!c.ok) {

@@ -1002,13 +1002,17 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                                  {"glslang_valid", d.glslang_valid},
                                  {"mesa_valid", d.mesa_valid}});
     }
-    nlohmann::json pruned = nlohmann::json::array();
-    for (const auto& [id, rule] : model.validation.pruned) {
-        pruned.push_back({{"id", id}, {"rule", rule}});
+    nlohmann::json pruned_by_rule = nlohmann::json::array();
+    for (const PrunedRuleRow& row : model.validation.pruned_by_rule) {
+        pruned_by_rule.push_back({{"program", row.program},
+                                  {"rule", row.rule},
+                                  {"file", row.file},
+                                  {"line", row.line},
+                                  {"count", row.count}});
     }
     json["validation"] = {{"counts", model.validation.counts},
                           {"glslang_invalid", model.validation.glslang_invalid},
-                          {"pruned", pruned},
+                          {"pruned_by_rule", pruned_by_rule},
                           {"configurations", model.validation.configurations},
                           {"failed_configurations", failed},
                           {"disagreements", disagreements},
@@ -1339,6 +1343,19 @@ Tables BuildTables(const ReportModel& model) {
     return t;
 }
 
+// The validation summary's pruned-combinations table: one row per rule of the matrix.
+const std::vector<std::string> kPrunedRuleHeader = {"program", "rule", "written at",
+                                                    "combinations pruned"};
+
+std::vector<std::vector<std::string>> PrunedRuleTable(const ReportModel& model) {
+    std::vector<std::vector<std::string>> rows;
+    for (const PrunedRuleRow& row : model.validation.pruned_by_rule) {
+        rows.push_back({row.program, row.rule, fmt::format("{}:{}", row.file, row.line),
+                        std::to_string(row.count)});
+    }
+    return rows;
+}
+
 std::string ValidationLine(const ReportModel& model) {
     const nlohmann::json& c = model.validation.counts;
     auto n = [&](const char* key) { return c.contains(key) ? c[key].dump() : std::string("–"); };
@@ -1464,13 +1481,10 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
         }
         md += MarkdownTable({"variant", "glslang", "Mesa"}, rows);
     }
-    {
-        std::vector<std::vector<std::string>> rows;
-        for (const auto& [id, rule] : model.validation.pruned) {
-            rows.push_back({id, rule});
-        }
-        md += "<details><summary>Pruned combinations</summary>\n\n" +
-              MarkdownTable({"combination", "rule"}, rows) + "</details>\n\n";
+    if (!model.validation.pruned_by_rule.empty()) {
+        md += "Combinations pruned, counted by the first rule each breaks (`tidepool expand "
+              "--pruned` lists them):\n\n" +
+              MarkdownTable(kPrunedRuleHeader, PrunedRuleTable(model));
     }
     md += "## 5. Images\n\nEach key configuration beside the reference, and their difference "
           "(black = identical, red → yellow → white = up to 32/255 and more).\n\n";
@@ -1694,13 +1708,10 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
         }
         h += "<h3>glslang / Mesa disagreements</h3>" + HtmlTable({"variant", "glslang", "Mesa"}, rows);
     }
-    {
-        std::vector<std::vector<std::string>> rows;
-        for (const auto& [id, rule] : model.validation.pruned) {
-            rows.push_back({id, rule});
-        }
-        h += "<details><summary>Pruned combinations (" + std::to_string(rows.size()) +
-             ")</summary>" + HtmlTable({"combination", "rule"}, rows) + "</details>";
+    if (!model.validation.pruned_by_rule.empty()) {
+        h += "<h3>Pruned combinations per rule</h3><p class=\"note\">Counted by the first rule "
+             "each combination breaks; <code>tidepool expand --pruned</code> lists them.</p>" +
+             HtmlTable(kPrunedRuleHeader, PrunedRuleTable(model));
     }
 
     h += "<h2 id=\"images\">5. Images</h2><p class=\"note\">Each key configuration beside the "

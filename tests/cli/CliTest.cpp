@@ -53,6 +53,11 @@ protected:
         dir_.Write("s.vsh", kVertex);
         dir_.Write("s.fsh", kFragment);
     }
+    // Writes v.yaml: `top` (top-level keys), then program p on s.vsh/s.fsh with `program_keys`.
+    void WriteConfig(const std::string& top, const std::string& program_keys = "") {
+        dir_.Write("v.yaml", top + "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n" +
+                                     program_keys);
+    }
     TempDir dir_;
 };
 
@@ -96,23 +101,132 @@ TEST_F(CliTest, MissingConfigurationExitsTwo) {
 }
 
 TEST_F(CliTest, MatrixOverTheLimitIsRefusedUnlessTheFlagRaisesIt) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "    features: [A, C, D]\n");
-    const CommandResult refused = RunTidepool("expand --config v.yaml --max-variants 4", dir_.Path());
-    EXPECT_EQ(refused.exit_code, 2);
-    EXPECT_NE(refused.out.find("the matrix has 8 combinations, over the limit of 4"),
-              std::string::npos)
-            << refused.out;
+    // The flag's limit is reported at the program that passed it; the file's at its own line.
+    struct Case {
+        const char* limit_line;
+        const char* flags;
+        const char* expected;
+    };
+    for (const Case& c :
+         {Case{"", " --max-variants 4",
+               "v.yaml:2:3: error: program 'p' takes the matrix over 4 valid variants, the limit "
+               "set by --max-variants; add rules, remove features, or raise the limit\n"},
+          Case{"max_variants: 4\n", "",
+               "v.yaml:1:15: error: program 'p' takes the matrix over 4 valid variants, the "
+               "limit set by max_variants; add rules, remove features, or raise the limit\n"}}) {
+        WriteConfig(c.limit_line, "    features: [A, C, D]\n");
+        const CommandResult refused =
+                RunTidepool(std::string("expand --config v.yaml") + c.flags, dir_.Path());
+        EXPECT_EQ(refused.exit_code, 2);
+        EXPECT_EQ(refused.out, c.expected);
+    }
     EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 8", dir_.Path()).exit_code, 0);
 }
 
-TEST_F(CliTest, ExpandListsPrunedCombinationsWithTheirRule) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
+TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
+    WriteConfig("");
+    for (const char* value : {"-1", "-5", "0", "65537", "18446744073709551616",
+                              "100000000000000000000000", "1e3", "4x"}) {
+        const CommandResult r =
+                RunTidepool(std::string("expand --config v.yaml --max-variants=") + value,
+                            dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << value << r.out;
+        EXPECT_EQ(r.out, std::string("error: --max-variants must be a whole number from 1 to "
+                                     "65536 (up to 16777216 with --allow-large-matrix), not '") +
+                                 value + "'\n")
+                << value;
+    }
+    // Empty is not "not given" (which would silently mean the file's limit).
+    const CommandResult empty = RunTidepool("expand --config v.yaml --max-variants=", dir_.Path());
+    EXPECT_EQ(empty.exit_code, 2);
+    EXPECT_EQ(empty.out.rfind("--max-variants: 1 required TEXT missing", 0), 0U) << empty.out;
+}
+
+TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
+    WriteConfig("");
+    EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 100000 --allow-large-matrix",
+                          dir_.Path())
+                      .exit_code,
+              0);
+    const CommandResult r = RunTidepool(
+            "expand --config v.yaml --max-variants 16777217 --allow-large-matrix", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "error: --max-variants must be a whole number from 1 to 16777216, not "
+                     "'16777217'\n");
+}
+
+TEST_F(CliTest, FileLimitOutOfRangeOrAboveTheCeilingIsRefusedAtItsLine) {
+    // 2147483647 loads nowhere; 100000 loads, but expansion needs --allow-large-matrix for it.
+    for (const auto& [limit, expected] :
+         {std::pair{"100000", "v.yaml:1:15: error: max_variants of 100000 is over the ceiling of "
+                              "65536 valid variants; lower it, or pass --allow-large-matrix to "
+                              "allow up to 16777216\n"},
+          std::pair{"2147483647", "v.yaml:1:15: error: max_variants must be a whole number from "
+                                  "1 to 16777216 (valid variants; above 65536 only with "
+                                  "--allow-large-matrix), not '2147483647'\n"}}) {
+        WriteConfig(std::string("max_variants: ") + limit + "\n");
+        const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << limit;
+        EXPECT_EQ(r.out, expected);
+    }
+    WriteConfig("max_variants: 100000\n");
+    EXPECT_EQ(RunTidepool("expand --config v.yaml --allow-large-matrix", dir_.Path()).exit_code,
+              0);
+}
+
+TEST_F(CliTest, ExpandCountsPrunedCombinationsPerRuleWithoutListingThem) {
+    WriteConfig("", "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_NE(r.out.find("pruned p:C  (C requires A, v.yaml:6)"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out, "p:\np:A\np:A,C\n1 pruned by p: C requires A  (v.yaml:6)\n"
+                     "3 variants, 1 pruned combinations\n");
+}
+
+TEST_F(CliTest, ExpandPrunedListsPrunedCombinationsWithTheirRule) {
+    WriteConfig("", "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
+    const CommandResult r = RunTidepool("expand --config v.yaml --pruned", dir_.Path());
+    EXPECT_EQ(r.exit_code, 0);
+    EXPECT_NE(r.out.find("pruned p:C  (C requires A, v.yaml:6)\n"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("3 variants, 1 pruned combinations"), std::string::npos);
+}
+
+TEST_F(CliTest, ExpandPrunedLimitListsThatManyAndSaysHowManyAreLeft) {
+    WriteConfig("", "    features: [A, B, C]\n"
+                    "    rules: [{ if: B, requires: A }, { if: C, requires: A }]\n");
+    const CommandResult r =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit 1 --json", dir_.Path());
+    EXPECT_EQ(r.exit_code, 0) << r.out;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json["pruned"].size(), 1U);
+    EXPECT_EQ(json["pruned_unlisted"], 2);
+    EXPECT_EQ(json["counts"]["pruned"], 3);
+    EXPECT_EQ(json["pruned_by_rule"][0]["count"], 2);
+    EXPECT_EQ(json["pruned_by_rule"][1]["count"], 1);
+    const CommandResult text =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit 1", dir_.Path());
+    EXPECT_NE(text.out.find("... 2 more pruned combinations not listed (raise --pruned-limit)"),
+              std::string::npos)
+            << text.out;
+}
+
+TEST_F(CliTest, ManifestKeepsPrunedCountsPerRuleNotTheCombinations) {
+    WriteConfig("", "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
+    const CommandResult r = RunTidepool("expand --config v.yaml --json", dir_.Path());
+    ASSERT_EQ(r.exit_code, 0) << r.out;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    EXPECT_FALSE(json.contains("pruned"));
+    EXPECT_EQ(json["pruned_by_rule"],
+              nlohmann::json::parse(R"([{"program": "p", "rule": "C requires A", "file": "v.yaml",
+                                         "line": 6, "count": 1}])"));
+    EXPECT_EQ(json["counts"]["pruned"], 1);
+}
+
+TEST_F(CliTest, PrunedLimitOutOfRangeIsAUsageError) {
+    WriteConfig("");
+    const CommandResult r =
+            RunTidepool("expand --config v.yaml --pruned --pruned-limit=-1", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.out, "error: --pruned-limit must be a whole number from 1 to 65536, not '-1'\n");
 }
 
 TEST_F(CliTest, ExpandOutWritesDriverReadySourcesAndManifest) {

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "ExpandOneByOne.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/WaterMath.h"
@@ -100,6 +101,25 @@ TEST_F(DefaultMatrixTest, ReflectionAxisValuesNeverCombineAndPresetsNameThem) {
         const Variant v = MakeVariant(p->program, p->defines);
         EXPECT_TRUE(std::count(water_variants_.begin(), water_variants_.end(), v)) << preset;
     }
+}
+
+TEST_F(DefaultMatrixTest, PrunedCountsPerRuleMatchEveryCombinationCheckedOneByOne) {
+    const ExpansionResult expansion =
+            ExpandVariants(config_, ExpansionOptions{config_.max_variants});
+    ASSERT_TRUE(expansion.diagnostics.empty());
+    EXPECT_EQ(expansion.variants.size(), 157U);
+    EXPECT_EQ(expansion.pruned_total, 24441U);
+    std::size_t row = 0;
+    for (const ProgramConfig& program : config_.programs) {
+        const std::vector<std::uint64_t> expected = testing::ExpandOneByOne(program).counts;
+        for (std::size_t r = 0; r < program.rules.size(); ++r, ++row) {
+            ASSERT_LT(row, expansion.pruned_by_rule.size());
+            EXPECT_EQ(expansion.pruned_by_rule[row].program, program.name);
+            EXPECT_EQ(expansion.pruned_by_rule[row].count, expected[r])
+                    << program.rules[r].Describe();
+        }
+    }
+    EXPECT_EQ(row, expansion.pruned_by_rule.size());
 }
 
 TEST(ExtinctionColourTest, MatchesTheFormulaAtSampledDepths) {

@@ -11,6 +11,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -150,7 +151,7 @@ FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& c
     const nlohmann::json manifest = {{"schema", "tidepool.manifest"},
                                      {"version", 1},
                                      {"variants", variants},
-                                     {"pruned", nlohmann::json::array()},
+                                     {"pruned_by_rule", nlohmann::json::array()},
                                      {"counts", {{"variants", variants.size()}, {"pruned", 0}}}};
     const nlohmann::json results = {
             {"schema", "tidepool.render-results"},
@@ -419,6 +420,52 @@ TEST(ReportModelTest, FailedConfigurationIsShownAsFailedNotDropped) {
     EXPECT_EQ(data["whitepaper_rows"][1]["verdict"], "failed");
     EXPECT_EQ(data["validation"]["failed_configurations"][0]["configuration"],
               "water:ENABLE_WATER_COLOUR");
+}
+
+// The manifest holds pruned counts per rule; the report summarises them, one row per rule, and
+// summarises a manifest written before that (a list of combinations) by grouping it.
+TEST(ReportModelTest, PrunedCombinationsAreSummarisedPerRuleNotListed) {
+    const nlohmann::json by_rule = nlohmann::json::parse(R"([
+        {"program": "water", "rule": "ENABLE_FRESNEL requires ENABLE_REFRACTION",
+         "file": "variants.yaml", "line": 36, "count": 4608},
+        {"program": "model", "rule": "excluded combination ENABLE_FOG_DEPTH, CLIP_DISCARD",
+         "file": "variants.yaml", "line": 98, "count": 0}])");
+    const nlohmann::json old_list = nlohmann::json::parse(R"([
+        {"id": "water:ENABLE_FRESNEL", "program": "water",
+         "rule": "ENABLE_FRESNEL requires ENABLE_REFRACTION", "file": "variants.yaml", "line": 36},
+        {"id": "water:ENABLE_FOG,ENABLE_FRESNEL", "program": "water",
+         "rule": "ENABLE_FRESNEL requires ENABLE_REFRACTION", "file": "variants.yaml", "line": 36}
+        ])");
+    for (const auto& [key, value, first_count] :
+         {std::tuple{"pruned_by_rule", by_rule, 4608U}, std::tuple{"pruned", old_list, 2U}}) {
+        TempDir dir;
+        const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+        nlohmann::json manifest = nlohmann::json::parse(ReadText(run.manifest));
+        manifest.erase("pruned_by_rule");
+        manifest[key] = value;
+        dir.Write("manifest/manifest.json", manifest.dump());
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        ASSERT_TRUE(loaded.inputs) << loaded.error;
+        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+        ASSERT_TRUE(built.model) << built.error;
+        const std::vector<PrunedRuleRow>& rows = built.model->validation.pruned_by_rule;
+        ASSERT_FALSE(rows.empty()) << key;
+        EXPECT_EQ(rows[0].program, "water");
+        EXPECT_EQ(rows[0].rule, "ENABLE_FRESNEL requires ENABLE_REFRACTION");
+        EXPECT_EQ(rows[0].line, 36);
+        EXPECT_EQ(rows[0].count, first_count) << key;
+
+        const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+        ASSERT_EQ(written.error, "");
+        const std::string md = ReadText(written.folder / "report.md");
+        EXPECT_NE(md.find("| water | ENABLE_FRESNEL requires ENABLE_REFRACTION | variants.yaml:36 | " +
+                          std::to_string(first_count) + " |"),
+                  std::string::npos)
+                << md;
+        EXPECT_EQ(md.find("water:ENABLE_FOG,ENABLE_FRESNEL"), std::string::npos);
+        const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+        EXPECT_EQ(data["validation"]["pruned_by_rule"][0]["count"], first_count);
+    }
 }
 
 TEST(ReportInputsTest, CorruptManifestIsAnErrorNamingTheFile) {

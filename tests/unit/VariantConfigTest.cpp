@@ -314,6 +314,23 @@ INSTANTIATE_TEST_SUITE_P(
                              "shaders' own language)\n"}),
         [](const ::testing::TestParamInfo<BadInputCase>& case_info) { return case_info.param.name; });
 
+TEST_F(VariantConfigTest, MaxVariantsOutOfRangeOrNotAWholeNumberIsRefusedAtItsLine) {
+    for (const char* value : {"2147483647", "-1", "0", "18446744073709551616", "1e3", "16777217"}) {
+        EXPECT_EQ(Errors("max_variants: " + std::string(value) + "\n" + kProgramHead),
+                  "v.yaml:1:15: error: max_variants must be a whole number from 1 to 16777216 "
+                  "(valid variants; above 65536 only with --allow-large-matrix), not '" +
+                          std::string(value) + "'\n");
+    }
+}
+
+TEST_F(VariantConfigTest, MaxVariantsAboveTheCeilingLoadsWithItsPlaceForExpansionToJudge) {
+    const ConfigResult result = Parse("max_variants: 100000\n" + std::string(kProgramHead));
+    ASSERT_TRUE(result.config.has_value()) << Errors("max_variants: 100000\n");
+    EXPECT_EQ(result.config->max_variants, 100000U);
+    EXPECT_EQ(result.config->max_variants_where.line, 1);
+    EXPECT_EQ(result.config->max_variants_where.column, 15);
+}
+
 TEST_F(VariantConfigTest, MissingShaderFileNamesThePathAndWhereItWasLookedFor) {
     const std::string errors =
             Errors("programs:\n  p:\n    vertex: nope.vsh\n    fragment: s.fsh\n");

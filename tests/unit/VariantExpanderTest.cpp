@@ -1,9 +1,13 @@
 #include "tidepool/VariantExpander.h"
 
 #include <algorithm>
+#include <map>
+#include <random>
 #include <set>
 
 #include <gtest/gtest.h>
+
+#include "ExpandOneByOne.h"
 
 namespace tidepool {
 namespace {
@@ -36,6 +40,13 @@ Rule Excludes(std::string subject, std::vector<std::string> others) {
 }
 Rule ExcludeCombination(std::vector<std::string> others) {
     return Rule{RuleKind::kExcludeCombination, {}, std::move(others), {}, {}};
+}
+
+// Options that list every pruned combination (the small matrices here have a few dozen).
+ExpansionOptions ListingEveryPruned() {
+    ExpansionOptions options;
+    options.pruned_limit = kVariantCeiling;
+    return options;
 }
 
 std::set<std::string> Ids(const std::vector<Variant>& variants) {
@@ -86,7 +97,7 @@ TEST(VariantExpanderTest, EachRuleKindKeepsExactlyTheSubsetsItAllows) {
     };
     for (const Case& c : cases) {
         const ExpansionResult result =
-                ExpandVariants(Config({Program(names, {c.rule})}), ExpansionOptions{});
+                ExpandVariants(Config({Program(names, {c.rule})}), ListingEveryPruned());
         std::set<std::string> expected_kept;
         std::set<std::string> expected_pruned;
         for (unsigned mask = 0; mask < 16; ++mask) {
@@ -112,7 +123,7 @@ TEST(VariantExpanderTest, EachRuleKindKeepsExactlyTheSubsetsItAllows) {
 
 TEST(VariantExpanderTest, PrunedCombinationNamesTheFirstRuleBrokenAndWhereItIsWritten) {
     const ExpansionResult result = ExpandVariants(
-            Config({Program({"A", "B"}, {Requires("B", {"A"}, 7)})}), ExpansionOptions{});
+            Config({Program({"A", "B"}, {Requires("B", {"A"}, 7)})}), ListingEveryPruned());
     ASSERT_EQ(result.pruned.size(), 1U);
     EXPECT_EQ(result.pruned[0].combination.Id(), "p:B");
     EXPECT_EQ(result.pruned[0].rule, "B requires A");
@@ -123,7 +134,7 @@ TEST(VariantExpanderTest, AxisContributesExactlyOneValueDefinePerVariant) {
     const ExpansionResult result =
             ExpandVariants(Config({Program({"A"}, {ExcludeCombination({"A", "MODE_EXACT"})},
                                            {Axis{"MODE", {"fast", "exact", "off"}, {}}})}),
-                           ExpansionOptions{});
+                           ListingEveryPruned());
     EXPECT_EQ(Ids(result.variants),
               (std::set<std::string>{"p:MODE_EXACT", "p:MODE_FAST", "p:MODE_OFF", "p:A,MODE_FAST",
                                      "p:A,MODE_OFF"}));
@@ -173,7 +184,7 @@ TEST(VariantExpanderTest, RuleOverTheOtherValuesOfAnAxisWithDefaultPrunesOnlyTho
     const ExpansionResult result = ExpandVariants(
             Config({Program({"A"}, {Requires("REFLECTION_FOURIER", {"A"}, 4)},
                             {ReflectionWithPlanarDefault()})}),
-            ExpansionOptions{});
+            ListingEveryPruned());
     EXPECT_EQ(Ids(result.variants),
               (std::set<std::string>{"p:", "p:A", "p:REFLECTION_CUBEMAP", "p:A,REFLECTION_CUBEMAP",
                                      "p:A,REFLECTION_FOURIER"}));
@@ -181,17 +192,88 @@ TEST(VariantExpanderTest, RuleOverTheOtherValuesOfAnAxisWithDefaultPrunesOnlyTho
     EXPECT_EQ(result.pruned[0].combination.Id(), "p:REFLECTION_FOURIER");
 }
 
-TEST(VariantExpanderTest, MatrixOverTheLimitIsRefusedWithItsCountBeforeEnumeration) {
-    std::vector<std::string> many;
-    for (int i = 0; i < 40; ++i) {
-        many.push_back(std::string("F").append(std::to_string(i)));
+std::vector<std::string> Features(int count) {
+    std::vector<std::string> names;
+    for (int i = 0; i < count; ++i) {
+        names.push_back(std::string("F").append(std::to_string(i)));
     }
-    const ExpansionResult result = ExpandVariants(Config({Program(many)}), ExpansionOptions{4096});
+    return names;
+}
+
+TEST(VariantExpanderTest, MatrixOverTheLimitIsRefusedAtTheProgramOnceItsValidVariantsPassIt) {
+    // 2^40 valid variants: the walk stops at the 4097th, so this returns at once.
+    const ExpansionResult result =
+            ExpandVariants(Config({Program(Features(40))}), ExpansionOptions{4096});
     EXPECT_TRUE(result.variants.empty());
     ASSERT_EQ(result.diagnostics.size(), 1U);
     EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
-              "v.yaml: error: the matrix has 1099511627776 combinations, over the limit of 4096; "
-              "add rules, remove features, or raise the limit with --max-variants");
+              "v.yaml:2:3: error: program 'p' takes the matrix over 4096 valid variants, the "
+              "limit set by the default max_variants; add rules, remove features, or raise the "
+              "limit");
+}
+
+TEST(VariantExpanderTest, LimitSetInTheFileIsNamedAtItsLine) {
+    ExpansionOptions options;
+    options.max_variants = 8;
+    options.limit_origin = "max_variants";
+    options.limit_where = SourceLocation{"v.yaml", 1, 15};
+    const ExpansionResult result = ExpandVariants(Config({Program(Features(4))}), options);
+    ASSERT_EQ(result.diagnostics.size(), 1U);
+    EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
+              "v.yaml:1:15: error: program 'p' takes the matrix over 8 valid variants, the limit "
+              "set by max_variants; add rules, remove features, or raise the limit");
+}
+
+TEST(VariantExpanderTest, LimitCountsValidVariantsNotCombinations) {
+    // A chain where each feature requires the one before: 41 valid of 2^40 combinations.
+    std::vector<Rule> chain;
+    const std::vector<std::string> names = Features(40);
+    for (std::size_t i = 1; i < names.size(); ++i) {
+        chain.push_back(Requires(names[i], {names[i - 1]}, static_cast<int>(i)));
+    }
+    const ExpansionResult result =
+            ExpandVariants(Config({Program(names, chain)}), ExpansionOptions{41});
+    ASSERT_TRUE(result.diagnostics.empty());
+    EXPECT_EQ(result.variants.size(), 41U);
+    EXPECT_EQ(result.pruned_total, (std::uint64_t{1} << 40U) - 41U);
+    ASSERT_EQ(result.pruned_by_rule.size(), 39U);
+    // Rule i (F_i requires F_{i-1}) is the first broken rule of i * 2^(39-i) combinations: the
+    // i valid chains of F_0..F_{i-1} ending without F_{i-1}, with F_i, anything after.
+    for (std::size_t i = 1; i <= 39; ++i) {
+        EXPECT_EQ(result.pruned_by_rule[i - 1].count, i * (std::uint64_t{1} << (39U - i))) << i;
+        EXPECT_EQ(result.pruned_by_rule[i - 1].where.line, static_cast<int>(i));
+    }
+    EXPECT_TRUE(HasErrors(
+            ExpandVariants(Config({Program(names, chain)}), ExpansionOptions{40}).diagnostics));
+}
+
+TEST(VariantExpanderTest, LimitAboveTheCeilingNeedsAllowLargeMatrix) {
+    ExpansionOptions options;
+    options.max_variants = kVariantCeiling + 1;
+    options.limit_origin = "max_variants";
+    options.limit_where = SourceLocation{"v.yaml", 1, 15};
+    const ExpansionResult refused = ExpandVariants(Config({Program({"A"})}), options);
+    ASSERT_EQ(refused.diagnostics.size(), 1U);
+    EXPECT_EQ(FormatDiagnostic(refused.diagnostics[0]),
+              "v.yaml:1:15: error: max_variants of 65537 is over the ceiling of 65536 valid "
+              "variants; lower it, or pass --allow-large-matrix to allow up to 16777216");
+    options.allow_large_matrix = true;
+    EXPECT_EQ(ExpandVariants(Config({Program({"A"})}), options).variants.size(), 2U);
+}
+
+TEST(VariantExpanderTest, LimitOutOfRangeIsRefusedEvenWithAllowLargeMatrix) {
+    for (const std::uint64_t limit : {std::uint64_t{0}, kLargeVariantCeiling + 1}) {
+        ExpansionOptions options;
+        options.max_variants = limit;
+        options.allow_large_matrix = true;
+        options.limit_origin = "--max-variants";
+        const ExpansionResult refused = ExpandVariants(Config({Program({"A"})}), options);
+        ASSERT_EQ(refused.diagnostics.size(), 1U);
+        EXPECT_EQ(FormatDiagnostic(refused.diagnostics[0]),
+                  "v.yaml: error: --max-variants must be from 1 to 16777216 valid variants, not " +
+                          std::to_string(limit));
+        EXPECT_TRUE(refused.variants.empty());
+    }
 }
 
 TEST(VariantExpanderTest, RaisedLimitAdmitsTheMatrix) {
@@ -221,6 +303,100 @@ TEST(VariantExpanderTest, RulesThatLeaveNoVariantAreAnErrorAtTheProgram) {
     EXPECT_EQ(FormatDiagnostic(none.diagnostics[0]),
               "v.yaml:2:3: error: the rules leave program 'p' with no variant; relax a rule");
     EXPECT_TRUE(none.variants.empty());
+}
+
+// A random program: up to 12 features, up to 2 axes (some with a default), and up to 10 rules of
+// every kind over its define names, written as a user might (repeats and self-references too).
+ProgramConfig RandomProgram(std::mt19937& random) {
+    auto below = [&](int n) { return std::uniform_int_distribution<int>(0, n - 1)(random); };
+    ProgramConfig program = Program({});
+    const int feature_count = below(13);
+    for (int f = 0; f < feature_count; ++f) {
+        program.features.push_back(Feature{"F" + std::to_string(f), {}});
+    }
+    // At most 4096 * 9 combinations, so the brute force stays quick under the sanitizers.
+    const int axis_count = feature_count > 10 ? below(2) : below(3);
+    for (int a = 0; a < axis_count; ++a) {
+        Axis axis{"X" + std::to_string(a), {}, {}};
+        const int value_count = 1 + below(3);
+        for (int v = 0; v < value_count; ++v) {
+            axis.values.push_back(std::string(1, static_cast<char>('a' + v)));
+        }
+        if (below(2) == 0) {
+            axis.default_value = axis.values[static_cast<std::size_t>(below(value_count))];
+        }
+        program.axes.push_back(std::move(axis));
+    }
+    const std::vector<std::string> names = program.AllDefines();
+    if (names.empty()) {
+        return program;
+    }
+    auto name = [&] { return names[static_cast<std::size_t>(below(static_cast<int>(names.size())))]; };
+    const int rule_count = below(11);
+    for (int r = 0; r < rule_count; ++r) {
+        std::vector<std::string> others;
+        const int other_count = 1 + below(3);
+        for (int o = 0; o < other_count; ++o) {
+            others.push_back(name());
+        }
+        Rule rule{static_cast<RuleKind>(below(3)), name(), std::move(others), {},
+                  SourceLocation{"v.yaml", 10 + r, 5}};
+        if (rule.kind == RuleKind::kExcludeCombination) {
+            rule.subject.clear();
+        }
+        program.rules.push_back(std::move(rule));
+    }
+    return program;
+}
+
+TEST(VariantExpanderTest, PrunedCountsPerRuleEqualABruteForceOnRandomConfigs) {
+    std::mt19937 random(20261123);  // fixed: a failure must reproduce
+    for (int trial = 0; trial < 200; ++trial) {
+        const ProgramConfig program = RandomProgram(random);
+        const testing::BruteForceExpansion expected = testing::ExpandOneByOne(program);
+        ExpansionOptions options = ListingEveryPruned();
+        options.max_variants = kVariantCeiling;
+        const ExpansionResult result = ExpandVariants(Config({program}), options);
+        std::string described;
+        for (const Rule& rule : program.rules) {
+            described += rule.Describe() + "; ";
+        }
+        SCOPED_TRACE("trial " + std::to_string(trial) + ": " +
+                     std::to_string(program.features.size()) + " features, " +
+                     std::to_string(program.axes.size()) + " axes, rules: " + described);
+
+        EXPECT_EQ(result.variants.empty(), expected.variants.empty());
+        if (!expected.variants.empty()) {
+            EXPECT_EQ(result.variants, expected.variants);
+        }
+        ASSERT_EQ(result.pruned_by_rule.size(), program.rules.size());
+        std::uint64_t total = 0;
+        for (std::size_t r = 0; r < program.rules.size(); ++r) {
+            EXPECT_EQ(result.pruned_by_rule[r].count, expected.counts[r]) << "rule " << r;
+            EXPECT_EQ(result.pruned_by_rule[r].rule, program.rules[r].Describe());
+            EXPECT_EQ(result.pruned_by_rule[r].where.line, program.rules[r].where.line);
+            total += expected.counts[r];
+        }
+        EXPECT_EQ(result.pruned_total, total);
+        std::set<std::pair<std::string, std::string>> listed;
+        for (const PrunedCombination& p : result.pruned) {
+            listed.emplace(p.combination.Id(), p.rule);
+        }
+        EXPECT_EQ(listed.size(), result.pruned.size()) << "a combination listed twice";
+        EXPECT_EQ(listed, expected.pruned);
+    }
+}
+
+TEST(VariantExpanderTest, PrunedListStopsAtItsLimitWhileCountsStayComplete) {
+    const ExpansionResult result = ExpandVariants(
+            Config({Program({"A", "B", "C"}, {Requires("B", {"A"}, 4), Requires("C", {"A"}, 5)})}),
+            ExpansionOptions{.max_variants = 4096, .pruned_limit = 2});
+    EXPECT_EQ(result.variants.size(), 5U);
+    EXPECT_EQ(result.pruned.size(), 2U);
+    EXPECT_EQ(result.pruned_total, 3U);
+    ASSERT_EQ(result.pruned_by_rule.size(), 2U);
+    EXPECT_EQ(result.pruned_by_rule[0].count, 2U);  // B, B+C
+    EXPECT_EQ(result.pruned_by_rule[1].count, 1U);  // C
 }
 
 }  // namespace

@@ -105,12 +105,23 @@ struct Preset {
     SourceLocation where;
 };
 
+/// The limit that no variants.yaml and no --max-variants lifts without --allow-large-matrix.
+/// Every valid variant is compiled (two stages and a link, about a millisecond each) and rendered
+/// and timed by `run`, so 65,536 variants already cost minutes to validate and hours to render;
+/// a larger matrix is almost always a missing rule, not a wish.
+inline constexpr std::uint64_t kVariantCeiling = 65536;
+
+/// The limit even --allow-large-matrix cannot lift: 2^24 variants (about 100 bytes each as ids
+/// and defines) already hold 1.6 GB before one stage is compiled.
+inline constexpr std::uint64_t kLargeVariantCeiling = 16777216;
+
 /// The whole configuration file.
 struct VariantConfig {
     std::string path;               // the file as named by the user
     std::filesystem::path base_dir; // shader paths are relative to this folder
     int version = 1;
-    std::uint64_t max_variants = 4096;
+    std::uint64_t max_variants = 4096;   // valid variants (after pruning), all programs together
+    SourceLocation max_variants_where;   // where the file sets max_variants; empty when it does not
     std::vector<GlslTarget> targets;
     std::vector<ProgramConfig> programs;
     std::vector<Preset> presets;

@@ -144,11 +144,20 @@ struct VerdictDisagreementRow {
     bool mesa_valid = false;
 };
 
+/// How many combinations one rule of the variant matrix pruned (the manifest's pruned_by_rule).
+struct PrunedRuleRow {
+    std::string program;
+    std::string rule;
+    std::string file;
+    int line = 0;
+    std::uint64_t count = 0;
+};
+
 /// The compiler's and the driver's verdicts.
 struct ValidationSummary {
     nlohmann::json counts;                      // the manifest's counts, as written
     std::vector<std::string> glslang_invalid;   // variant ids glslang rejected
-    std::vector<std::pair<std::string, std::string>> pruned;  // (combination id, rule)
+    std::vector<PrunedRuleRow> pruned_by_rule;  // every rule, declaration order
     int configurations = 0;
     std::vector<const MeasuredConfiguration*> failed;  // configurations not ok
     std::vector<VerdictDisagreementRow> disagreements;
