@@ -314,6 +314,23 @@ std::string ParseComparison(const nlohmann::json& entry, std::size_t index,
             out->push_back(v.get<double>());
         }
     }
+    for (const auto& [key, out] : {std::pair{"baseline_wall_ms", &c->baseline_wall_ms},
+                                   std::pair{"candidate_wall_ms", &c->candidate_wall_ms}}) {
+        auto samples = entry.find(key);
+        if (samples == entry.end()) {
+            continue;  // optional: the same frames on the wall clock
+        }
+        if (!samples->is_array()) {
+            return fmt::format("comparisons[{}].{} is not an array of times", index, key);
+        }
+        for (const nlohmann::json& v : *samples) {
+            if (!v.is_number()) {
+                return fmt::format("comparisons[{}].{} holds a value that is not a number", index,
+                                   key);
+            }
+            out->push_back(v.get<double>());
+        }
+    }
     if (c->baseline_ms.size() != c->candidate_ms.size()) {
         return fmt::format("comparisons[{}]: baseline_ms and candidate_ms differ in length", index);
     }

@@ -139,6 +139,25 @@ void ChangeFromRatio(const PairedRatio& ratio, double* change, Interval* ci) {
                                 : std::numeric_limits<double>::infinity();
 }
 
+// The sample standard deviation of log(b[i] / a[i]); NaN with fewer than 2 usable pairs.
+double LogRatioSd(const std::vector<double>& a, const std::vector<double>& b) {
+    std::vector<double> d;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) {
+        if (a[i] > 0 && b[i] > 0) {
+            d.push_back(std::log(b[i] / a[i]));
+        }
+    }
+    if (d.size() < 2) {
+        return kNaN;
+    }
+    const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
+    double sum = 0;
+    for (double v : d) {
+        sum += (v - mean) * (v - mean);
+    }
+    return std::sqrt(sum / static_cast<double>(d.size() - 1));
+}
+
 // The paired frames behind a comparison of two configurations.
 struct PairsOfFrames {
     std::vector<double> baseline_ms;
@@ -852,6 +871,22 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
             }
         }
         model.rows.push_back(std::move(comparison));
+    }
+
+    // What the clock buys: each recorded comparison's pair noise on both clocks.
+    for (const MeasuredComparison& c : inputs.comparisons) {
+        ClockNoiseRow row;
+        row.label = c.label;
+        row.pairs = static_cast<int>(c.baseline_ms.size());
+        row.decision = c.error.empty() ? c.decision : "failed: " + c.error;
+        const PairedRatio ratio = ComparePairs(c.baseline_ms, c.candidate_ms);
+        if (ratio.error.empty()) {
+            row.half_width_points =
+                    (PerformanceChangePercent(ratio.ci.low) - PerformanceChangePercent(ratio.ci.high)) / 2;
+        }
+        row.pair_sd_clock_percent = 100 * LogRatioSd(c.baseline_ms, c.candidate_ms);
+        row.pair_sd_wall_percent = 100 * LogRatioSd(c.baseline_wall_ms, c.candidate_wall_ms);
+        model.clock_noise.push_back(row);
     }
 
     // Static cost versus time.

@@ -397,6 +397,10 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
     const nlohmann::json& results = model.inputs->results;
     const nlohmann::json env = results.value("environment", nlohmann::json::object());
     const nlohmann::json settings = results.value("settings", nlohmann::json::object());
+    const auto timing_entry = results.find("timing");
+    const nlohmann::json timing = timing_entry != results.end() && timing_entry->is_object()
+                                          ? *timing_entry
+                                          : nlohmann::json::object();
     auto text = [](const nlohmann::json& object, const char* key) -> std::string {
         auto it = object.find(key);
         if (it == object.end() || it->is_null()) {
@@ -422,8 +426,13 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
             {"Render size", text(settings, "width") + "x" + text(settings, "height")},
             {"Timing view", text(settings, "timing_view")},
             {"Warm-up frames", text(settings, "warmup_frames")},
-            {"Rounds", text(settings, "rounds")},
-            {"Frames per round", text(settings, "frames_per_round")},
+            {"Coarse frames per configuration", text(settings, "coarse_frames")},
+            {"Instrumented frames per compared configuration", text(settings, "pass_frames")},
+            {"Rendering threads (workers)", text(settings, "workers")},
+            {"Resolution asked of each comparison (± points)", text(timing, "resolution_points")},
+            {"Pairs per comparison (min, max)",
+             text(timing, "min_pairs") + ", " + text(timing, "max_pairs")},
+            {"Estimator", text(timing, "estimator")},
             {"Timing method", text(settings, "timing_method")},
             {"Compared on", ClockName(model.clock) + " time: " + model.inputs->clock_reason},
             {"Animation time (s)", text(settings, "animation_time_s")},
@@ -448,6 +457,56 @@ std::string PlansHowTo() {
 // The time axis of the charts and the single-clock columns, naming the clock compared on.
 std::string TimeAxisLabel(const ReportModel& model) {
     return fmt::format("median frame time (ms, {} time)", ClockName(model.clock));
+}
+
+// How frames were timed and compared, and why: the Method section's account of the method as
+// built (the figures that support it are in the clock-noise table beside it, from this run).
+std::string TimingMethodText(const ReportModel& model) {
+    return fmt::format(
+            "How the times were taken. Every frame is timed on one clock, chosen from the "
+            "renderer string ({}). Each compared pair of configurations is rendered back to "
+            "back on one thread, the side that goes first alternating from pair to pair, so the "
+            "two frames of a pair lie milliseconds apart and share whatever else the machine is "
+            "doing; the change is the Hodges-Lehmann estimate of the per-pair log frame-time "
+            "ratios with its 95% Wilcoxon signed-rank interval. Pairs are added (the minimum, "
+            "then a quarter more at each look) until the interval's half-width is at most the "
+            "resolution asked (±{} points) or the cap is reached, and each row states the "
+            "resolution it reached. Configurations that no comparison names get a few coarse "
+            "frames each, enough for the accuracy-versus-time chart. Why this method: on a "
+            "shared 2-core machine about half of a frame's time variance is slow drift that "
+            "adjacent frames share, which pairing milliseconds apart cancels and pairing seconds "
+            "apart (rounds over the matrix, as before) does not; rendering on the calling "
+            "thread (LP_NUM_THREADS=0) and timing that thread's CPU clock takes the scheduling "
+            "of llvmpipe's worker threads and of other processes out of the figure; the rank "
+            "estimator ignores the odd disturbed frame. Throughput comes back from several "
+            "rendering threads, each with its own GL context, both sides of a comparison always "
+            "on one thread. The table below shows, for every comparison of this run, how noisy "
+            "its pairs were on the compared clock and on the wall clock recorded beside it. A "
+            "deterministic instruction count (callgrind) was not used: it would time a frame "
+            "tens of times slower, and the intervals above already reach the resolution.",
+            model.inputs->clock_name.empty() ? std::string("unknown: older results")
+                                             : model.inputs->clock_name,
+            std::isfinite(model.inputs->resolution_points)
+                    ? fmt::format("{:.1f}", model.inputs->resolution_points)
+                    : std::string("–"));
+}
+
+std::vector<std::vector<std::string>> ClockNoiseTable(const ReportModel& model) {
+    std::vector<std::vector<std::string>> rows;
+    for (const ClockNoiseRow& r : model.clock_noise) {
+        rows.push_back({r.label, std::to_string(r.pairs), r.decision,
+                        Fixed(r.half_width_points, 1, " pt"),
+                        Fixed(r.pair_sd_clock_percent, 1, "%"),
+                        Fixed(r.pair_sd_wall_percent, 1, "%")});
+    }
+    return rows;
+}
+
+const std::vector<std::string>& ClockNoiseHeader() {
+    static const std::vector<std::string> header = {
+            "comparison", "pairs", "stopped", "half-width reached", "pair noise, compared clock",
+            "pair noise, wall clock"};
+    return header;
 }
 
 std::string ClockText(const ReportModel& model) {
@@ -891,6 +950,16 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                       {"largest_split_half_row", model.largest_split_half_row},
                       {"environment", model.inputs->results.value("environment", nlohmann::json::object())},
                       {"settings", model.inputs->results.value("settings", nlohmann::json::object())}};
+    nlohmann::json noise = nlohmann::json::array();
+    for (const ClockNoiseRow& r : model.clock_noise) {
+        noise.push_back({{"label", r.label},
+                         {"pairs", r.pairs},
+                         {"decision", r.decision},
+                         {"half_width_points", Num(r.half_width_points)},
+                         {"pair_sd_clock_percent", Num(r.pair_sd_clock_percent)},
+                         {"pair_sd_wall_percent", Num(r.pair_sd_wall_percent)}});
+    }
+    json["method"]["clock_noise"] = std::move(noise);
     auto side = [&model](const ComparisonSide& s) {
         nlohmann::json j = {{"preset", s.preset}};
         if (s.configuration != nullptr) {
@@ -929,6 +998,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                         {"measured_percent", Num(r.change_percent)},
                         {"measured_percent_ci", {Num(r.change_ci.low), Num(r.change_ci.high)}},
                         {"verdict", VerdictName(r.verdict)},
+                        {"firm", IsFirmVerdict(r.verdict, r.row.kind)},
                         {"verdict_reason", r.verdict_reason},
                         {"llvmpipe_note", r.row.llvmpipe_note},
                         {"split_half",
@@ -1194,7 +1264,8 @@ std::string HtmlTable(const std::vector<std::string>& header,
 struct Tables {
     std::vector<std::string> whitepaper_header = {
             "#", "change", "configurations compared (baseline → candidate)", "whitepaper's figure",
-            "measured here", "95% interval", "verdict", "why", "why llvmpipe agrees or differs"};
+            "measured here", "95% interval", "resolution reached", "verdict", "why",
+            "measured per pass", "context (fixed prose, not measured)"};
     std::vector<std::vector<std::string>> whitepaper;
     std::vector<std::string> whitepaper_css;
     std::vector<std::string> accuracy_header;  // set by BuildTables (names the clocks)
@@ -1265,8 +1336,14 @@ Tables BuildTables(const ReportModel& model) {
                  fmt::format("{} [{}] → {} [{}]", r.baseline.preset, ConfigurationLabel(r.baseline),
                              r.candidate.preset, ConfigurationLabel(r.candidate)),
                  "whitepaper: " + WhitepaperFigureCell(r.row), MeasuredCell(r),
-                 IntervalText(r.change_ci, 1, "%"), std::string(VerdictName(r.verdict)),
-                 r.verdict_reason, r.row.llvmpipe_note});
+                 IntervalText(r.change_ci, 1, "%"),
+                 std::isfinite(r.resolution_points)
+                         ? fmt::format("±{:.1f} points, {} pairs", r.resolution_points,
+                                       r.ratio.pairs)
+                         : std::string("–"),
+                 std::string(VerdictName(r.verdict)), r.verdict_reason,
+                 r.measured_why.empty() ? std::string("–") : r.measured_why,
+                 r.row.llvmpipe_note});
         // The row class names the row so tools (and the browser test) can find each one.
         t.whitepaper_css.push_back(VerdictCss(r.verdict) + " wp-row-" + std::to_string(r.row.number));
     }
@@ -1491,14 +1568,16 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     for (std::size_t i = 0; i < model.panels.size(); ++i) {
         md += PanelMarkdown(model.panels[i], files[i]);
     }
-    md += "## 6. Method and noise\n\n" + ClockText(model) + "\n\n" +
+    md += "## 6. Method and noise\n\n" + ClockText(model) + "\n\n" + TimingMethodText(model) +
+          "\n\n" + MarkdownTable(ClockNoiseHeader(), ClockNoiseTable(model)) +
           MarkdownTable({"setting", "value"}, t.method);
-    md += fmt::format("Split-half reliability: every comparison computed again from the odd rounds "
-                      "and from the even rounds. Largest disagreement: **{}** (row {}).\n\n",
+    md += fmt::format("Split-half reliability: every comparison computed again from the pairs "
+                      "where the baseline went first and from those where the candidate went "
+                      "first. Largest disagreement: **{}** (row {}).\n\n",
                       Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
                       model.largest_split_half_row);
-    md += MarkdownTable({"#", "comparison", "all rounds", "odd rounds", "even rounds",
-                         "disagreement", "rounds"},
+    md += MarkdownTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
+                         "disagreement", "pairs"},
                         t.split);
     md += "## 7. Numerical stability\n\n";
     if (!model.inputs->stability) {
@@ -1723,15 +1802,17 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     }
 
     h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" + HtmlNote(ClockText(model)) +
-         "</p>" + HtmlTable({"setting", "value"}, t.method);
-    h += fmt::format("<p>Split-half reliability: every comparison computed again from the odd "
-                     "rounds and from the even rounds. Largest disagreement: <b>{}</b> (row {}). "
-                     "A verdict is only as firm as its interval; rows whose halves disagree by "
-                     "more than a few points deserve a longer run (--rounds).</p>",
+         "</p><p>" + Html(TimingMethodText(model)) + "</p>" +
+         HtmlTable(ClockNoiseHeader(), ClockNoiseTable(model)) +
+         HtmlTable({"setting", "value"}, t.method);
+    h += fmt::format("<p>Split-half reliability: every comparison computed again from the pairs "
+                     "where the baseline went first and from those where the candidate went "
+                     "first. Largest disagreement: <b>{}</b> (row {}). A verdict is only as firm "
+                     "as its interval; a finer --resolution narrows it.</p>",
                      Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
                      model.largest_split_half_row);
-    h += HtmlTable({"#", "comparison", "all rounds", "odd rounds", "even rounds", "disagreement",
-                    "rounds"},
+    h += HtmlTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
+                    "disagreement", "pairs"},
                    t.split);
 
     h += "<h2 id=\"stability\">7. Numerical stability</h2>";

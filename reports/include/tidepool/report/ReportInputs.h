@@ -104,6 +104,8 @@ struct MeasuredComparison {
     std::string candidate;
     std::vector<double> baseline_ms;  // on the run's clock, pair i = (baseline_ms[i],
     std::vector<double> candidate_ms;  // candidate_ms[i])
+    std::vector<double> baseline_wall_ms;   // the same frames on the wall clock (may be empty)
+    std::vector<double> candidate_wall_ms;
     std::string decision;   // "resolved" or "capped"
     std::string error;      // why the runner has no pairs ("" when it has)
 };

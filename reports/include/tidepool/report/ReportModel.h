@@ -246,6 +246,18 @@ struct TechniqueComparison {
     bool HasError() const { return views_compared > 0; }
 };
 
+/// How noisy one comparison's pairs were on the compared clock and on the wall clock beside it:
+/// what the choice of clock buys, measured in this run.
+struct ClockNoiseRow {
+    std::string label;
+    int pairs = 0;
+    std::string decision;  // "resolved" or "capped"
+    double half_width_points = std::numeric_limits<double>::quiet_NaN();
+    // Standard deviation of the per-pair log frame-time ratio, in percent.
+    double pair_sd_clock_percent = std::numeric_limits<double>::quiet_NaN();
+    double pair_sd_wall_percent = std::numeric_limits<double>::quiet_NaN();
+};
+
 /// Options of a report build.
 struct ReportOptions {
     std::string name = "default";
@@ -274,6 +286,7 @@ struct ReportModel {
     // `reference` here is the planar image, not the reference preset's.
     std::vector<ImagePanel> reflection_panels;
     std::vector<TechniqueComparison> optics;  // (full -> full_depth_optics)
+    std::vector<ClockNoiseRow> clock_noise;  // one per recorded comparison
     double largest_split_half_disagreement = std::numeric_limits<double>::quiet_NaN();
     int largest_split_half_row = 0;
     int failed_configurations = 0;

@@ -1,0 +1,70 @@
+#!/usr/bin/env python3
+"""Prints two reports' whitepaper rows side by side (data.json of `tidepool report`), the verdict
+agreement, the contradictions and each row's interval width. A contradiction is a row that is
+firm in both runs (a claim a second run could refute: a magnitude, the opposite direction, or
+the direction of a qualitative figure; `firm` in data.json) with different verdicts, or firm in
+one run and `opposite` in the other. Prints figures only; never pass/fail."""
+import json
+import statistics
+import sys
+
+
+def rows(path):
+    with open(path) as f:
+        return {r["number"]: r for r in json.load(f)["whitepaper_rows"]}
+
+
+def cell(r):
+    change = r.get("measured_percent")
+    ci = r.get("measured_percent_ci") or [None, None]
+    if change is None or ci[0] is None:
+        return "failed"
+    return f"{change:+6.1f}% [{ci[0]:+.1f}, {ci[1]:+.1f}]"
+
+
+def width(r):
+    ci = r.get("measured_percent_ci") or [None, None]
+    return None if ci[0] is None else ci[1] - ci[0]
+
+
+def main():
+    if len(sys.argv) != 5:
+        sys.exit("usage: compare_verdicts.py LABEL_A data_a.json LABEL_B data_b.json")
+    label_a, a, label_b, b = sys.argv[1], rows(sys.argv[2]), sys.argv[3], rows(sys.argv[4])
+    print(f"{'#':>2}  {'whitepaper':<22} {label_a + ' change [95%]':<28} {'verdict':<36} "
+          f"{label_b + ' change [95%]':<28} {'verdict':<36} agreement")
+    same = contradictions = 0
+    firm_big = []
+    for n in sorted(a):
+        ra, rb = a[n], b.get(n, {})
+        va, vb = ra.get("verdict"), rb.get("verdict")
+        fa, fb = ra.get("firm", False), rb.get("firm", False)
+        if va == vb:
+            same += 1
+            agreement = "same"
+        elif (fa and fb) or "opposite" in (va, vb) and (fa or fb):
+            contradictions += 1
+            agreement = "CONTRADICTION"
+        else:
+            agreement = "differs (not both firm)"
+        print(f"{n:>2}  {ra.get('whitepaper_figure', '')[:22]:<22} {cell(ra):<28} {va:<36} "
+              f"{cell(rb):<28} {vb:<36} {agreement}")
+        for r, f in ((ra, fa), (rb, fb)):
+            change = r.get("measured_percent")
+            if change is not None and abs(change) >= 3:
+                firm_big.append((n, f))
+    widths_a = [w for w in (width(r) for r in a.values()) if w is not None]
+    widths_b = [w for w in (width(r) for r in b.values()) if w is not None]
+    print(f"\nverdicts equal on {same} of {len(a)} rows; contradictions: {contradictions} "
+          "(target 0)")
+    not_firm = sorted({n for n, f in firm_big if not f})
+    print(f"rows with an effect of at least 3% that are not firm in some run: "
+          f"{not_firm if not_firm else 'none'} (target none)")
+    for label, widths in ((label_a, widths_a), (label_b, widths_b)):
+        if widths:
+            print(f"{label}: median 95% interval width {statistics.median(widths):.2f} points "
+                  f"(target <= 3 quiet), widest {max(widths):.2f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# Benchmark (issue 11): the main job as a user runs it, `tidepool run` on the default
+# variants.yaml (install and build excluded), once as the machine is and once with two
+# CPU-bound processes competing (`yes`). Prints the wall time of each run with the share of
+# each stage, and the two runs' whitepaper verdicts side by side. Figures only.
+# Usage: bench/main_job.sh [BUILD_DIR (build/release)] [extra `run` flags...]
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${1:-$root/build/release}"
+shift || true
+extra=("$@")
+tidepool="$build/cli/tidepool"
+out="$(mktemp -d /tmp/tidepool-mainjob.XXXXXX)"
+cd "$root"
+
+run_once() {  # LABEL
+  local start end
+  start=$(date +%s%N)
+  "$tidepool" run --config variants.yaml --out "$out/$1" "${extra[@]}" \
+      > "$out/$1.stdout" 2> "$out/$1.log" || true
+  end=$(date +%s%N)
+  echo "$(( (end - start) / 1000000 ))" > "$out/$1.ms"
+}
+
+stages() {  # LABEL DESCRIPTION
+  python3 - "$out/$1.log" "$out/$1.stdout" "$(cat "$out/$1.ms")" "$1" "$2" <<'PY'
+import re, sys
+log, stdout, total_ms, label, what = open(sys.argv[1]).read(), open(sys.argv[2]).read(), \
+    int(sys.argv[3]), sys.argv[4], sys.argv[5]
+total = total_ms / 1000
+found = {
+    "render": re.search(r"^render: \d+ configurations, \d+ failed, (\d+) s", log, re.M),
+    "stability": re.search(r"^stability: .* (\d+) s;", log, re.M),
+    "plans": re.search(r"^plans: .* (\d+) s;", log, re.M),
+    "report": re.search(r"written in ([\d.]+) s", stdout),
+}
+print(f"{label} ({what}): {total:.0f} s wall in all")
+accounted = 0.0
+for stage, m in found.items():
+    if m:
+        seconds = float(m.group(1))
+        accounted += seconds
+        print(f"  {stage:<10} {seconds:7.1f} s  {100 * seconds / total:5.1f}%")
+print(f"  {'validate, start-up and the rest':<10} {total - accounted:7.1f} s  "
+      f"{100 * (total - accounted) / total:5.1f}%")
+PY
+}
+
+quiet_load=$(cut -d' ' -f1-3 /proc/loadavg)
+run_once quiet
+yes > /dev/null & y1=$!
+yes > /dev/null & y2=$!
+trap 'kill $y1 $y2 2>/dev/null || true' EXIT
+sleep 2
+loaded_load=$(cut -d' ' -f1-3 /proc/loadavg)
+run_once loaded
+kill $y1 $y2 2>/dev/null || true
+trap - EXIT
+
+echo "targets: <= 150 s quiet, <= 300 s with two competing processes, report <= 5 s"
+stages quiet "load average before: $quiet_load"
+stages loaded "two yes processes; load average after 2 s: $loaded_load"
+echo
+python3 "$root/bench/compare_verdicts.py" quiet "$out/quiet/default/data.json" \
+    loaded "$out/loaded/default/data.json"
+echo
+echo "outputs in $out/{quiet,loaded}/"
