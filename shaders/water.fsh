@@ -59,7 +59,8 @@
 //   ENABLE_SOFT_SHORE        Blends back to the refraction where D * ShoreHardness < 1, so the
 //                            water meets the shore without a hard edge.
 //   ENABLE_SUN_SPECULAR      The seed's sun glare: pow(reflected-eye · sun, 512) weighted by
-//                            (1 - Fresnel) and Shininess. Needs ENABLE_FRESNEL.
+//                            (1 - Fresnel) and Shininess, evaluated in a form that does not
+//                            band at mediump. Needs ENABLE_FRESNEL.
 // Every combination compiles; an option whose prerequisite is missing is a no-op.
 //
 // Test-only switches (never in variants.yaml; `tidepool stability` uses them to measure what each
@@ -218,6 +219,8 @@ uniform lowp vec3 SurfaceColour;
 uniform lowp vec3 DepthColour;
 // Floor under the cosine of the view angle: the path length is at most 20 times the depth.
 const mediump float cMinViewCos = 0.05;
+// Floor under Visibility and Extinction (world units), a normal fp16 number.
+const mediump float cMinOpticalLength = 1e-3;
 #endif
 
 #ifdef ENABLE_SHORE_FOAM
@@ -429,9 +432,14 @@ void main()
 #ifdef ENABLE_EXTINCTION
     // Horizontal visibility first (the water's own colour along the path), then extinction with
     // depth, channel by channel: red is gone at Extinction.r, blue only at Extinction.b.
+    // The divisors are floored: a visibility or extinction of 0 ("opaque at once") would give
+    // 0/0 = NaN at the water line; floored, 0 depth stays clear and any depth above 1e-3 is
+    // opaque, as the CPU reference (WaterMath.h, ExtinctionColour) has it.
     mediump float pathLength = waterDepth / max(eyeDirection.y, cMinViewCos);
-    refraction = mix(refraction, SurfaceColour, clamp(pathLength / Visibility, 0.0, 1.0));
-    refraction = mix(refraction, DepthColour, clamp(vec3(waterDepth) / Extinction, 0.0, 1.0));
+    refraction = mix(refraction, SurfaceColour,
+                     clamp(pathLength / max(Visibility, cMinOpticalLength), 0.0, 1.0));
+    refraction = mix(refraction, DepthColour,
+                     clamp(vec3(waterDepth) / max(Extinction, vec3(cMinOpticalLength)), 0.0, 1.0));
 #endif
 #ifdef TP_OUTPUT_REFRACTION
     gl_FragColor = vec4(refraction, 1.0);
@@ -447,10 +455,17 @@ void main()
     // The seed's glare: the eye direction mirrored about the normal against the sun, raised to
     // the 512th power, weighted by (1 - Fresnel) and the sun's height. Clamped: the boost for
     // shininess above 0.05 takes the sum past 1.
+    // pow(dotSpec, 512) with dotSpec = dot(m, s) * 0.5 + 0.5 bands into rings at mediump: near 1
+    // fp16's spacing is 2^-11, and one step moves the 512th power by 22%. For unit m and s,
+    // 1 - dotSpec = |m - s|^2 / 4 keeps full relative precision near the highlight, and
+    // (1 - u)^512 = exp2(512 log2(1 - u)) ~ exp2(-738.65 (u + u^2 / 2)) (512 / ln 2 = 738.65; the
+    // dropped u^3 / 3 moves the exponent by < 3e-4 wherever the power exceeds 1/255).
     mediump vec3 mirrorEye = 2.0 * dot(eyeDirection, normal) * normal - eyeDirection;
-    mediump float dotSpec = clamp(dot(mirrorEye, SunDirection) * 0.5 + 0.5, 0.0, 1.0);
+    mediump vec3 toSun = mirrorEye - SunDirection;
+    mediump float u = min(dot(toSun, toSun) * 0.25, 1.0);
+    mediump float glare = exp2(-738.65 * (u + 0.5 * u * u));
     mediump float specular = (1.0 - reflectance) * clamp(SunDirection.y, 0.0, 1.0)
-                           * pow(dotSpec, 512.0) * (Shininess * 1.8 + 0.2);
+                           * glare * (Shininess * 1.8 + 0.2);
     specular += specular * 25.0 * clamp(Shininess - 0.05, 0.0, 1.0);
     colour = min(colour + specular * SunColour, vec3(1.0));
 #endif

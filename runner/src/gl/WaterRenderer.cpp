@@ -530,7 +530,7 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, FrameReport* report) 
                     scene.sun_direction.y, scene.sun_direction.z);
     gl->glUniform1f(Uniform(program, "WaterHeight"), scene.water_height);
     gl->glUniform1f(Uniform(program, "RcpMaxWaterDepth"),
-                    MediumpFogReciprocal(1.0F / settings.max_water_depth));
+                    MediumpFogReciprocal(1.0F / MediumpMaxWaterDepth(settings.max_water_depth)));
     gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"),
                     MediumpFogReciprocal(settings.rcp_max_fog_depth));
     gl->glUniform3f(Uniform(program, "FogColour"), settings.underwater_colour.r,
@@ -637,7 +637,8 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
     gl->glUniform1i(Uniform(program, "SkyboxTex"), kUnitSky);
     gl->glUniform3f(Uniform(program, "TerrainReflectionColour"), terrain_reflection_colour.r,
                     terrain_reflection_colour.g, terrain_reflection_colour.b);
-    gl->glUniform1f(Uniform(program, "MaxWaterDepth"), settings.max_water_depth);
+    gl->glUniform1f(Uniform(program, "MaxWaterDepth"),
+                    MediumpMaxWaterDepth(settings.max_water_depth));
     const ExtinctionModel& extinction = settings.extinction;
     gl->glUniform3f(Uniform(program, "Extinction"), extinction.extinction.r,
                     extinction.extinction.g, extinction.extinction.b);
