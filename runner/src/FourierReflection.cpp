@@ -60,7 +60,8 @@ Heightfield TerrainHeightfield(const Scene& scene) {
         return {};
     }
     std::vector<glm::vec3> world;
-    const std::size_t grid_size = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+    const std::size_t grid_size =
+            static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
     world.reserve(grid_size);
     for (std::size_t i = 0; i < grid_size; ++i) {
         world.emplace_back(scene.terrain.model_matrix * glm::vec4(positions[i], 1.0F));

@@ -128,7 +128,8 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
     plan.eye = view.eye;
     plan.polygon = InfinitePlanePolygon(plan.view_projection, water_plane);
     if (plan.polygon.size() > static_cast<std::size_t>(kMaxWaterPolygonVertices)) {
-        plan.polygon.resize(kMaxWaterPolygonVertices);  // cannot happen for a convex cut of a frustum
+        // Cannot happen for a convex cut of a frustum.
+        plan.polygon.resize(kMaxWaterPolygonVertices);
     }
     // In double, then rounded: velocity × 10^6 s in float keeps only ~3 fractional bits of the
     // wrapped translation (hard case "long_run_wrapped"); double keeps it to 1e-10.

@@ -343,11 +343,13 @@ constexpr float kSeabedHeight = -20.0F;
 // The grid's vertices stay first and unchanged (FourierReflection.h marches them as a grid).
 void AppendSeabedSkirt(Mesh& mesh, int segments) {
     const auto stride = static_cast<std::size_t>(segments) + 1;
+    const auto last = static_cast<std::size_t>(segments);
+    auto at = [&](std::size_t row, std::size_t column) { return row * stride + column; };
     std::vector<std::size_t> border;  // walked once around, each corner once
-    for (int j = 0; j < segments; ++j) border.push_back(static_cast<std::size_t>(j));
-    for (int i = 0; i < segments; ++i) border.push_back(static_cast<std::size_t>(i) * stride + stride - 1);
-    for (int j = segments; j > 0; --j) border.push_back(static_cast<std::size_t>(segments) * stride + static_cast<std::size_t>(j));
-    for (int i = segments; i > 0; --i) border.push_back(static_cast<std::size_t>(i) * stride);
+    for (std::size_t k = 0; k < last; ++k) border.push_back(at(0, k));
+    for (std::size_t k = 0; k < last; ++k) border.push_back(at(k, last));
+    for (std::size_t k = last; k > 0; --k) border.push_back(at(last, k));
+    for (std::size_t k = last; k > 0; --k) border.push_back(at(k, 0));
     const std::size_t base = mesh.positions.size();
     for (std::size_t v : border) {
         const glm::vec3 inner = mesh.positions[v];

@@ -325,7 +325,8 @@ TEST_F(FramePlanTest, EveryProgramAFrameDrawsIsInTheValidatedMatrix) {
         // The oblique projection's fallback clips the models by discard: those variants too.
         RenderConfiguration discard = c;
         discard.passes.clip = "discard";
-        for (const RenderConfiguration* arm : {&c, static_cast<const RenderConfiguration*>(&discard)}) {
+        const std::vector<const RenderConfiguration*> arms = {&c, &discard};
+        for (const RenderConfiguration* arm : arms) {
             for (const Variant& helper : HelperPrograms(*arm)) {
                 EXPECT_TRUE(validated.count(helper.Id())) << helper.Id() << " for " << c.id;
             }
