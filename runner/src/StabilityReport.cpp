@@ -620,7 +620,8 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
             // back-facing summed bump normals give cos slightly below 0, where the unclamped F
             // exceeds 1 and mix() extrapolates past the reflection. Measured: 0.071 at 64x48 with
             // distortion in the demo's units (before: 0.032 at 32x24, 0.084 at 64x48; finer
-            // pixels reach steeper normals). 0.1 (F = 1.1, cos ≈ -0.02) bounds that sliver; more would mean the clamp acts beyond back-facing normals.
+            // pixels reach steeper normals). 0.1 (F = 1.1, cos ≈ -0.02) bounds that sliver; more
+            // would mean the clamp acts beyond back-facing normals.
             {"clamp(dot(N, E), 0, 1) before the Fresnel power", "TP_NO_COS_CLAMP", 0.1},
             {"floored inversesqrt normalising the summed bump normal", "TP_NO_NORMAL_FLOOR",
              kOneStep},
