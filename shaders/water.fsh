@@ -4,16 +4,20 @@
 // Costs quoted are the whitepaper's (PowerVR SGX class); this renderer measures its own.
 //
 // Defines:
-//   ENABLE_DISTORTION        Ripples: two NormalTex samples offset the screen-space lookup.
-//                            Buys a moving surface; costs two dependent texture reads.
+//   ENABLE_DISTORTION        Ripples: two NormalTex samples offset the screen-space lookup by
+//                            their mean normal times WaveDistortion, in texture units (the
+//                            demo's convention). Buys a moving surface; costs two dependent
+//                            texture reads.
 //   ENABLE_SCALE_DISTORTION  Divides the offset by the eye distance so far water does not shimmer
 //                            more than near water. Needs ENABLE_DISTORTION. Costs a length and a
-//                            divide (whitepaper: <1%).
+//                            divide (whitepaper: <1%). Without it the renderer sets WaveDistortion
+//                            to give the same offset at the view's typical water distance.
 //   ENABLE_REFRACTION        Mixes in RefractionTex (0.4 reflection). Buys visible depths; costs a
 //                            whole extra render pass plus a texture read (whitepaper: -60%).
 //   ENABLE_FRESNEL           Schlick's angle-dependent mix instead of the constant 0.4.
-//                            Needs ENABLE_REFRACTION. Costs a normalisation and a few multiplies
-//                            (whitepaper: -22%).
+//                            Needs ENABLE_REFRACTION. Costs the eye direction (from the squared
+//                            length the eye distance already needs), a dot product with the
+//                            accumulated normal as it is, and a few multiplies (whitepaper: -22%).
 //   FRESNEL_EXACT            Full unpolarised dielectric Fresnel equations instead of Schlick.
 //                            Needs ENABLE_FRESNEL. Buys exact reflectance at all angles; costs a
 //                            sqrt, two divides and more arithmetic.
@@ -32,7 +36,8 @@
 // Reflection technique (the REFLECTION axis of variants.yaml; at most one of these is defined):
 //   (neither)                Planar: ReflectionTex, a mirrored render of the scene, sampled at
 //                            the screen coordinate. Shows everything; costs a whole render pass.
-//   REFLECTION_CUBEMAP       The view ray reflected about the (bumped) normal looks up SkyboxTex
+//   REFLECTION_CUBEMAP       The view ray reflected about the bumped normal (tilted by the
+//                            planar lookup's offset, the same convention) looks up SkyboxTex
 //                            (../shared/seeds/001). No reflection pass; shows only the sky, so
 //                            terrain and objects are missing from the reflection.
 //   REFLECTION_FOURIER       As cubemap, but where the reflected ray's elevation lies below the
@@ -54,7 +59,8 @@
 //   ENABLE_SOFT_SHORE        Blends back to the refraction where D * ShoreHardness < 1, so the
 //                            water meets the shore without a hard edge.
 //   ENABLE_SUN_SPECULAR      The seed's sun glare: pow(reflected-eye · sun, 512) weighted by
-//                            (1 - Fresnel) and Shininess. Needs ENABLE_FRESNEL.
+//                            (1 - Fresnel) and Shininess, evaluated in a form that does not
+//                            band at mediump. Needs ENABLE_FRESNEL.
 // Every combination compiles; an option whose prerequisite is missing is a no-op.
 //
 // Test-only switches (never in variants.yaml; `tidepool stability` uses them to measure what each
@@ -124,6 +130,10 @@ precision mediump float;
 #if defined(ENABLE_EXTINCTION) || defined(ENABLE_SHORE_FOAM) || defined(ENABLE_SOFT_SHORE)
 #define NEEDS_WATER_DEPTH
 #endif
+// A unit surface normal: the glare and the exact Fresnel reference.
+#if defined(ENABLE_SUN_SPECULAR) || defined(FRESNEL_EXACT)
+#define NEEDS_UNIT_NORMAL
+#endif
 
 // highp is optional in GLSL ES 1.00 fragment shaders; where it is missing, the eye vector and bump
 // coordinates fall back to mediump. The eye-vector scaling below keeps lengths and directions
@@ -135,6 +145,9 @@ precision mediump float;
 #define HIGHP_OR_MEDIUMP mediump
 #endif
 
+// Largest distortion factor (texture units per unit of bump normal): with normals' horizontal
+// parts up to 0.5, offsets up to 8 textures, far past the edge any lookup clamps to.
+const mediump float cMaxDistortion = 16.0;
 // Reflection share of the constant reflection/refraction mix (whitepaper demo).
 const mediump float cReflectionShare = 0.4;
 // Alpha under ENABLE_ALPHA_BLEND: 40% of the scene below shows through.
@@ -206,6 +219,8 @@ uniform lowp vec3 SurfaceColour;
 uniform lowp vec3 DepthColour;
 // Floor under the cosine of the view angle: the path length is at most 20 times the depth.
 const mediump float cMinViewCos = 0.05;
+// Floor under Visibility and Extinction (world units), a normal fp16 number.
+const mediump float cMinOpticalLength = 1e-3;
 #endif
 
 #ifdef ENABLE_SHORE_FOAM
@@ -311,19 +326,24 @@ void main()
 #endif
 
 #ifdef ENABLE_DISTORTION
-    // The map is z-major (z is "up"): sum the two layers in texture space, then swizzle to world
-    // (x, z, y). The sum is not normalised: the offset wants its length, Fresnel normalises it.
-    mediump vec3 bump = (texture2D(NormalTex, BumpCoord0).rgb * 2.0 - 1.0)
-                      + (texture2D(NormalTex, BumpCoord1).rgb * 2.0 - 1.0);
+    // The map is z-major (z is "up"). As in the demo, the two stored texels are added and 1
+    // subtracted: (n0 * 0.5 + 0.5) + (n1 * 0.5 + 0.5) - 1 = (n0 + n1) / 2, the mean of the two
+    // layers' normals, in one add and one subtract. Swizzled to world (x, z, y); not normalised.
+    mediump vec3 bump = texture2D(NormalTex, BumpCoord0).rgb
+                      + texture2D(NormalTex, BumpCoord1).rgb - 1.0;
     mediump vec3 bumpNormal = bump.xzy;
 
     mediump float distortion = WaveDistortion;
 #ifdef ENABLE_SCALE_DISTORTION
     // The same ripple covers fewer pixels further away, so shrink its offset with distance.
-    distortion = WaveDistortion / eyeDistance;
+    // Capped: in texture units an offset past the texture's edge only clamps to it, and the
+    // demo's 100 over an eye distance below 100 / 65504 overflows mediump (Inf x 0 = NaN for a
+    // flat bump). min() of Inf is the cap, so the cap also catches the overflow itself.
+    distortion = min(WaveDistortion / eyeDistance, cMaxDistortion);
 #endif
-    // Subtracted, as in the whitepaper demo; WaveDistortion is in pixels, hence RcpWindowSize.
-    screenCoord -= bumpNormal.xz * distortion * RcpWindowSize;
+    // Subtracted in texture units, as in the whitepaper demo (WaveDistortion 100, scaled), so
+    // the offset is the same share of the picture at any target size.
+    screenCoord -= bumpNormal.xz * distortion;
 #endif
 
 #ifdef NEEDS_EYE_DIRECTION
@@ -341,12 +361,17 @@ void main()
 #endif
 #if !defined(ENABLE_DISTORTION)
     mediump vec3 normal = vec3(0.0, 1.0, 0.0);
+#elif !defined(NEEDS_UNIT_NORMAL)
+    // Schlick's Fresnel takes the accumulated normal as it is, as the whitepaper's demo did
+    // ("the assumption is made that the accumulated normal ... is already normalised"): the mean
+    // of two unit normals tilted at most 27 degrees is at least 0.89 long.
+    mediump vec3 normal = bumpNormal;
 #elif defined(TP_NO_NORMAL_FLOOR)
     mediump vec3 normal = normalize(bumpNormal);
 #else
-    // The sum of two bump layers is not unit length (the whitepaper assumes it is): normalised
-    // with a floor rather than normalize(), which is NaN for a zero vector (a float normal map
-    // could hold exactly 0.5 grey; 1e-4 is representable in mediump).
+    // The sun's glare and the exact Fresnel reference need a unit normal:
+    // normalised with a floor rather than normalize(), which is NaN for a zero vector (a float
+    // normal map could hold exactly 0.5 grey; 1e-4 is representable in mediump).
     mediump vec3 normal = bumpNormal * inversesqrt(max(dot(bumpNormal, bumpNormal), 1e-4));
 #endif
 #ifdef TP_NO_COS_CLAMP
@@ -363,7 +388,18 @@ void main()
     // The view ray reflected about the normal: reflect(-eyeDirection, normal). A back-facing
     // bump normal can send it below the horizon; mirrored back up (its length stays 1), since
     // the reflection of a ray leaving the water surface cannot point into the water.
-    mediump vec3 reflected = 2.0 * dot(normal, eyeDirection) * normal - eyeDirection;
+#ifdef ENABLE_DISTORTION
+    // Perturbed by the planar lookup's convention, so the techniques compare at one ripple
+    // strength: the normal's tilt (its horizontal part over its vertical) is the offset the
+    // planar reflection applies, bump x distortion (texture units), and scales with the eye
+    // distance as it does. Clamped at a tilt of 8 (83 degrees) so that a distortion divided by
+    // the floored eye distance cannot overflow mediump when squared.
+    mediump vec2 tilt = clamp(bumpNormal.xz * distortion, -8.0, 8.0);
+    mediump vec3 skyNormal = vec3(tilt.x, 1.0, tilt.y) * inversesqrt(1.0 + dot(tilt, tilt));
+#else
+    mediump vec3 skyNormal = vec3(0.0, 1.0, 0.0);
+#endif
+    mediump vec3 reflected = 2.0 * dot(skyNormal, eyeDirection) * skyNormal - eyeDirection;
     reflected.y = abs(reflected.y);
     mediump vec3 colour = textureCube(SkyboxTex, reflected).rgb;
 #ifdef ENABLE_FOG
@@ -396,9 +432,14 @@ void main()
 #ifdef ENABLE_EXTINCTION
     // Horizontal visibility first (the water's own colour along the path), then extinction with
     // depth, channel by channel: red is gone at Extinction.r, blue only at Extinction.b.
+    // The divisors are floored: a visibility or extinction of 0 ("opaque at once") would give
+    // 0/0 = NaN at the water line; floored, 0 depth stays clear and any depth above 1e-3 is
+    // opaque, as the CPU reference (WaterMath.h, ExtinctionColour) has it.
     mediump float pathLength = waterDepth / max(eyeDirection.y, cMinViewCos);
-    refraction = mix(refraction, SurfaceColour, clamp(pathLength / Visibility, 0.0, 1.0));
-    refraction = mix(refraction, DepthColour, clamp(vec3(waterDepth) / Extinction, 0.0, 1.0));
+    refraction = mix(refraction, SurfaceColour,
+                     clamp(pathLength / max(Visibility, cMinOpticalLength), 0.0, 1.0));
+    refraction = mix(refraction, DepthColour,
+                     clamp(vec3(waterDepth) / max(Extinction, vec3(cMinOpticalLength)), 0.0, 1.0));
 #endif
 #ifdef TP_OUTPUT_REFRACTION
     gl_FragColor = vec4(refraction, 1.0);
@@ -414,10 +455,17 @@ void main()
     // The seed's glare: the eye direction mirrored about the normal against the sun, raised to
     // the 512th power, weighted by (1 - Fresnel) and the sun's height. Clamped: the boost for
     // shininess above 0.05 takes the sum past 1.
+    // pow(dotSpec, 512) with dotSpec = dot(m, s) * 0.5 + 0.5 bands into rings at mediump: near 1
+    // fp16's spacing is 2^-11, and one step moves the 512th power by 22%. For unit m and s,
+    // 1 - dotSpec = |m - s|^2 / 4 keeps full relative precision near the highlight, and
+    // (1 - u)^512 = exp2(512 log2(1 - u)) ~ exp2(-738.65 (u + u^2 / 2)) (512 / ln 2 = 738.65; the
+    // dropped u^3 / 3 moves the exponent by < 3e-4 wherever the power exceeds 1/255).
     mediump vec3 mirrorEye = 2.0 * dot(eyeDirection, normal) * normal - eyeDirection;
-    mediump float dotSpec = clamp(dot(mirrorEye, SunDirection) * 0.5 + 0.5, 0.0, 1.0);
+    mediump vec3 toSun = mirrorEye - SunDirection;
+    mediump float u = min(dot(toSun, toSun) * 0.25, 1.0);
+    mediump float glare = exp2(-738.65 * (u + 0.5 * u * u));
     mediump float specular = (1.0 - reflectance) * clamp(SunDirection.y, 0.0, 1.0)
-                           * pow(dotSpec, 512.0) * (Shininess * 1.8 + 0.2);
+                           * glare * (Shininess * 1.8 + 0.2);
     specular += specular * 25.0 * clamp(Shininess - 0.05, 0.0, 1.0);
     colour = min(colour + specular * SunColour, vec3(1.0));
 #endif

@@ -24,6 +24,7 @@ const mediump float cBlendAlpha = 0.6;
 #endif
 
 const HIGHP_OR_MEDIUMP float cMinEyeDistance = 1e-3;
+const mediump float cMaxDistortion = 16.0;  // water.fsh says why
 
 uniform bool bDistortion;
 uniform bool bScaleDistortion;
@@ -94,16 +95,17 @@ void main()
 
     mediump vec3 bumpNormal = vec3(0.0, 1.0, 0.0);
     if (bDistortion) {
-        // z-major map: sum both layers in texture space, then swizzle to world (x, z, y).
-        mediump vec3 bump = (texture2D(NormalTex, BumpCoord0).rgb * 2.0 - 1.0)
-                          + (texture2D(NormalTex, BumpCoord1).rgb * 2.0 - 1.0);
+        // z-major map: the mean of both layers' normals as the demo forms it, then swizzled to
+        // world (x, z, y).
+        mediump vec3 bump = texture2D(NormalTex, BumpCoord0).rgb
+                          + texture2D(NormalTex, BumpCoord1).rgb - 1.0;
         bumpNormal = bump.xzy;
 
         mediump float distortion = WaveDistortion;
         if (scaleDistortion) {
-            distortion = WaveDistortion / eyeDistance;
+            distortion = min(WaveDistortion / eyeDistance, cMaxDistortion);  // as water.fsh
         }
-        screenCoord -= bumpNormal.xz * distortion * RcpWindowSize;
+        screenCoord -= bumpNormal.xz * distortion;  // texture units, as in water.fsh
     }
 
     mediump vec3 colour = texture2D(ReflectionTex, screenCoord).rgb;
@@ -118,8 +120,10 @@ void main()
             } else {
                 eyeDirection = eyeScaled * inversesqrt(max(eyeScaledLength2, 1e-4));
             }
-            mediump vec3 normal = vec3(0.0, 1.0, 0.0);
-            if (bDistortion) {
+            // The accumulated normal as it is for Schlick (water.fsh), unit for the exact
+            // reference.
+            mediump vec3 normal = bumpNormal;
+            if (bDistortion && bFresnelExact) {
                 normal = bumpNormal * inversesqrt(max(dot(bumpNormal, bumpNormal), 1e-4));
             }
             mediump float cosIncidence = clamp(dot(normal, eyeDirection), 0.0, 1.0);

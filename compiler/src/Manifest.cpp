@@ -54,7 +54,9 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
                            {"runtime_features", preset.runtime_features},
                            {"passes",
                             {{"reflection_size", preset.passes.reflection_size},
+                             {"refraction_size", preset.passes.refraction_size},
                              {"low_res_water", preset.passes.low_res_water},
+                             {"depth_fog", preset.passes.depth_fog},
                              {"clip", preset.passes.clip},
                              {"culling", preset.passes.culling}}}});
     }

@@ -28,8 +28,9 @@ constexpr Range kWaterDepth{0.5, 200.0};
 // Fog depth: below half a unit the refraction is the fog colour everywhere; beyond the far
 // plane it changes nothing.
 constexpr Range kFogDepth{0.5, 10000.0};
-// Wave strength scales the screen-space distortion; at 2 the demo's distortion already smears
-// the reflection by a tenth of a 640-wide screen, beyond that the water is noise.
+// Wave strength scales the demo's WaveDistortion (texture units per unit of bump normal, over
+// the eye distance); at 1 the default view's pillars already reflect as scattered speckles, so
+// beyond 2 the water is noise.
 constexpr Range kWaveStrength{0.0, 2.0};
 // The eye must stay above the reflection's 0.5-unit clip sliver, or the mirrored camera sees
 // under the water; 1000 is five times the terrain's size, where the scene is a dot.

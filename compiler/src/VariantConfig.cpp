@@ -466,19 +466,30 @@ PassOptions ConfigParser::ParsePasses(const YAML::Node& node) {
     if (!ExpectMap(node, "passes")) {
         return passes;
     }
-    CheckKeys(node, "passes", {"reflection_size", "low_res_water", "clip", "culling"});
-    if (node["reflection_size"]) {
-        passes.reflection_size = ReadInt(node["reflection_size"], "reflection_size", 256);
-        const int size = passes.reflection_size;
-        if (size < 1 || size > 4096 || (size & (size - 1)) != 0) {
-            Error(node["reflection_size"], "reflection_size must be a power of two from 1 to 4096");
+    CheckKeys(node, "passes",
+              {"reflection_size", "refraction_size", "low_res_water", "clip", "culling",
+               "depth_fog"});
+    // The reflection and refraction sizes are separate options so that a comparison of one
+    // (whitepaper row 11) leaves the other alone.
+    for (const char* key : {"reflection_size", "refraction_size"}) {
+        if (!node[key]) {
+            continue;
         }
+        const int size = ReadInt(node[key], key, 256);
+        if (size < 1 || size > 4096 || (size & (size - 1)) != 0) {
+            Error(node[key], fmt::format("{} must be a power of two from 1 to 4096", key));
+        }
+        (std::string_view(key) == "reflection_size" ? passes.reflection_size
+                                                    : passes.refraction_size) = size;
     }
     if (node["low_res_water"]) {
         passes.low_res_water = ReadBool(node["low_res_water"], "low_res_water", false);
     }
     if (node["culling"]) {
         passes.culling = ReadBool(node["culling"], "culling", true);
+    }
+    if (node["depth_fog"]) {
+        passes.depth_fog = ReadBool(node["depth_fog"], "depth_fog", true);
     }
     if (node["clip"] && ExpectScalar(node["clip"], "clip")) {
         passes.clip = node["clip"].Scalar();

@@ -205,9 +205,13 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
     c.uniform_bools = entry.value("uniform_bools", false);
     if (auto passes = entry.find("passes"); passes != entry.end() && passes->is_object()) {
         c.reflection_size = static_cast<int>(NumberOr(*passes, "reflection_size", 256));
+        // Results from before the option existed: the refraction shared the reflection's size.
+        c.refraction_size =
+                static_cast<int>(NumberOr(*passes, "refraction_size", c.reflection_size));
         c.low_res_water = passes->value("low_res_water", false);
         c.clip = StringOr(*passes, "clip", "oblique");
         c.culling = passes->value("culling", true);
+        c.depth_fog = passes->value("depth_fog", true);
     }
     if (!entry.contains("ok") || !entry["ok"].is_boolean()) {
         return fmt::format("configuration '{}' has no boolean 'ok'", c.id);
@@ -350,6 +354,12 @@ bool MeasuredConfiguration::HasPreset(std::string_view preset) const {
 
 std::string MeasuredConfiguration::PassLabel() const {
     std::string label = fmt::format("reflection {0}x{0}, {1} clip", reflection_size, clip);
+    if (refraction_size != reflection_size) {
+        label += fmt::format(", refraction {0}x{0}", refraction_size);
+    }
+    if (!depth_fog) {
+        label += ", no depth fog";
+    }
     if (low_res_water) {
         label += ", low-res water";
     }

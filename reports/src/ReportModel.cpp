@@ -16,11 +16,12 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A configuration rendered with the default pass options (256 reflection, oblique clip, no
-// low-resolution water, culling): only these share the pass work, so their static counts are
-// comparable with their times.
+// A configuration rendered with the default pass options (256 reflection and refraction,
+// oblique clip, no low-resolution water, culling, depth fog): only these share the pass work, so
+// their static counts are comparable with their times.
 bool HasDefaultPasses(const MeasuredConfiguration& c) {
-    return c.reflection_size == 256 && c.clip == "oblique" && !c.low_res_water && c.culling;
+    return c.reflection_size == 256 && c.refraction_size == 256 && c.clip == "oblique" &&
+           !c.low_res_water && c.culling && c.depth_fog;
 }
 
 // Ranks 1..n, ties getting the average of their ranks.

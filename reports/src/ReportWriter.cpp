@@ -1,4 +1,5 @@
 #include "tidepool/report/ReportWriter.h"
+#include "tidepool/report/WhitepaperTable.h"
 
 #include <unistd.h>
 
@@ -1579,6 +1580,7 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     md += MarkdownTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
                          "disagreement", "pairs"},
                         t.split);
+    md += RowDefinitionChanges() + "\n\n";
     md += "## 7. Numerical stability\n\n";
     if (!model.inputs->stability) {
         md += (model.inputs->stability_error.empty() ? StabilityHowTo()
@@ -1814,6 +1816,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     h += HtmlTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
                     "disagreement", "pairs"},
                    t.split);
+    h += "<p class=\"note\">" + HtmlNote(RowDefinitionChanges()) + "</p>";
 
     h += "<h2 id=\"stability\">7. Numerical stability</h2>";
     if (!model.inputs->stability) {

@@ -54,14 +54,17 @@ Heightfield TerrainHeightfield(const Scene& scene) {
     const int columns = scene.terrain_columns;
     const int rows = scene.terrain_rows;
     const std::vector<glm::vec3>& positions = scene.terrain.positions;
+    // The grid comes first; the terrain may append more (the seabed skirt) after it.
     if (columns < 2 || rows < 2 ||
-        static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows) != positions.size()) {
+        static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows) > positions.size()) {
         return {};
     }
     std::vector<glm::vec3> world;
-    world.reserve(positions.size());
-    for (const glm::vec3& p : positions) {
-        world.emplace_back(scene.terrain.model_matrix * glm::vec4(p, 1.0F));
+    const std::size_t grid_size =
+            static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
+    world.reserve(grid_size);
+    for (std::size_t i = 0; i < grid_size; ++i) {
+        world.emplace_back(scene.terrain.model_matrix * glm::vec4(positions[i], 1.0F));
     }
     Heightfield heightfield;
     heightfield.origin = {world[0].x, world[0].z};

@@ -80,12 +80,16 @@ std::vector<HardCase> HardCaseCatalogue() {
                         "at grazing angles: the whitepaper's 1 - dot(N, E) goes negative (pow of "
                         "a negative base is undefined in GLSL); the shader's form stays in "
                         "[R(0), 1].",
-                        "water.fsh normalises the summed normal with a floored inversesqrt, "
-                        "clamps cos to [0, 1] and takes the fifth power by multiplication"));
+                        "water.fsh clamps cos to [0, 1] and takes the fifth power by "
+                        "multiplication; the accumulated normal is the demo's mean of the two "
+                        "layers (length <= 1), normalised with a floored inversesqrt only where a "
+                        "unit normal is needed (exact Fresnel, sun glare)"));
     cases.push_back(Cpu("cpu_distortion_eye_distance_zero",
                         "Distortion scaling WaveDistortion / eye distance for distances down to 0: "
                         "the floored distance keeps the offset finite and bounded.",
-                        "water.fsh floors the eye distance at 1e-3"));
+                        "water.fsh floors the eye distance at 1e-3 and, since the demo's "
+                        "WaveDistortion of 100 over 1e-3 overflows mediump, caps the factor at 16 "
+                        "texture units"));
     cases.push_back(Cpu("cpu_fog_depth_extremes",
                         "Fog factors for maximum fog depths 0, 1e-30, 1e30 and infinite: the "
                         "reciprocal the renderer uploads stays in mediump range and the factor in "
@@ -167,6 +171,23 @@ std::vector<HardCase> HardCaseCatalogue() {
     unwrapped.settings.animation_time = 1e6F;
     unwrapped.settings.wrap_bump_translation = false;
     cases.push_back(unwrapped);
+    HardCase opaque = Gl("extinction_zero",
+                         "Extinction and visibility 0 (the water opaque at once): 0/0 at the "
+                         "water line in ENABLE_EXTINCTION.",
+                         DefaultViews().front(),
+                         "water.fsh floors both divisors at 1e-3 (the CPU reference already "
+                         "treated 0 as opaque)");
+    opaque.settings.extinction.extinction = glm::vec3(0.0F);
+    opaque.settings.extinction.visibility = 0.0F;
+    cases.push_back(opaque);
+    HardCase deep = Gl("max_water_depth_huge",
+                       "MaxWaterDepth 1e6, past mediump's 65504: Inf x 0 at the water line on "
+                       "fp16 hardware (llvmpipe runs mediump at fp32; the precision study "
+                       "emulates fp16).",
+                       DefaultViews().front(),
+                       "the renderer clamps it to [0.5, 3000] on upload (MediumpMaxWaterDepth)");
+    deep.settings.max_water_depth = 1e6F;
+    cases.push_back(deep);
     CameraView far_view = DefaultViews().front();
     far_view.far_plane = 1e6F;
     cases.push_back(Gl("far_plane_1e6", "The default view with the far plane at 1e6 (the water "

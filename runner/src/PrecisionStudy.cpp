@@ -78,9 +78,9 @@ Outputs Out3(const V3<S>& v) { return {ToDouble(v.x), ToDouble(v.y), ToDouble(v.
 
 // ---- The expressions, as water.fsh writes them (S is the precision) -------------------------
 
-// Constants of the default settings (Renderer.h): WaveDistortion 25, a 640-wide target, water
-// fog reaching 1 at 2000 units, bump layer 1 at 1/15 per unit.
-constexpr double kWaveDistortion = 25.0;
+// Constants of the default settings (Renderer.h): WaveDistortion 100 (texture units, the
+// demo's), a 640-wide target, water fog reaching 1 at 2000 units, bump layer 1 at 1/15 per unit.
+constexpr double kWaveDistortion = 100.0;
 constexpr double kRcpWidth = 1.0 / 640.0;
 constexpr double kRcpFogDistance = 1.0 / 2000.0;
 constexpr double kBumpScale = 1.0 / 15.0;
@@ -147,7 +147,48 @@ S FresnelChain(const V3<S>& bump, const V3<S>& eye) {
 
 template <typename S>
 S DistortionOffset(S bump_x, const V3<S>& eye) {
-    return bump_x * (S(kWaveDistortion) / EyeLengthScaled(eye)) * S(kRcpWidth);
+    return bump_x * Min(S(kWaveDistortion) / EyeLengthScaled(eye), S(16));  // cMaxDistortion
+}
+
+// The seed's glare power as the seed writes it: pow(dot(m, s) * 0.5 + 0.5, 512), with pow as
+// GPUs evaluate it, exp2(512 * log2(x)), each step rounded.
+template <typename S>
+S GlarePow(const V3<S>& m, const V3<S>& s) {
+    const S x = Clamp(Dot(m, s) * S(0.5) + S(0.5), S(0), S(1));
+    if (!(x > S(0))) {
+        return S(0);
+    }
+    const S log = S(std::log2(ToDouble(x)));
+    return S(std::exp2(ToDouble(S(512) * log)));
+}
+
+// water.fsh's form: u = |m - s|^2 / 4 = 1 - dotSpec, then exp2(-738.65 (u + u^2 / 2)).
+template <typename S>
+S GlareComplement(const V3<S>& m, const V3<S>& s) {
+    const V3<S> d{m.x - s.x, m.y - s.y, m.z - s.z};
+    const S u = Min(Dot(d, d) * S(0.25), S(1));
+    return S(std::exp2(ToDouble(S(-738.65) * (u + S(0.5) * u * u))));
+}
+
+// clamp(depth / divisor, 0, 1) as ENABLE_EXTINCTION wrote it, and floored as it does now; the
+// reference treats a divisor of 0 as "reached at once", as WaterMath.h's ExtinctionColour does.
+template <typename S>
+S ExtinctionRatio(S depth, S divisor, bool floored) {
+    if constexpr (std::is_same_v<S, double>) {
+        if (!(divisor > 0.0)) {
+            return depth > 0.0 ? 1.0 : 0.0;
+        }
+    }
+    return Clamp(depth / (floored ? Max(divisor, S(1e-3)) : divisor), S(0), S(1));
+}
+
+// The depth optics' path length a^2 * MaxWaterDepth / max(cos, 0.05), where a is the stored
+// sqrt(D / MaxWaterDepth); `clamped` applies the renderer's upload clamp (MediumpMaxWaterDepth).
+template <typename S>
+S DepthPath(double stored, double max_depth, double cos_view, bool clamped) {
+    const S depth_max = S(clamped ? std::min(max_depth, 3000.0) : max_depth);
+    const S a = S(stored);
+    return a * a * depth_max / Max(S(cos_view), S(0.05));
 }
 
 template <typename S>
@@ -340,14 +381,15 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
             },
             0.02037, kBound, "grazing angles included (cos -> 0, clamped below 0)"));
     expressions.push_back(Make(
-            "bumpNormal.x * (WaveDistortion / eyeDistance) * RcpWindowSize.x", eyes,
+            "bumpNormal.x * min(WaveDistortion / eyeDistance, 16)", eyes,
             [](auto tag, const Inputs& in) -> Outputs {
                 using S = typename decltype(tag)::type;
                 return {ToDouble(DistortionOffset(S(0.7), In3<S>(in, 0)))};
             },
             kRcpWidth, kBound,
-            "screen-space offset; huge (clamped to the texture edge) where the eye distance -> "
-            "its 1e-3 floor, but finite; relative to one pixel"));
+            "texture-space offset; the demo's 100 over an eye distance below 1.5e-3 overflows "
+            "fp16, so water.fsh caps the factor at 16 (past the texture's edge anyway); "
+            "relative to one pixel of a 640-wide target"));
     expressions.push_back(Make(
             "clamp(eyeDistance * RcpMaxFogDepth, 0, 1)", eyes,
             [](auto tag, const Inputs& in) -> Outputs {
@@ -405,6 +447,79 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
             "built-in, so on wide mediump-only screens the lookup is off by up to a pixel, which "
             "linear filtering and the distortion hide",
             true));
+    // The sun glare within 12 degrees of the highlight (beyond, the power is below 1/255).
+    std::vector<Inputs> glare;
+    for (int i = 0; i <= 2400; ++i) {
+        const double angle = 0.21 * i / 2400.0;
+        glare.push_back({std::sin(angle) * 0.6, std::cos(angle), std::sin(angle) * 0.8,
+                         0.0, 1.0, 0.0});
+    }
+    expressions.push_back(Make(
+            "pow(dot(m, s) * 0.5 + 0.5, 512)", glare,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(GlarePow(In3<S>(in, 0), In3<S>(in, 3)))};
+            },
+            1.0 / 255.0, kBound,
+            "the seed's glare: dotSpec near 1 has fp16 spacing 2^-11, one step moves the power "
+            "by 22%, so the highlight bands into rings; water.fsh no longer uses this form"));
+    expressions.push_back(Make(
+            "exp2(-738.65 (u + u^2 / 2)), u = |m - s|^2 / 4", glare,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(GlareComplement(In3<S>(in, 0), In3<S>(in, 3)))};
+            },
+            1.0 / 255.0, kBound,
+            "the guarded glare in water.fsh: 1 - dotSpec from the difference vector keeps its "
+            "relative precision near the highlight; relative to one 8-bit step"));
+    std::vector<Inputs> extinction;
+    for (const double divisor : {0.0, 4.5, 75.0, 300.0}) {
+        for (int i = 0; i <= 400; ++i) {
+            extinction.push_back({i == 0 ? 0.0 : 0.01 * std::pow(8000.0, i / 400.0), divisor});
+        }
+    }
+    expressions.push_back(Make(
+            "clamp(D / Extinction, 0, 1)", extinction,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(ExtinctionRatio(S(in[0]), S(in[1]), false))};
+            },
+            1.0 / 255.0, kBound,
+            "extinction or visibility 0 gives 0/0 = NaN at the water line (depth 0)"));
+    expressions.push_back(Make(
+            "clamp(D / max(Extinction, 1e-3), 0, 1)", extinction,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(ExtinctionRatio(S(in[0]), S(in[1]), true))};
+            },
+            1.0 / 255.0, kBound,
+            "the guarded form in water.fsh: 0 depth stays clear, any depth above 1e-3 is opaque, "
+            "as the CPU reference has it"));
+    std::vector<Inputs> paths;
+    for (const double max_depth : {80.0, 3000.0, 1e5}) {
+        for (int i = 0; i <= 100; ++i) {
+            for (const double cos_view : {0.01, 0.05, 0.3, 1.0}) {
+                paths.push_back({i / 100.0, max_depth, cos_view});
+            }
+        }
+    }
+    expressions.push_back(Make(
+            "a^2 * MaxWaterDepth / max(cos, 0.05), MaxWaterDepth as given", paths,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(DepthPath<S>(in[0], in[1], in[2], false))};
+            },
+            1.0, kBound,
+            "MaxWaterDepth 1e5 is Inf in mediump, and Inf x 0 at the water line is NaN"));
+    expressions.push_back(Make(
+            "a^2 * min(MaxWaterDepth, 3000) / max(cos, 0.05)", paths,
+            [](auto tag, const Inputs& in) -> Outputs {
+                using S = typename decltype(tag)::type;
+                return {ToDouble(DepthPath<S>(in[0], in[1], in[2], true))};
+            },
+            1.0, kBound,
+            "the renderer clamps MaxWaterDepth to [0.5, 3000] on upload (MediumpMaxWaterDepth): "
+            "the longest path, 20 x 3000, stays below 65504"));
     std::vector<PrecisionRow> rows;
     rows.reserve(expressions.size());
     for (const Expression& e : expressions) {

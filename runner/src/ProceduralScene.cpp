@@ -331,6 +331,51 @@ float LowestGroundUnder(const glm::vec2& centre, float radius) {
     return lowest;
 }
 
+// How far the seabed reaches: the longest view range a scene description allows (10000), so the
+// floor meets the far plane from any camera and the refraction never shows the clear colour
+// past a floor edge.
+constexpr float kSeabedSkirtHalfSize = 10000.0F;
+constexpr float kSeabedHeight = -20.0F;
+
+// Appends a flat skirt around the border of the (segments + 1)^2 grid that starts the mesh: one
+// new vertex per border vertex, pushed out along its direction from the centre to the square
+// of half-size kSeabedSkirtHalfSize at the seabed's height, and two triangles per border edge.
+// The grid's vertices stay first and unchanged (FourierReflection.h marches them as a grid).
+void AppendSeabedSkirt(Mesh& mesh, int segments) {
+    const auto stride = static_cast<std::size_t>(segments) + 1;
+    const auto last = static_cast<std::size_t>(segments);
+    auto at = [&](std::size_t row, std::size_t column) { return row * stride + column; };
+    std::vector<std::size_t> border;  // walked once around, each corner once
+    for (std::size_t k = 0; k < last; ++k) border.push_back(at(0, k));
+    for (std::size_t k = 0; k < last; ++k) border.push_back(at(k, last));
+    for (std::size_t k = last; k > 0; --k) border.push_back(at(last, k));
+    for (std::size_t k = last; k > 0; --k) border.push_back(at(k, 0));
+    const std::size_t base = mesh.positions.size();
+    for (std::size_t v : border) {
+        const glm::vec3 inner = mesh.positions[v];
+        const float scale = kSeabedSkirtHalfSize / std::max(std::abs(inner.x), std::abs(inner.z));
+        mesh.positions.emplace_back(inner.x * scale, kSeabedHeight, inner.z * scale);
+        mesh.normals.emplace_back(0.0F, 1.0F, 0.0F);
+        mesh.colours.push_back(mesh.colours[v]);
+    }
+    assert(mesh.positions.size() <= std::numeric_limits<std::uint16_t>::max() + std::size_t{1});
+    auto add_triangle = [&](std::size_t a, std::size_t b, std::size_t c) {
+        const glm::vec3 face = glm::cross(mesh.positions[b] - mesh.positions[a],
+                                          mesh.positions[c] - mesh.positions[a]);
+        if (face.y < 0.0F) {
+            std::swap(b, c);  // front faces up, as the grid's
+        }
+        for (std::size_t v : {a, b, c}) {
+            mesh.indices.push_back(static_cast<std::uint16_t>(v));
+        }
+    };
+    for (std::size_t k = 0; k < border.size(); ++k) {
+        const std::size_t next = (k + 1) % border.size();
+        add_triangle(border[k], border[next], base + next);
+        add_triangle(border[k], base + next, base + k);
+    }
+}
+
 Mesh BuildTerrain() {
     Mesh terrain = MakeMesh("terrain", glm::mat4(1.0F));
     // Rows run along +z and columns along +x, so z x x = +y: triangles face up.
@@ -339,6 +384,7 @@ Mesh BuildTerrain() {
         const float z = kTerrainHalfSize * (2.0F * s - 1.0F);
         return glm::vec3(x, TerrainHeight(x, z), z);
     });
+    AppendSeabedSkirt(terrain, kTerrainSegments);
     constexpr glm::vec3 kSeabed(0.62F, 0.58F, 0.42F);
     constexpr glm::vec3 kSand(0.86F, 0.80F, 0.58F);
     constexpr glm::vec3 kGrass(0.30F, 0.55F, 0.22F);

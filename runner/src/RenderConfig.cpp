@@ -20,11 +20,17 @@ std::string PassSuffix(const PassOptions& passes) {
     if (passes.reflection_size != defaults.reflection_size) {
         suffix += fmt::format("@refl{}", passes.reflection_size);
     }
+    if (passes.refraction_size != defaults.refraction_size) {
+        suffix += fmt::format("@refr{}", passes.refraction_size);
+    }
     if (passes.low_res_water) {
         suffix += "@lowres";
     }
     if (passes.clip == "discard") {
         suffix += "@discard";
+    }
+    if (!passes.depth_fog) {
+        suffix += "@nodepthfog";
     }
     if (!passes.culling) {
         suffix += "@nocull";

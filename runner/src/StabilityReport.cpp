@@ -389,19 +389,19 @@ StabilityCaseResult FresnelSweep() {
 
 StabilityCaseResult DistortionSweep() {
     StabilityCaseResult r;
-    const double wave = 25.0;
-    const double rcp_width = 1.0 / 64.0;
-    // |bump| <= 2, so the offset is at most 2 W / (1e-3 × width) screen widths: finite.
-    r.bound = 2.0 * wave / 1e-3 * rcp_width;
+    // water.fsh: the demo's WaveDistortion (100, texture units) over the floored eye distance,
+    // capped at 16 (cMaxDistortion), times the mean bump normal (|xz| <= 1).
+    const float wave = 100.0F;
+    constexpr float kMaxDistortion = 16.0F;
+    r.bound = kMaxDistortion;
     for (int i = 0; i <= 200; ++i) {
         const float distance = i == 0 ? 0.0F : std::pow(10.0F, -8.0F + 0.05F * static_cast<float>(i));
         const float eye_distance = std::max(distance, 1e-3F);
-        const float offset = 2.0F * static_cast<float>(wave) / eye_distance *
-                             static_cast<float>(rcp_width);
+        const float offset = std::min(wave / eye_distance, kMaxDistortion);
         CountNonFinite(std::vector<float>{offset}, &r);
         r.max_error = std::max(r.max_error, static_cast<double>(std::abs(offset)));
     }
-    r.note = "max |offset| in screen widths for eye distances 0 .. 100 (64-wide target)";
+    r.note = "max |offset| in texture widths for eye distances 0 .. 100";
     return r;
 }
 
@@ -547,6 +547,7 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
         for (RenderConfiguration c : configs) {
             if (hard_case.reflection_size > 0) {
                 c.passes.reflection_size = hard_case.reflection_size;
+                c.passes.refraction_size = hard_case.reflection_size;
                 c.id = ConfigurationId(c.variant, c.passes);
             }
             const DriverVerdict verdict = renderer->Prepare(c);
@@ -617,9 +618,10 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
     const Guard guards[] = {
             // Unlike the others this guard corrects normal views: on the default "grazing" view
             // back-facing summed bump normals give cos slightly below 0, where the unclamped F
-            // exceeds 1 and mix() extrapolates past the reflection. Measured: 0.032 at 32x24,
-            // 0.084 at 64x48 (finer pixels reach steeper normals). 0.1 (F = 1.1, cos ≈ -0.02)
-            // bounds that sliver; more would mean the clamp acts beyond back-facing normals.
+            // exceeds 1 and mix() extrapolates past the reflection. Measured: 0.071 at 64x48 with
+            // distortion in the demo's units (before: 0.032 at 32x24, 0.084 at 64x48; finer
+            // pixels reach steeper normals). 0.1 (F = 1.1, cos ≈ -0.02) bounds that sliver; more
+            // would mean the clamp acts beyond back-facing normals.
             {"clamp(dot(N, E), 0, 1) before the Fresnel power", "TP_NO_COS_CLAMP", 0.1},
             {"floored inversesqrt normalising the summed bump normal", "TP_NO_NORMAL_FLOOR",
              kOneStep},

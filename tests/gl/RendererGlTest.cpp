@@ -13,6 +13,7 @@
 
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/runner/FramePlan.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ImageIo.h"
 #include "tidepool/runner/ProceduralScene.h"
@@ -266,6 +267,19 @@ TEST_F(RendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
         const int expected = 1 + (planar ? 1 : 0) + (c.Has("ENABLE_REFRACTION") ? 1 : 0) +
                              (c.passes.low_res_water ? 1 : 0);
         EXPECT_EQ(report.passes, expected) << c.id;
+        // The frame drawn is the plan FramePlanTest checks the whitepaper's rows on: the same
+        // passes, each with the planned number of draws and the planned target size.
+        const FramePlan plan = PlanFrame(c, s.renderer->Settings(), s.renderer->GetScene(), view);
+        ASSERT_EQ(report.pass_names.size(), plan.passes.size()) << c.id;
+        for (std::size_t i = 0; i < plan.passes.size(); ++i) {
+            const PassPlan& pass = plan.passes[i];
+            EXPECT_EQ(report.pass_names[i], PassName(pass.kind)) << c.id;
+            const int draws = (pass.draw_sky ? 1 : 0) + static_cast<int>(pass.meshes.size()) +
+                              (pass.draw_water ? 1 : 0);
+            EXPECT_EQ(report.pass_draw_calls[i], draws) << c.id << " " << report.pass_names[i];
+            EXPECT_EQ(report.pass_pixels[i], static_cast<long long>(pass.width) * pass.height)
+                << c.id << " " << report.pass_names[i];
+        }
     }
 }
 

@@ -111,7 +111,7 @@ TEST(FourierReflectionTest, TerrainHeightfieldMatchesTheTerrainVertices) {
     EXPECT_FLOAT_EQ(field.origin.y, -100.0F);
     EXPECT_FLOAT_EQ(field.spacing, 200.0F / 128.0F);
     const std::vector<glm::vec3>& positions = DefaultScene().terrain.positions;
-    for (std::size_t v = 0; v < positions.size(); v += 97) {
+    for (std::size_t v = 0; v < 129U * 129U; v += 97) {  // the grid; the seabed skirt follows
         const std::optional<float> height = field.HeightAt(positions[v].x, positions[v].z);
         ASSERT_TRUE(height) << "vertex " << v;
         // The vertex position is recomputed from origin and spacing: a few float ulps of x.
@@ -121,7 +121,11 @@ TEST(FourierReflectionTest, TerrainHeightfieldMatchesTheTerrainVertices) {
 
 TEST(FourierReflectionTest, TerrainHeightfieldIsEmptyWhenTheLayoutDoesNotMatch) {
     Scene scene = DefaultScene();
+    scene.terrain_columns = 130;  // more grid than vertices
+    scene.terrain_rows = 200;
+    EXPECT_TRUE(TerrainHeightfield(scene).heights.empty());
     scene.terrain_columns = 128;
+    scene.terrain_rows = 129;
     EXPECT_TRUE(TerrainHeightfield(scene).heights.empty());
     scene.terrain_columns = 0;
     scene.terrain_rows = 0;

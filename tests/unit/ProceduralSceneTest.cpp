@@ -229,9 +229,12 @@ TEST(ProceduralSceneTest, TriangleWindingAgreesWithVertexNormals) {
 
 TEST(ProceduralSceneTest, TerrainIsAnIslandCrossingTheWater) {
     const Mesh& terrain = DefaultScene().terrain;
-    EXPECT_EQ(terrain.positions.size(), 129U * 129U);
-    EXPECT_FLOAT_EQ(terrain.world_bounds_min.x, -100.0F);
-    EXPECT_FLOAT_EQ(terrain.world_bounds_max.z, 100.0F);
+    // The 129 x 129 grid over 200 x 200, then a seabed skirt (one vertex per border vertex) out
+    // to the longest view range, so the floor has no edge before the far plane.
+    EXPECT_EQ(terrain.positions.size(), 129U * 129U + 4U * 128U);
+    EXPECT_FLOAT_EQ(terrain.world_bounds_min.x, -10000.0F);
+    EXPECT_FLOAT_EQ(terrain.world_bounds_max.z, 10000.0F);
+    EXPECT_FLOAT_EQ(terrain.positions[129U * 129U - 1U].x, 100.0F);
     EXPECT_LT(terrain.world_bounds_min.y, -18.0F);
     EXPECT_GT(terrain.world_bounds_max.y, 20.0F);
     EXPECT_LT(terrain.world_bounds_max.y, 30.0F);

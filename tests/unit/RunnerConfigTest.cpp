@@ -15,11 +15,13 @@ TEST(RunnerConfigTest, DefaultPassesHaveNoSuffix) {
 TEST(RunnerConfigTest, NonDefaultPassesAppendSuffixesInFixedOrder) {
     PassOptions passes;
     passes.reflection_size = 128;
+    passes.refraction_size = 64;
     passes.low_res_water = true;
     passes.clip = "discard";
+    passes.depth_fog = false;
     passes.culling = false;
     EXPECT_EQ(ConfigurationId(MakeVariant("water", {"ENABLE_FOG"}), passes),
-              "water:ENABLE_FOG@refl128@lowres@discard@nocull");
+              "water:ENABLE_FOG@refl128@refr64@lowres@discard@nodepthfog@nocull");
 }
 
 TEST(RunnerConfigTest, UniformBoolNamesFollowTheInterface) {

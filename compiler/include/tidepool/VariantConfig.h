@@ -86,10 +86,15 @@ struct ProgramConfig {
 
 /// Render-pass options of a render configuration (the runner reads them; the compiler checks them).
 struct PassOptions {
-    int reflection_size = 256;      // reflection (and refraction) texture size, power of two
+    int reflection_size = 256;      // reflection texture size, power of two
+    int refraction_size = 256;      // refraction texture size, power of two
     bool low_res_water = false;     // render the water into a small texture, then apply it
     std::string clip = "oblique";   // "oblique" (modified projection) or "discard"
     bool culling = true;            // CPU culling of objects per pass
+    // With ENABLE_FOG: the underwater depth fog on the models of the refraction pass
+    // (whitepaper 2.4.1). Off leaves the water's distance fog, the sky's fog, the refraction's
+    // clear colour and its omitted sky as they are, so that it alone is whitepaper row 4.
+    bool depth_fog = true;
 };
 
 /// A named configuration: a program, its defines and pass options (e.g. the whitepaper's setups).

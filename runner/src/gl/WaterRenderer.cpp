@@ -19,6 +19,7 @@
 
 #include "gl/GlApi.h"
 #include "gl/GlContextImpl.h"
+#include "tidepool/runner/FramePlan.h"
 #include "tidepool/runner/MesaInfoLog.h"
 #include "tidepool/runner/WaterMath.h"
 
@@ -40,8 +41,6 @@ constexpr GLint kUnitNormalisation = 3;
 constexpr GLint kUnitSky = 4;
 constexpr GLint kUnitLowRes = 5;
 
-// Upper bound on water polygon vertices: a plane cuts a frustum (6 faces) in at most 6 corners.
-constexpr int kMaxPolygonVertices = 8;
 
 // The water effects that water_uniform reads as uniform bools (INTERFACE.md).
 constexpr std::array<const char*, 9> kWaterEffects = {
@@ -109,43 +108,6 @@ struct RenderTarget {
     int height = 0;
 };
 
-enum class PassKind { kReflection, kRefraction, kLowResWater, kMain };
-
-const char* PassName(PassKind kind) {
-    switch (kind) {
-        case PassKind::kReflection: return "reflection";
-        case PassKind::kRefraction: return "refraction";
-        case PassKind::kLowResWater: return "low_res_water";
-        case PassKind::kMain: return "main";
-    }
-    return "?";
-}
-
-// Everything one pass needs, computed on the CPU before any GL call.
-struct PassPlan {
-    PassKind kind = PassKind::kMain;
-    glm::mat4 view{1.0F};
-    glm::mat4 projection{1.0F};
-    bool mirrored = false;          // front faces flip (glFrontFace(GL_CW))
-    bool clip_discard = false;      // helper programs clip with CLIP_DISCARD
-    glm::vec4 clip_plane{0.0F};     // world space, kept side >= 0
-    glm::vec3 clear_colour{0.0F};
-    bool draw_sky = true;
-    bool fog_depth = false;         // model ENABLE_FOG_DEPTH
-    std::vector<int> meshes;        // -1 is the terrain, k >= 0 is scene.objects[k]
-    bool draw_water = false;
-};
-
-struct FramePlan {
-    glm::mat4 view_projection{1.0F};
-    glm::vec3 eye{0.0F};
-    std::vector<glm::vec3> polygon;
-    glm::vec2 bump_translation0{0.0F};
-    glm::vec2 bump_translation1{0.0F};
-    std::vector<PassPlan> passes;
-    bool oblique_fallback = false;
-};
-
 }  // namespace
 
 struct WaterRenderer::Impl {
@@ -175,9 +137,10 @@ struct WaterRenderer::Impl {
     RenderTarget main;
     RenderTarget low_res;
     // Reflection and refraction targets per size, kept so that interleaved configurations with
-    // different reflection sizes never reallocate inside a timed frame.
-    std::map<int, std::pair<RenderTarget, RenderTarget>> pass_targets;
-    RenderTarget reflection;  // the current frame's targets (copies of handles in pass_targets)
+    // different sizes never reallocate inside a timed frame.
+    std::map<int, RenderTarget> reflection_targets;
+    std::map<int, RenderTarget> refraction_targets;
+    RenderTarget reflection;  // the current frame's targets (copies of handles in the maps)
     RenderTarget refraction;
 
     std::map<std::string, CompiledProgram> programs;  // by program id (variant id or helper id)
@@ -192,27 +155,14 @@ struct WaterRenderer::Impl {
     void FreeTarget(RenderTarget* target);
     CompiledProgram& Program(const Variant& variant);
     GLint Uniform(CompiledProgram& program, const char* name);
-    std::vector<std::string> HelperDefines(const RenderConfiguration& c, PassKind kind,
-                                           bool discard, const char* program) const;
-    FramePlan Plan(const RenderConfiguration& c, const CameraView& view) const;
-    void DrawSky(const PassPlan& pass, const RenderConfiguration& c, FrameReport* report);
-    void DrawModels(const PassPlan& pass, const RenderConfiguration& c, FrameReport* report);
-    void DrawWater(const FramePlan& plan, const RenderConfiguration& c, PassKind pass,
+    std::string EnsureTarget(std::map<int, RenderTarget>* targets, int size);
+    void DrawSky(const PassPlan& pass, FrameReport* report);
+    void DrawModels(const PassPlan& pass, FrameReport* report);
+    void DrawWater(const FramePlan& plan, const RenderConfiguration& c, const PassPlan& pass,
                    FrameReport* report);
     void BindWaterPolygon(const FramePlan& plan);
     std::string BuildFourierGrid();
 };
-
-// The planar reflection (a reflection pass) unless the configuration reflects the sky direction.
-bool UsesPlanarReflection(const RenderConfiguration& c) {
-    return !c.Has("REFLECTION_CUBEMAP") && !c.Has("REFLECTION_FOURIER");
-}
-
-// The depth-based optics read the water depth the refraction pass stores in alpha.
-bool NeedsWaterDepth(const RenderConfiguration& c) {
-    return c.Has("ENABLE_REFRACTION") &&
-           (c.Has("ENABLE_EXTINCTION") || c.Has("ENABLE_SHORE_FOAM") || c.Has("ENABLE_SOFT_SHORE"));
-}
 
 WaterRenderer::Impl::~Impl() {
     if (gl == nullptr || context == nullptr || !context->MakeCurrent()) {
@@ -239,9 +189,10 @@ WaterRenderer::Impl::~Impl() {
     for (RenderTarget* target : {&main, &low_res}) {
         FreeTarget(target);
     }
-    for (auto& [size, targets] : pass_targets) {
-        FreeTarget(&targets.first);
-        FreeTarget(&targets.second);
+    for (auto* targets : {&reflection_targets, &refraction_targets}) {
+        for (auto& [size, target] : *targets) {
+            FreeTarget(&target);
+        }
     }
 }
 
@@ -319,6 +270,21 @@ std::string WaterRenderer::Impl::MakeTarget(RenderTarget* target, int width, int
     return "";
 }
 
+std::string WaterRenderer::Impl::EnsureTarget(std::map<int, RenderTarget>* targets, int size) {
+    if (targets->find(size) != targets->end()) {
+        return "";
+    }
+    RenderTarget target;
+    const std::string error =
+        MakeTarget(&target, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+    if (!error.empty()) {
+        FreeTarget(&target);
+        return error;
+    }
+    targets->emplace(size, target);
+    return "";
+}
+
 void WaterRenderer::Impl::FreeTarget(RenderTarget* target) {
     if (target->framebuffer != 0) {
         gl->glDeleteFramebuffers(1, &target->framebuffer);
@@ -363,7 +329,7 @@ std::string WaterRenderer::Impl::Init() {
 
     gl->glGenBuffers(1, &water_vertices);
     gl->glBindBuffer(GL_ARRAY_BUFFER, water_vertices);
-    gl->glBufferData(GL_ARRAY_BUFFER, kMaxPolygonVertices * 3 * sizeof(float), nullptr,
+    gl->glBufferData(GL_ARRAY_BUFFER, kMaxWaterPolygonVertices * 3 * sizeof(float), nullptr,
                      GL_DYNAMIC_DRAW);
 
     gl->glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
@@ -396,8 +362,9 @@ std::string WaterRenderer::Impl::Init() {
                             : MakeTarget(&main, settings.width, settings.height, GL_RGBA8,
                                          GL_UNSIGNED_BYTE, true);
     if (error.empty()) {
-        error = MakeTarget(&low_res, settings.low_res_water_size, settings.low_res_water_size,
-                           GL_RGBA8, GL_UNSIGNED_BYTE, false);
+        // With depth: the low-resolution pass draws the ground that hides water first.
+        const int size = LowResWaterSize(settings);
+        error = MakeTarget(&low_res, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
     }
     const GLenum gl_error = gl->glGetError();
     if (error.empty() && gl_error != GL_NO_ERROR) {
@@ -526,146 +493,8 @@ GLint WaterRenderer::Impl::Uniform(CompiledProgram& program, const char* name) {
     return location;
 }
 
-std::vector<std::string> WaterRenderer::Impl::HelperDefines(const RenderConfiguration& c,
-                                                            PassKind kind, bool discard,
-                                                            const char* program) const {
-    std::vector<std::string> defines;
-    const bool fog = c.Has("ENABLE_FOG");
-    if (std::string_view(program) == "skybox") {
-        if (fog) {
-            defines.emplace_back("ENABLE_FOG");
-        }
-    } else {
-        defines.emplace_back("ENABLE_LIGHTING");
-        // Extinction replaces the whitepaper's depth fog: it is the same effect, done per
-        // channel in the water shader from the depth stored in alpha.
-        if (kind == PassKind::kRefraction && fog && !c.Has("ENABLE_EXTINCTION")) {
-            defines.emplace_back("ENABLE_FOG_DEPTH");
-        }
-        if (kind == PassKind::kRefraction && NeedsWaterDepth(c)) {
-            defines.emplace_back("ENABLE_DEPTH_ALPHA");
-        }
-    }
-    if (discard && (kind == PassKind::kReflection || kind == PassKind::kRefraction)) {
-        defines.emplace_back("CLIP_DISCARD");
-    }
-    return defines;
-}
-
-FramePlan WaterRenderer::Impl::Plan(const RenderConfiguration& c, const CameraView& view) const {
-    FramePlan plan;
-    const float aspect = static_cast<float>(settings.width) / static_cast<float>(settings.height);
-    // Not ViewMatrix(view): that is NaN for a view straight down or up (hard cases
-    // "straight_down", "straight_up"); elsewhere the two are the same matrix.
-    const glm::mat4 view_matrix = LookAtWithFallbackUp(view.eye, view.target);
-    const glm::mat4 projection = ProjectionMatrix(view, aspect);
-    const float h = scene.water_height;
-    const glm::vec4 water_plane(0.0F, 1.0F, 0.0F, -h);
-    plan.view_projection = projection * view_matrix;
-    plan.eye = view.eye;
-    plan.polygon = InfinitePlanePolygon(plan.view_projection, water_plane);
-    if (plan.polygon.size() > static_cast<std::size_t>(kMaxPolygonVertices)) {
-        plan.polygon.resize(kMaxPolygonVertices);  // cannot happen for a convex cut of a frustum
-    }
-    // In double, then rounded: velocity × 10^6 s in float keeps only ~3 fractional bits of the
-    // wrapped translation (hard case "long_run_wrapped"); double keeps it to 1e-10.
-    plan.bump_translation0 = glm::vec2(AdvanceBumpTranslation(
-            glm::dvec2(0.0), glm::dvec2(settings.bump_velocity0),
-            static_cast<double>(settings.animation_time), settings.wrap_bump_translation));
-    plan.bump_translation1 = glm::vec2(AdvanceBumpTranslation(
-            glm::dvec2(0.0), glm::dvec2(settings.bump_velocity1),
-            static_cast<double>(settings.animation_time), settings.wrap_bump_translation));
-    const bool water_visible = !plan.polygon.empty();
-    const bool fog = c.Has("ENABLE_FOG");
-    const bool wants_refraction = c.Has("ENABLE_REFRACTION");
-    const bool discard = c.passes.clip == "discard";
-    const bool culling = c.passes.culling;
-    const int object_count = static_cast<int>(scene.objects.size());
-    auto mesh_of = [&](int index) -> const Mesh& {
-        return index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
-    };
-
-    // Clips with the oblique near plane, or falls back to discard when the camera is on the kept
-    // side (ObliqueNearPlane refuses then).
-    auto clip = [&](PassPlan* pass, const glm::mat4& pass_view) {
-        if (discard) {
-            pass->clip_discard = true;
-            return;
-        }
-        const ObliqueProjection<float> oblique =
-            ObliqueNearPlane(projection, TransformPlane(pass_view, pass->clip_plane));
-        pass->projection = oblique.projection;
-        if (!oblique.applied) {
-            pass->clip_discard = true;
-            plan.oblique_fallback = true;
-        }
-    };
-
-    if (water_visible && UsesPlanarReflection(c)) {
-        PassPlan mirror;
-        mirror.kind = PassKind::kReflection;
-        mirror.view = view_matrix * MirrorMatrix(water_plane);
-        mirror.projection = projection;
-        mirror.mirrored = true;
-        // Keep what is above the plane, moved down by the offset (whitepaper 3.3.4).
-        mirror.clip_plane = glm::vec4(0.0F, 1.0F, 0.0F, -(h - settings.clip_plane_offset));
-        clip(&mirror, mirror.view);
-        for (int i = -1; i < object_count; ++i) {
-            if (culling && IsEntirelyBelow(mesh_of(i), h - settings.clip_plane_offset)) {
-                continue;
-            }
-            mirror.meshes.push_back(i);
-        }
-        plan.passes.push_back(std::move(mirror));
-    }
-    if (water_visible) {
-        if (wants_refraction) {
-            PassPlan pass;
-            pass.kind = PassKind::kRefraction;
-            pass.view = view_matrix;
-            pass.projection = projection;
-            // Keep what is below the plane, moved up by the offset.
-            pass.clip_plane = glm::vec4(0.0F, -1.0F, 0.0F, h + settings.clip_plane_offset);
-            clip(&pass, pass.view);
-            pass.fog_depth = fog;
-            // With fog the water colour hides the distance, so the sky is left out (whitepaper).
-            pass.draw_sky = !fog;
-            pass.clear_colour = fog ? settings.underwater_colour : glm::vec3(0.0F);
-            const float max_depth = 1.0F / MediumpFogReciprocal(settings.rcp_max_fog_depth);
-            for (int i = -1; i < object_count; ++i) {
-                const Mesh& mesh = mesh_of(i);
-                if (culling && (IsEntirelyAbove(mesh, h + settings.clip_plane_offset) ||
-                                (fog && !IntersectsDepthBand(mesh, h, max_depth)))) {
-                    continue;
-                }
-                pass.meshes.push_back(i);
-            }
-            plan.passes.push_back(std::move(pass));
-        }
-        if (c.passes.low_res_water) {
-            PassPlan pass;
-            pass.kind = PassKind::kLowResWater;
-            pass.draw_sky = false;
-            pass.draw_water = true;
-            plan.passes.push_back(std::move(pass));
-        }
-    }
-    PassPlan main_pass;
-    main_pass.kind = PassKind::kMain;
-    main_pass.view = view_matrix;
-    main_pass.projection = projection;
-    for (int i = -1; i < object_count; ++i) {
-        main_pass.meshes.push_back(i);
-    }
-    main_pass.draw_water = water_visible;
-    plan.passes.push_back(std::move(main_pass));
-    return plan;
-}
-
-void WaterRenderer::Impl::DrawSky(const PassPlan& pass, const RenderConfiguration& c,
-                                  FrameReport* report) {
-    CompiledProgram& program =
-        Program(MakeVariant("skybox", HelperDefines(c, pass.kind, pass.clip_discard, "skybox")));
+void WaterRenderer::Impl::DrawSky(const PassPlan& pass, FrameReport* report) {
+    CompiledProgram& program = Program(pass.sky_program);
     if (!program.valid) {
         return;
     }
@@ -695,10 +524,8 @@ void WaterRenderer::Impl::DrawSky(const PassPlan& pass, const RenderConfiguratio
     ++report->draw_calls;
 }
 
-void WaterRenderer::Impl::DrawModels(const PassPlan& pass, const RenderConfiguration& c,
-                                     FrameReport* report) {
-    CompiledProgram& program =
-        Program(MakeVariant("model", HelperDefines(c, pass.kind, pass.clip_discard, "model")));
+void WaterRenderer::Impl::DrawModels(const PassPlan& pass, FrameReport* report) {
+    CompiledProgram& program = Program(pass.model_program);
     if (!program.valid || pass.meshes.empty()) {
         return;
     }
@@ -707,7 +534,7 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, const RenderConfigura
                     scene.sun_direction.y, scene.sun_direction.z);
     gl->glUniform1f(Uniform(program, "WaterHeight"), scene.water_height);
     gl->glUniform1f(Uniform(program, "RcpMaxWaterDepth"),
-                    MediumpFogReciprocal(1.0F / settings.max_water_depth));
+                    MediumpFogReciprocal(1.0F / MediumpMaxWaterDepth(settings.max_water_depth)));
     gl->glUniform1f(Uniform(program, "RcpMaxFogDepth"),
                     MediumpFogReciprocal(settings.rcp_max_fog_depth));
     gl->glUniform3f(Uniform(program, "FogColour"), settings.underwater_colour.r,
@@ -752,12 +579,12 @@ void WaterRenderer::Impl::BindWaterPolygon(const FramePlan& plan) {
 }
 
 void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfiguration& c,
-                                    PassKind pass, FrameReport* report) {
+                                    const PassPlan& pass, FrameReport* report) {
     const bool alpha_blend = c.Has("ENABLE_ALPHA_BLEND") && !c.Has("ENABLE_REFRACTION");
     const auto vertex_count = static_cast<GLsizei>(plan.polygon.size());
     BindWaterPolygon(plan);
-    if (pass == PassKind::kMain && c.passes.low_res_water) {
-        CompiledProgram& composite = Program(MakeVariant("water_composite", {}));
+    if (pass.water_program.program == "water_composite") {
+        CompiledProgram& composite = Program(pass.water_program);
         if (!composite.valid) {
             return;
         }
@@ -780,15 +607,13 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
         gl->glDisable(GL_BLEND);
         return;
     }
-    CompiledProgram& program = Program(c.variant);
+    CompiledProgram& program = Program(pass.water_program);
     if (!program.valid) {
         return;
     }
     gl->glUseProgram(program.id);
-    const float target_width = static_cast<float>(pass == PassKind::kMain ? settings.width
-                                                                           : low_res.width);
-    const float target_height = static_cast<float>(pass == PassKind::kMain ? settings.height
-                                                                            : low_res.height);
+    const auto target_width = static_cast<float>(pass.width);
+    const auto target_height = static_cast<float>(pass.height);
     gl->glUniformMatrix4fv(Uniform(program, "ModelViewProjMatrix"), 1, GL_FALSE,
                            glm::value_ptr(plan.view_projection));
     gl->glUniform3f(Uniform(program, "EyePosition"), plan.eye.x, plan.eye.y, plan.eye.z);
@@ -800,7 +625,7 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
                     plan.bump_translation0.y);
     gl->glUniform2f(Uniform(program, "BumpTranslation1"), plan.bump_translation1.x,
                     plan.bump_translation1.y);
-    gl->glUniform1f(Uniform(program, "WaveDistortion"), settings.wave_distortion);
+    gl->glUniform1f(Uniform(program, "WaveDistortion"), plan.wave_distortion);
     gl->glUniform2f(Uniform(program, "RcpWindowSize"), 1.0F / target_width,
                     1.0F / target_height);
     gl->glUniform4f(Uniform(program, "WaterColour"), settings.water_colour.r,
@@ -816,7 +641,8 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
     gl->glUniform1i(Uniform(program, "SkyboxTex"), kUnitSky);
     gl->glUniform3f(Uniform(program, "TerrainReflectionColour"), terrain_reflection_colour.r,
                     terrain_reflection_colour.g, terrain_reflection_colour.b);
-    gl->glUniform1f(Uniform(program, "MaxWaterDepth"), settings.max_water_depth);
+    gl->glUniform1f(Uniform(program, "MaxWaterDepth"),
+                    MediumpMaxWaterDepth(settings.max_water_depth));
     const ExtinctionModel& extinction = settings.extinction;
     gl->glUniform3f(Uniform(program, "Extinction"), extinction.extinction.r,
                     extinction.extinction.g, extinction.extinction.b);
@@ -849,7 +675,7 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
                                          ? refraction.colour
                                          : reflection.colour);
     gl->glActiveTexture(GL_TEXTURE0);
-    if (alpha_blend && pass == PassKind::kMain) {
+    if (alpha_blend && pass.kind == PassKind::kMain) {
         gl->glEnable(GL_BLEND);
         gl->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     }
@@ -947,19 +773,7 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
     r.context->MakeCurrent();
     DriverVerdict verdict = r.Program(c.variant).verdict;
     // Helper programs this configuration's passes can use; their problems join the verdict.
-    std::vector<Variant> helpers;
-    const bool discard = c.passes.clip == "discard";
-    for (PassKind kind : {PassKind::kReflection, PassKind::kRefraction, PassKind::kMain}) {
-        if ((kind == PassKind::kRefraction && !c.Has("ENABLE_REFRACTION")) ||
-            (kind == PassKind::kReflection && !UsesPlanarReflection(c))) {
-            continue;
-        }
-        helpers.push_back(MakeVariant("skybox", r.HelperDefines(c, kind, discard, "skybox")));
-        helpers.push_back(MakeVariant("model", r.HelperDefines(c, kind, discard, "model")));
-    }
-    if (c.passes.low_res_water) {
-        helpers.push_back(MakeVariant("water_composite", {}));
-    }
+    const std::vector<Variant> helpers = HelperPrograms(c);
     if (c.Has("REFLECTION_FOURIER")) {
         const std::string error = r.BuildFourierGrid();
         if (!error.empty()) {
@@ -976,22 +790,16 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
             }
         }
     }
-    // Reflection and refraction targets of the configuration's size.
-    const int size = c.passes.reflection_size;
-    if (verdict.valid && r.pass_targets.find(size) == r.pass_targets.end()) {
-        std::pair<RenderTarget, RenderTarget> targets;
-        std::string error =
-            r.MakeTarget(&targets.first, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
-        if (error.empty()) {
-            error = r.MakeTarget(&targets.second, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+    // Reflection and refraction targets of the configuration's sizes.
+    for (auto [targets, size] : {std::pair{&r.reflection_targets, c.passes.reflection_size},
+                                 std::pair{&r.refraction_targets, c.passes.refraction_size}}) {
+        if (!verdict.valid) {
+            break;
         }
+        const std::string error = r.EnsureTarget(targets, size);
         if (!error.empty()) {
-            r.FreeTarget(&targets.first);
-            r.FreeTarget(&targets.second);
             verdict.valid = false;
             verdict.diagnostics.push_back(MakeError("", 0, 0, error));
-        } else {
-            r.pass_targets.emplace(size, targets);
         }
     }
     return verdict;
@@ -1003,19 +811,20 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
     const gl::GlApi& gl = *r.gl;
     FrameReport report;
     const auto plan_start = std::chrono::steady_clock::now();
-    const FramePlan plan = r.Plan(c, view);
+    const FramePlan plan = PlanFrame(c, r.settings, r.scene, view);
     report.plan_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
     report.oblique_fallback = plan.oblique_fallback;
-    const auto targets = r.pass_targets.find(c.passes.reflection_size);
-    if (targets == r.pass_targets.end()) {
+    const auto reflection = r.reflection_targets.find(c.passes.reflection_size);
+    const auto refraction = r.refraction_targets.find(c.passes.refraction_size);
+    if (reflection == r.reflection_targets.end() || refraction == r.refraction_targets.end()) {
         report.gl_error = "RenderFrame before a successful Prepare of this configuration";
         return report;
     }
-    r.reflection = targets->second.first;
-    r.refraction = targets->second.second;
+    r.reflection = reflection->second;
+    r.refraction = refraction->second;
     if (!plan.polygon.empty()) {
-        std::array<float, kMaxPolygonVertices * 3> data{};
+        std::array<float, kMaxWaterPolygonVertices * 3> data{};
         for (std::size_t i = 0; i < plan.polygon.size(); ++i) {
             data[i * 3] = plan.polygon[i].x;
             data[i * 3 + 1] = plan.polygon[i].y;
@@ -1038,28 +847,21 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
         report.pass_names.emplace_back(PassName(pass.kind));
         report.pass_pixels.push_back(static_cast<long long>(target.width) * target.height);
         const int draws_before = report.draw_calls;
-        if (pass.kind == PassKind::kLowResWater) {
-            // The water alone: cleared transparent, no depth (the composite is depth-tested).
-            gl.glClearColor(0.0F, 0.0F, 0.0F, 0.0F);
-            gl.glClear(GL_COLOR_BUFFER_BIT);
-            gl.glDisable(GL_DEPTH_TEST);
-            r.DrawWater(plan, c, pass.kind, &report);
-        } else {
-            gl.glClearColor(pass.clear_colour.r, pass.clear_colour.g, pass.clear_colour.b, 1.0F);
-            gl.glDepthMask(GL_TRUE);
-            gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-            gl.glEnable(GL_DEPTH_TEST);
-            // The mirror matrix has determinant -1, so mirrored triangles wind clockwise.
-            gl.glFrontFace(pass.mirrored ? GL_CW : GL_CCW);
-            if (pass.draw_sky) {
-                r.DrawSky(pass, c, &report);
-            }
-            r.DrawModels(pass, c, &report);
-            if (pass.draw_water) {
-                r.DrawWater(plan, c, pass.kind, &report);
-            }
-            gl.glFrontFace(GL_CCW);
+        gl.glClearColor(pass.clear_colour.r, pass.clear_colour.g, pass.clear_colour.b,
+                        pass.clear_colour.a);
+        gl.glDepthMask(GL_TRUE);
+        gl.glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        gl.glEnable(GL_DEPTH_TEST);
+        // The mirror matrix has determinant -1, so mirrored triangles wind clockwise.
+        gl.glFrontFace(pass.mirrored ? GL_CW : GL_CCW);
+        if (pass.draw_sky) {
+            r.DrawSky(pass, &report);
         }
+        r.DrawModels(pass, &report);
+        if (pass.draw_water) {
+            r.DrawWater(plan, c, pass, &report);
+        }
+        gl.glFrontFace(GL_CCW);
         report.pass_draw_calls.push_back(report.draw_calls - draws_before);
         const GLenum error = gl.glGetError();
         if (error != GL_NO_ERROR && report.gl_error.empty()) {

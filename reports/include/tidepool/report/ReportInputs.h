@@ -59,9 +59,11 @@ struct MeasuredConfiguration {
     std::vector<std::string> presets;  // presets that asked for this configuration
     bool uniform_bools = false;
     int reflection_size = 256;
+    int refraction_size = 256;
     bool low_res_water = false;
     std::string clip = "oblique";
     bool culling = true;
+    bool depth_fog = true;  // the refraction pass's underwater depth fog (with ENABLE_FOG)
     bool ok = false;                     // compiled, linked, rendered without a GL error
     bool driver_valid = false;           // Mesa's verdict
     std::optional<bool> glslang_valid;   // glslang's verdict, when the runner compared

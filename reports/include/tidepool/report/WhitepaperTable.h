@@ -35,4 +35,8 @@ struct WhitepaperRow {
 /// The 11 rows, in the whitepaper's order. Never fails.
 const std::vector<WhitepaperRow>& WhitepaperRows();
 
+/// One paragraph for the report's Method section: which rows' configurations changed from the
+/// previous definitions, and why (Markdown inline code for names). Never fails.
+std::string RowDefinitionChanges();
+
 }  // namespace tidepool::report

@@ -74,9 +74,10 @@ struct Mesh {
 struct Scene {
     float water_height = 0;
     Mesh terrain;
-    /// The terrain is a regular grid of terrain_rows x terrain_columns vertices, positions
-    /// row-major (index = row * terrain_columns + column), columns along +x and rows along +z in
-    /// object space; 0 x 0 when the terrain is not such a grid. CPU passes that march the
+    /// The terrain starts with a regular grid of terrain_rows x terrain_columns vertices,
+    /// positions row-major (index = row * terrain_columns + column), columns along +x and rows
+    /// along +z in object space (vertices after the grid, such as the seabed skirt, are not part
+    /// of it); 0 x 0 when the terrain is not such a grid. CPU passes that march the
     /// heightfield (FourierReflection.h) read the layout from here instead of guessing it.
     int terrain_columns = 0;
     int terrain_rows = 0;
@@ -84,7 +85,8 @@ struct Scene {
     glm::vec3 sun_direction{0.0F, 1.0F, 0.0F};  ///< unit vector towards the sun, world space
 };
 
-/// Builds the default scene: a 129x129 island heightfield over 200x200 units (heights about -20 to
+/// Builds the default scene: a 129x129 island heightfield over 200x200 units, with a flat seabed
+/// skirt around it out to 10000 units so the floor reaches any far plane (heights about -20 to
 /// +25) and, by name, "hull" (red boat, half submerged), "pillar_0..2" (yellow, through the water),
 /// "submerged_rock_0..2" (magenta, fully under water), "tower" (orange) and "sphere" (cyan), both
 /// on the island and fully above the water. Never fails.

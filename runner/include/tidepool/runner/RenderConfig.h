@@ -32,8 +32,9 @@ struct RenderConfiguration {
     bool Has(std::string_view effect) const;
 };
 
-/// The suffix of non-default pass options in a configuration id: "@refl128", "@lowres",
-/// "@discard", "@nocull" in that order, "" for the defaults. Never fails.
+/// The suffix of non-default pass options in a configuration id: "@refl128", "@refr128",
+/// "@lowres", "@discard", "@nodepthfog", "@nocull" in that order, "" for the defaults. Never
+/// fails.
 std::string PassSuffix(const PassOptions& passes);
 
 /// `variant.Id()` followed by PassSuffix(passes). Never fails.

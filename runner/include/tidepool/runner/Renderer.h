@@ -34,10 +34,11 @@ struct RenderSettings {
     // 3.3.4): the reflection keeps a sliver below the water, the refraction a sliver above it,
     // so distorted lookups at objects crossing the water find the object, not the clear colour.
     float clip_plane_offset = 0.5F;
-    // Screen-space distortion in pixels per unit of bump normal. The demo's 100 is for its
-    // scaled mode; 100 unscaled smears the reflection over a fifth of a 640-wide screen, so the
-    // default is a quarter of it.
-    float wave_distortion = 25.0F;
+    // The demo's WaveDistortion: the screen-space lookup moves by the bump normal times this,
+    // in texture units, divided by the eye distance under ENABLE_SCALE_DISTORTION. Unscaled
+    // water uses this over the view's typical water distance (FramePlan.h,
+    // DistortionConstant), so both give the same offset there.
+    float wave_distortion = 100.0F;
     glm::vec2 bump_scale0{1.0F / 24.0F, 1.0F / 24.0F};  // one normal-map tile per 24 units
     glm::vec2 bump_scale1{1.0F / 15.0F, 1.0F / 15.0F};  // a second, finer layer
     glm::vec2 bump_velocity0{0.013F, 0.021F};           // texture units per second
@@ -47,10 +48,12 @@ struct RenderSettings {
     glm::vec3 underwater_colour{0.05F, 0.15F, 0.10F};  // refraction clear + depth fog (demo)
     float rcp_max_fog_depth = 1.0F / 80.0F;            // underwater depth fog (demo)
     glm::vec4 water_colour{0.05F, 0.15F, 0.10F, 0.4F}; // ENABLE_WATER_COLOUR rgb and mix factor
-    int low_res_water_size = 256;   // low-resolution water texture (whitepaper: 256x256)
+    // Low-resolution water texture; 0 follows the demo's rule for the window (FramePlan.h,
+    // LowResWaterSize: 256 at 640x480).
+    int low_res_water_size = 0;
     int sky_size = 128;             // sky cube-map face size
     int normal_map_size = 256;      // water normal map size
-    int normalisation_cube_size = 32;
+    int normalisation_cube_size = 8;  // per face, the demo's size (whitepaper 3.3.1)
     // Depth-based optics (../shared/seeds/003; shaders/water.fsh). The refraction pass stores
     // depth up to max_water_depth; extinction is the depth at which each channel is gone.
     float max_water_depth = 80.0F;

@@ -90,6 +90,22 @@ inline float MediumpFogReciprocal(float reciprocal) {
     return std::fmin(std::fmax(reciprocal, 0.0F), kMaxMediump);  // fmax drops a NaN
 }
 
+/// Bounds of MaxWaterDepth (world units) as water.fsh reads it: the depth optics divide the
+/// depth by a view cosine floored at kMinExtinctionViewCos, so a path reaches 20 times the depth,
+/// and 20 x 3000 = 60000 stays below fp16's 65504. The lower bound is the refraction clip
+/// plane's sliver (0.5 units), below which no stored depth can be told apart.
+inline constexpr float kMinMaxWaterDepth = 0.5F;
+inline constexpr float kMaxMaxWaterDepth = 3000.0F;
+
+/// Returns max_water_depth as the renderer uploads it (MaxWaterDepth, and its reciprocal for
+/// model.fsh): clamped to [kMinMaxWaterDepth, kMaxMaxWaterDepth], NaN giving the upper bound.
+/// Unclamped, a depth past 65504 is Inf in mediump and Inf x 0 at the water line is NaN. Never
+/// fails.
+inline float MediumpMaxWaterDepth(float depth) {
+    return std::isnan(depth) ? kMaxMaxWaterDepth
+                             : std::fmin(std::fmax(depth, kMinMaxWaterDepth), kMaxMaxWaterDepth);
+}
+
 /// The depth-based colour model of ../shared/seeds/003 as water.fsh evaluates it
 /// (ENABLE_EXTINCTION). Units are world units (the default scene's are metres).
 struct ExtinctionModel {
