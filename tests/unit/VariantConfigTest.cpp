@@ -327,7 +327,7 @@ TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {
     ASSERT_EQ(result.diagnostics.size(), 1U);
     EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
               (dir_.Path() / "missing.yaml").string() +
-                      ": error: cannot read the configuration file; check the path or pass "
+                      ": error: cannot read the configuration file: no such file; check the path or pass "
                       "--config PATH");
 }
 
