@@ -335,6 +335,28 @@ INSTANTIATE_TEST_SUITE_P(
                               "the vertex shader a.vsh does not declare it; declare it there as a "
                               "varying (GLSL ES 1.00 §4.3.5, GLSL ES 3.00 §4.3.4)"}));
 
+TEST(GlslValidatorTest, UniformClashNamesTheVertexStageNotAnUnknownOne) {
+    TempDir dir;
+    const std::string vertex =
+            dir.Write("u.vsh", "#version 100\nuniform vec2 u;\nvoid main() { gl_Position = "
+                               "vec4(u, 0.0, 1.0); }\n")
+                    .string();
+    const std::string fragment =
+            dir.Write("u.fsh", "#version 100\nprecision mediump float;\nuniform vec3 u;\nvoid "
+                               "main() { gl_FragColor = vec4(u, 1.0); }\n")
+                    .string();
+    const ValidationReport report =
+            ValidateShaderFiles({{vertex, Stage::kVertex}, {fragment, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_FALSE(report.verdicts[0].valid);
+    EXPECT_EQ(Formatted(report.verdicts[0].diagnostics),
+              (std::vector<std::string>{
+                      fragment + ": error: Linking vertex and fragment stages: Types must match:",
+                      fragment + ": error: Linking vertex and fragment stages: Precision "
+                                 "qualifiers must match:; vertex stage: \" highp vec2 u\"; "
+                                 "fragment stage: \" mediump vec3 u\""}));
+}
+
 TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {
     TempDir dir;
     const std::string vertex = dir.Write("a.vsh", kVertex).string();
