@@ -18,6 +18,7 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SourceAssembler.h"
+#include "tidepool/TextFile.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 
@@ -82,7 +83,7 @@ int RunExpand(const CompilerOptions& options) {
     const VariantConfig& config = *loaded.config;
     const nlohmann::json manifest = BuildManifest(config, loaded.expansion, nullptr);
     if (options.json) {
-        std::printf("%s\n", manifest.dump(2).c_str());
+        std::printf("%s\n", JsonText(manifest, 2).c_str());
     } else {
         for (const Variant& variant : loaded.expansion.variants) {
             std::printf("%s\n", variant.Id().c_str());
@@ -109,16 +110,15 @@ int RunExpand(const CompilerOptions& options) {
                 const std::string& path =
                         stage == Stage::kVertex ? program->vertex_path : program->fragment_path;
                 if (sources.count(path) == 0) {
-                    std::ifstream in(config.Resolve(path), std::ios::binary);
-                    std::ostringstream text;
-                    text << in.rdbuf();
-                    if (!in) {
-                        std::fprintf(stderr, "%s: error: cannot read shader file\n", path.c_str());
+                    TextFileRead read = ReadShaderFile(config.Resolve(path));
+                    if (!read.ok) {
+                        std::fprintf(stderr, "%s: error: cannot read shader file: %s\n",
+                                     path.c_str(), read.error.c_str());
                         std::error_code ec;
                         std::filesystem::remove_all(staging, ec);
                         return kExitUsage;
                     }
-                    sources[path] = text.str();
+                    sources[path] = std::move(read.text);
                 }
                 const std::filesystem::path file =
                         staging / TargetName(target) / variant.program /
@@ -135,7 +135,8 @@ int RunExpand(const CompilerOptions& options) {
             }
         }
     }
-    std::string error = WriteFileAtomically(staging / "manifest.json", manifest.dump(2) + "\n");
+    std::string error =
+            WriteFileAtomically(staging / "manifest.json", JsonText(manifest, 2) + "\n");
     if (error.empty()) {
         error = PublishFolder(staging, dir);
     }
@@ -165,8 +166,9 @@ int RunValidateFiles(const CompilerOptions& options) {
                          path.c_str());
             return kExitUsage;
         }
-        if (!std::filesystem::is_regular_file(path)) {
-            std::fprintf(stderr, "%s: error: no such shader file\n", path.c_str());
+        if (const TextFileRead read = ReadShaderFile(path); !read.ok) {
+            std::fprintf(stderr, "%s: error: cannot read the shader file: %s\n", path.c_str(),
+                         read.error.c_str());
             return kExitUsage;
         }
         files.push_back(file);
@@ -186,7 +188,7 @@ int RunValidateFiles(const CompilerOptions& options) {
                         {"diagnostics", diagnostics}});
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     } else {
         std::printf("%zu file(s): %s\n", files.size(), errors == 0 ? "valid" : "INVALID");
     }
@@ -194,8 +196,16 @@ int RunValidateFiles(const CompilerOptions& options) {
 }
 
 int RunValidate(const CompilerOptions& options) {
+    if (!CheckDefineOptions(options.defines)) {
+        return kExitUsage;
+    }
     if (!options.files.empty()) {
         return RunValidateFiles(options);
+    }
+    if (!options.defines.empty()) {
+        std::fprintf(stderr, "error: -D applies to the shader FILEs given, and none was given; "
+                             "the variants of a configuration get their defines from it\n");
+        return kExitUsage;
     }
     LoadedMatrix loaded = LoadAndExpand(options.config, options.max_variants);
     if (!loaded.config) {
@@ -213,8 +223,9 @@ int RunValidate(const CompilerOptions& options) {
     }
     const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
     if (!options.out.empty()) {
-        const std::string error = WriteFileAtomically(
-                std::filesystem::path(options.out) / "manifest.json", manifest.dump(2) + "\n");
+        const std::string error =
+                WriteFileAtomically(std::filesystem::path(options.out) / "manifest.json",
+                                    JsonText(manifest, 2) + "\n");
         if (!error.empty()) {
             std::fprintf(stderr, "error: %s\n", error.c_str());
             return kExitUsage;
@@ -222,7 +233,7 @@ int RunValidate(const CompilerOptions& options) {
     }
     const int invalid = report.InvalidCount();
     if (options.json) {
-        std::printf("%s\n", manifest.dump(2).c_str());
+        std::printf("%s\n", JsonText(manifest, 2).c_str());
     } else {
         std::printf("%zu variants (%zu pruned combinations) x %zu target(s): %d stage slots -> "
                     "%zu distinct stage programs (%d shared), %d links; %s\n",
@@ -282,7 +293,7 @@ int RunStats(const CompilerOptions& options) {
         }
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     }
     return invalid == 0 ? kExitOk : kExitShaderErrors;
 }
@@ -309,7 +320,8 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                       "pruned it; with --out, write each variant's driver-ready sources");
     AddCommonFlags(expand, expand_options);
     expand->add_option("--out", expand_options.out,
-                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json");
+                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json")
+            ->transform(NormaliseOutPath);
     expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });
 
     CLI::App* validate = app.add_subcommand(
@@ -321,9 +333,13 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                          "file given together are linked");
     validate->add_option("--stage", validate_options.stage, "stage of plain files: vert or frag")
             ->check(CLI::IsMember({"vert", "frag", "vertex", "fragment"}));
-    validate->add_option("-D,--define", validate_options.defines, "define for plain files");
+    // One value per -D, so `-D NAME FILE` leaves FILE to the file list.
+    validate->add_option("-D,--define", validate_options.defines,
+                         "define for plain files: NAME or NAME=VALUE")
+            ->allow_extra_args(false);
     validate->add_option("-j,--jobs", validate_options.jobs, "worker threads (default: cores)");
-    validate->add_option("--out", validate_options.out, "folder to write manifest.json into");
+    validate->add_option("--out", validate_options.out, "folder to write manifest.json into")
+            ->transform(NormaliseOutPath);
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

@@ -14,6 +14,7 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
+#include "tidepool/Manifest.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/GlBackend.h"
@@ -177,7 +178,7 @@ int RunRunner(const RunnerOptions& options) {
         std::fprintf(stderr, "error: %s\n", write_error.c_str());
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     }
 
     int failed = 0;
@@ -231,6 +232,7 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
                         "llvmpipe threads (LP_NUM_THREADS; 0 renders on the calling thread)")
         ->capture_default_str();
     command->add_option("--out", options->out, "folder for results.json and images/")
+            ->transform(NormaliseOutPath)
         ->capture_default_str();
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");
