@@ -234,7 +234,15 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         if (!resolved.is_absolute()) {
             resolved = base_dir_ / resolved;
         }
-        if (!std::filesystem::is_regular_file(resolved, ec)) {
+        const std::filesystem::file_status status = std::filesystem::status(resolved, ec);
+        if (std::filesystem::is_directory(status)) {
+            Error(path, fmt::format("{} shader file '{}' is a folder ({}), not a file", stage,
+                                    value, resolved.string()));
+        } else if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+            Error(path, fmt::format("{} shader file '{}' is not a regular file ({}); a FIFO or "
+                                    "device cannot be validated",
+                                    stage, value, resolved.string()));
+        } else if (!std::filesystem::is_regular_file(status)) {
             Error(path, fmt::format("{} shader file '{}' not found (looked for {}); paths are "
                                     "relative to the folder of {}",
                                     stage, value, resolved.string(), file()));

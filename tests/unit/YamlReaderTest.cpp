@@ -1,7 +1,6 @@
 // The shared YAML reading layer, through both loaders that use it: hostile documents are refused
 // with a position instead of crashing, hanging or reaching the JSON writers.
 #include "tidepool/SceneDescription.h"
-#include "tidepool/TextFile.h"
 #include "tidepool/VariantConfig.h"
 
 #include <gtest/gtest.h>
@@ -10,8 +9,6 @@
 #include <string>
 
 #include "TempDir.h"
-#include <sys/stat.h>
-
 namespace tidepool {
 namespace {
 
@@ -122,15 +119,6 @@ TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {
                       ": error: cannot read the scene file: is a folder, not a "
                       "file; scenes live in scenes/NAME.yaml next to the "
                       "configuration\n");
-}
-
-TEST(TextFileTest, FifoIsRefusedWithoutBlocking) {
-    TempDir dir;
-    const std::filesystem::path fifo = dir.Path() / "pipe.yaml";
-    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
-    const TextFileRead read = ReadTextFile(fifo);
-    EXPECT_FALSE(read.ok);
-    EXPECT_EQ(read.error, "is a FIFO (named pipe), not a regular file");
 }
 
 }  // namespace
