@@ -39,47 +39,41 @@ constexpr bool kAddressSpaceLimitWorks = true;
 
 using Clock = std::chrono::steady_clock;
 
-// Records from a worker: a type byte ('P' progress, 'R' result), a 64-bit length, the bytes.
-bool SendAll(int fd, const void* data, std::size_t size) {
-    const char* bytes = static_cast<const char*>(data);
+// Moves all `size` bytes with `step` (one send or recv), retrying after a signal; false when the
+// peer has gone (a recv of 0 bytes) or the socket failed.
+template <typename Byte, typename Step>
+bool TransferAll(Byte* bytes, std::size_t size, Step step) {
     while (size > 0) {
-        // MSG_NOSIGNAL: a peer that died must be an error here, not a SIGPIPE for the process.
-        const ssize_t sent = ::send(fd, bytes, size, MSG_NOSIGNAL);
-        if (sent < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
+        const ssize_t moved = step(bytes, size);
+        if (moved < 0 && errno == EINTR) {
+            continue;
+        }
+        if (moved <= 0) {
             return false;
         }
-        bytes += sent;
-        size -= static_cast<std::size_t>(sent);
+        bytes += moved;
+        size -= static_cast<std::size_t>(moved);
     }
     return true;
 }
 
+bool SendAll(int fd, const void* data, std::size_t size) {
+    // MSG_NOSIGNAL: a peer that died must be an error here, not a SIGPIPE for the process.
+    return TransferAll(static_cast<const char*>(data), size, [fd](const char* b, std::size_t n) {
+        return ::send(fd, b, n, MSG_NOSIGNAL);
+    });
+}
+
+bool ReceiveAll(int fd, void* data, std::size_t size) {
+    return TransferAll(static_cast<char*>(data), size,
+                       [fd](char* b, std::size_t n) { return ::recv(fd, b, n, 0); });
+}
+
+// Records from a worker: a type byte ('P' progress note, 'R' result), a 64-bit length, the bytes.
 bool SendRecord(int fd, char type, const std::string& bytes) {
     const std::uint64_t size = bytes.size();
     return SendAll(fd, &type, 1) && SendAll(fd, &size, sizeof size) &&
            SendAll(fd, bytes.data(), bytes.size());
-}
-
-bool ReceiveAll(int fd, void* data, std::size_t size) {
-    char* bytes = static_cast<char*>(data);
-    while (size > 0) {
-        const ssize_t got = ::recv(fd, bytes, size, 0);
-        if (got == 0) {
-            return false;
-        }
-        if (got < 0) {
-            if (errno == EINTR) {
-                continue;
-            }
-            return false;
-        }
-        bytes += got;
-        size -= static_cast<std::size_t>(got);
-    }
-    return true;
 }
 
 [[noreturn]] void ExitOutOfMemory() {
