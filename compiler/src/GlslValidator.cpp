@@ -148,15 +148,20 @@ struct ItemStage {
     GlslangStageInput input;
 };
 
-// Worker side of a link item: parses each stage (reporting it through a note) and, when all
-// parsed, links them; returns the link's outcome, or "" when no link ran.
-std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note) {
+// Worker side of a link item: parses each stage (reporting it through a note unless this worker
+// already did: its cost analysis is not free) and, when all parsed, links them; returns the
+// link's outcome, or "" when no link ran.
+std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note,
+                         std::vector<bool>* reported) {
     std::vector<StageParse> parses;
     bool all_ok = true;
     for (const ItemStage& stage : stages) {
         note(fmt::format("P{}", stage.index));
         parses.push_back(ParseStage(stage.input));
-        note(EncodeStage(stage.index, parses.back()));
+        if (!(*reported)[stage.index]) {
+            note(EncodeStage(stage.index, parses.back()));
+            (*reported)[stage.index] = true;
+        }
         all_ok = all_ok && parses.back().ok;
     }
     if (!all_ok) {
@@ -294,7 +299,7 @@ std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::s
 
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options) {
-    EnsureGlslangInitialized();  // once, before the workers fork, so none builds the tables again
+    WarmUpGlslang(options.targets);  // before the workers fork, so none builds the tables again
     ValidationReport report;
 
     // Read every shader file once.
@@ -462,11 +467,9 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                     }
                     return {};
                 }
-                reported[link.vertex] = true;
-                reported[link.fragment] = true;
                 return ParseAndLink({{link.vertex, input_of(link.vertex)},
                                      {link.fragment, input_of(link.fragment)}},
-                                    note);
+                                    note, &reported);
             },
             [&](std::size_t i) {
                 // Skipped only when it can neither link nor decide a stage: a stage that
@@ -535,7 +538,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
 
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines) {
-    EnsureGlslangInitialized();
+    WarmUpGlslang({GlslTarget::kEs100});
     ValidationReport report;
     std::vector<FileText> texts(files.size());
     for (std::size_t i = 0; i < files.size(); ++i) {
@@ -573,6 +576,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         }
     }
     auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
+    std::vector<bool> reported(files.size(), false);
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
             groups.size(), 2, kGlslangLimits,
             [&](std::size_t g, const ProgressNote& note) {
@@ -581,7 +585,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                     stages.push_back({i, {files[i].path, texts[i].text, files[i].stage,
                                           std::nullopt, defines}});
                 }
-                return ParseAndLink(stages, note);
+                return ParseAndLink(stages, note, &reported);
             },
             [&](std::size_t g) {
                 return std::all_of(groups[g].begin(), groups[g].end(), usable);

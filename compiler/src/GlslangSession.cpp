@@ -129,6 +129,18 @@ const TBuiltInResource* ResourcesFor(int version) {
 
 }  // namespace
 
+void WarmUpGlslang(const std::vector<GlslTarget>& targets) {
+    static const std::string kVertex = "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n";
+    static const std::string kFragment =
+            "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(0.0); }\n";
+    static const std::vector<std::string> kNoDefines;
+    for (GlslTarget target : targets) {
+        static_cast<void>(ParseStage({"warm-up", kVertex, Stage::kVertex, target, kNoDefines}));
+        static_cast<void>(
+                ParseStage({"warm-up", kFragment, Stage::kFragment, target, kNoDefines}));
+    }
+}
+
 PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     EnsureGlslangInitialized();
     const PreparedStage prepared = Prepare(input);
