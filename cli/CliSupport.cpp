@@ -170,6 +170,40 @@ LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& l
     return loaded;
 }
 
+std::string NormaliseOutPath(std::string path) {
+    if (path.empty()) {
+        return path;
+    }
+    std::filesystem::path normal = std::filesystem::path(path).lexically_normal();
+    if (!normal.has_filename() && normal.has_relative_path()) {
+        normal = normal.parent_path();  // "DIR/" → "DIR"; "/" stays the root
+    }
+    return normal.string();
+}
+
+bool CheckDefineOptions(const std::vector<std::string>& defines) {
+    for (const std::string& define : defines) {
+        const std::size_t equals = define.find('=');
+        const std::string name = define.substr(0, equals);
+        if (!IsValidDefineName(name)) {
+            std::fprintf(stderr,
+                         "error: -D '%s': '%s' is not a valid define name: use letters, digits "
+                         "and _, start with a letter, no 'GL_' prefix and no '__'\n",
+                         define.c_str(), name.c_str());
+            return false;
+        }
+        if (equals != std::string::npos &&
+            define.find_first_of("\r\n", equals) != std::string::npos) {
+            std::fprintf(stderr,
+                         "error: -D '%s': the value must be a single line (a newline would add "
+                         "preprocessor lines)\n",
+                         name.c_str());
+            return false;
+        }
+    }
+    return true;
+}
+
 int DefaultJobs() {
     const unsigned cores = std::thread::hardware_concurrency();
     return cores == 0 ? 1 : static_cast<int>(cores);

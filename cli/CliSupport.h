@@ -75,6 +75,16 @@ void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits);
 /// errors.
 LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits = {});
 
+/// An --out folder as every command uses it: lexically normal and without a trailing slash, so
+/// that `--out DIR/` names DIR (and its staging sibling) rather than an empty file name inside it.
+/// Registered as a CLI11 transform on every --out option.
+std::string NormaliseOutPath(std::string path);
+
+/// Checks the -D values of plain-file validation: each must be NAME or NAME=VALUE, NAME a define
+/// name config mode accepts (IsValidDefineName) and VALUE a single line; prints why not and
+/// returns false otherwise.
+bool CheckDefineOptions(const std::vector<std::string>& defines);
+
 /// Validation jobs when the user gives none: one per core (1 when unknown).
 int DefaultJobs();
 

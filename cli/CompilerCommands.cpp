@@ -18,6 +18,7 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SourceAssembler.h"
+#include "tidepool/TextFile.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 
@@ -106,7 +107,7 @@ int RunExpand(const CompilerOptions& options) {
             printed["pruned"] = list;
             printed["pruned_unlisted"] = unlisted;
         }
-        std::printf("%s\n", printed.dump(2).c_str());
+        std::printf("%s\n", JsonText(printed, 2).c_str());
     } else {
         for (const Variant& variant : expansion.variants) {
             std::printf("%s\n", variant.Id().c_str());
@@ -142,16 +143,15 @@ int RunExpand(const CompilerOptions& options) {
                 const std::string& path =
                         stage == Stage::kVertex ? program->vertex_path : program->fragment_path;
                 if (sources.count(path) == 0) {
-                    std::ifstream in(config.Resolve(path), std::ios::binary);
-                    std::ostringstream text;
-                    text << in.rdbuf();
-                    if (!in) {
-                        std::fprintf(stderr, "%s: error: cannot read shader file\n", path.c_str());
+                    TextFileRead read = ReadShaderFile(config.Resolve(path));
+                    if (!read.ok) {
+                        std::fprintf(stderr, "%s: error: cannot read shader file: %s\n",
+                                     path.c_str(), read.error.c_str());
                         std::error_code ec;
                         std::filesystem::remove_all(staging, ec);
                         return kExitUsage;
                     }
-                    sources[path] = text.str();
+                    sources[path] = std::move(read.text);
                 }
                 const std::filesystem::path file =
                         staging / TargetName(target) / variant.program /
@@ -168,7 +168,8 @@ int RunExpand(const CompilerOptions& options) {
             }
         }
     }
-    std::string error = WriteFileAtomically(staging / "manifest.json", manifest.dump(2) + "\n");
+    std::string error =
+            WriteFileAtomically(staging / "manifest.json", JsonText(manifest, 2) + "\n");
     if (error.empty()) {
         error = PublishFolder(staging, dir);
     }
@@ -198,8 +199,9 @@ int RunValidateFiles(const CompilerOptions& options) {
                          path.c_str());
             return kExitUsage;
         }
-        if (!std::filesystem::is_regular_file(path)) {
-            std::fprintf(stderr, "%s: error: no such shader file\n", path.c_str());
+        if (const TextFileRead read = ReadShaderFile(path); !read.ok) {
+            std::fprintf(stderr, "%s: error: cannot read the shader file: %s\n", path.c_str(),
+                         read.error.c_str());
             return kExitUsage;
         }
         files.push_back(file);
@@ -219,7 +221,7 @@ int RunValidateFiles(const CompilerOptions& options) {
                         {"diagnostics", diagnostics}});
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     } else {
         std::printf("%zu file(s): %s\n", files.size(), errors == 0 ? "valid" : "INVALID");
     }
@@ -227,8 +229,16 @@ int RunValidateFiles(const CompilerOptions& options) {
 }
 
 int RunValidate(const CompilerOptions& options) {
+    if (!CheckDefineOptions(options.defines)) {
+        return kExitUsage;
+    }
     if (!options.files.empty()) {
         return RunValidateFiles(options);
+    }
+    if (!options.defines.empty()) {
+        std::fprintf(stderr, "error: -D applies to the shader FILEs given, and none was given; "
+                             "the variants of a configuration get their defines from it\n");
+        return kExitUsage;
     }
     LoadedMatrix loaded = LoadAndExpand(options.config, options.limits);
     if (!loaded.config) {
@@ -246,8 +256,9 @@ int RunValidate(const CompilerOptions& options) {
     }
     const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
     if (!options.out.empty()) {
-        const std::string error = WriteFileAtomically(
-                std::filesystem::path(options.out) / "manifest.json", manifest.dump(2) + "\n");
+        const std::string error =
+                WriteFileAtomically(std::filesystem::path(options.out) / "manifest.json",
+                                    JsonText(manifest, 2) + "\n");
         if (!error.empty()) {
             std::fprintf(stderr, "error: %s\n", error.c_str());
             return kExitUsage;
@@ -255,7 +266,7 @@ int RunValidate(const CompilerOptions& options) {
     }
     const int invalid = report.InvalidCount();
     if (options.json) {
-        std::printf("%s\n", manifest.dump(2).c_str());
+        std::printf("%s\n", JsonText(manifest, 2).c_str());
     } else {
         std::printf("%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
                     "%zu distinct stage programs (%d shared), %d links; %s\n",
@@ -316,7 +327,7 @@ int RunStats(const CompilerOptions& options) {
         }
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     }
     return invalid == 0 ? kExitOk : kExitShaderErrors;
 }
@@ -350,7 +361,8 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str()
             ->needs(pruned);
     expand->add_option("--out", expand_options.out,
-                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json");
+                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json")
+            ->transform(NormaliseOutPath);
     expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });
 
     CLI::App* validate = app.add_subcommand(
@@ -362,9 +374,13 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                          "file given together are linked");
     validate->add_option("--stage", validate_options.stage, "stage of plain files: vert or frag")
             ->check(CLI::IsMember({"vert", "frag", "vertex", "fragment"}));
-    validate->add_option("-D,--define", validate_options.defines, "define for plain files");
+    // One value per -D, so `-D NAME FILE` leaves FILE to the file list.
+    validate->add_option("-D,--define", validate_options.defines,
+                         "define for plain files: NAME or NAME=VALUE")
+            ->allow_extra_args(false);
     validate->add_option("-j,--jobs", validate_options.jobs, "worker threads (default: cores)");
-    validate->add_option("--out", validate_options.out, "folder to write manifest.json into");
+    validate->add_option("--out", validate_options.out, "folder to write manifest.json into")
+            ->transform(NormaliseOutPath);
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

@@ -1,6 +1,7 @@
 // `tidepool plan`: flags → plan options → PlanScene per scene → print → plans.json → exit code.
 #include "PlanCommands.h"
 
+#include "tidepool/Manifest.h"
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/report/ImageMetrics.h"
@@ -189,7 +190,7 @@ int RunPlan(const PlanCommandOptions& options) {
     }
     const nlohmann::json json = PlansToJson(plans, plan_options);
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     }
     if (!out.empty()) {
         const std::filesystem::path path = std::filesystem::path(out) / "plans.json";
@@ -227,7 +228,8 @@ void RegisterPlanCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str();
     plan->add_flag("--json", options->json, "print plans.json to stdout");
     plan->add_option("--out", options->out,
-                     "folder for plans.json (default reports/out/plan with --all)");
+                     "folder for plans.json (default reports/out/plan with --all)")
+            ->transform(NormaliseOutPath);
     plan->callback([options, &exit_code] { exit_code = RunPlan(*options); });
 }
 

@@ -336,7 +336,7 @@ int RunAll(const RunCommandOptions& options) {
         PrintDiagnostics(verdict.diagnostics);
     }
     const nlohmann::json manifest = BuildManifest(config, expansion, &validation);
-    if (std::string error = WriteFileAtomically(manifest_path, manifest.dump(2) + "\n");
+    if (std::string error = WriteFileAtomically(manifest_path, JsonText(manifest, 2) + "\n");
         !error.empty()) {
         std::fprintf(stderr, "error: %s\n", error.c_str());
         return kExitUsage;
@@ -457,6 +457,7 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
     report->add_option("--name", report_options->name, "report folder name under --out")
             ->capture_default_str();
     report->add_option("--out", report_options->out, "folder that receives <name>/")
+            ->transform(NormaliseOutPath)
             ->capture_default_str();
     report->callback([report_options, &exit_code] { exit_code = RunReport(*report_options); });
 
@@ -469,7 +470,8 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
             ->capture_default_str();
     run->add_option("--name", run_options->name, "report folder name under --out")
             ->capture_default_str();
-    run->add_option("--out", run_options->out, "output folder")->capture_default_str();
+    run->add_option("--out", run_options->out, "output folder")
+            ->transform(NormaliseOutPath)->capture_default_str();
     run->add_option("--size", run_options->size, "render size WxH")->capture_default_str();
     AddTimingFlags(run, &run_options->timing);
     run->add_option("--backend", run_options->backend, "auto (EGL, then OSMesa), egl or osmesa")

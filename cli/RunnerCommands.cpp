@@ -14,6 +14,7 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
+#include "tidepool/Manifest.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/GlBackend.h"
@@ -155,7 +156,7 @@ int RunRunner(const RunnerOptions& options) {
         std::fprintf(stderr, "error: %s\n", write_error.c_str());
     }
     if (options.json) {
-        std::printf("%s\n", json.dump(2).c_str());
+        std::printf("%s\n", JsonText(json, 2).c_str());
     }
     for (const std::string& e : results.write_errors) {
         std::fprintf(stderr, "error: %s\n", e.c_str());
@@ -218,6 +219,7 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
     command->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
     command->add_option("--out", options->out, "folder for results.json and images/")
+            ->transform(NormaliseOutPath)
         ->capture_default_str();
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");

@@ -140,7 +140,8 @@ void RegisterStabilityCommands(CLI::App& app, int& exit_code) {
                          "comparison; write DIR/stability.json");
     command->add_option("--config", options->config, "variants.yaml to read")
             ->capture_default_str();
-    command->add_option("--out", options->out, "folder for stability.json")->capture_default_str();
+    command->add_option("--out", options->out, "folder for stability.json")
+            ->transform(NormaliseOutPath)->capture_default_str();
     command->add_option("--backend", options->backend, "auto, egl or osmesa")
             ->capture_default_str();
     command->add_option("--size", options->size, "render size WxH of the GL cases")

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README.md): installs dependencies, builds, runs every test (unit, gl, cli),
-# then runs the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# then runs the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then fuzzes
+# each YAML loader for a minute (FUZZ_SECONDS).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
@@ -16,3 +17,6 @@ echo "== sanitizer build (ASan + UBSan)"
 "$root/scripts/build.sh" sanitize
 echo "== unit tests under ASan + UBSan"
 (cd "$root/build/sanitize" && ctest --output-on-failure -j 2 -L unit --timeout 600)
+
+echo "== fuzzing the YAML loaders (libFuzzer, ${FUZZ_SECONDS:-60} s each)"
+"$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"

@@ -4,7 +4,7 @@
 #include "tidepool/GlslValidator.h"
 
 #include <algorithm>
-#include <atomic>
+#include <functional>
 #include <cctype>
 #include <set>
 #include <fstream>
@@ -12,11 +12,13 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include <fmt/format.h>
 
+#include "GlslEsRules.h"
 #include "GlslangSession.h"
+#include "WorkerProcessPool.h"
+#include "tidepool/TextFile.h"
 #include "StaticCostAnalyzer.h"
 
 namespace tidepool {
@@ -41,30 +43,165 @@ bool StageFromExtension(const std::string& path, Stage* stage) {
 
 namespace {
 
-// Runs fn(i) for i in [0, count) on up to `jobs` threads; each index runs exactly once.
-template <typename Fn>
-void ParallelFor(std::size_t count, int jobs, Fn fn) {
-    const std::size_t workers =
-            std::min<std::size_t>(count, static_cast<std::size_t>(std::max(jobs, 1)));
-    if (workers <= 1) {
-        for (std::size_t i = 0; i < count; ++i) {
-            fn(i);
+// glslang runs in worker processes (WorkerProcessPool.h): a shader that crashes it, loops it or
+// makes it allocate without bound fails its own stage with an "internal compiler error" and the
+// run goes on. The limits are per worker and item. 1 GiB is five times what validating the whole
+// default matrix takes (about 190 MB); 20 s is a hundred times the slowest shipped stage under
+// the sanitizers on a loaded two-core machine.
+constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0};
+
+// What a failed worker item means for the stage or link it was working on.
+std::string InternalCompilerError(const WorkerItemResult& result, std::string_view doing) {
+    std::string what;
+    switch (result.failure) {
+        case WorkerFailure::kOutOfMemory:
+            what = fmt::format("glslang ran out of memory (limit {} MiB)",
+                               kGlslangLimits.memory_bytes >> 20);
+            break;
+        case WorkerFailure::kTimedOut:
+            what = fmt::format("glslang took longer than {} s", kGlslangLimits.seconds_per_item);
+            break;
+        default:
+            what = fmt::format("glslang crashed ({})", result.detail);
+            break;
+    }
+    return fmt::format("internal compiler error: {} while {}; the shader may be valid or not, "
+                       "and the run went on without it",
+                       what, doing);
+}
+
+// Worker notes of a stage-and-link item: "P<i>" before parsing stage i, "S<i>" + CBOR with its
+// outcome after, "L" before linking. The last note names the step a failure happened in.
+struct StageOutcome {
+    bool valid = false;
+    std::vector<Diagnostic> diagnostics;
+    StageCost cost;
+};
+
+nlohmann::json DiagnosticsToJson(const std::vector<Diagnostic>& diagnostics) {
+    nlohmann::json list = nlohmann::json::array();
+    for (const Diagnostic& d : diagnostics) {
+        list.push_back({static_cast<int>(d.severity), d.file, d.line, d.column, d.message});
+    }
+    return list;
+}
+
+std::vector<Diagnostic> DiagnosticsFromJson(const nlohmann::json& list) {
+    std::vector<Diagnostic> diagnostics;
+    for (const nlohmann::json& d : list) {
+        diagnostics.push_back(Diagnostic{static_cast<Severity>(d[0].get<int>()),
+                                         d[1].get<std::string>(), d[2].get<int>(),
+                                         d[3].get<int>(), d[4].get<std::string>(), {}});
+    }
+    return diagnostics;
+}
+
+// CBOR rather than JSON text: diagnostics may quote bytes that are not UTF-8, and CBOR carries
+// them unchanged.
+std::string EncodeStage(std::size_t index, const StageParse& parse) {
+    nlohmann::json json{{"valid", parse.ok}, {"diagnostics", DiagnosticsToJson(parse.diagnostics)}};
+    if (parse.ok && parse.intermediate != nullptr) {
+        json["cost"] = ToJson(AnalyzeStageCost(*parse.intermediate));
+    }
+    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(json);
+    return fmt::format("S{}:", index) + std::string(bytes.begin(), bytes.end());
+}
+
+StageCost CostFromJson(const nlohmann::json& json) {
+    StageCost cost;
+    cost.arithmetic_ops = json.at("arithmetic_ops").get<int>();
+    cost.texture_samples = json.at("texture_samples").get<int>();
+    cost.builtin_calls = json.at("builtin_calls").get<std::map<std::string, int>>();
+    cost.branches = json.at("branches").get<int>();
+    cost.loops = json.at("loops").get<int>();
+    cost.uniforms = json.at("uniforms").get<int>();
+    cost.varyings = json.at("varyings").get<int>();
+    cost.samplers = json.at("samplers").get<int>();
+    cost.shortest_path_ops = json.at("shortest_path_ops").get<int>();
+    cost.longest_path_ops = json.at("longest_path_ops").get<int>();
+    return cost;
+}
+
+// The stage outcomes an item reported, by stage index.
+std::map<std::size_t, StageOutcome> DecodeStages(const std::vector<std::string>& notes) {
+    std::map<std::size_t, StageOutcome> stages;
+    for (const std::string& note : notes) {
+        const std::size_t colon = note.find(':');
+        if (note.empty() || note[0] != 'S' || colon == std::string::npos) {
+            continue;
         }
-        return;
+        const nlohmann::json json = nlohmann::json::from_cbor(note.substr(colon + 1));
+        StageOutcome outcome;
+        outcome.valid = json.at("valid").get<bool>();
+        outcome.diagnostics = DiagnosticsFromJson(json.at("diagnostics"));
+        if (json.contains("cost")) {
+            outcome.cost = CostFromJson(json.at("cost"));
+        }
+        stages[std::stoul(note.substr(1, colon - 1))] = std::move(outcome);
     }
-    std::atomic<std::size_t> next{0};
-    std::vector<std::thread> threads;
-    threads.reserve(workers);
-    for (std::size_t w = 0; w < workers; ++w) {
-        threads.emplace_back([&] {
-            for (std::size_t i = next++; i < count; i = next++) {
-                fn(i);
-            }
-        });
+    return stages;
+}
+
+// One stage of a link item, as the worker sees it.
+struct ItemStage {
+    std::size_t index = 0;  // the stage program's index, for notes
+    GlslangStageInput input;
+};
+
+// Worker side of a link item: parses each stage (reporting it through a note unless this worker
+// already did: its cost analysis is not free) and, when all parsed, links them; returns the
+// link's outcome, or "" when no link ran.
+std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note,
+                         std::vector<bool>* reported) {
+    std::vector<StageParse> parses;
+    bool all_ok = true;
+    for (const ItemStage& stage : stages) {
+        note(fmt::format("P{}", stage.index));
+        parses.push_back(ParseStage(stage.input));
+        if (!(*reported)[stage.index]) {
+            note(EncodeStage(stage.index, parses.back()));
+            (*reported)[stage.index] = true;
+        }
+        all_ok = all_ok && parses.back().ok;
     }
-    for (std::thread& t : threads) {
-        t.join();
+    if (!all_ok) {
+        return {};
     }
+    note("L");
+    const LinkResult link = stages.size() == 2
+                                    ? LinkStages(stages[0].input, stages[1].input,
+                                                 std::move(parses[0]), std::move(parses[1]))
+                                    : LinkSingleStage(stages[0].input);
+    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(
+            nlohmann::json{{"ok", link.ok}, {"diagnostics", DiagnosticsToJson(link.diagnostics)}});
+    return std::string(bytes.begin(), bytes.end());
+}
+
+// Parent side of a link item: the link's outcome, or the internal compiler error of whichever
+// step failed (a stage, reported through `on_stage_error`, or the link itself).
+LinkResult LinkOutcome(const WorkerItemResult& result, std::string_view link_file,
+                       const std::function<void(std::size_t, const std::string&)>& on_stage_error) {
+    LinkResult link;
+    if (result.failure == WorkerFailure::kNone) {
+        if (!result.payload.empty()) {
+            const nlohmann::json json = nlohmann::json::from_cbor(result.payload);
+            link.ok = json.at("ok").get<bool>();
+            link.diagnostics = DiagnosticsFromJson(json.at("diagnostics"));
+        }
+        return link;
+    }
+    if (result.failure == WorkerFailure::kSkipped) {
+        return link;
+    }
+    const std::string last = result.notes.empty() ? std::string("L") : result.notes.back();
+    if (last[0] == 'P') {
+        on_stage_error(std::stoul(last.substr(1)),
+                       InternalCompilerError(result, "parsing this stage"));
+    } else {
+        link.diagnostics.push_back(MakeError(std::string(link_file), 0, 0,
+                                             InternalCompilerError(result, "linking the program")));
+    }
+    return link;
 }
 
 std::string Fnv1a64Hex(std::string_view text) {
@@ -79,16 +216,18 @@ std::string Fnv1a64Hex(std::string_view text) {
 struct FileText {
     bool ok = false;
     std::string text;
+    std::string error;                     // why it could not be read
+    std::vector<Diagnostic> text_errors;   // CheckSourceText's findings: glslang never sees it
 };
 
-FileText ReadFile(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        return {};
+FileText ReadFile(const std::filesystem::path& path, const std::string& name,
+                  const std::vector<std::string>& defines = {}) {
+    TextFileRead read = ReadShaderFile(path);
+    FileText file{read.ok, std::move(read.text), std::move(read.error), {}};
+    if (file.ok) {
+        file.text_errors = CheckSourceText(file.text, DefinePreamble(defines), name);
     }
-    std::ostringstream out;
-    out << in.rdbuf();
-    return {true, out.str()};
+    return file;
 }
 
 // One (file, stage, target, defines) to compile; the unit of preprocessing and hashing.
@@ -160,6 +299,7 @@ std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::s
 
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options) {
+    WarmUpGlslang(options.targets);  // before the workers fork, so none builds the tables again
     ValidationReport report;
 
     // Read every shader file once.
@@ -167,11 +307,12 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     for (const ProgramConfig& program : config.programs) {
         for (const std::string& path : {program.vertex_path, program.fragment_path}) {
             if (files.count(path) == 0) {
-                files[path] = ReadFile(config.Resolve(path));
+                files[path] = ReadFile(config.Resolve(path), path);
                 if (!files[path].ok) {
                     report.diagnostics.push_back(MakeError(
-                            path, 0, 0, "cannot read shader file; check the path in " +
-                                                config.path));
+                            path, 0, 0,
+                            fmt::format("cannot read shader file: {}; check the path in {}",
+                                        files[path].error, config.path)));
                 }
             }
         }
@@ -212,21 +353,40 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     for (const auto& [key, members] : groups) {
         group_list.push_back(&members);
     }
-    ParallelFor(group_list.size(), options.jobs, [&](std::size_t g) {
+    // A file glslang must not see (unreadable, or refused by CheckSourceText) is one program.
+    auto blocked = [](const StageJob& job) {
+        return !job.source->ok || !job.source->text_errors.empty();
+    };
+    const std::vector<WorkerItemResult> hashed = RunInWorkerProcesses(
+            group_list.size(), options.jobs, kGlslangLimits,
+            [&](std::size_t g, const ProgressNote&) {
+                StageJob& first = jobs[group_list[g]->front()];
+                HashStage(first);
+                return first.hash;
+            },
+            [&](std::size_t g) { return !blocked(jobs[group_list[g]->front()]); });
+    std::map<std::string, std::string> preprocess_errors;  // key → internal compiler error
+    for (std::size_t g = 0; g < group_list.size(); ++g) {
         const std::vector<std::size_t>& members = *group_list[g];
         StageJob& first = jobs[members.front()];
-        if (first.source->ok) {
-            HashStage(first);
+        if (blocked(first)) {
+            first.key = first.file + "|unusable";
+        } else if (hashed[g].failure == WorkerFailure::kNone) {
+            first.hash = hashed[g].payload;
+            first.key = first.file + "|" + first.hash;
         } else {
-            first.key = first.file + "|unreadable";
+            first.hash = fmt::format("failed-{}", g);
+            first.key = first.file + "|" + first.hash;
+            preprocess_errors[first.key] =
+                    InternalCompilerError(hashed[g], "preprocessing this stage");
         }
         for (std::size_t i : members) {
             jobs[i].hash = first.hash;
             jobs[i].key = first.key;
         }
-    });
+    }
 
-    // 2. Parse each distinct stage program once.
+    // 2. The distinct stage programs.
     std::map<std::string, std::size_t> program_index;
     std::vector<const StageJob*> representative;
     for (const StageJob& job : jobs) {
@@ -243,29 +403,26 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         report.stage_programs[it->second].variants.push_back(job.variant_id);
     }
-    // Each parsed stage is kept for the first link that needs it; later links sharing that stage
-    // parse it again, because a glslang tree is finalised by the one program that links it.
-    std::vector<StageParse> parsed(report.stage_programs.size());
-    std::vector<std::atomic<bool>> claimed(report.stage_programs.size());
-    ParallelFor(report.stage_programs.size(), options.jobs, [&](std::size_t i) {
-        StageProgram& program = report.stage_programs[i];
+    // Programs that are decided before glslang parses anything; the rest are decided by step 3.
+    std::vector<bool> decided(report.stage_programs.size(), false);
+    for (std::size_t i = 0; i < report.stage_programs.size(); ++i) {
         const StageJob& job = *representative[i];
+        StageProgram& program = report.stage_programs[i];
         if (!job.source->ok) {
             program.diagnostics.push_back(MakeError(job.file, 0, 0, "cannot read shader file"));
-            return;
+            decided[i] = true;
+        } else if (!job.source->text_errors.empty()) {
+            program.diagnostics = job.source->text_errors;
+            decided[i] = true;
+        } else if (auto error = preprocess_errors.find(job.key); error != preprocess_errors.end()) {
+            program.diagnostics.push_back(MakeError(job.file, 0, 0, error->second));
+            decided[i] = true;
         }
-        const GlslangStageInput input{job.file, job.source->text, job.stage, job.target,
-                                      job.defines};
-        StageParse parse = ParseStage(input);
-        program.valid = parse.ok;
-        program.diagnostics = std::move(parse.diagnostics);
-        if (parse.ok && parse.intermediate != nullptr) {
-            program.cost = AnalyzeStageCost(*parse.intermediate);
-            parsed[i] = std::move(parse);
-        }
-    });
+    }
 
-    // 3. Link each distinct (vertex, fragment) pair whose stages both parsed.
+    // 3. Parse and link each distinct (vertex, fragment) pair in a worker. A worker parses both
+    // stages of its pair and hands the parses straight to the link (a glslang tree is finalised
+    // by the one program that links it); the first report of a stage program decides it.
     struct LinkJob {
         std::size_t vertex = 0;
         std::size_t fragment = 0;
@@ -284,25 +441,69 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         verdict_link[v] = it->second;
     }
-    ParallelFor(links.size(), options.jobs, [&](std::size_t i) {
-        LinkJob& link = links[i];
-        const StageProgram& vs = report.stage_programs[link.vertex];
-        const StageProgram& fs = report.stage_programs[link.fragment];
-        if (!vs.valid || !fs.valid) {
-            return;  // the stage errors already explain the verdict
-        }
-        const StageJob& vjob = *representative[link.vertex];
-        const StageJob& fjob = *representative[link.fragment];
-        auto take = [&](std::size_t index) {
-            return claimed[index].exchange(true) ? StageParse{} : std::move(parsed[index]);
-        };
-        const LinkResult result = LinkStages(
-                {vjob.file, vjob.source->text, Stage::kVertex, vjob.target, vjob.defines},
-                {fjob.file, fjob.source->text, Stage::kFragment, fjob.target, fjob.defines},
-                take(link.vertex), take(link.fragment));
-        link.linked = result.ok;
-        link.diagnostics = result.diagnostics;
-    });
+    // Which stage programs this process (a worker, after fork) has already reported.
+    std::vector<bool> reported(report.stage_programs.size(), false);
+    // A decided stage that is invalid: no link with it can succeed, so none is attempted.
+    auto broken = [&](std::size_t index) {
+        return decided[index] && !report.stage_programs[index].valid;
+    };
+    auto input_of = [&](std::size_t index) {
+        const StageJob& job = *representative[index];
+        return GlslangStageInput{job.file, job.source->text, job.stage, job.target, job.defines};
+    };
+    RunInWorkerProcesses(
+            links.size(), options.jobs, kGlslangLimits,
+            [&](std::size_t i, const ProgressNote& note) -> std::string {
+                // In a worker, `decided` is the parent's state when the worker was forked.
+                const LinkJob& link = links[i];
+                if (broken(link.vertex) || broken(link.fragment)) {
+                    // Nothing to link; parse only what is undecided and not yet reported.
+                    for (std::size_t index : {link.vertex, link.fragment}) {
+                        if (!decided[index] && !reported[index]) {
+                            note(fmt::format("P{}", index));
+                            note(EncodeStage(index, ParseStage(input_of(index))));
+                            reported[index] = true;
+                        }
+                    }
+                    return {};
+                }
+                return ParseAndLink({{link.vertex, input_of(link.vertex)},
+                                     {link.fragment, input_of(link.fragment)}},
+                                    note, &reported);
+            },
+            [&](std::size_t i) {
+                // Skipped only when it can neither link nor decide a stage: a stage that
+                // crashed glslang would only crash it again.
+                const LinkJob& link = links[i];
+                return !((broken(link.vertex) || broken(link.fragment)) &&
+                         decided[link.vertex] && decided[link.fragment]);
+            },
+            [&](std::size_t i, const WorkerItemResult& result) {
+                for (auto& [index, outcome] : DecodeStages(result.notes)) {
+                    if (!decided[index]) {
+                        StageProgram& program = report.stage_programs[index];
+                        program.valid = outcome.valid;
+                        program.diagnostics = std::move(outcome.diagnostics);
+                        program.cost = outcome.cost;
+                        decided[index] = true;
+                    }
+                }
+                LinkJob& link = links[i];
+                const LinkResult outcome = LinkOutcome(
+                        result, representative[link.fragment]->file,
+                        [&](std::size_t index, const std::string& message) {
+                            StageProgram& program = report.stage_programs[index];
+                            program.valid = false;
+                            program.diagnostics = {MakeError(program.file, 0, 0, message)};
+                            decided[index] = true;
+                        });
+                link.linked = outcome.ok;
+                link.diagnostics = outcome.diagnostics;
+            });
+    for (LinkJob& link : links) {
+        link.linked = link.linked && report.stage_programs[link.vertex].valid &&
+                      report.stage_programs[link.fragment].valid;
+    }
     report.links = static_cast<int>(links.size());
 
     // 4. One verdict per variant and target.
@@ -337,29 +538,23 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
 
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines) {
+    WarmUpGlslang({GlslTarget::kEs100});
     ValidationReport report;
     std::vector<FileText> texts(files.size());
-    std::vector<StageParse> parses(files.size());
     for (std::size_t i = 0; i < files.size(); ++i) {
-        texts[i] = ReadFile(files[i].path);
+        texts[i] = ReadFile(files[i].path, files[i].path, defines);
         StageProgram program;
         program.stage = files[i].stage;
         program.file = files[i].path;
         program.defines = defines;
         program.variants.push_back(files[i].path);
         if (!texts[i].ok) {
-            program.diagnostics.push_back(
-                    MakeError(files[i].path, 0, 0, "cannot read shader file; check the path"));
+            program.diagnostics.push_back(MakeError(
+                    files[i].path, 0, 0,
+                    fmt::format("cannot read shader file: {}; check the path", texts[i].error)));
         } else {
-            const GlslangStageInput input{files[i].path, texts[i].text, files[i].stage,
-                                          std::nullopt, defines};
-            parses[i] = ParseStage(input);
-            program.valid = parses[i].ok;
-            program.diagnostics = parses[i].diagnostics;
             program.hash = Fnv1a64Hex(texts[i].text);
-            if (parses[i].ok && parses[i].intermediate != nullptr) {
-                program.cost = AnalyzeStageCost(*parses[i].intermediate);
-            }
+            program.diagnostics = texts[i].text_errors;
         }
         report.stage_programs.push_back(std::move(program));
     }
@@ -372,12 +567,46 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
     for (std::size_t i = 0; i < files.size(); ++i) {
         (files[i].stage == Stage::kVertex ? vertex : fragment).push_back(i);
     }
-    auto link_group = [&](const std::vector<std::size_t>& members) {
+    std::vector<std::vector<std::size_t>> groups;
+    if (vertex.size() == 1 && fragment.size() == 1) {
+        groups.push_back({vertex[0], fragment[0]});
+    } else {
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            groups.push_back({i});
+        }
+    }
+    auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
+    std::vector<bool> reported(files.size(), false);
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            groups.size(), 2, kGlslangLimits,
+            [&](std::size_t g, const ProgressNote& note) {
+                std::vector<ItemStage> stages;
+                for (std::size_t i : groups[g]) {
+                    stages.push_back({i, {files[i].path, texts[i].text, files[i].stage,
+                                          std::nullopt, defines}});
+                }
+                return ParseAndLink(stages, note, &reported);
+            },
+            [&](std::size_t g) {
+                return std::all_of(groups[g].begin(), groups[g].end(), usable);
+            });
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
+            StageProgram& program = report.stage_programs[index];
+            program.valid = outcome.valid;
+            program.diagnostics = std::move(outcome.diagnostics);
+            program.cost = outcome.cost;
+        }
+        const LinkResult link = LinkOutcome(
+                results[g], files[groups[g].back()].path,
+                [&](std::size_t index, const std::string& message) {
+                    report.stage_programs[index].diagnostics = {
+                            MakeError(files[index].path, 0, 0, message)};
+                });
         VariantVerdict verdict;
         std::vector<std::string> names;
         bool stages_ok = true;
-        std::vector<GlslangStageInput> inputs;
-        for (std::size_t i : members) {
+        for (std::size_t i : groups[g]) {
             names.push_back(files[i].path);
             const StageProgram& program = report.stage_programs[i];
             stages_ok = stages_ok && program.valid;
@@ -385,28 +614,13 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                        program.diagnostics.end());
             (files[i].stage == Stage::kVertex ? verdict.vertex_hash : verdict.fragment_hash) =
                     program.hash;
-            if (texts[i].ok) {
-                inputs.push_back({files[i].path, texts[i].text, files[i].stage, std::nullopt,
-                                  defines});
-            }
         }
         verdict.variant = Variant{fmt::format("{}", fmt::join(names, "+")), defines};
-        if (stages_ok) {
-            const LinkResult link = inputs.size() == 2 ? LinkStages(inputs[0], inputs[1])
-                                                       : LinkSingleStage(inputs[0]);
-            verdict.valid = link.ok;
-            verdict.diagnostics.insert(verdict.diagnostics.end(), link.diagnostics.begin(),
-                                       link.diagnostics.end());
-            ++report.links;
-        }
+        verdict.valid = stages_ok && link.ok;
+        verdict.diagnostics.insert(verdict.diagnostics.end(), link.diagnostics.begin(),
+                                   link.diagnostics.end());
+        report.links += stages_ok ? 1 : 0;
         report.verdicts.push_back(std::move(verdict));
-    };
-    if (vertex.size() == 1 && fragment.size() == 1) {
-        link_group({vertex[0], fragment[0]});
-    } else {
-        for (std::size_t i = 0; i < files.size(); ++i) {
-            link_group({i});
-        }
     }
     return report;
 }

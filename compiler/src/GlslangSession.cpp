@@ -1,5 +1,7 @@
 #include "GlslangSession.h"
 
+#include "GlslEsRules.h"
+
 #include <algorithm>
 #include <mutex>
 #include <sstream>
@@ -127,6 +129,18 @@ const TBuiltInResource* ResourcesFor(int version) {
 
 }  // namespace
 
+void WarmUpGlslang(const std::vector<GlslTarget>& targets) {
+    static const std::string kVertex = "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n";
+    static const std::string kFragment =
+            "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(0.0); }\n";
+    static const std::vector<std::string> kNoDefines;
+    for (GlslTarget target : targets) {
+        static_cast<void>(ParseStage({"warm-up", kVertex, Stage::kVertex, target, kNoDefines}));
+        static_cast<void>(
+                ParseStage({"warm-up", kFragment, Stage::kFragment, target, kNoDefines}));
+    }
+}
+
 PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     EnsureGlslangInitialized();
     const PreparedStage prepared = Prepare(input);
@@ -156,6 +170,14 @@ StageParse ParseStage(const GlslangStageInput& input) {
     result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();
+        std::vector<Diagnostic> broken = CheckStageRules(
+                *result.intermediate, *ResourcesFor(prepared.default_version), input.file,
+                input.text);
+        if (!broken.empty()) {
+            result.ok = false;
+            result.intermediate = nullptr;
+            result.diagnostics.insert(result.diagnostics.end(), broken.begin(), broken.end());
+        }
     }
     return result;
 }
@@ -180,10 +202,24 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         }
         program.addShader(parses.back().shader.get());
     }
+    if (inputs.size() == 2) {
+        result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
+                                            *parses[1].shader->getIntermediate(),
+                                            inputs[1]->file);
+        if (HasErrors(result.diagnostics)) {
+            return result;  // glslang's own link would only add confusion to these
+        }
+    }
     result.ok = program.link(kMessages);
     // Link messages carry no line; attach them to the stage they name, else the last file.
     const std::string log = program.getInfoLog();
     for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
+        // glslang 12 merges the uniforms of all stages under no stage and then names that side of
+        // a clash "unknown stage"; in a vertex + fragment program the unnamed side is the vertex.
+        for (std::size_t at = d.message.find("unknown stage");
+             inputs.size() == 2 && at != std::string::npos; at = d.message.find("unknown stage")) {
+            d.message.replace(at, std::string_view("unknown stage").size(), "vertex");
+        }
         if (d.line == 0 && inputs.size() == 2 && d.message.find("vertex stage") != std::string::npos &&
             d.message.find("fragment") == std::string::npos) {
             d.file = inputs.front()->file;

@@ -1,16 +1,14 @@
-// Loading scenes/*.yaml: yaml-cpp is wrapped here, as in VariantConfig.cpp, so that no exception
+// Loading scenes/*.yaml on top of the shared YAML reading layer (YamlReader.h): no exception
 // leaves the library and every position becomes a 1-based file:line:col.
 #include "tidepool/SceneDescription.h"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <map>
-#include <sstream>
 
 #include <fmt/format.h>
+
+#include "YamlReader.h"
+#include "tidepool/TextFile.h"
 
 namespace tidepool {
 namespace {
@@ -47,62 +45,13 @@ constexpr Range kShare{0.0, 1.0};
 constexpr Range kFrameBudget{0.001, 10000.0};
 
 // Collects diagnostics while walking the YAML tree; every check reports and carries on.
-class SceneParser {
+class SceneParser : public YamlReader {
 public:
-    explicit SceneParser(std::string file_name) : file_(std::move(file_name)) {}
+    explicit SceneParser(std::string file_name) : YamlReader(std::move(file_name)) {}
 
     SceneResult Parse(std::string_view text);
 
 private:
-    SourceLocation At(const YAML::Node& node) const {
-        const YAML::Mark mark = node.Mark();
-        // yaml-cpp marks are 0-based; a null mark (-1) means the node was not in the file.
-        return SourceLocation{file_, mark.line >= 0 ? mark.line + 1 : 0,
-                              mark.column >= 0 ? mark.column + 1 : 0};
-    }
-    void Error(const SourceLocation& where, std::string message) {
-        diagnostics_.push_back(MakeError(where.file, where.line, where.column, std::move(message)));
-    }
-    void Error(const YAML::Node& node, std::string message) { Error(At(node), std::move(message)); }
-
-    bool ExpectMap(const YAML::Node& node, std::string_view what) {
-        if (node.IsMap()) {
-            return true;
-        }
-        Error(node, fmt::format("{} must be a mapping of keys to values", what));
-        return false;
-    }
-    void CheckKeys(const YAML::Node& map, std::string_view what,
-                   const std::vector<std::string>& allowed) {
-        for (auto it = map.begin(); it != map.end(); ++it) {
-            const std::string key = it->first.Scalar();
-            if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-                Error(it->first, fmt::format("unknown key '{}' in {}; allowed keys: {}", key, what,
-                                             fmt::join(allowed, ", ")));
-            }
-        }
-    }
-    // yaml-cpp keeps only the first of two equal keys when looked up, silently; iteration still
-    // sees both, so every mapping is checked here once.
-    void CheckDuplicateKeys(const YAML::Node& node) {
-        if (node.IsMap()) {
-            std::map<std::string, YAML::Node> seen;
-            for (auto it = node.begin(); it != node.end(); ++it) {
-                const std::string key = it->first.Scalar();
-                auto [pos, inserted] = seen.emplace(key, it->first);
-                if (!inserted) {
-                    Error(it->first, fmt::format("duplicate key '{}' (first written at line {}); "
-                                                 "remove one of them",
-                                                 key, At(pos->second).line));
-                }
-                CheckDuplicateKeys(it->second);
-            }
-        } else if (node.IsSequence()) {
-            for (const YAML::Node& child : node) {
-                CheckDuplicateKeys(child);
-            }
-        }
-    }
     // Reads a number in `range` into `value`; leaves it unchanged (and reports) otherwise.
     template <typename T>
     void ReadNumber(const YAML::Node& node, std::string_view what, Range range, T* value) {
@@ -154,8 +103,6 @@ private:
     void ParseCamera(const YAML::Node& node, SceneDescription& scene);
     void ParseTarget(const YAML::Node& key, const YAML::Node& node, SceneDescription& scene);
 
-    std::string file_;
-    std::vector<Diagnostic> diagnostics_;
 };
 
 void SceneParser::ParseWater(const YAML::Node& node, SceneDescription& scene) {
@@ -230,18 +177,14 @@ void SceneParser::ParseTarget(const YAML::Node& key, const YAML::Node& node,
 
 SceneResult SceneParser::Parse(std::string_view text) {
     SceneResult result;
-    YAML::Node root;
-    try {
-        root = YAML::Load(std::string(text));
-    } catch (const YAML::Exception& e) {
-        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
-              fmt::format("malformed YAML: {}", e.msg));
+    const std::optional<YAML::Node> loaded = Load(text);
+    if (!loaded) {
         result.diagnostics = std::move(diagnostics_);
         return result;
     }
+    const YAML::Node& root = *loaded;
     if (!root || !root.IsMap()) {
-        Error(SourceLocation{file_, 1, 1},
+        Error(SourceLocation{file(), 1, 1},
               "a scene must be a mapping with water, above, below, camera and target "
               "(see docs/SCENES.md)");
         result.diagnostics = std::move(diagnostics_);
@@ -249,13 +192,12 @@ SceneResult SceneParser::Parse(std::string_view text) {
     }
     // yaml-cpp throws on conversions and odd trees; nothing may escape the library.
     try {
-        CheckDuplicateKeys(root);
         CheckKeys(root, "the top level",
                   {"version", "description", "water", "above", "below", "camera", "target"});
         SceneDescription scene;
-        scene.path = file_;
-        scene.name = std::filesystem::path(file_).stem().string();
-        scene.where = SourceLocation{file_, 1, 1};
+        scene.path = file();
+        scene.name = std::filesystem::path(file()).stem().string();
+        scene.where = SourceLocation{file(), 1, 1};
         if (const YAML::Node version = root["version"]) {
             if (!version.IsScalar() || version.Scalar() != "1") {
                 Error(version, "unsupported scene schema version; this tidepool reads version 1");
@@ -283,7 +225,7 @@ SceneResult SceneParser::Parse(std::string_view text) {
             }
         }
         if (!has_target) {
-            Error(SourceLocation{file_, 1, 1},
+            Error(SourceLocation{file(), 1, 1},
                   "no `target:`; give min_psnr_db, max_share_visible or frame_budget_ms");
         }
         if (const YAML::Node above = root["above"]) {
@@ -326,9 +268,7 @@ SceneResult SceneParser::Parse(std::string_view text) {
             result.scene = std::move(scene);
         }
     } catch (const YAML::Exception& e) {
-        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
-              fmt::format("unexpected YAML structure: {}", e.msg));
+        Error(At(e.mark), fmt::format("unexpected YAML structure: {}", e.msg));
         result.scene.reset();
     }
     result.diagnostics = std::move(diagnostics_);
@@ -343,18 +283,17 @@ SceneResult ParseSceneDescription(std::string_view text, const std::string& file
 }
 
 SceneResult LoadSceneDescription(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    const TextFileRead read = ReadTextFile(path);
+    if (!read.ok) {
         SceneResult result;
         result.diagnostics.push_back(
                 MakeError(path.string(), 0, 0,
-                          "cannot read the scene file; scenes live in scenes/NAME.yaml next to the "
-                          "configuration"));
+                          fmt::format("cannot read the scene file: {}; scenes live in "
+                                      "scenes/NAME.yaml next to the configuration",
+                                      read.error)));
         return result;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return ParseSceneDescription(text.str(), path.string());
+    return ParseSceneDescription(read.text, path.string());
 }
 
 }  // namespace tidepool

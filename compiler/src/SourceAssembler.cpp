@@ -11,7 +11,14 @@ const char* StageName(Stage stage) {
 std::string DefinePreamble(const std::vector<std::string>& defines) {
     std::string preamble;
     for (const std::string& define : defines) {
-        preamble += fmt::format("#define {} 1\n", define);
+        // "NAME=VALUE" (plain-file validation's -D) defines NAME as VALUE; a bare name as 1.
+        const std::size_t equals = define.find('=');
+        if (equals == std::string::npos) {
+            preamble += fmt::format("#define {} 1\n", define);
+        } else {
+            preamble += fmt::format("#define {} {}\n", define.substr(0, equals),
+                                    define.substr(equals + 1));
+        }
     }
     return preamble;
 }

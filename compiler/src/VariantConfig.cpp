@@ -1,16 +1,17 @@
-// Loading variants.yaml: yaml-cpp is wrapped here so that no exception leaves the library and
-// every position becomes a 1-based file:line:col.
+// Loading variants.yaml on top of the shared YAML reading layer (YamlReader.h): no exception
+// leaves the library and every position becomes a 1-based file:line:col.
 #include "tidepool/VariantConfig.h"
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <map>
 #include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <yaml-cpp/yaml.h>
+
+#include "YamlReader.h"
+#include "tidepool/TextFile.h"
 
 namespace tidepool {
 
@@ -122,30 +123,14 @@ namespace {
 
 // Collects diagnostics while walking the YAML tree; every check reports and carries on, so the
 // user sees all problems of a file at once.
-class ConfigParser {
+class ConfigParser : public YamlReader {
 public:
     ConfigParser(std::string file_name, std::filesystem::path base_dir)
-        : file_(std::move(file_name)), base_dir_(std::move(base_dir)) {}
+        : YamlReader(std::move(file_name)), base_dir_(std::move(base_dir)) {}
 
     ConfigResult Parse(std::string_view text);
 
 private:
-    SourceLocation At(const YAML::Node& node) const {
-        const YAML::Mark mark = node.Mark();
-        // yaml-cpp marks are 0-based; a null mark (-1) means the node was not in the file.
-        return SourceLocation{file_, mark.line >= 0 ? mark.line + 1 : 0,
-                              mark.column >= 0 ? mark.column + 1 : 0};
-    }
-    void Error(const SourceLocation& where, std::string message) {
-        diagnostics_.push_back(MakeError(where.file, where.line, where.column, std::move(message)));
-    }
-    void Error(const YAML::Node& node, std::string message) { Error(At(node), std::move(message)); }
-
-    bool ExpectMap(const YAML::Node& node, std::string_view what);
-    bool ExpectScalar(const YAML::Node& node, std::string_view what);
-    void CheckKeys(const YAML::Node& map, std::string_view what,
-                   const std::vector<std::string>& allowed);
-    void CheckDuplicateKeys(const YAML::Node& node);
     std::vector<std::string> NameList(const YAML::Node& node, std::string_view what);
     bool ReadBool(const YAML::Node& node, std::string_view what, bool fallback);
     int ReadInt(const YAML::Node& node, std::string_view what, int fallback);
@@ -160,60 +145,8 @@ private:
     void CheckProgram(const ProgramConfig& program);
     void CheckPreset(const Preset& preset, const VariantConfig& config);
 
-    std::string file_;
     std::filesystem::path base_dir_;
-    std::vector<Diagnostic> diagnostics_;
 };
-
-bool ConfigParser::ExpectMap(const YAML::Node& node, std::string_view what) {
-    if (node.IsMap()) {
-        return true;
-    }
-    Error(node, fmt::format("{} must be a mapping of keys to values", what));
-    return false;
-}
-
-bool ConfigParser::ExpectScalar(const YAML::Node& node, std::string_view what) {
-    if (node.IsScalar()) {
-        return true;
-    }
-    Error(node, fmt::format("{} must be a single value, not a list or mapping", what));
-    return false;
-}
-
-void ConfigParser::CheckKeys(const YAML::Node& map, std::string_view what,
-                             const std::vector<std::string>& allowed) {
-    for (auto it = map.begin(); it != map.end(); ++it) {
-        const std::string key = it->first.Scalar();
-        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
-            Error(it->first, fmt::format("unknown key '{}' in {}; allowed keys: {}", key, what,
-                                         fmt::join(allowed, ", ")));
-        }
-    }
-}
-
-// yaml-cpp keeps only the first of two equal keys when looked up, silently; iteration still sees
-// both, so every mapping in the file is checked here once.
-void ConfigParser::CheckDuplicateKeys(const YAML::Node& node) {
-    if (node.IsMap()) {
-        std::map<std::string, YAML::Node> seen;
-        for (auto it = node.begin(); it != node.end(); ++it) {
-            const std::string key = it->first.Scalar();
-            auto [pos, inserted] = seen.emplace(key, it->first);
-            if (!inserted) {
-                const SourceLocation first = At(pos->second);
-                Error(it->first, fmt::format("duplicate key '{}' (first written at line {}); "
-                                             "remove one of them",
-                                             key, first.line));
-            }
-            CheckDuplicateKeys(it->second);
-        }
-    } else if (node.IsSequence()) {
-        for (const YAML::Node& child : node) {
-            CheckDuplicateKeys(child);
-        }
-    }
-}
 
 std::vector<std::string> ConfigParser::NameList(const YAML::Node& node, std::string_view what) {
     std::vector<std::string> names;
@@ -301,10 +234,18 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         if (!resolved.is_absolute()) {
             resolved = base_dir_ / resolved;
         }
-        if (!std::filesystem::is_regular_file(resolved, ec)) {
+        const std::filesystem::file_status status = std::filesystem::status(resolved, ec);
+        if (std::filesystem::is_directory(status)) {
+            Error(path, fmt::format("{} shader file '{}' is a folder ({}), not a file", stage,
+                                    value, resolved.string()));
+        } else if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+            Error(path, fmt::format("{} shader file '{}' is not a regular file ({}); a FIFO or "
+                                    "device cannot be validated",
+                                    stage, value, resolved.string()));
+        } else if (!std::filesystem::is_regular_file(status)) {
             Error(path, fmt::format("{} shader file '{}' not found (looked for {}); paths are "
                                     "relative to the folder of {}",
-                                    stage, value, resolved.string(), file_));
+                                    stage, value, resolved.string(), file()));
         }
     }
 
@@ -613,18 +554,14 @@ void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config
 
 ConfigResult ConfigParser::Parse(std::string_view text) {
     ConfigResult result;
-    YAML::Node root;
-    try {
-        root = YAML::Load(std::string(text));
-    } catch (const YAML::Exception& e) {
-        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
-              fmt::format("malformed YAML: {}", e.msg));
+    const std::optional<YAML::Node> loaded = Load(text);
+    if (!loaded) {
         result.diagnostics = std::move(diagnostics_);
         return result;
     }
+    const YAML::Node& root = *loaded;
     if (!root || root.IsNull()) {
-        Error(SourceLocation{file_, 1, 1}, "the file is empty; it needs at least `programs:` "
+        Error(SourceLocation{file(), 1, 1}, "the file is empty; it needs at least `programs:` "
                                            "(see the variants.yaml schema in README.md)");
         result.diagnostics = std::move(diagnostics_);
         return result;
@@ -636,11 +573,10 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
     }
     // yaml-cpp throws on conversions and odd trees; nothing may escape the library.
     try {
-        CheckDuplicateKeys(root);
         CheckKeys(root, "the top level", {"version", "targets", "max_variants", "programs",
                                           "presets", "description"});
         VariantConfig config;
-        config.path = file_;
+        config.path = file();
         config.base_dir = base_dir_;
         if (root["version"]) {
             config.version = ReadInt(root["version"], "version", 1);
@@ -674,7 +610,7 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
         }
         const YAML::Node programs = root["programs"];
         if (!programs) {
-            Error(SourceLocation{file_, 1, 1}, "no `programs:` section; declare at least one "
+            Error(SourceLocation{file(), 1, 1}, "no `programs:` section; declare at least one "
                                                "program with its vertex and fragment files");
         } else if (ExpectMap(programs, "programs")) {
             for (auto it = programs.begin(); it != programs.end(); ++it) {
@@ -699,9 +635,7 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
             result.config = std::move(config);
         }
     } catch (const YAML::Exception& e) {
-        Error(SourceLocation{file_, e.mark.line >= 0 ? e.mark.line + 1 : 0,
-                             e.mark.column >= 0 ? e.mark.column + 1 : 0},
-              fmt::format("unexpected YAML structure: {}", e.msg));
+        Error(At(e.mark), fmt::format("unexpected YAML structure: {}", e.msg));
         result.config.reset();
     }
     result.diagnostics = std::move(diagnostics_);
@@ -717,17 +651,17 @@ ConfigResult ParseVariantConfig(std::string_view text, const std::string& file_n
 }
 
 ConfigResult LoadVariantConfig(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    const TextFileRead read = ReadTextFile(path);
+    if (!read.ok) {
         ConfigResult result;
         result.diagnostics.push_back(MakeError(
                 path.string(), 0, 0,
-                "cannot read the configuration file; check the path or pass --config PATH"));
+                fmt::format("cannot read the configuration file: {}; check the path or pass "
+                            "--config PATH",
+                            read.error)));
         return result;
     }
-    std::ostringstream text;
-    text << in.rdbuf();
-    return ParseVariantConfig(text.str(), path.string(), path.parent_path());
+    return ParseVariantConfig(read.text, path.string(), path.parent_path());
 }
 
 }  // namespace tidepool

@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "tidepool/AtomicFile.h"
+#include "tidepool/Manifest.h"
 
 namespace tidepool::report {
 namespace {
@@ -550,7 +551,7 @@ std::string JsonCell(const nlohmann::json& value) {
         }
         return out;
     }
-    return value.dump();
+    return tidepool::JsonText(value);
 }
 
 // A JSON number as text with `digits` decimals, "–" when absent or not a number.
@@ -2028,7 +2029,7 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
     for (const auto& [relative, content] :
          {std::pair<std::string, std::string>{"index.html", html},
           {"report.md", Markdown(model, tables, files)},
-          {"data.json", ReportToJson(model).dump(2) + "\n"},
+          {"data.json", tidepool::JsonText(ReportToJson(model), 2) + "\n"},
           {"charts/whitepaper.svg", WhitepaperChartSvg(model)},
           {"charts/accuracy.svg",
            ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),

@@ -17,6 +17,7 @@
 
 #include "tidepool/GlslValidator.h"
 #include "tidepool/base/SampleStatistics.h"
+#include "tidepool/Manifest.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/ImageIo.h"
 
@@ -633,7 +634,7 @@ std::string WriteJsonAtomically(const std::filesystem::path& path, const nlohman
     temporary += ".tmp";
     {
         std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << json.dump(2) << '\n';
+        out << JsonText(json, 2) << '\n';
         out.flush();
         if (!out) {
             return "cannot write " + temporary.string();

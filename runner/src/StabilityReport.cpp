@@ -10,6 +10,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "tidepool/Manifest.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/WaterMath.h"
@@ -725,7 +726,7 @@ std::string StabilityReportJson(const StabilityReport& report) {
                           {"passed", g.passed}});
     }
     json["guards"] = guards;
-    return json.dump(2) + "\n";
+    return JsonText(json, 2) + "\n";
 }
 
 }  // namespace tidepool::runner

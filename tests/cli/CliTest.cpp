@@ -1,4 +1,5 @@
 // The `tidepool` command as a user runs it: exit codes, messages and outputs.
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -7,6 +8,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -19,13 +22,11 @@ using tidepool::testing::TempDir;
 
 struct CommandResult {
     int exit_code = -1;
-    std::string out;  // stdout and stderr together
+    std::string out;  // stdout (and stderr, where the command sends it there)
 };
 
-// Runs the tidepool binary with `args` (a shell fragment) in `cwd`.
-CommandResult RunTidepool(const std::string& args, const std::filesystem::path& cwd = TIDEPOOL_SOURCE_ROOT) {
-    const std::string command =
-            "cd '" + cwd.string() + "' && '" + std::string(TIDEPOOL_BINARY) + "' " + args + " 2>&1";
+// Runs a shell command and collects its stdout.
+CommandResult RunShell(const std::string& command) {
     CommandResult result;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) {
@@ -39,6 +40,36 @@ CommandResult RunTidepool(const std::string& args, const std::filesystem::path& 
     const int status = ::pclose(pipe);
     result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return result;
+}
+
+std::string TidepoolCommand(const std::string& args, const std::filesystem::path& cwd) {
+    return "cd '" + cwd.string() + "' && '" + std::string(TIDEPOOL_BINARY) + "' " + args;
+}
+
+// Runs the tidepool binary with `args` (a shell fragment) in `cwd`.
+CommandResult RunTidepool(const std::string& args,
+                          const std::filesystem::path& cwd = TIDEPOOL_SOURCE_ROOT) {
+    return RunShell(TidepoolCommand(args, cwd) + " 2>&1");
+}
+
+struct SplitResult {
+    int exit_code = -1;
+    std::string out;  // stdout alone
+    std::string err;  // stderr alone
+};
+
+// Runs the tidepool binary with `args` in `cwd`, keeping stdout and stderr apart (stderr goes
+// through a file, so a diagnostic can never be mistaken for JSON on stdout).
+SplitResult RunTidepoolSplit(const std::string& args, const std::filesystem::path& cwd) {
+    const std::filesystem::path err_file = cwd / ".tidepool-stderr";
+    const CommandResult r = RunShell(TidepoolCommand(args, cwd) + " 2>'" + err_file.string() + "'");
+    SplitResult split{r.exit_code, r.out, {}};
+    std::ifstream in(err_file, std::ios::binary);
+    std::ostringstream err;
+    err << in.rdbuf();
+    split.err = err.str();
+    std::filesystem::remove(err_file);
+    return split;
 }
 
 constexpr const char* kVertex =
@@ -302,6 +333,225 @@ TEST_F(CliTest, HelpExitsZeroAndUnknownFlagExitsTwo) {
     EXPECT_EQ(RunTidepool("validate --help").exit_code, 0);
     EXPECT_EQ(RunTidepool("validate --no-such-flag").exit_code, 2);
     EXPECT_EQ(RunTidepool("").exit_code, 2);
+}
+
+// ---- Hostile input (issue 15) ------------------------------------------------------------------
+
+TEST_F(CliTest, CyclicAliasInConfigExitsTwoWithItsPosition) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "    features: &loop [A, *loop]\n");
+    for (const char* command : {"validate", "expand", "stats"}) {
+        const SplitResult r =
+                RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << command << r.err;
+        EXPECT_EQ(r.err, "v.yaml:5:25: error: alias '*loop' refers to the node that contains "
+                         "it, a cycle; an alias may only repeat a node that is complete\n")
+                << command;
+        EXPECT_EQ(r.out, "") << command;
+    }
+}
+
+TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "presets:\n  caf\xE9: {program: p}\n");
+    const SplitResult r = RunTidepoolSplit("expand --json --config v.yaml", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "v.yaml:6:6: error: this byte is not UTF-8; YAML files are Unicode text: "
+                     "save the file as UTF-8\n");
+    EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliTest, ConfigFileNameThatIsNotUtf8StillWritesJson) {
+    dir_.Write("v\xE9.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    const SplitResult expand =
+            RunTidepoolSplit("expand --json --out out --config 'v\xE9.yaml'", dir_.Path());
+    EXPECT_EQ(expand.exit_code, 0) << expand.err;
+    EXPECT_TRUE(nlohmann::json::accept(expand.out)) << expand.out;
+    const SplitResult validate =
+            RunTidepoolSplit("validate --json --out vout --config 'v\xE9.yaml'", dir_.Path());
+    EXPECT_EQ(validate.exit_code, 0) << validate.err;
+    EXPECT_TRUE(nlohmann::json::accept(validate.out));
+}
+
+TEST_F(CliTest, ShaderDiagnosticQuotingANonUtf8ByteIsEscapedInJson) {
+    dir_.Write("bad.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+                          "vec4(caf\xE9); }\n");
+    const SplitResult plain = RunTidepoolSplit("validate --json bad.fsh", dir_.Path());
+    EXPECT_EQ(plain.exit_code, 1) << plain.err;
+    const nlohmann::json json = nlohmann::json::parse(plain.out);
+    EXPECT_EQ(json[0]["valid"], false);
+    EXPECT_NE(plain.err.find("bad.fsh:3:"), std::string::npos) << plain.err;
+
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: bad.fsh\n");
+    const SplitResult matrix =
+            RunTidepoolSplit("validate --json --out m --config v.yaml", dir_.Path());
+    EXPECT_EQ(matrix.exit_code, 1) << matrix.err;
+    EXPECT_TRUE(nlohmann::json::accept(matrix.out));
+    EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "m" / "manifest.json"));
+}
+
+TEST_F(CliTest, ShaderWithAByteOrderMarkIsValidAndKeepsItsLineNumbers) {
+    dir_.Write("bom.vsh", std::string("\xEF\xBB\xBF") + kVertex);
+    dir_.Write("bom.fsh", "\xEF\xBB\xBF#version 100\nprecision mediump float;\nvoid main() { "
+                          "gl_FragColor = vec4(oops); }\n");
+    const SplitResult ok = RunTidepoolSplit("validate bom.vsh s.fsh", dir_.Path());
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
+    const SplitResult bad = RunTidepoolSplit("validate bom.fsh", dir_.Path());
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_EQ(bad.err, "bom.fsh:3:35: error: 'oops' : undeclared identifier\n");
+}
+
+TEST_F(CliTest, ShaderThatCrashesGlslangIsAnInternalCompilerErrorAndTheRunGoesOn) {
+    // A public conformance case that makes glslang 12 dereference a null pointer.
+    dir_.Write("crash.fsh", "#define m(a)\n#define a m((a)\na)\n");
+    // Two fragment files are validated (and linked) one by one.
+    const SplitResult r = RunTidepoolSplit("validate --json crash.fsh s.fsh", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("crash.fsh: error: internal compiler error: glslang crashed ("),
+              std::string::npos)
+            << r.err;
+    const nlohmann::json json = nlohmann::json::parse(r.out);
+    ASSERT_EQ(json.size(), 2U);
+    EXPECT_EQ(json[0]["valid"], false);
+    EXPECT_EQ(json[1]["valid"], true);  // the other file was still validated
+}
+
+TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
+    std::string bomb = "#version 100\n";
+    for (int level = 0; level < 30; ++level) {
+        bomb += "#define M" + std::to_string(level) + " M" + std::to_string(level + 1) + " M" +
+                std::to_string(level + 1) + "\n";
+    }
+    bomb += "void main() { M0; }\n";
+    dir_.Write("bomb.vsh", bomb);
+    const SplitResult r = RunTidepoolSplit("validate bomb.vsh", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "bomb.vsh:32:15: error: macro 'M0' expands to more than 131072 tokens (a "
+                     "macro bomb); tidepool refuses shaders that large\n");
+}
+
+TEST_F(CliTest, DefineTakesOneValueSoTheFileAfterItIsValidated) {
+    const SplitResult r = RunTidepoolSplit("validate -D B s.fsh", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // B selects the branch with the error
+    EXPECT_NE(r.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier"), std::string::npos)
+            << r.err;
+    EXPECT_EQ(r.out, "1 file(s): INVALID\n");
+    EXPECT_EQ(RunTidepoolSplit("validate -D B=1 s.vsh", dir_.Path()).exit_code, 0);
+}
+
+TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
+    struct Case {
+        const char* args;
+        const char* error;
+    };
+    for (const Case& c : {
+                 Case{"-D GL_X s.vsh", "error: -D 'GL_X': 'GL_X' is not a valid define name: use "
+                                       "letters, digits and _, start with a letter, no 'GL_' "
+                                       "prefix and no '__'\n"},
+                 Case{"-D 'FOO BAR' s.vsh", "error: -D 'FOO BAR': 'FOO BAR' is not a valid "
+                                            "define name: use letters, digits and _, start with "
+                                            "a letter, no 'GL_' prefix and no '__'\n"},
+                 Case{"-D \"$(printf 'A=1\\n#error injected')\" s.vsh",
+                      "error: -D 'A': the value must be a single line (a newline would add "
+                      "preprocessor lines)\n"},
+                 Case{"-D A", "error: -D applies to the shader FILEs given, and none was given; "
+                              "the variants of a configuration get their defines from it\n"},
+         }) {
+        const SplitResult r = RunTidepoolSplit(std::string("validate ") + c.args, dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << c.args;
+        EXPECT_EQ(r.err, c.error) << c.args;
+    }
+}
+
+// A plain-file validation that must fail with exit code 1 and exactly this stderr.
+struct RejectedShaders {
+    const char* why;
+    std::vector<std::pair<std::string, std::string>> files;  // name, content
+    const char* args;
+    const char* err;
+};
+
+class RejectedShadersTest : public ::testing::TestWithParam<RejectedShaders> {};
+
+TEST_P(RejectedShadersTest, ExitsOneWithTheExactDiagnostic) {
+    const RejectedShaders& c = GetParam();
+    TempDir dir;
+    dir.Write("s.vsh", kVertex);
+    for (const auto& [name, content] : c.files) {
+        dir.Write(name, content);
+    }
+    const SplitResult r = RunTidepoolSplit(std::string("validate ") + c.args, dir.Path());
+    EXPECT_EQ(r.exit_code, 1) << c.why;
+    EXPECT_EQ(r.err, c.err) << c.why;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+        Table, RejectedShadersTest,
+        ::testing::Values(
+                RejectedShaders{"NUL byte",
+                                {{"nul.vsh", std::string("#version 100\nattribute vec4 p;\nvoid "
+                                                         "main() {\0 }\n",
+                                                         48)}},
+                                "nul.vsh",
+                                "nul.vsh:3:14: error: NUL byte in the shader source; GLSL ES "
+                                "source is text (GLSL ES §3.1) and glslang would stop reading "
+                                "here\n"},
+                RejectedShaders{"huge uniform array",
+                                {{"big.fsh", "#version 100\nprecision mediump float;\nuniform "
+                                             "float big[1000000000];\nvoid main() { "
+                                             "gl_FragColor = vec4(big[0]); }\n"}},
+                                "big.fsh",
+                                "big.fsh:3:15: error: uniform 'big' needs 1000000000 uniform "
+                                "vectors, more than the 16 a fragment shader has "
+                                "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, GLSL "
+                                "ES 3.00 §4.3.5)\n"},
+                RejectedShaders{"stages of different versions",
+                                {{"es3.fsh", "#version 300 es\nprecision mediump float;\nout "
+                                             "vec4 c;\nvoid main() { c = vec4(1.0); }\n"}},
+                                "s.vsh es3.fsh",
+                                "es3.fsh: error: cannot link a '#version 300 es' fragment shader "
+                                "with the '#version 100' vertex shader s.vsh; both stages of a "
+                                "program must use the same GLSL ES version (GLSL ES 3.00 "
+                                "§3.3)\n"},
+                RejectedShaders{"varying the vertex stage never declares",
+                                {{"uv.fsh", "#version 100\nprecision mediump float;\nvarying "
+                                            "vec2 uv;\nvarying vec2 unused;\nvoid main() { "
+                                            "gl_FragColor = vec4(uv, 0.0, 1.0); }\n"}},
+                                "s.vsh uv.fsh",
+                                "uv.fsh:5:35: error: 'uv' is read by the fragment shader but the "
+                                "vertex shader s.vsh does not declare it; declare it there as a "
+                                "varying (GLSL ES 1.00 §4.3.5, GLSL ES 3.00 §4.3.4)\n"}));
+
+TEST_F(CliTest, ConfigPathThatIsAFolderSaysSo) {
+    std::filesystem::create_directories(dir_.Path() / "folder.yaml");
+    const SplitResult r = RunTidepoolSplit("validate --config folder.yaml", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "folder.yaml: error: cannot read the configuration file: is a folder, not a "
+                     "file; check the path or pass --config PATH\n");
+}
+
+TEST_F(CliTest, ShaderPathThatIsAFolderOrAFifoSaysSoWithoutHanging) {
+    std::filesystem::create_directories(dir_.Path() / "dir.vsh");
+    ASSERT_EQ(::mkfifo((dir_.Path() / "pipe.fsh").c_str(), 0600), 0);
+    const SplitResult folder = RunTidepoolSplit("validate dir.vsh", dir_.Path());
+    EXPECT_EQ(folder.exit_code, 2);
+    EXPECT_EQ(folder.err, "dir.vsh: error: cannot read the shader file: is a folder, not a file\n");
+    const SplitResult fifo = RunTidepoolSplit("validate pipe.fsh", dir_.Path());
+    EXPECT_EQ(fifo.exit_code, 2);
+    EXPECT_EQ(fifo.err, "pipe.fsh: error: cannot read the shader file: is a FIFO (named pipe), "
+                        "not a regular file\n");
+}
+
+TEST_F(CliTest, OutWithATrailingSlashWritesTheFolderAndReplacesItsOwnOutput) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    for (int run = 0; run < 2; ++run) {
+        const SplitResult r = RunTidepoolSplit("expand --config v.yaml --out out/", dir_.Path());
+        EXPECT_EQ(r.exit_code, 0) << "run " << run << ": " << r.err;
+        EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "out" / "manifest.json"));
+    }
+    const SplitResult v = RunTidepoolSplit("validate --config v.yaml --out vout/", dir_.Path());
+    EXPECT_EQ(v.exit_code, 0) << v.err;
+    EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "vout" / "manifest.json"));
 }
 
 }  // namespace

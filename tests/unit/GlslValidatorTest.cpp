@@ -212,6 +212,145 @@ TEST(GlslValidatorTest, StageFromExtensionKnowsTheCommonSuffixes) {
     EXPECT_FALSE(StageFromExtension("a.glsl", &stage));
 }
 
+// ---- Hostile shaders (issue 15) -----------------------------------------------------------------
+
+// A public conformance case that makes glslang 12 dereference a null pointer while expanding a
+// macro; here only when CRASH is defined, so the other variant of the matrix stays valid.
+constexpr const char* kCrashingFragment =
+        "#version 100\n"
+        "precision mediump float;\n"
+        "#ifdef CRASH\n"
+        "#define m(a)\n"
+        "#define a m((a)\n"
+        "a)\n"
+        "#endif\n"
+        "void main() { gl_FragColor = vec4(1.0); }\n";
+
+TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariantsAreValidated) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kCrashingFragment);
+    const ValidationReport report =
+            ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"CRASH"}), 2);
+    ASSERT_EQ(report.verdicts.size(), 2U);
+    EXPECT_TRUE(report.verdicts[0].valid) << Formatted(report.verdicts[0].diagnostics)[0];
+    EXPECT_FALSE(report.verdicts[1].valid);
+    ASSERT_EQ(report.verdicts[1].diagnostics.size(), 1U);
+    const std::string message = FormatDiagnostic(report.verdicts[1].diagnostics[0]);
+    // "(signal 11 ...)" in a plain build; under AddressSanitizer the worker reports the fault and
+    // exits with a status instead.
+    EXPECT_EQ(message.rfind("a.fsh: error: internal compiler error: glslang crashed (", 0), 0U)
+            << message;
+    EXPECT_NE(message.find("while preprocessing this stage; the shader may be valid or not, and "
+                           "the run went on without it [p:CRASH]"),
+              std::string::npos)
+            << message;
+}
+
+// `#define M0 M1 M1` ... 40 levels deep: 2^40 tokens once expanded, used on line 43, column 3.
+std::string MacroBomb() {
+    std::string bomb = "#version 100\n";
+    for (int level = 0; level < 40; ++level) {
+        bomb += "#define M" + std::to_string(level) + " M" + std::to_string(level + 1) + " M" +
+                std::to_string(level + 1) + "\n";
+    }
+    return bomb + "void main() {\n  M0;\n}\n";
+}
+
+TEST(GlslValidatorTest, ByteOrderMarkIsAcceptedAndLinesStayRight) {
+    TempDir dir;
+    const std::string path = dir.Write("bom.vsh", "\xEF\xBB\xBF#version 100\nattribute vec4 p;\n"
+                                                  "void main() { gl_Position = oops; }\n")
+                                     .string();
+    const ValidationReport report = ValidateShaderFiles({{path, Stage::kVertex}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    ASSERT_FALSE(report.verdicts[0].diagnostics.empty());
+    EXPECT_EQ(FormatDiagnostic(report.verdicts[0].diagnostics[0]),
+              path + ":3:29: error: 'oops' : undeclared identifier");
+}
+
+struct PlainFileCase {
+    const char* why;
+    const char* vertex;
+    std::string fragment;
+    std::string expected;  // the first diagnostic, with the folder left out
+};
+
+class PlainFileRuleTest : public ::testing::TestWithParam<PlainFileCase> {};
+
+TEST_P(PlainFileRuleTest, IsAnErrorAtTheRightPlace) {
+    const PlainFileCase& c = GetParam();
+    TempDir dir;
+    std::vector<ShaderFile> files;
+    if (c.vertex != nullptr) {
+        files.push_back({dir.Write("a.vsh", c.vertex).string(), Stage::kVertex});
+    }
+    files.push_back({dir.Write("a.fsh", c.fragment).string(), Stage::kFragment});
+    const ValidationReport report = ValidateShaderFiles(files, {});
+    ASSERT_EQ(report.verdicts.size(), 1U) << c.why;
+    EXPECT_FALSE(report.verdicts[0].valid) << c.why;
+    ASSERT_FALSE(report.verdicts[0].diagnostics.empty()) << c.why;
+    std::string message = FormatDiagnostic(report.verdicts[0].diagnostics[0]);
+    const std::string folder = dir.Path().string() + "/";
+    for (std::size_t at = message.find(folder); at != std::string::npos;
+         at = message.find(folder)) {
+        message.erase(at, folder.size());
+    }
+    EXPECT_EQ(message, c.expected) << c.why;
+}
+
+INSTANTIATE_TEST_SUITE_P(
+        Table, PlainFileRuleTest,
+        ::testing::Values(
+                PlainFileCase{"NUL byte", nullptr,
+                              std::string("#version 100\nprecision mediump float;\nvoid main() "
+                                          "{ \0 }\n",
+                                          56),
+                              "a.fsh:3:15: error: NUL byte in the shader source; GLSL ES source "
+                              "is text (GLSL ES §3.1) and glslang would stop reading here"},
+                PlainFileCase{"uniform array larger than the stage's uniform vectors", nullptr,
+                              "#version 100\nprecision mediump float;\nuniform vec4 big[17];\n"
+                              "void main() { gl_FragColor = big[0]; }\n",
+                              "a.fsh:3:14: error: uniform 'big' needs 17 uniform vectors, more "
+                              "than the 16 a fragment shader has (gl_MaxFragmentUniformVectors; "
+                              "GLSL ES 1.00 Appendix A §7, GLSL ES 3.00 §4.3.5)"},
+                PlainFileCase{"1.00 vertex with 3.00 fragment", kVertex,
+                              "#version 300 es\nprecision mediump float;\nin vec2 uv;\nout vec4 "
+                              "c;\nvoid main() { c = vec4(uv, 0.0, 1.0); }\n",
+                              "a.fsh: error: cannot link a '#version 300 es' fragment shader "
+                              "with the '#version 100' vertex shader a.vsh; both stages of a "
+                              "program must use the same GLSL ES version (GLSL ES 3.00 §3.3)"},
+                PlainFileCase{"varying the vertex stage never declares", kVertex,
+                              "#version 100\nprecision mediump float;\nvarying mediump vec2 uv;\n"
+                              "varying mediump vec3 normal;\nvoid main() { gl_FragColor = "
+                              "vec4(normal, 1.0); }\n",
+                              "a.fsh:5:35: error: 'normal' is read by the fragment shader but "
+                              "the vertex shader a.vsh does not declare it; declare it there as a "
+                              "varying (GLSL ES 1.00 §4.3.5, GLSL ES 3.00 §4.3.4)"},
+                PlainFileCase{"macro bomb, refused before glslang runs", nullptr, MacroBomb(),
+                              "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
+                              "(a macro bomb); tidepool refuses shaders that large"},
+                PlainFileCase{"uniform clash: glslang 12 calls the vertex side 'unknown stage'",
+                              "#version 100\nuniform vec2 u;\nvoid main() { gl_Position = "
+                              "vec4(u, 0.0, 1.0); }\n",
+                              "#version 100\nprecision mediump float;\nuniform vec3 u;\nvoid "
+                              "main() { gl_FragColor = vec4(u, 1.0); }\n",
+                              "a.fsh: error: Linking vertex and fragment stages: Types must "
+                              "match:"}));
+
+TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {
+    TempDir dir;
+    const std::string vertex = dir.Write("a.vsh", kVertex).string();
+    const std::string fragment =
+            dir.Write("a.fsh", "#version 100\nprecision mediump float;\nvarying mediump vec3 "
+                               "unused;\nvoid main() { gl_FragColor = vec4(1.0); }\n")
+                    .string();
+    const ValidationReport report =
+            ValidateShaderFiles({{vertex, Stage::kVertex}, {fragment, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_TRUE(report.verdicts[0].valid);
+}
+
 TEST(GlslValidatorTest, EveryDefaultVariantIsValid) {
     const ConfigResult config =
             LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");

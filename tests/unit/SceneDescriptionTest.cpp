@@ -79,7 +79,7 @@ TEST(SceneDescriptionTest, MissingFileIsAnError) {
     EXPECT_FALSE(result.scene);
     ASSERT_EQ(result.diagnostics.size(), 1U);
     EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
-              "/nonexistent/x.yaml: error: cannot read the scene file; scenes live in "
+              "/nonexistent/x.yaml: error: cannot read the scene file: no such file; scenes live in "
               "scenes/NAME.yaml next to the configuration");
 }
 

@@ -339,12 +339,19 @@ TEST_F(VariantConfigTest, MissingShaderFileNamesThePathAndWhereItWasLookedFor) {
                               "); paths are relative to the folder of v.yaml\n");
 }
 
+TEST_F(VariantConfigTest, ShaderPathThatIsAFolderSaysSo) {
+    std::filesystem::create_directories(dir_.Path() / "d.vsh");
+    EXPECT_EQ(Errors("programs:\n  p:\n    vertex: d.vsh\n    fragment: s.fsh\n"),
+              "v.yaml:3:13: error: vertex shader file 'd.vsh' is a folder (" +
+                      (dir_.Path() / "d.vsh").string() + "), not a file\n");
+}
+
 TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {
     const ConfigResult result = LoadVariantConfig(dir_.Path() / "missing.yaml");
     ASSERT_EQ(result.diagnostics.size(), 1U);
     EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
               (dir_.Path() / "missing.yaml").string() +
-                      ": error: cannot read the configuration file; check the path or pass "
+                      ": error: cannot read the configuration file: no such file; check the path or pass "
                       "--config PATH");
 }
 

@@ -15,6 +15,11 @@ namespace tidepool {
 inline constexpr const char* kManifestSchema = "tidepool.manifest";
 inline constexpr int kManifestVersion = 1;
 
+/// Serialises `json` like json.dump(indent), but bytes that are not UTF-8 (a diagnostic quoting a
+/// Latin-1 identifier of a shader, a file name) become U+FFFD instead of throwing: shader text is
+/// bytes, and a writer must never abort on it. Every JSON writer of tidepool goes through here.
+std::string JsonText(const nlohmann::json& json, int indent = -1);
+
 /// A diagnostic as a JSON object {severity, file, line, column, message, variant}.
 nlohmann::json ToJson(const Diagnostic& diagnostic);
 

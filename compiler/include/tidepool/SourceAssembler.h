@@ -16,7 +16,8 @@ enum class Stage { kVertex, kFragment };
 /// "vertex" or "fragment".
 const char* StageName(Stage stage);
 
-/// The preamble glslang receives through TShader::setPreamble: one `#define NAME 1` per define.
+/// The preamble glslang receives through TShader::setPreamble: one `#define NAME 1` per define,
+/// or `#define NAME VALUE` for a define written "NAME=VALUE".
 std::string DefinePreamble(const std::vector<std::string>& defines);
 
 /// The source a GL driver receives: `#version` for the target, the defines, then a `#line`

@@ -20,6 +20,7 @@
 #include "gl/GlApi.h"
 #include "gl/GlContextImpl.h"
 #include "tidepool/runner/FramePlan.h"
+#include "tidepool/TextFile.h"
 #include "tidepool/runner/MesaInfoLog.h"
 #include "tidepool/runner/WaterMath.h"
 
@@ -60,11 +61,9 @@ std::string ErrorName(GLenum error) {
 }
 
 std::string ReadText(const std::filesystem::path& path, bool* ok) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    *ok = static_cast<bool>(in);
-    return text.str();
+    TextFileRead read = ReadShaderFile(path);
+    *ok = read.ok;
+    return std::move(read.text);
 }
 
 // The colour REFLECTION_FOURIER gives reflected terrain: the mean of the terrain's vertex

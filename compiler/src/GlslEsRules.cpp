@@ -1,0 +1,371 @@
+#include "GlslEsRules.h"
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <set>
+#include <unordered_map>
+
+#include <fmt/format.h>
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
+#include <glslang/Public/ShaderLang.h>
+
+namespace tidepool {
+namespace {
+
+// ---- Source text -----------------------------------------------------------------------------
+
+struct Token {
+    std::string_view text;
+    int line = 0;
+    int column = 0;
+    bool identifier = false;
+};
+
+// Splits text into preprocessing tokens, one vector per logical line (comments dropped, a
+// backslash-newline joins lines as GLSL ES 3.00 §3.2 allows). Precision does not matter here:
+// the tokens only feed an upper estimate of the expanded size.
+std::vector<std::vector<Token>> Lines(std::string_view text) {
+    std::vector<std::vector<Token>> lines(1);
+    int line = 1;
+    int column = 1;
+    std::size_t i = 0;
+    auto advance = [&](std::size_t n) {
+        for (std::size_t k = 0; k < n && i < text.size(); ++k, ++i) {
+            if (text[i] == '\n') {
+                ++line;
+                column = 1;
+            } else {
+                ++column;
+            }
+        }
+    };
+    auto is_ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    while (i < text.size()) {
+        const char c = text[i];
+        if (c == '\\' && i + 1 < text.size() && text[i + 1] == '\n') {
+            advance(2);
+        } else if (c == '\n') {
+            lines.emplace_back();
+            advance(1);
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n') {
+                advance(1);
+            }
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            const std::size_t end = text.find("*/", i + 2);
+            const std::size_t stop = end == std::string_view::npos ? text.size() : end + 2;
+            while (i < stop) {
+                advance(1);  // a block comment's newlines still end lines for line numbers
+            }
+        } else if (std::isspace(static_cast<unsigned char>(c))) {
+            advance(1);
+        } else {
+            std::size_t length = 1;
+            if (is_ident(c)) {
+                while (i + length < text.size() && is_ident(text[i + length])) {
+                    ++length;
+                }
+            }
+            const bool identifier = std::isalpha(static_cast<unsigned char>(c)) != 0 || c == '_';
+            lines.back().push_back(Token{text.substr(i, length), line, column, identifier});
+            advance(length);
+        }
+    }
+    return lines;
+}
+
+// Object-like and function-like macros with their replacement lists; sizes are memoised and
+// capped at kMaxExpandedTokens + 1 so that even a 1000-level bomb is estimated in linear time.
+class MacroTable {
+public:
+    void Define(const std::vector<Token>& directive) {
+        // # define NAME [ ( params ) ] body
+        if (directive.size() < 3 || !directive[2].identifier) {
+            return;
+        }
+        Macro macro;
+        std::size_t body = 3;
+        if (directive.size() > 3 && directive[3].text == "(" &&
+            directive[3].column ==
+                    directive[2].column + static_cast<int>(directive[2].text.size())) {
+            while (body < directive.size() && directive[body].text != ")") {
+                if (directive[body].identifier) {
+                    macro.params.insert(std::string(directive[body].text));
+                }
+                ++body;
+            }
+            ++body;
+        }
+        for (std::size_t k = body; k < directive.size(); ++k) {
+            macro.body.emplace_back(directive[k].text);
+        }
+        macros_[std::string(directive[2].text)] = std::move(macro);
+        sizes_.clear();
+    }
+    void Undefine(const std::vector<Token>& directive) {
+        if (directive.size() >= 3) {
+            macros_.erase(std::string(directive[2].text));
+            sizes_.clear();
+        }
+    }
+    // Tokens `name` stands for once expanded (1 for a non-macro).
+    long long Size(const std::string& name) {
+        auto macro = macros_.find(name);
+        if (macro == macros_.end() || expanding_.count(name) != 0) {
+            return 1;  // not a macro, or (C99 §6.10.3.4) a name inside its own expansion
+        }
+        if (auto known = sizes_.find(name); known != sizes_.end()) {
+            return known->second;
+        }
+        expanding_.insert(name);
+        long long size = 0;
+        for (const std::string& token : macro->second.body) {
+            size += macro->second.params.count(token) != 0 ? 1 : Size(token);
+            size = std::min(size, kMaxExpandedTokens + 1);
+        }
+        expanding_.erase(name);
+        sizes_[name] = size;
+        return size;
+    }
+
+private:
+    struct Macro {
+        std::set<std::string> params;
+        std::vector<std::string> body;
+    };
+    std::unordered_map<std::string, Macro> macros_;
+    std::unordered_map<std::string, long long> sizes_;
+    std::set<std::string> expanding_;
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view preamble,
+                                        const std::string& file) {
+    std::vector<Diagnostic> errors;
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        const std::string_view before = text.substr(0, nul);
+        const int line = 1 + static_cast<int>(std::count(before.begin(), before.end(), '\n'));
+        const std::size_t line_start = before.rfind('\n');
+        const int column = static_cast<int>(
+                nul - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1);
+        errors.push_back(MakeError(file, line, column,
+                                   "NUL byte in the shader source; GLSL ES source is text "
+                                   "(GLSL ES §3.1) and glslang would stop reading here"));
+        return errors;
+    }
+    MacroTable macros;
+    long long total = 0;
+    for (const std::string_view part : {preamble, text}) {
+        const bool in_file = part.data() == text.data();
+        for (const std::vector<Token>& line : Lines(part)) {
+            if (line.empty()) {
+                continue;
+            }
+            if (line[0].text == "#") {
+                if (line.size() >= 2 && line[1].text == "define") {
+                    macros.Define(line);
+                } else if (line.size() >= 2 && line[1].text == "undef") {
+                    macros.Undefine(line);
+                }
+                continue;
+            }
+            for (const Token& token : line) {
+                const long long size = token.identifier ? macros.Size(std::string(token.text)) : 1;
+                total = std::min(total + size, kMaxExpandedTokens + 1);
+                if (size > kMaxExpandedTokens || total > kMaxExpandedTokens) {
+                    const std::string message =
+                            size > kMaxExpandedTokens
+                                    ? fmt::format(
+                                              "macro '{}' expands to more than {} tokens "
+                                              "(a macro bomb); tidepool refuses shaders "
+                                              "that large",
+                                              token.text, kMaxExpandedTokens)
+                                    : fmt::format(
+                                              "the shader expands through its macros to "
+                                              "more than {} tokens; tidepool refuses "
+                                              "shaders that large",
+                                              kMaxExpandedTokens);
+                    errors.push_back(MakeError(file, in_file ? token.line : 0,
+                                               in_file ? token.column : 0, message));
+                    return errors;
+                }
+            }
+        }
+    }
+    return errors;
+}
+
+namespace {
+
+// ---- Parsed stages ---------------------------------------------------------------------------
+
+// The declarations glslang keeps for the linker (every global the stage declares).
+std::vector<glslang::TIntermSymbol*> LinkerObjects(const glslang::TIntermediate& stage) {
+    std::vector<glslang::TIntermSymbol*> symbols;
+    glslang::TIntermAggregate* root =
+            stage.getTreeRoot() != nullptr ? stage.getTreeRoot()->getAsAggregate() : nullptr;
+    if (root == nullptr) {
+        return symbols;
+    }
+    for (TIntermNode* child : root->getSequence()) {
+        glslang::TIntermAggregate* aggregate = child->getAsAggregate();
+        if (aggregate == nullptr || aggregate->getOp() != glslang::EOpLinkerObjects) {
+            continue;
+        }
+        for (TIntermNode* object : aggregate->getSequence()) {
+            if (glslang::TIntermSymbol* symbol = object->getAsSymbolNode()) {
+                symbols.push_back(symbol);
+            }
+        }
+    }
+    return symbols;
+}
+
+// The symbols code reads or writes (linker objects are declarations, not uses), each with the
+// place of its first use.
+class UseCollector : public glslang::TIntermTraverser {
+public:
+    void visitSymbol(glslang::TIntermSymbol* symbol) override {
+        used.emplace(symbol->getName().c_str(), symbol->getLoc());
+    }
+    std::map<std::string, glslang::TSourceLoc> used;
+};
+
+std::map<std::string, glslang::TSourceLoc> StaticallyUsed(const glslang::TIntermediate& stage) {
+    UseCollector collector;
+    glslang::TIntermAggregate* root =
+            stage.getTreeRoot() != nullptr ? stage.getTreeRoot()->getAsAggregate() : nullptr;
+    if (root == nullptr) {
+        return {};
+    }
+    for (TIntermNode* child : root->getSequence()) {
+        glslang::TIntermAggregate* aggregate = child->getAsAggregate();
+        if (aggregate == nullptr || aggregate->getOp() != glslang::EOpLinkerObjects) {
+            child->traverse(&collector);
+        }
+    }
+    return collector.used;
+}
+
+// glslang 12 keeps no position on its linker objects, so a declaration is found in the text: the
+// first whole-word mention of its name (declarations come before uses in GLSL ES).
+std::pair<int, int> FirstMention(std::string_view source, std::string_view name) {
+    auto is_ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    for (std::size_t at = source.find(name); at != std::string_view::npos;
+         at = source.find(name, at + 1)) {
+        const bool starts = at == 0 || !is_ident(source[at - 1]);
+        const bool ends = at + name.size() >= source.size() || !is_ident(source[at + name.size()]);
+        if (starts && ends) {
+            const std::string_view before = source.substr(0, at);
+            const std::size_t line_start = before.rfind('\n');
+            const std::size_t column =
+                    at - (line_start == std::string_view::npos ? 0 : line_start + 1) + 1;
+            return {1 + static_cast<int>(std::count(before.begin(), before.end(), '\n')),
+                    static_cast<int>(column)};
+        }
+    }
+    return {0, 0};
+}
+
+bool IsBuiltIn(const glslang::TIntermSymbol& symbol) {
+    return std::string_view(symbol.getName().c_str()).rfind("gl_", 0) == 0;
+}
+
+// Uniform vectors one declaration takes (GLSL ES 1.00 Appendix A §7 packs each array element
+// and each matrix column into at least one vector; a struct counts one vector per member).
+long long UniformVectors(const glslang::TType& type) {
+    long long per_element = 1;
+    if (type.isMatrix()) {
+        per_element = type.getMatrixCols();
+    } else if (type.isStruct()) {
+        per_element = 0;
+        for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            per_element += UniformVectors(*member.type);
+        }
+    }
+    if (type.isArray()) {
+        long long elements = 1;
+        const glslang::TArraySizes* sizes = type.getArraySizes();
+        for (int d = 0; d < sizes->getNumDims(); ++d) {
+            elements = std::min(elements * std::max(sizes->getDimSize(d), 1), 1LL << 40);
+        }
+        return per_element * elements;
+    }
+    return per_element;
+}
+
+}  // namespace
+
+std::vector<Diagnostic> CheckStageRules(const glslang::TIntermediate& stage,
+                                        const TBuiltInResource& resources, const std::string& file,
+                                        std::string_view source) {
+    std::vector<Diagnostic> errors;
+    const bool vertex = stage.getStage() == EShLangVertex;
+    const long long limit =
+            vertex ? resources.maxVertexUniformVectors : resources.maxFragmentUniformVectors;
+    for (glslang::TIntermSymbol* symbol : LinkerObjects(stage)) {
+        const glslang::TType& type = symbol->getType();
+        if (type.getQualifier().storage != glslang::EvqUniform || IsBuiltIn(*symbol) ||
+            type.getBasicType() == glslang::EbtSampler) {
+            continue;
+        }
+        const long long vectors = UniformVectors(type);
+        if (vectors > limit) {
+            const auto [line, column] = FirstMention(source, symbol->getName().c_str());
+            errors.push_back(MakeError(
+                    file, line, column,
+                    fmt::format("uniform '{}' needs {} uniform vectors, more than the {} a {} "
+                                "shader has (gl_Max{}UniformVectors; GLSL ES 1.00 Appendix A "
+                                "§7, GLSL ES 3.00 §4.3.5)",
+                                symbol->getName().c_str(), vectors, limit,
+                                vertex ? "vertex" : "fragment", vertex ? "Vertex" : "Fragment")));
+        }
+    }
+    return errors;
+}
+
+std::vector<Diagnostic> CheckLinkRules(const glslang::TIntermediate& vertex,
+                                       const std::string& vertex_file,
+                                       const glslang::TIntermediate& fragment,
+                                       const std::string& fragment_file) {
+    std::vector<Diagnostic> errors;
+    if (vertex.getVersion() != fragment.getVersion()) {
+        errors.push_back(MakeError(
+                fragment_file, 0, 0,
+                fmt::format("cannot link a '#version {}' fragment shader with the "
+                            "'#version {}' vertex shader {}; both stages of a program must use "
+                            "the same GLSL ES version (GLSL ES 3.00 §3.3)",
+                            fragment.getVersion() == 100 ? "100" : "300 es",
+                            vertex.getVersion() == 100 ? "100" : "300 es", vertex_file)));
+        return errors;
+    }
+    std::set<std::string> outputs;
+    for (glslang::TIntermSymbol* symbol : LinkerObjects(vertex)) {
+        if (symbol->getType().getQualifier().storage == glslang::EvqVaryingOut) {
+            outputs.insert(symbol->getName().c_str());
+        }
+    }
+    const std::map<std::string, glslang::TSourceLoc> used = StaticallyUsed(fragment);
+    for (glslang::TIntermSymbol* symbol : LinkerObjects(fragment)) {
+        const std::string name = symbol->getName().c_str();
+        const auto use = used.find(name);
+        if (symbol->getType().getQualifier().storage != glslang::EvqVaryingIn ||
+            IsBuiltIn(*symbol) || use == used.end() || outputs.count(name) != 0) {
+            continue;
+        }
+        // Reported where the fragment stage first reads it: that is the use the rule forbids.
+        errors.push_back(MakeError(
+                fragment_file, use->second.line, std::max(use->second.column, 0),
+                fmt::format("'{}' is read by the fragment shader but the vertex shader {} does "
+                            "not declare it; declare it there as a {} (GLSL ES 1.00 §4.3.5, "
+                            "GLSL ES 3.00 §4.3.4)",
+                            name, vertex_file,
+                            fragment.getVersion() == 100 ? "varying" : "'out' variable")));
+    }
+    return errors;
+}
+
+}  // namespace tidepool

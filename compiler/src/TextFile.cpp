@@ -1,0 +1,76 @@
+#include "tidepool/TextFile.h"
+
+#include <cerrno>
+#include <cstring>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace tidepool {
+namespace {
+
+std::string KindProblem(mode_t mode) {
+    if (S_ISDIR(mode)) {
+        return "is a folder, not a file";
+    }
+    if (S_ISFIFO(mode)) {
+        return "is a FIFO (named pipe), not a regular file";
+    }
+    if (S_ISSOCK(mode)) {
+        return "is a socket, not a regular file";
+    }
+    if (S_ISCHR(mode) || S_ISBLK(mode)) {
+        return "is a device, not a regular file";
+    }
+    return S_ISREG(mode) ? "" : "is not a regular file";
+}
+
+}  // namespace
+
+TextFileRead ReadTextFile(const std::filesystem::path& path) {
+    TextFileRead read;
+    // O_NONBLOCK: should the path turn into a FIFO between any check and the open, the open
+    // still returns at once; fstat on the open descriptor then refuses it.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        read.error = errno == ENOENT ? "no such file" : std::strerror(errno);
+        return read;
+    }
+    struct stat info {};
+    if (::fstat(fd, &info) != 0) {
+        read.error = std::strerror(errno);
+    } else {
+        read.error = KindProblem(info.st_mode);
+    }
+    if (read.error.empty()) {
+        char buffer[65536];
+        for (;;) {
+            const ssize_t got = ::read(fd, buffer, sizeof buffer);
+            if (got > 0) {
+                read.text.append(buffer, static_cast<std::size_t>(got));
+            } else if (got == 0) {
+                read.ok = true;
+                break;
+            } else if (errno != EINTR) {
+                read.error = std::strerror(errno);
+                break;
+            }
+        }
+    }
+    ::close(fd);
+    if (!read.ok) {
+        read.text.clear();
+    }
+    return read;
+}
+
+TextFileRead ReadShaderFile(const std::filesystem::path& path) {
+    TextFileRead read = ReadTextFile(path);
+    if (read.text.rfind("\xEF\xBB\xBF", 0) == 0) {
+        read.text.erase(0, 3);
+    }
+    return read;
+}
+
+}  // namespace tidepool

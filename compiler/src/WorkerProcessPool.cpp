@@ -1,0 +1,367 @@
+#include "WorkerProcessPool.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <new>
+
+#include <fmt/format.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace tidepool {
+namespace {
+
+// A worker that hits its memory limit leaves with this status, from the new-handler, before
+// anything can unwind through a library that was not written to survive it.
+constexpr int kOutOfMemoryExit = 86;
+// A worker whose item threw something else.
+constexpr int kExceptionExit = 87;
+
+// AddressSanitizer reserves terabytes of address space for its shadow memory, so an
+// address-space limit would stop every sanitized worker before it starts.
+#if defined(__SANITIZE_ADDRESS__)
+constexpr bool kAddressSpaceLimitWorks = false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+constexpr bool kAddressSpaceLimitWorks = false;
+#else
+constexpr bool kAddressSpaceLimitWorks = true;
+#endif
+#else
+constexpr bool kAddressSpaceLimitWorks = true;
+#endif
+
+using Clock = std::chrono::steady_clock;
+
+// Moves all `size` bytes with `step` (one send or recv), retrying after a signal; false when the
+// peer has gone (a recv of 0 bytes) or the socket failed.
+template <typename Byte, typename Step>
+bool TransferAll(Byte* bytes, std::size_t size, Step step) {
+    while (size > 0) {
+        const ssize_t moved = step(bytes, size);
+        if (moved < 0 && errno == EINTR) {
+            continue;
+        }
+        if (moved <= 0) {
+            return false;
+        }
+        bytes += moved;
+        size -= static_cast<std::size_t>(moved);
+    }
+    return true;
+}
+
+bool SendAll(int fd, const void* data, std::size_t size) {
+    // MSG_NOSIGNAL: a peer that died must be an error here, not a SIGPIPE for the process.
+    return TransferAll(static_cast<const char*>(data), size, [fd](const char* b, std::size_t n) {
+        return ::send(fd, b, n, MSG_NOSIGNAL);
+    });
+}
+
+bool ReceiveAll(int fd, void* data, std::size_t size) {
+    return TransferAll(static_cast<char*>(data), size,
+                       [fd](char* b, std::size_t n) { return ::recv(fd, b, n, 0); });
+}
+
+// Records from a worker: a type byte ('P' progress note, 'R' result), a 64-bit length, the bytes.
+bool SendRecord(int fd, char type, const std::string& bytes) {
+    const std::uint64_t size = bytes.size();
+    return SendAll(fd, &type, 1) && SendAll(fd, &size, sizeof size) &&
+           SendAll(fd, bytes.data(), bytes.size());
+}
+
+[[noreturn]] void ExitOutOfMemory() {
+    ::_exit(kOutOfMemoryExit);
+}
+
+[[noreturn]] void WorkerMain(
+        int fd, const WorkerLimits& limits,
+        const std::function<std::string(std::size_t, const ProgressNote&)>& work) {
+    const rlimit no_core{0, 0};
+    ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
+    if (limits.memory_bytes > 0 && kAddressSpaceLimitWorks) {
+        const rlimit memory{limits.memory_bytes, limits.memory_bytes};
+        ::setrlimit(RLIMIT_AS, &memory);
+    }
+    std::set_new_handler(ExitOutOfMemory);
+    for (;;) {
+        std::uint64_t index = 0;
+        if (!ReceiveAll(fd, &index, sizeof index)) {
+            ::_exit(0);  // the parent has no more items
+        }
+        const ProgressNote note = [fd](const std::string& text) { SendRecord(fd, 'P', text); };
+        std::string result;
+        try {
+            result = work(static_cast<std::size_t>(index), note);
+        } catch (const std::bad_alloc&) {
+            ::_exit(kOutOfMemoryExit);
+        } catch (...) {
+            ::_exit(kExceptionExit);
+        }
+        if (!SendRecord(fd, 'R', result)) {
+            ::_exit(0);
+        }
+    }
+}
+
+struct Worker {
+    pid_t pid = -1;
+    int fd = -1;
+    long item = -1;  // the item in flight, -1 when idle
+    Clock::time_point started;
+    std::string buffer;  // bytes received and not yet parsed into records
+};
+
+std::string DescribeStatus(int status) {
+    if (WIFSIGNALED(status)) {
+        const int signal = WTERMSIG(status);
+        return fmt::format("signal {} ({})", signal, ::strsignal(signal));
+    }
+    if (WIFEXITED(status)) {
+        return fmt::format("exit status {}", WEXITSTATUS(status));
+    }
+    return "ended unexpectedly";
+}
+
+class Pool {
+public:
+    Pool(std::size_t count, const WorkerLimits& limits,
+         const std::function<std::string(std::size_t, const ProgressNote&)>& work,
+         const std::function<bool(std::size_t)>& should_run,
+         const std::function<void(std::size_t, const WorkerItemResult&)>& on_result)
+        : count_(count),
+          limits_(limits),
+          work_(work),
+          should_run_(should_run),
+          on_result_(on_result),
+          results_(count) {}
+
+    std::vector<WorkerItemResult> Run(int worker_count) {
+        workers_.resize(static_cast<std::size_t>(std::max(worker_count, 1)));
+        for (Worker& worker : workers_) {
+            Dispatch(worker);
+        }
+        while (std::any_of(workers_.begin(), workers_.end(),
+                           [](const Worker& w) { return w.item >= 0; })) {
+            Wait();
+        }
+        for (Worker& worker : workers_) {
+            Stop(worker, false);
+        }
+        return std::move(results_);
+    }
+
+private:
+    void Ended(std::size_t i) {
+        if (on_result_) {
+            on_result_(i, results_[i]);
+        }
+    }
+
+    // The next item to run, marking skipped ones on the way; -1 when none is left.
+    long NextItem() {
+        while (next_ < count_) {
+            const std::size_t i = next_++;
+            if (!should_run_ || should_run_(i)) {
+                return static_cast<long>(i);
+            }
+            results_[i].failure = WorkerFailure::kSkipped;
+            Ended(i);
+        }
+        return -1;
+    }
+
+    bool Start(Worker& worker) {
+        int fds[2];
+        if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) {
+            return false;
+        }
+        const pid_t pid = ::fork();
+        if (pid < 0) {
+            ::close(fds[0]);
+            ::close(fds[1]);
+            return false;
+        }
+        if (pid == 0) {
+            ::close(fds[0]);
+            // Another worker's socket held open here would hide that worker's death from us.
+            for (const Worker& other : workers_) {
+                if (other.fd >= 0) {
+                    ::close(other.fd);
+                }
+            }
+            WorkerMain(fds[1], limits_, work_);
+        }
+        ::close(fds[1]);
+        worker.pid = pid;
+        worker.fd = fds[0];
+        worker.buffer.clear();
+        return true;
+    }
+
+    void Dispatch(Worker& worker) {
+        const long item = NextItem();
+        if (item < 0) {
+            Stop(worker, false);
+            return;
+        }
+        if (worker.pid < 0 && !Start(worker)) {
+            // No process to isolate it in: run it here rather than not at all.
+            const auto i = static_cast<std::size_t>(item);
+            results_[i].payload = work_(i, [](const std::string&) {});
+            results_[i].detail = "run without isolation: no worker process could be started";
+            Ended(i);
+            Dispatch(worker);
+            return;
+        }
+        const auto index = static_cast<std::uint64_t>(item);
+        worker.item = item;
+        worker.started = Clock::now();
+        if (!SendAll(worker.fd, &index, sizeof index)) {
+            Fail(worker, WorkerFailure::kCrashed, "the worker process ended before its item");
+        }
+    }
+
+    // Ends a worker: politely (closing its socket makes it exit) or by SIGKILL.
+    int Stop(Worker& worker, bool kill) {
+        int status = 0;
+        if (worker.pid < 0) {
+            return status;
+        }
+        if (kill) {
+            ::kill(worker.pid, SIGKILL);
+        }
+        ::close(worker.fd);
+        while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
+        }
+        worker.pid = -1;
+        worker.fd = -1;
+        worker.item = -1;
+        return status;
+    }
+
+    void Fail(Worker& worker, WorkerFailure failure, std::string detail) {
+        const auto i = static_cast<std::size_t>(worker.item);
+        const int status = Stop(worker, true);
+        if (failure == WorkerFailure::kCrashed && WIFEXITED(status) &&
+            WEXITSTATUS(status) == kOutOfMemoryExit) {
+            failure = WorkerFailure::kOutOfMemory;
+            detail = "an allocation failed";
+        } else if (failure == WorkerFailure::kCrashed && detail.empty()) {
+            detail = DescribeStatus(status);
+        }
+        results_[i].failure = failure;
+        results_[i].detail = std::move(detail);
+        Ended(i);
+        Dispatch(worker);
+    }
+
+    // Parses whole records out of the worker's buffer.
+    void TakeRecords(Worker& worker) {
+        constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
+        while (worker.item >= 0 && worker.buffer.size() >= kHeader) {
+            std::uint64_t size = 0;
+            std::memcpy(&size, worker.buffer.data() + 1, sizeof size);
+            if (worker.buffer.size() < kHeader + size) {
+                return;
+            }
+            const char type = worker.buffer[0];
+            std::string bytes = worker.buffer.substr(kHeader, size);
+            worker.buffer.erase(0, kHeader + size);
+            const auto i = static_cast<std::size_t>(worker.item);
+            if (type == 'P') {
+                results_[i].notes.push_back(std::move(bytes));
+            } else {
+                results_[i].payload = std::move(bytes);
+                worker.item = -1;
+                Ended(i);
+                Dispatch(worker);
+            }
+        }
+    }
+
+    void Wait() {
+        std::vector<pollfd> fds;
+        std::vector<Worker*> polled;
+        auto timeout = std::chrono::milliseconds(-1);
+        const Clock::time_point now = Clock::now();
+        for (Worker& worker : workers_) {
+            if (worker.item < 0) {
+                continue;
+            }
+            fds.push_back(pollfd{worker.fd, POLLIN, 0});
+            polled.push_back(&worker);
+            if (limits_.seconds_per_item > 0) {
+                const auto deadline =
+                        worker.started +
+                        std::chrono::duration_cast<Clock::duration>(
+                                std::chrono::duration<double>(limits_.seconds_per_item));
+                const auto left = std::max(
+                        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - now) +
+                                std::chrono::milliseconds(1),
+                        std::chrono::milliseconds(0));
+                timeout = timeout.count() < 0 ? left : std::min(timeout, left);
+            }
+        }
+        const int ready = ::poll(fds.data(), fds.size(), static_cast<int>(timeout.count()));
+        if (ready < 0 && errno != EINTR) {
+            return;
+        }
+        for (std::size_t k = 0; k < fds.size(); ++k) {
+            Worker& worker = *polled[k];
+            if ((fds[k].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
+                char chunk[65536];
+                const ssize_t got = ::recv(worker.fd, chunk, sizeof chunk, 0);
+                if (got > 0) {
+                    worker.buffer.append(chunk, static_cast<std::size_t>(got));
+                    TakeRecords(worker);
+                } else if (got == 0 || (errno != EINTR && errno != EAGAIN)) {
+                    Fail(worker, WorkerFailure::kCrashed, "");
+                }
+            }
+        }
+        if (limits_.seconds_per_item > 0) {
+            const Clock::time_point later = Clock::now();
+            for (Worker& worker : workers_) {
+                if (worker.item >= 0 &&
+                    std::chrono::duration<double>(later - worker.started).count() >
+                            limits_.seconds_per_item) {
+                    Fail(worker, WorkerFailure::kTimedOut,
+                         fmt::format("took longer than {} s", limits_.seconds_per_item));
+                }
+            }
+        }
+    }
+
+    std::size_t count_;
+    const WorkerLimits& limits_;
+    const std::function<std::string(std::size_t, const ProgressNote&)>& work_;
+    const std::function<bool(std::size_t)>& should_run_;
+    const std::function<void(std::size_t, const WorkerItemResult&)>& on_result_;
+    std::vector<WorkerItemResult> results_;
+    std::vector<Worker> workers_;
+    std::size_t next_ = 0;
+};
+
+}  // namespace
+
+std::vector<WorkerItemResult> RunInWorkerProcesses(
+        std::size_t count, int workers, const WorkerLimits& limits,
+        const std::function<std::string(std::size_t, const ProgressNote&)>& work,
+        const std::function<bool(std::size_t)>& should_run,
+        const std::function<void(std::size_t, const WorkerItemResult&)>& on_result) {
+    if (count == 0) {
+        return {};
+    }
+    Pool pool(count, limits, work, should_run, on_result);
+    return pool.Run(static_cast<int>(
+            std::min<std::size_t>(count, static_cast<std::size_t>(std::max(workers, 1)))));
+}
+
+}  // namespace tidepool

@@ -1,0 +1,56 @@
+// Runs work items in forked worker processes, so that a crash, a hang or an allocation failure
+// inside a third-party library (glslang) becomes the failure of one item instead of the end of
+// tidepool. Browsers run their shader translators out of process for the same reason. Private to
+// the compiler library.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace tidepool {
+
+/// What one worker may use.
+struct WorkerLimits {
+    std::uint64_t memory_bytes = 0;  // address-space limit (RLIMIT_AS) per worker; 0: none
+    double seconds_per_item = 0;     // wall time one item may take before its worker is killed
+};
+
+/// How an item ended.
+enum class WorkerFailure {
+    kNone,         // the item ran; `payload` is its result
+    kSkipped,      // should_run said no
+    kCrashed,      // the worker died (a signal, or an exit without a result)
+    kOutOfMemory,  // an allocation failed under the memory limit
+    kTimedOut,     // the item took longer than seconds_per_item
+};
+
+/// The result of one item.
+struct WorkerItemResult {
+    WorkerFailure failure = WorkerFailure::kNone;
+    std::string payload;             // what `work` returned, when failure is kNone
+    std::string detail;              // for a failure: e.g. "signal 11 (Segmentation fault)"
+    std::vector<std::string> notes;  // every note the item sent, in order (kept on failure too)
+};
+
+/// Sends a note from inside an item to the parent: what it is about to do, so that a failure can
+/// be attributed to the step that was running, or a partial result that must survive a later
+/// failure of the same item.
+using ProgressNote = std::function<void(const std::string&)>;
+
+/// Runs work(i, note) for each i in [0, count) in up to `workers` forked processes (each runs its
+/// items one after another; a worker that fails is replaced by a fresh one), and returns each
+/// item's result in order. `should_run(i)`, asked in the parent just before item i is handed
+/// out, lets the caller skip items that earlier results made pointless; `on_result(i, result)` is
+/// called in the parent as soon as item i has ended, in the order items end. Must be called from a
+/// single-threaded caller (fork copies only the calling thread). Falls back to no isolation (and
+/// says so in every failed item's detail) only if fork itself fails.
+std::vector<WorkerItemResult> RunInWorkerProcesses(
+        std::size_t count, int workers, const WorkerLimits& limits,
+        const std::function<std::string(std::size_t, const ProgressNote&)>& work,
+        const std::function<bool(std::size_t)>& should_run = {},
+        const std::function<void(std::size_t, const WorkerItemResult&)>& on_result = {});
+
+}  // namespace tidepool

@@ -1,0 +1,281 @@
+#include "YamlReader.h"
+
+#include <yaml-cpp/eventhandler.h>
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+#include <unordered_set>
+
+#include <fmt/format.h>
+
+namespace tidepool {
+
+std::optional<std::pair<int, int>> FindInvalidUtf8(std::string_view text) {
+    int line = 1;
+    int column = 1;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const auto byte = static_cast<unsigned char>(text[i]);
+        std::size_t length = 0;
+        std::uint32_t code = 0;
+        std::uint32_t minimum = 0;
+        if (byte < 0x80) {
+            length = 1;
+            code = byte;
+        } else if ((byte & 0xE0) == 0xC0) {
+            length = 2;
+            code = byte & 0x1Fu;
+            minimum = 0x80;
+        } else if ((byte & 0xF0) == 0xE0) {
+            length = 3;
+            code = byte & 0x0Fu;
+            minimum = 0x800;
+        } else if ((byte & 0xF8) == 0xF0) {
+            length = 4;
+            code = byte & 0x07u;
+            minimum = 0x10000;
+        } else {
+            return std::make_pair(line, column);
+        }
+        if (i + length > text.size()) {
+            return std::make_pair(line, column);
+        }
+        for (std::size_t k = 1; k < length; ++k) {
+            const auto next = static_cast<unsigned char>(text[i + k]);
+            if ((next & 0xC0) != 0x80) {
+                return std::make_pair(line, column);
+            }
+            code = (code << 6) | (next & 0x3Fu);
+        }
+        // Overlong forms, UTF-16 surrogates and code points past U+10FFFF are not UTF-8.
+        if (code < minimum || (code >= 0xD800 && code <= 0xDFFF) || code > 0x10FFFF) {
+            return std::make_pair(line, column);
+        }
+        if (byte == '\n') {
+            ++line;
+            column = 1;
+        } else {
+            ++column;
+        }
+        i += length;
+    }
+    return std::nullopt;
+}
+
+namespace {
+
+// Walks yaml-cpp's event stream, in which every node of the file appears exactly once and an
+// alias is one event: cycles, the expanded size and repeated keys are all decided in one pass,
+// before yaml-cpp builds a tree that a recursive walk could follow forever or exponentially.
+class AliasChecker : public YAML::EventHandler {
+public:
+    explicit AliasChecker(YamlReader& reader, const std::string& file)
+        : reader_(reader), file_(file) {}
+
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnAnchor(const YAML::Mark&, const std::string& name) override { pending_name_ = name; }
+    void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { Leaf(mark, anchor, "~"); }
+    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                  const std::string& value) override {
+        Leaf(mark, anchor, value);
+    }
+    void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        const std::string name = names_.count(anchor) != 0 ? names_[anchor] : "?";
+        if (open_anchors_.count(anchor) != 0) {
+            Fail(mark, fmt::format("alias '*{}' refers to the node that contains it, a cycle; "
+                                   "an alias may only repeat a node that is complete",
+                                   name));
+            return;
+        }
+        auto scalar = scalars_.find(anchor);
+        Key(mark, scalar != scalars_.end() ? &scalar->second : nullptr);
+        Count(mark, sizes_.count(anchor) != 0 ? sizes_[anchor] : 1);
+    }
+    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                         YAML::EmitterStyle::value) override {
+        Open(mark, anchor, false);
+    }
+    void OnSequenceEnd() override { Close(); }
+    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+                    YAML::EmitterStyle::value) override {
+        Open(mark, anchor, true);
+    }
+    void OnMapEnd() override { Close(); }
+
+    bool failed() const { return failed_; }
+
+private:
+    struct Frame {
+        YAML::anchor_t anchor = YAML::NullAnchor;
+        bool is_map = false;
+        bool expecting_key = true;
+        std::uint64_t size = 1;           // this node and everything under it, aliases expanded
+        std::map<std::string, int> keys;  // key → line it was first written at
+    };
+
+    void Fail(const YAML::Mark& mark, std::string message) {
+        if (!failed_) {
+            reader_.diagnostics().push_back(
+                    MakeError(file_, mark.line + 1, mark.column + 1, std::move(message)));
+        }
+        failed_ = true;
+    }
+    void Name(YAML::anchor_t anchor) {
+        if (anchor != YAML::NullAnchor) {
+            names_[anchor] = pending_name_;
+        }
+        pending_name_.clear();
+    }
+    // A node in key position of the innermost mapping; `scalar` is its text when it is one.
+    void Key(const YAML::Mark& mark, const std::string* scalar) {
+        if (stack_.empty() || !stack_.back().is_map) {
+            return;
+        }
+        Frame& map = stack_.back();
+        const bool is_key = map.expecting_key;
+        map.expecting_key = !map.expecting_key;
+        if (!is_key || scalar == nullptr) {
+            return;
+        }
+        auto [it, inserted] = map.keys.emplace(*scalar, mark.line + 1);
+        if (!inserted) {
+            // yaml-cpp keeps only the first of two equal keys when looked up, silently.
+            reader_.diagnostics().push_back(
+                    MakeError(file_, mark.line + 1, mark.column + 1,
+                              fmt::format("duplicate key '{}' (first written at line {}); "
+                                          "remove one of them",
+                                          *scalar, it->second)));
+        }
+    }
+    void Count(const YAML::Mark& mark, std::uint64_t size) {
+        if (!stack_.empty()) {
+            stack_.back().size = std::min(stack_.back().size + size, kMaxYamlExpandedNodes + 1);
+        }
+        total_ = std::min(total_ + size, kMaxYamlExpandedNodes + 1);
+        if (total_ > kMaxYamlExpandedNodes) {
+            Fail(mark, fmt::format("the document expands through its aliases to more than {} "
+                                   "nodes; write the repeated parts out or use fewer nested "
+                                   "aliases",
+                                   kMaxYamlExpandedNodes));
+        }
+    }
+    void Leaf(const YAML::Mark& mark, YAML::anchor_t anchor, const std::string& value) {
+        Name(anchor);
+        if (anchor != YAML::NullAnchor) {
+            scalars_[anchor] = value;
+            sizes_[anchor] = 1;
+        }
+        Key(mark, &value);
+        Count(mark, 1);
+    }
+    void Open(const YAML::Mark& mark, YAML::anchor_t anchor, bool is_map) {
+        Name(anchor);
+        Key(mark, nullptr);
+        // The node itself is counted now; its children are added to it as they arrive.
+        total_ = std::min(total_ + 1, kMaxYamlExpandedNodes + 1);
+        if (anchor != YAML::NullAnchor) {
+            open_anchors_.insert(anchor);
+        }
+        Frame frame;
+        frame.anchor = anchor;
+        frame.is_map = is_map;
+        stack_.push_back(std::move(frame));
+    }
+    void Close() {
+        const Frame frame = std::move(stack_.back());
+        stack_.pop_back();
+        if (frame.anchor != YAML::NullAnchor) {
+            open_anchors_.erase(frame.anchor);
+            sizes_[frame.anchor] = frame.size;
+        }
+        if (!stack_.empty()) {
+            stack_.back().size =
+                    std::min(stack_.back().size + frame.size, kMaxYamlExpandedNodes + 1);
+        }
+    }
+
+    YamlReader& reader_;
+    const std::string& file_;
+    std::vector<Frame> stack_;
+    std::unordered_set<YAML::anchor_t> open_anchors_;
+    std::unordered_map<YAML::anchor_t, std::uint64_t> sizes_;
+    std::unordered_map<YAML::anchor_t, std::string> scalars_;
+    std::unordered_map<YAML::anchor_t, std::string> names_;
+    std::string pending_name_;
+    std::uint64_t total_ = 0;
+    bool failed_ = false;
+};
+
+SourceLocation LocationOf(const std::string& file, const YAML::Mark& mark) {
+    // yaml-cpp marks are 0-based; a null mark (-1) means the position is unknown.
+    return SourceLocation{file, mark.line >= 0 ? mark.line + 1 : 0,
+                          mark.column >= 0 ? mark.column + 1 : 0};
+}
+
+}  // namespace
+
+std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
+    if (const auto bad = FindInvalidUtf8(text)) {
+        Error(SourceLocation{file_, bad->first, bad->second},
+              "this byte is not UTF-8; YAML files are Unicode text: save the file as UTF-8");
+        return std::nullopt;
+    }
+    const std::string owned(text);
+    try {
+        std::istringstream events(owned);
+        YAML::Parser parser(events);
+        AliasChecker checker(*this, file_);
+        parser.HandleNextDocument(checker);
+        if (checker.failed()) {
+            return std::nullopt;
+        }
+        return YAML::Load(owned);
+    } catch (const YAML::Exception& e) {
+        Error(LocationOf(file_, e.mark), fmt::format("malformed YAML: {}", e.msg));
+        return std::nullopt;
+    }
+}
+
+SourceLocation YamlReader::At(const YAML::Node& node) const {
+    return LocationOf(file_, node.Mark());
+}
+
+SourceLocation YamlReader::At(const YAML::Mark& mark) const {
+    return LocationOf(file_, mark);
+}
+
+void YamlReader::Error(const SourceLocation& where, std::string message) {
+    diagnostics_.push_back(MakeError(where.file, where.line, where.column, std::move(message)));
+}
+
+bool YamlReader::ExpectMap(const YAML::Node& node, std::string_view what) {
+    if (node.IsMap()) {
+        return true;
+    }
+    Error(node, fmt::format("{} must be a mapping of keys to values", what));
+    return false;
+}
+
+bool YamlReader::ExpectScalar(const YAML::Node& node, std::string_view what) {
+    if (node.IsScalar()) {
+        return true;
+    }
+    Error(node, fmt::format("{} must be a single value, not a list or mapping", what));
+    return false;
+}
+
+void YamlReader::CheckKeys(const YAML::Node& map, std::string_view what,
+                           const std::vector<std::string>& allowed) {
+    for (auto it = map.begin(); it != map.end(); ++it) {
+        const std::string key = it->first.Scalar();
+        if (std::find(allowed.begin(), allowed.end(), key) == allowed.end()) {
+            Error(it->first, fmt::format("unknown key '{}' in {}; allowed keys: {}", key, what,
+                                         fmt::join(allowed, ", ")));
+        }
+    }
+}
+
+}  // namespace tidepool

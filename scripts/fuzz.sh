@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets (fuzz/) with clang in build/fuzz and runs each for SECONDS
+# (default 60), seeded with the shipped variants.yaml and scenes/*.yaml. The corpus grows in
+# build/fuzz/corpus/<target>/ across runs; crashes, hangs and leaks land in build/fuzz/artifacts/
+# and make the script fail. The binaries are build/fuzz/fuzz/<target>. README.md ("Fuzzing")
+# describes a longer corpus-growing run.
+set -euo pipefail
+root="$(cd "$(dirname "$0")/.." && pwd)"
+seconds="${1:-60}"
+dir="$root/build/fuzz"
+
+if ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/null 2>&1; then
+  echo "fuzz: clang's libFuzzer runtime is missing; run scripts/install-deps.sh" >&2
+  exit 3
+fi
+
+CXX=clang++ cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DTIDEPOOL_FUZZ=ON -DTIDEPOOL_BUILD_TESTS=OFF -DTIDEPOOL_BUILD_BENCH=OFF >/dev/null
+cmake --build "$dir" -j "$(nproc)" --target VariantConfigFuzzer SceneDescriptionFuzzer
+
+status=0
+run() {
+  local target="$1"; shift
+  local corpus="$dir/corpus/$target"
+  mkdir -p "$corpus" "$dir/artifacts"
+  cp "$@" "$corpus/"   # the shipped files are always part of the seed corpus
+  echo "== $target: ${seconds}s"
+  # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is an allocation bomb.
+  if ! "$dir/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       -print_final_stats=1 -artifact_prefix="$dir/artifacts/$target-" 2>"$dir/$target.log"; then
+    echo "fuzz: $target found a failure; see $dir/$target.log and $dir/artifacts/" >&2
+    status=1
+  fi
+  grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb|^#[0-9]+ *DONE" "$dir/$target.log" || true
+}
+run VariantConfigFuzzer "$root/variants.yaml"
+run SceneDescriptionFuzzer "$root"/scenes/*.yaml
+exit "$status"

@@ -1,0 +1,85 @@
+#include "WorkerProcessPool.h"
+
+#include <csignal>
+#include <new>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace tidepool {
+namespace {
+
+TEST(WorkerProcessPoolTest, ResultsComeBackInItemOrderFromSeveralWorkers) {
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            20, 3, WorkerLimits{},
+            [](std::size_t i, const ProgressNote&) { return std::to_string(i * i); });
+    ASSERT_EQ(results.size(), 20U);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        EXPECT_EQ(results[i].failure, WorkerFailure::kNone);
+        EXPECT_EQ(results[i].payload, std::to_string(i * i));
+    }
+}
+
+TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            4, 1, WorkerLimits{}, [](std::size_t i, const ProgressNote& note) {
+                note("before");
+                if (i == 1) {
+                    std::raise(SIGSEGV);
+                }
+                return std::string("ok");
+            });
+    ASSERT_EQ(results.size(), 4U);
+    EXPECT_EQ(results[0].payload, "ok");
+    EXPECT_EQ(results[1].failure, WorkerFailure::kCrashed);
+    EXPECT_EQ(results[1].notes, std::vector<std::string>{"before"});
+    // "signal 11 (...)"; under AddressSanitizer the worker reports the fault and exits instead.
+    EXPECT_FALSE(results[1].detail.empty());
+    EXPECT_EQ(results[2].payload, "ok");  // a fresh worker took over
+    EXPECT_EQ(results[3].payload, "ok");
+}
+
+TEST(WorkerProcessPoolTest, ItemThatTakesTooLongIsKilledAndReportedAsTimedOut) {
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            2, 1, WorkerLimits{0, 0.5}, [](std::size_t i, const ProgressNote&) {
+                if (i == 0) {
+                    std::this_thread::sleep_for(std::chrono::seconds(30));
+                }
+                return std::string("done");
+            });
+    EXPECT_EQ(results[0].failure, WorkerFailure::kTimedOut);
+    EXPECT_EQ(results[0].detail, "took longer than 0.5 s");
+    EXPECT_EQ(results[1].payload, "done");
+}
+
+TEST(WorkerProcessPoolTest, FailedAllocationIsReportedAsOutOfMemory) {
+#if defined(__SANITIZE_ADDRESS__)
+    GTEST_SKIP() << "AddressSanitizer reports an impossible allocation itself instead of failing it";
+#endif
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            1, 1, WorkerLimits{std::uint64_t{1} << 30, 0},
+            [](std::size_t, const ProgressNote&) {
+                std::vector<char*> blocks;
+                for (int i = 0; i < 64; ++i) {
+                    blocks.push_back(new char[std::size_t{1} << 40]);
+                }
+                return std::string("unreachable");
+            });
+    EXPECT_EQ(results[0].failure, WorkerFailure::kOutOfMemory);
+}
+
+TEST(WorkerProcessPoolTest, SkippedItemsAreNotRunAndEveryEndIsReported) {
+    std::vector<std::size_t> ended;
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            3, 2, WorkerLimits{}, [](std::size_t, const ProgressNote&) { return std::string("x"); },
+            [](std::size_t i) { return i != 1; },
+            [&](std::size_t i, const WorkerItemResult&) { ended.push_back(i); });
+    EXPECT_EQ(results[1].failure, WorkerFailure::kSkipped);
+    EXPECT_EQ(results[0].payload, "x");
+    EXPECT_EQ(results[2].payload, "x");
+    EXPECT_EQ(ended.size(), 3U);
+}
+
+}  // namespace
+}  // namespace tidepool

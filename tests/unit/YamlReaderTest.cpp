@@ -1,0 +1,125 @@
+// The shared YAML reading layer, through both loaders that use it: hostile documents are refused
+// with a position instead of crashing, hanging or reaching the JSON writers.
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <string>
+
+#include "TempDir.h"
+namespace tidepool {
+namespace {
+
+using testing::TempDir;
+
+std::string Formatted(const std::vector<Diagnostic>& diagnostics) {
+    std::string out;
+    for (const Diagnostic& d : diagnostics) {
+        out += FormatDiagnostic(d) + "\n";
+    }
+    return out;
+}
+
+std::string ConfigErrors(const std::string& yaml) {
+    const ConfigResult result = ParseVariantConfig(yaml, "v.yaml", ".");
+    EXPECT_FALSE(result.config.has_value());
+    return Formatted(result.diagnostics);
+}
+
+std::string SceneErrors(const std::string& yaml) {
+    const SceneResult result = ParseSceneDescription(yaml, "s.yaml");
+    EXPECT_FALSE(result.scene.has_value());
+    return Formatted(result.diagnostics);
+}
+
+// 9 levels of 10 aliases each: 865 bytes that expand to a billion nodes.
+std::string BillionLaughs() {
+    std::string yaml = "a: &a [x, x, x, x, x, x, x, x, x, x]\n";
+    for (char level = 'b'; level <= 'i'; ++level) {
+        const std::string previous(1, static_cast<char>(level - 1));
+        yaml += std::string(1, level) + ": &" + level + " [";
+        for (int i = 0; i < 10; ++i) {
+            yaml += (i == 0 ? "*" : ", *") + previous;
+        }
+        yaml += "]\n";
+    }
+    return yaml;
+}
+
+TEST(YamlReaderTest, AliasInsideItsOwnAnchorIsACycleErrorAtTheAlias) {
+    EXPECT_EQ(ConfigErrors("programs:\n  p:\n    features: &loop [A, *loop]\n"),
+              "v.yaml:3:25: error: alias '*loop' refers to the node that contains it, a cycle; "
+              "an alias may only repeat a node that is complete\n");
+    EXPECT_EQ(SceneErrors("target: &t {min_psnr_db: 30, again: *t}\n"),
+              "s.yaml:1:37: error: alias '*t' refers to the node that contains it, a cycle; an "
+              "alias may only repeat a node that is complete\n");
+}
+
+TEST(YamlReaderTest, AliasBombIsRefusedQuicklyAtTheAliasThatExceedsTheBound) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::string errors = ConfigErrors(BillionLaughs());
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+    EXPECT_EQ(errors,
+              "v.yaml:5:36: error: the document expands through its aliases to more "
+              "than 100000 nodes; write the repeated parts out or use fewer nested "
+              "aliases\n");
+    EXPECT_EQ(SceneErrors(BillionLaughs()),
+              "s.yaml:5:36: error: the document expands through its aliases to more than 100000 "
+              "nodes; write the repeated parts out or use fewer nested aliases\n");
+}
+
+TEST(YamlReaderTest, AliasesOfCompleteNodesStillWork) {
+    const SceneResult result = ParseSceneDescription(
+            "water: &w {depth: 3}\ntarget: {min_psnr_db: 30}\ndescription: &d calm\n", "s.yaml");
+    EXPECT_TRUE(result.scene.has_value()) << Formatted(result.diagnostics);
+}
+
+TEST(YamlReaderTest, NonUtf8ByteIsAnErrorAtItsLineAndColumn) {
+    // Latin-1 'e acute' (0xE9) inside a preset description, after a two-byte UTF-8 character.
+    EXPECT_EQ(ConfigErrors("programs: {}\npresets:\n  p: {description: \"\xC3\xA9t\xE9\"}\n"),
+              "v.yaml:3:23: error: this byte is not UTF-8; YAML files are Unicode text: save "
+              "the file as UTF-8\n");
+    EXPECT_EQ(SceneErrors("description: caf\xE9\n"),
+              "s.yaml:1:17: error: this byte is not UTF-8; YAML files are Unicode text: save the "
+              "file as UTF-8\n");
+}
+
+TEST(YamlReaderTest, OverlongAndSurrogateEncodingsAreNotUtf8) {
+    EXPECT_EQ(SceneErrors("a: \xC0\xAF\n"),
+              "s.yaml:1:4: error: this byte is not UTF-8; YAML files are Unicode text: save the "
+              "file as UTF-8\n");
+    EXPECT_EQ(SceneErrors("a: \xED\xA0\x80\n"),
+              "s.yaml:1:4: error: this byte is not UTF-8; YAML files are Unicode text: save the "
+              "file as UTF-8\n");
+}
+
+TEST(YamlReaderTest, RepeatedKeyInAnAliasedMappingIsReportedOnce) {
+    const ConfigResult result =
+            ParseVariantConfig("x: &m {a: 1, a: 2}\ny: *m\nz: *m\nprograms: {}\n", "v.yaml", ".");
+    EXPECT_EQ(Formatted(result.diagnostics).find("duplicate key 'a'"),
+              Formatted(result.diagnostics).rfind("duplicate key 'a'"));
+    EXPECT_NE(Formatted(result.diagnostics)
+                      .find("v.yaml:1:14: error: duplicate key 'a' (first "
+                            "written at line 1)"),
+              std::string::npos);
+}
+
+TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {
+    TempDir dir;
+    const ConfigResult result = LoadVariantConfig(dir.Path());
+    EXPECT_EQ(Formatted(result.diagnostics),
+              dir.Path().string() +
+                      ": error: cannot read the configuration file: is a folder, "
+                      "not a file; check the path or pass --config PATH\n");
+    const SceneResult scene = LoadSceneDescription(dir.Path());
+    EXPECT_EQ(Formatted(scene.diagnostics),
+              dir.Path().string() +
+                      ": error: cannot read the scene file: is a folder, not a "
+                      "file; scenes live in scenes/NAME.yaml next to the "
+                      "configuration\n");
+}
+
+}  // namespace
+}  // namespace tidepool
