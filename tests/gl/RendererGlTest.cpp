@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -381,10 +382,12 @@ TEST(RunRenderTest, SecondWorkerRendersOnItsOwnContext) {
     }
 }
 
-// The per-pass times of an instrumented frame (a glFinish after each pass) add up to the
-// frame's time measured the same way, and to within 15% of ordinary frames' time: the extra
-// glFinish calls cost little on llvmpipe, which flushes at every render-target switch anyway;
-// 15% leaves room for the noise of medians over 9 frames on a shared machine.
+// The per-pass times of an instrumented frame (a glFinish after each pass) add up to that
+// frame's time to within 2% (they partition it; the rest is one final glFinish), and to within
+// 30% of ordinary frames' time, interleaved with them. Why 30%: the suite runs llvmpipe with
+// worker threads (LP_NUM_THREADS=2), and each glFinish between passes wakes them, which cost up
+// to 20% extra process CPU time when the GL tests ran two at a time; rendering on the calling
+// thread, as `run` does, the two agreed within 5% (printed below).
 TEST(FrameTimerGlTest, PassTimesSumToTheFrameTime) {
     Shared& s = Get();
     ASSERT_TRUE(s.context) << s.error;
@@ -396,7 +399,7 @@ TEST(FrameTimerGlTest, PassTimesSumToTheFrameTime) {
     std::vector<double> sums;
     std::vector<double> instrumented;
     std::vector<double> plain;
-    for (int i = 0; i < 9; ++i) {
+    for (int i = 0; i < 15; ++i) {
         const std::map<std::string, double> passes = timer.TimePasses(c, view);
         double sum = 0;
         for (const auto& [name, ms] : passes) {
@@ -408,8 +411,10 @@ TEST(FrameTimerGlTest, PassTimesSumToTheFrameTime) {
         instrumented.push_back(passes.at("frame"));
         plain.push_back(timer.Time(c, view).ms);
     }
+    std::printf("pass sum %.2f ms, instrumented frame %.2f ms, plain frame %.2f ms\n",
+                base::Median(sums), base::Median(instrumented), base::Median(plain));
     EXPECT_NEAR(base::Median(sums), base::Median(instrumented), 0.02 * base::Median(instrumented));
-    EXPECT_NEAR(base::Median(sums), base::Median(plain), 0.15 * base::Median(plain));
+    EXPECT_NEAR(base::Median(sums), base::Median(plain), 0.30 * base::Median(plain));
 }
 
 // llvmpipe offers GL_EXT_disjoint_timer_query, so the GPU clock's path runs here too, though
