@@ -100,6 +100,8 @@ int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesy
     options.name = name;
     options.generated_utc = UtcNow();
     ReportModelResult model = BuildReportModel(*loaded.inputs, options);
+    const double model_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (!model.model) {
         std::fprintf(stderr, "error: %s\n", model.error.c_str());
         return kExitUsage;
@@ -114,14 +116,14 @@ int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesy
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("report: %zu configurations (%d failed), %zu on the Pareto frontier, static-cost "
                 "Spearman rho %.3f; written in %.1f s to %s/ (index.html %.1f MB%s, report.md, "
-                "data.json, %zu files)\n",
+                "data.json, %zu files; reading and comparing images %.1f s)\n",
                 model.model->accuracy.size(), model.model->failed_configurations,
                 model.model->frontier.size(), model.model->static_cost.spearman_rho, seconds,
                 written.folder.c_str(), static_cast<double>(written.html_bytes) / 1e6,
                 written.image_downscale > 1
                         ? fmt::format(", images downscaled {}x", written.image_downscale).c_str()
                         : "",
-                written.files.size());
+                written.files.size(), model_seconds);
     return model.model->failed_configurations > 0 ? kExitShaderErrors : kExitOk;
 }
 

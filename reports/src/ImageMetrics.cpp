@@ -114,10 +114,10 @@ ImageResult ReadPng(const std::filesystem::path& path) {
     return result;
 }
 
-std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImage& image) {
+std::string EncodePng(const RgbaImage& image, std::string* encoded) {
     if (!IsWellFormed(image)) {
-        return fmt::format("{}: cannot write PNG: a {}x{} image needs {} bytes of pixels, not {}",
-                           path.string(), image.width, image.height,
+        return fmt::format("cannot write PNG: a {}x{} image needs {} bytes of pixels, not {}",
+                           image.width, image.height,
                            image.width > 0 && image.height > 0 ? PixelCount(image) * 4 : 0,
                            image.pixels.size());
     }
@@ -126,16 +126,23 @@ std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImag
     png.width = static_cast<png_uint_32>(image.width);
     png.height = static_cast<png_uint_32>(image.height);
     png.format = PNG_FORMAT_RGBA;
-    png_alloc_size_t size = 0;
-    if (png_image_write_get_memory_size(png, size, 0, image.pixels.data(), 0, nullptr) == 0) {
-        return fmt::format("{}: cannot encode PNG: {}", path.string(), png.message);
-    }
-    std::string encoded(size, '\0');
-    if (png_image_write_to_memory(&png, encoded.data(), &size, 0, image.pixels.data(), 0,
+    // Encoded once into a buffer of libpng's own upper bound, not sized by a first encoding:
+    // the report encodes a hundred images, and that halves its time.
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
+    encoded->assign(size, '\0');
+    if (png_image_write_to_memory(&png, encoded->data(), &size, 0, image.pixels.data(), 0,
                                   nullptr) == 0) {
-        return fmt::format("{}: cannot encode PNG: {}", path.string(), png.message);
+        return fmt::format("cannot encode PNG: {}", png.message);
     }
-    encoded.resize(size);
+    encoded->resize(size);
+    return "";
+}
+
+std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImage& image) {
+    std::string encoded;
+    if (std::string error = EncodePng(image, &encoded); !error.empty()) {
+        return path.string() + ": " + error;
+    }
     return WriteFileAtomically(path, encoded);
 }
 
@@ -159,97 +166,148 @@ double Psnr(const RgbaImage& a, const RgbaImage& b) {
     return 10 * std::log10(255.0 * 255.0 / mean_squared_error);
 }
 
-double Ssim(const RgbaImage& a, const RgbaImage& b) {
-    if (!AreComparable(a, b) || a.width < kSsimWindow || a.height < kSsimWindow) {
-        return kNaN;
-    }
-    constexpr double kC1 = (0.01 * 255) * (0.01 * 255);  // Wang et al.'s K1 = 0.01, L = 255
-    constexpr double kC2 = (0.03 * 255) * (0.03 * 255);  // K2 = 0.03
-    constexpr std::size_t kTaps = kSsimWindow;
-    constexpr std::size_t kMoments = 5;  // E[x], E[y], E[x^2], E[y^2], E[xy]
-    const std::array<double, kSsimWindow> weights = GaussianWindow();
-    const std::vector<double> x = Luma(a);
-    const std::vector<double> y = Luma(b);
-    const auto width = static_cast<std::size_t>(a.width);
-    const auto height = static_cast<std::size_t>(a.height);
-    const std::size_t out_width = width - kTaps + 1;  // positions where the window fits
-    const std::size_t out_height = height - kTaps + 1;
+namespace {
 
-    // The window is separable: filter rows horizontally into a ring of the last kTaps rows,
-    // then filter that ring vertically, so memory stays a few rows whatever the image size.
-    // Every loop sweeps one moment over contiguous columns, which the compiler vectorises (the
-    // report computes thousands of these); each sum still adds its taps in order k = 0..10,
-    // so the result is the same to the bit as a pixel-by-pixel loop.
-    std::vector<double> ring(kMoments * kTaps * out_width);
-    const auto ring_row = [&](std::size_t moment, std::size_t row) {
-        return ring.data() + (moment * kTaps + row % kTaps) * out_width;
+constexpr double kSsimC1 = (0.01 * 255) * (0.01 * 255);  // Wang et al.'s K1 = 0.01, L = 255
+constexpr double kSsimC2 = (0.03 * 255) * (0.03 * 255);  // K2 = 0.03
+constexpr std::size_t kTaps = kSsimWindow;
+
+// The per-pixel quantities whose windowed means SSIM needs: x is the compared image's luma,
+// y the reference's.
+enum class Moment { kX, kY, kXX, kYY, kXY };
+
+// One row of one moment filtered horizontally: out[c] = sum over k of w[k] * q(c + k), the taps
+// added in order k = 0..10. Each loop sweeps contiguous columns, which the compiler vectorises
+// (a report computes hundreds of these).
+void FilterRow(Moment moment, const double* x, const double* y, std::size_t out_width,
+               const std::array<double, kSsimWindow>& weights, double* out) {
+    std::fill(out, out + out_width, 0.0);
+    for (std::size_t k = 0; k < kTaps; ++k) {
+        const double w = weights[k];
+        const double* xs = x + k;
+        const double* ys = y + k;
+        switch (moment) {
+        case Moment::kX:
+            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * xs[c];
+            break;
+        case Moment::kY:
+            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * ys[c];
+            break;
+        case Moment::kXX:
+            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * xs[c]);
+            break;
+        case Moment::kYY:
+            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (ys[c] * ys[c]);
+            break;
+        case Moment::kXY:
+            // w * (x * y), not (w * x) * y: keeps Ssim(a, b) == Ssim(b, a) bit for bit.
+            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * ys[c]);
+            break;
+        }
+    }
+}
+
+// Filters `moments` over every position where the window fits: rows horizontally into a ring
+// of the last kTaps rows, then the ring vertically, so memory stays a few rows whatever the
+// image size; calls emit(top, filtered) with one out_width row per moment, in `moments`' order.
+template <typename Emit>
+void FilterWindows(const std::vector<Moment>& moments, const std::vector<double>& x,
+                   const std::vector<double>& y, std::size_t width, std::size_t height,
+                   const Emit& emit) {
+    const std::array<double, kSsimWindow> weights = GaussianWindow();
+    const std::size_t out_width = width - kTaps + 1;
+    const std::size_t out_height = height - kTaps + 1;
+    const std::size_t count = moments.size();
+    std::vector<double> ring(count * kTaps * out_width);
+    const auto ring_row = [&](std::size_t m, std::size_t row) {
+        return ring.data() + (m * kTaps + row % kTaps) * out_width;
     };
     const auto filter_row = [&](std::size_t row) {
-        const double* xr = x.data() + row * width;
-        const double* yr = y.data() + row * width;
-        for (std::size_t moment = 0; moment < kMoments; ++moment) {
-            double* out = ring_row(moment, row);
-            std::fill(out, out + out_width, 0.0);
-            for (std::size_t k = 0; k < kTaps; ++k) {
-                const double w = weights[k];
-                const double* xs = xr + k;
-                const double* ys = yr + k;
-                switch (moment) {
-                case 0:
-                    for (std::size_t c = 0; c < out_width; ++c) out[c] += w * xs[c];
-                    break;
-                case 1:
-                    for (std::size_t c = 0; c < out_width; ++c) out[c] += w * ys[c];
-                    break;
-                case 2:
-                    for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * xs[c]);
-                    break;
-                case 3:
-                    for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (ys[c] * ys[c]);
-                    break;
-                default:
-                    // w * (x * y), not (w * x) * y: keeps Ssim(a, b) == Ssim(b, a) bit for bit.
-                    for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * ys[c]);
-                    break;
-                }
-            }
+        for (std::size_t m = 0; m < count; ++m) {
+            FilterRow(moments[m], x.data() + row * width, y.data() + row * width, out_width,
+                      weights, ring_row(m, row));
         }
     };
-
     for (std::size_t row = 0; row + 1 < kTaps; ++row) {
         filter_row(row);
     }
-    std::vector<double> m(kMoments * out_width);
-    double total = 0;
+    std::vector<double> filtered(count * out_width);
     for (std::size_t top = 0; top < out_height; ++top) {
         filter_row(top + kTaps - 1);
-        for (std::size_t moment = 0; moment < kMoments; ++moment) {
-            double* acc = m.data() + moment * out_width;
+        for (std::size_t m = 0; m < count; ++m) {
+            double* acc = filtered.data() + m * out_width;
             std::fill(acc, acc + out_width, 0.0);
             for (std::size_t k = 0; k < kTaps; ++k) {
                 const double w = weights[k];
-                const double* in = ring_row(moment, top + k);
+                const double* in = ring_row(m, top + k);
                 for (std::size_t c = 0; c < out_width; ++c) {
                     acc[c] += w * in[c];
                 }
             }
         }
-        const double* m0 = m.data();
-        const double* m1 = m0 + out_width;
-        const double* m2 = m1 + out_width;
-        const double* m3 = m2 + out_width;
-        const double* m4 = m3 + out_width;
-        for (std::size_t column = 0; column < out_width; ++column) {
-            const double mean_xy = m0[column] * m1[column];
-            const double variance_x = m2[column] - m0[column] * m0[column];
-            const double variance_y = m3[column] - m1[column] * m1[column];
-            const double covariance = m4[column] - mean_xy;
-            total += ((2 * mean_xy + kC1) * (2 * covariance + kC2)) /
-                     ((m0[column] * m0[column] + m1[column] * m1[column] + kC1) *
-                      (variance_x + variance_y + kC2));
-        }
+        emit(top, filtered.data());
     }
+}
+
+}  // namespace
+
+SsimReference::SsimReference(const RgbaImage& reference)
+    : width_(reference.width), height_(reference.height) {
+    if (!IsWellFormed(reference) || width_ < kSsimWindow || height_ < kSsimWindow) {
+        return;
+    }
+    luma_ = Luma(reference);
+    const auto width = static_cast<std::size_t>(width_);
+    const auto height = static_cast<std::size_t>(height_);
+    const std::size_t out_width = width - kTaps + 1;
+    mean_.resize(out_width * (height - kTaps + 1));
+    mean_square_.resize(mean_.size());
+    FilterWindows({Moment::kY, Moment::kYY}, luma_, luma_, width, height,
+                  [&](std::size_t top, const double* filtered) {
+                      std::copy(filtered, filtered + out_width, mean_.begin() +
+                                static_cast<std::ptrdiff_t>(top * out_width));
+                      std::copy(filtered + out_width, filtered + 2 * out_width,
+                                mean_square_.begin() +
+                                        static_cast<std::ptrdiff_t>(top * out_width));
+                  });
+    usable_ = true;
+}
+
+double SsimReference::Compare(const RgbaImage& image) const {
+    if (!usable_ || !IsWellFormed(image) || image.width != width_ || image.height != height_) {
+        return kNaN;
+    }
+    const std::vector<double> x = Luma(image);
+    const auto width = static_cast<std::size_t>(width_);
+    const auto height = static_cast<std::size_t>(height_);
+    const std::size_t out_width = width - kTaps + 1;
+    const std::size_t out_height = height - kTaps + 1;
+    double total = 0;
+    FilterWindows({Moment::kX, Moment::kXX, Moment::kXY}, x, luma_, width, height,
+                  [&](std::size_t top, const double* filtered) {
+                      const double* m0 = filtered;
+                      const double* m2 = filtered + out_width;
+                      const double* m4 = filtered + 2 * out_width;
+                      const double* m1 = mean_.data() + top * out_width;
+                      const double* m3 = mean_square_.data() + top * out_width;
+                      for (std::size_t c = 0; c < out_width; ++c) {
+                          const double mean_xy = m0[c] * m1[c];
+                          const double variance_x = m2[c] - m0[c] * m0[c];
+                          const double variance_y = m3[c] - m1[c] * m1[c];
+                          const double covariance = m4[c] - mean_xy;
+                          total += ((2 * mean_xy + kSsimC1) * (2 * covariance + kSsimC2)) /
+                                   ((m0[c] * m0[c] + m1[c] * m1[c] + kSsimC1) *
+                                    (variance_x + variance_y + kSsimC2));
+                      }
+                  });
     return total / static_cast<double>(out_width * out_height);
+}
+
+double Ssim(const RgbaImage& a, const RgbaImage& b) {
+    if (!AreComparable(a, b)) {
+        return kNaN;
+    }
+    return SsimReference(b).Compare(a);
 }
 
 double ShareAboveThreshold(const RgbaImage& a, const RgbaImage& b, double threshold) {

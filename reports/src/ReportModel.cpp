@@ -6,6 +6,7 @@
 #include <future>
 #include <iterator>
 #include <map>
+#include <memory>
 #include <numeric>
 #include <thread>
 
@@ -65,7 +66,16 @@ double PsnrFromMse(double mse) {
                     : 10.0 * std::log10(255.0 * 255.0 / mse);
 }
 
-using ImageCache = std::map<std::string, RgbaImage>;
+// An image others are compared with, and its SSIM moments, computed once.
+struct ReferenceImage {
+    RgbaImage image;
+    std::shared_ptr<const SsimReference> ssim;
+
+    explicit ReferenceImage(RgbaImage from)
+        : image(std::move(from)), ssim(std::make_shared<SsimReference>(image)) {}
+};
+
+using ImageCache = std::map<std::string, ReferenceImage>;
 
 // Reads `path`, or returns the error naming it.
 std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::string* error) {
@@ -92,14 +102,14 @@ ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache
         if (!image) {
             return errors;
         }
-        const RgbaImage& r = ref->second;
+        const RgbaImage& r = ref->second.image;
         if (image->width != r.width || image->height != r.height) {
             errors.error = fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}",
                                        v.image.string(), image->width, image->height, whose,
                                        v.view, r.width, r.height);
             return errors;
         }
-        const ViewError view{v.view, Psnr(*image, r), Ssim(*image, r),
+        const ViewError view{v.view, Psnr(*image, r), ref->second.ssim->Compare(*image),
                              ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold)};
         errors.mse_sum += MseFromPsnr(view.psnr_db);
         errors.ssim_sum += view.ssim;
@@ -123,7 +133,7 @@ ImageCache LoadViewImages(const MeasuredConfiguration& c, std::string* error) {
         if (!image) {
             return {};
         }
-        images[v.view] = std::move(*image);
+        images.emplace(v.view, ReferenceImage(std::move(*image)));
     }
     return images;
 }
@@ -440,7 +450,7 @@ ImagePanel TechniquePanel(const TechniqueComparison& t, const std::string& view,
         if (!image) {
             return panel;
         }
-        const RgbaImage& planar = baseline_image->second;
+        const RgbaImage& planar = baseline_image->second.image;
         if (image->width != planar.width || image->height != planar.height) {
             *error = fmt::format("{}: {}x{} image, but {}'s at view '{}' is {}x{}",
                                  cand->ImageAt(view).string(), image->width, image->height,
@@ -751,7 +761,7 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
             if (!image) {
                 return out;
             }
-            reference_images[v.view] = std::move(*image);
+            reference_images.emplace(v.view, ReferenceImage(std::move(*image)));
         }
     }
 
@@ -993,7 +1003,7 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
                     return out;
                 }
                 panel.image = std::move(*image);
-                panel.reference = ref->second;
+                panel.reference = ref->second.image;
                 panel.heat_map = DifferenceHeatMap(panel.image, panel.reference, kHeatMapFullScale);
                 panel.psnr_db = Psnr(panel.image, panel.reference);
                 panel.ssim = Ssim(panel.image, panel.reference);

@@ -4,6 +4,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <future>
+#include <atomic>
 #include <cmath>
 #include <fstream>
 #include <map>
@@ -1986,41 +1988,52 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
         }
     }
 
-    // Embedded copies for index.html, downscaled until they fit the budget.
+    // Embedded copies for index.html, downscaled until they fit the budget. Encoded in memory,
+    // the panels spread over the cores.
     std::vector<std::array<std::string, 3>> uris(panels.size());
-    const std::filesystem::path scratch = staging / ".embed.png";
     for (int factor = 1; factor <= 8; ++factor) {
-        std::uintmax_t total = 0;
+        std::vector<std::future<std::string>> jobs;
+        std::atomic<std::uintmax_t> total{0};
         for (std::size_t i = 0; i < panels.size(); ++i) {
             const ImagePanel& p = *panels[i];
             if (!p.note.empty()) {
                 continue;
             }
-            const std::array<const RgbaImage*, 3> images = {&p.image, &p.reference, &p.heat_map};
-            const std::array<const std::string*, 3> full_size = {&files[i].image,
-                                                                 &files[i].reference,
-                                                                 &files[i].heat};
-            for (std::size_t k = 0; k < 3; ++k) {
-                std::string bytes;
-                if (factor == 1) {
-                    bytes = ReadBytes(staging / *full_size[k]);  // already encoded above
-                } else {
-                    if (std::string e = WritePngAtomically(scratch, Downscale(*images[k], factor));
-                        !e.empty()) {
-                        return fail(e);
+            jobs.push_back(std::async(std::launch::async, [&, i, factor]() -> std::string {
+                const ImagePanel& panel = *panels[i];
+                const std::array<const RgbaImage*, 3> images = {&panel.image, &panel.reference,
+                                                                &panel.heat_map};
+                const std::array<const std::string*, 3> full_size = {
+                        &files[i].image, &files[i].reference, &files[i].heat};
+                for (std::size_t k = 0; k < 3; ++k) {
+                    std::string bytes;
+                    if (factor == 1) {
+                        bytes = ReadBytes(staging / *full_size[k]);  // already encoded above
+                    } else if (std::string e =
+                                       EncodePng(Downscale(*images[k], factor), &bytes);
+                               !e.empty()) {
+                        return e;
                     }
-                    bytes = ReadBytes(scratch);
+                    total += bytes.size();
+                    uris[i][k] = "data:image/png;base64," + Base64(bytes);
                 }
-                total += bytes.size();
-                uris[i][k] = "data:image/png;base64," + Base64(bytes);
+                return "";
+            }));
+        }
+        std::string error;
+        for (std::future<std::string>& job : jobs) {
+            if (std::string e = job.get(); !e.empty() && error.empty()) {
+                error = e;
             }
+        }
+        if (!error.empty()) {
+            return fail(error);
         }
         written.image_downscale = factor;
         if (total <= kHtmlImageBudgetBytes) {
             break;
         }
     }
-    std::filesystem::remove(scratch, ec);
 
     const Tables tables = BuildTables(model);
     const Page page{model, files, &uris};

@@ -60,6 +60,10 @@ ImageResult ReadPng(const std::filesystem::path& path);
 /// Writes `image` as an 8-bit RGBA PNG at `path`, creating parent folders, through a temporary
 /// file in the same folder renamed over `path`, so a reader never sees half a file. Returns ""
 /// on success, otherwise a message naming the file; fails when the image is empty or its pixel
+/// Encodes `image` as an RGBA PNG into `encoded`. Returns "" or what went wrong (a malformed
+/// image, or libpng's message).
+std::string EncodePng(const RgbaImage& image, std::string* encoded);
+
 /// count does not match its size, or the file cannot be written.
 std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImage& image);
 
@@ -78,6 +82,27 @@ double Psnr(const RgbaImage& a, const RgbaImage& b);
 /// (returns NaN) when the sizes differ, an image is malformed, or it is smaller than
 /// kSsimWindow in either direction.
 double Ssim(const RgbaImage& a, const RgbaImage& b);
+
+/// Ssim against one fixed reference: its luma and windowed local moments are computed once, so
+/// comparing many images with it (every configuration of a run against the reference, at each
+/// view) costs three of the five windowed moments each. Compare(image) equals
+/// Ssim(image, reference) to the bit; it fails (NaN) as Ssim does.
+class SsimReference {
+public:
+    /// Prepares `reference`; an unusable one (malformed, smaller than the window) makes every
+    /// Compare NaN.
+    explicit SsimReference(const RgbaImage& reference);
+    /// The mean SSIM of `image` against the reference.
+    double Compare(const RgbaImage& image) const;
+
+private:
+    int width_ = 0;
+    int height_ = 0;
+    bool usable_ = false;
+    std::vector<double> luma_;         // the reference's luma
+    std::vector<double> mean_;         // its windowed mean at every window position
+    std::vector<double> mean_square_;  // its windowed mean of squares
+};
 
 /// Fraction (0..1) of pixels whose largest absolute R, G or B difference exceeds `threshold`
 /// code values (strictly greater; see kVisibleDifferenceThreshold for a default). Fails
