@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
 
 namespace tidepool::report {
 namespace {
@@ -136,7 +136,7 @@ std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImag
         return fmt::format("{}: cannot encode PNG: {}", path.string(), png.message);
     }
     encoded.resize(size);
-    return WriteFileAtomically(path, encoded);
+    return base::WriteFileAtomically(path, encoded);
 }
 
 double Psnr(const RgbaImage& a, const RgbaImage& b) {

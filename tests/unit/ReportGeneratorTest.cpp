@@ -543,8 +543,14 @@ TEST(ReportWriterTest, WritesAllFormatsAndReplacesOnlyItsOwnFolder) {
     // A folder the writer did not make is never replaced.
     dir.Write("out2/t/precious.txt", "keep me");
     written = WriteReport(*built.model, dir.Path() / "out2");
-    EXPECT_NE(written.error.find("not a tidepool report"), std::string::npos) << written.error;
+    EXPECT_NE(written.error.find("not written by tidepool"), std::string::npos) << written.error;
+    EXPECT_TRUE(written.refused);
     EXPECT_TRUE(std::filesystem::exists(dir.Path() / "out2/t/precious.txt"));
+    // Nor is one that merely holds a data.json: only the marker file says a report is ours.
+    dir.Write("out3/t/data.json", "{}");
+    written = WriteReport(*built.model, dir.Path() / "out3");
+    EXPECT_TRUE(written.refused) << written.error;
+    EXPECT_EQ(ReadText(dir.Path() / "out3/t/data.json"), "{}");
 }
 
 TEST(ReportWriterTest, StabilityTablesAreRenderedGenerically) {
