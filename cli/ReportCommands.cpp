@@ -190,10 +190,12 @@ StageOutcome RunStabilityStage(runner::GlContext& context, const VariantConfig& 
                          r.name.c_str(), r.max_error, r.bound);
         }
     }
-    std::fprintf(stderr, "stability: %zu cases at %dx%d, %d failed, %.0f s; %s\n",
+    // `render_dir` is the staging folder until the render folder is published: name the file only.
+    std::fprintf(stderr,
+                 "stability: %zu cases at %dx%d, %d failed, %.0f s; %s in the render folder\n",
                  report.cases.size(), width, height, outcome.failures,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                 path.c_str());
+                 std::string(report::kStabilityFileName).c_str());
     return outcome;
 }
 
@@ -266,10 +268,10 @@ StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& confi
         return outcome;
     }
     std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d not "
-                         "met, %.0f s; %s\n",
+                         "met, %.0f s; %s in the render folder\n",
                  plans.size(), width, height, rule.resolution_points, outcome.failures,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                 path.c_str());
+                 std::string(report::kPlansFileName).c_str());
     return outcome;
 }
 
