@@ -163,6 +163,13 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
     }
     std::error_code ec;
     const fs::path parent = ParentOf(target);
+    fs::path created;
+    for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
+        created = p;
+        if (p == p.parent_path()) {
+            break;
+        }
+    }
     fs::create_directories(parent, ec);
     if (ec) {
         *error = Io(parent.string() + ": cannot create folder: " + ec.message());
@@ -176,7 +183,9 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
                     SystemError(system_error));
         return nullptr;
     }
-    return std::unique_ptr<FolderPublisher>(new FolderPublisher(target, staging, writer));
+    std::unique_ptr<FolderPublisher> publisher(new FolderPublisher(target, staging, writer));
+    publisher->created_ = created;
+    return publisher;
 }
 
 FolderPublisher::~FolderPublisher() { Abandon(); }
@@ -186,6 +195,14 @@ void FolderPublisher::Abandon() {
         std::error_code ec;
         fs::remove_all(staging_, ec);
         done_ = true;
+        // Innermost first; fs::remove leaves a folder that something else has meanwhile filled.
+        if (!created_.empty()) {
+            for (fs::path p = ParentOf(target_); ; p = p.parent_path()) {
+                if (!fs::remove(p, ec) || p == created_ || p == p.parent_path()) {
+                    break;
+                }
+            }
+        }
     }
 }
 

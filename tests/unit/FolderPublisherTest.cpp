@@ -120,6 +120,18 @@ TEST(FolderPublisherTest, UnpublishedStagingIsRemoved) {
     EXPECT_TRUE(FolderEntries(dir.Path()).empty());
 }
 
+TEST(FolderPublisherTest, UnpublishedStagingTakesTheParentFoldersItCreatedWithIt) {
+    TempDir dir;
+    dir.Write("kept/file.txt", "mine");
+    {
+        PublishError error;
+        std::unique_ptr<FolderPublisher> publisher =
+                FolderPublisher::Begin(dir.Path() / "kept/a/b/out", "test", &error);
+        ASSERT_TRUE(publisher) << error.message;
+    }
+    EXPECT_EQ(FolderEntries(dir.Path() / "kept"), std::vector<std::string>{"file.txt"});
+}
+
 // A killed run's staging folder is named after its dead process; a reused process id can never
 // make it publishable, since every staging name is unique (mkdtemp) and is only ever removed.
 TEST(FolderPublisherTest, StaleStagingOfDeadProcessesIsRemovedAndOthersKept) {

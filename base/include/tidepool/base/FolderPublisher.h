@@ -61,7 +61,8 @@ public:
     /// someone else's or the file system fails.
     PublishError Publish();
 
-    /// Removes the staging folder without publishing (also done by the destructor).
+    /// Removes the staging folder without publishing (also done by the destructor), and the
+    /// parent folders Begin() created for it, so a failed run leaves no empty folders.
     void Abandon();
 
 private:
@@ -71,6 +72,7 @@ private:
     std::filesystem::path target_;
     std::filesystem::path staging_;
     std::string writer_;
+    std::filesystem::path created_;  // the outermost parent folder Begin() created, if any
     bool done_ = false;
 };
 
