@@ -10,11 +10,47 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "Commands.h"
+#include "tidepool/Manifest.h"
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/report/ReportModel.h"
 
 namespace tidepool::cli {
+
+int PublishExitCode(const base::PublishError& error) {
+    return error.failure == base::PublishFailure::kRefused ? kExitUsage : kExitEnvironment;
+}
+
+int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
+                      bool check_only) {
+    const std::filesystem::path path = folder / "manifest.json";
+    std::error_code ec;
+    if (std::filesystem::exists(path, ec) && !base::IsTidepoolOutput(folder)) {
+        // A file named manifest.json is common (web apps, packages); the schema key inside it
+        // is what says it is ours.
+        std::ifstream in(path, std::ios::binary);
+        const nlohmann::json existing = nlohmann::json::parse(in, nullptr, false);
+        const bool ours = existing.is_object() && existing.contains("schema") &&
+                          existing["schema"] == kManifestSchema;
+        if (!ours) {
+            std::fprintf(stderr, "error: %s: exists and is not a tidepool manifest (no \"schema\": "
+                                 "\"%s\"); nothing was changed. Choose another --out folder, or "
+                                 "move the file yourself.\n",
+                         path.c_str(), kManifestSchema);
+            return kExitUsage;
+        }
+    }
+    if (check_only) {
+        return kExitOk;
+    }
+    if (std::string error = base::WriteFileAtomically(path, text); !error.empty()) {
+        std::fprintf(stderr, "error: %s\n", error.c_str());
+        return kExitEnvironment;
+    }
+    return kExitOk;
+}
 
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
     for (const Diagnostic& d : diagnostics) {

@@ -11,6 +11,7 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
@@ -20,6 +21,17 @@ class App;
 }
 
 namespace tidepool::cli {
+
+/// The exit code of a failed publication: kExitUsage when the folder is someone else's (choose
+/// another), kExitEnvironment when the file system failed (disk full, permissions).
+int PublishExitCode(const base::PublishError& error);
+
+/// Writes the manifest `text` to `folder`/manifest.json atomically, refusing (exit kExitUsage,
+/// message printed, nothing changed) to overwrite a manifest.json that is not tidepool's (its
+/// "schema" is not kManifestSchema) unless the folder carries tidepool's marker. Returns kExitOk,
+/// or kExitEnvironment (message printed) when the write fails. With `check_only`, writes nothing.
+int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
+                      bool check_only = false);
 
 /// Prints each diagnostic in GCC form on stderr, one per line.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);

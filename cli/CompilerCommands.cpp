@@ -7,6 +7,7 @@
 #include <sstream>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <thread>
 
@@ -14,7 +15,8 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SourceAssembler.h"
@@ -46,35 +48,6 @@ std::string SafeFileName(const std::string& id) {
         name += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '.';
     }
     return name;
-}
-
-// Replaces `dir` with a fully written `staging` folder, so a failed run leaves no half output.
-std::string PublishFolder(const std::filesystem::path& staging, const std::filesystem::path& dir) {
-    std::error_code ec;
-    std::filesystem::path old;
-    if (std::filesystem::exists(dir, ec)) {
-        if (!std::filesystem::exists(dir / "manifest.json", ec) &&
-            !std::filesystem::is_empty(dir, ec)) {
-            std::filesystem::remove_all(staging, ec);
-            return fmt::format("{}: exists and was not written by tidepool (no manifest.json); "
-                               "choose another --out folder",
-                               dir.string());
-        }
-        old = dir.string() + fmt::format(".old.{}", ::getpid());
-        std::filesystem::rename(dir, old, ec);
-        if (ec) {
-            std::filesystem::remove_all(staging, ec);
-            return fmt::format("{}: cannot replace: {}", dir.string(), ec.message());
-        }
-    }
-    std::filesystem::rename(staging, dir, ec);
-    if (ec) {
-        return fmt::format("{}: cannot create: {}", dir.string(), ec.message());
-    }
-    if (!old.empty()) {
-        std::filesystem::remove_all(old, ec);
-    }
-    return {};
 }
 
 int RunExpand(const CompilerOptions& options) {
@@ -132,9 +105,15 @@ int RunExpand(const CompilerOptions& options) {
         return kExitOk;
     }
     // Every variant's stage sources exactly as a GL driver receives them, plus the manifest.
-    const std::filesystem::path dir(options.out);
-    const std::filesystem::path staging =
-            dir.parent_path() / fmt::format(".{}.staging.{}", dir.filename().string(), ::getpid());
+    base::PublishError begin;
+    const std::unique_ptr<base::FolderPublisher> publisher =
+            base::FolderPublisher::Begin(options.out, "tidepool expand", &begin);
+    if (!publisher) {
+        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
+        return PublishExitCode(begin);
+    }
+    // Everything goes to a private staging folder, removed by the publisher unless published.
+    const std::filesystem::path& staging = publisher->Staging();
     std::map<std::string, std::string> sources;  // path → text, read once
     for (GlslTarget target : config.targets) {
         for (const Variant& variant : loaded.expansion.variants) {
@@ -147,8 +126,6 @@ int RunExpand(const CompilerOptions& options) {
                     if (!read.ok) {
                         std::fprintf(stderr, "%s: error: cannot read shader file: %s\n",
                                      path.c_str(), read.error.c_str());
-                        std::error_code ec;
-                        std::filesystem::remove_all(staging, ec);
                         return kExitUsage;
                     }
                     sources[path] = std::move(read.text);
@@ -157,25 +134,24 @@ int RunExpand(const CompilerOptions& options) {
                         staging / TargetName(target) / variant.program /
                         fmt::format("{}.{}", SafeFileName(variant.Id()),
                                     stage == Stage::kVertex ? "vert" : "frag");
-                const std::string error = WriteFileAtomically(
+                const std::string error = base::WriteFileAtomically(
                         file, AssembleDriverSource(sources[path], variant.defines, stage, target));
                 if (!error.empty()) {
                     std::fprintf(stderr, "error: %s\n", error.c_str());
-                    std::error_code ec;
-                    std::filesystem::remove_all(staging, ec);
-                    return kExitUsage;
+                    return kExitEnvironment;
                 }
             }
         }
     }
-    std::string error =
-            WriteFileAtomically(staging / "manifest.json", JsonText(manifest, 2) + "\n");
-    if (error.empty()) {
-        error = PublishFolder(staging, dir);
-    }
-    if (!error.empty()) {
+    if (std::string error =
+                base::WriteFileAtomically(staging / "manifest.json", JsonText(manifest, 2) + "\n");
+        !error.empty()) {
         std::fprintf(stderr, "error: %s\n", error.c_str());
-        return kExitUsage;
+        return kExitEnvironment;
+    }
+    if (base::PublishError error = publisher->Publish(); error.Failed()) {
+        std::fprintf(stderr, "error: %s\n", error.message.c_str());
+        return PublishExitCode(error);
     }
     if (!options.json) {
         std::printf("wrote %s/<target>/<program>/<variant>.vert|.frag and %s/manifest.json\n",
@@ -245,6 +221,12 @@ int RunValidate(const CompilerOptions& options) {
         return loaded.exit_code;
     }
     const VariantConfig& config = *loaded.config;
+    // Refused before the validation's work, not after it.
+    if (!options.out.empty()) {
+        if (const int code = WriteManifestInto(options.out, "", true); code != 0) {
+            return code;
+        }
+    }
     ValidationOptions validation_options;
     validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
     validation_options.targets = config.targets;
@@ -256,12 +238,8 @@ int RunValidate(const CompilerOptions& options) {
     }
     const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
     if (!options.out.empty()) {
-        const std::string error =
-                WriteFileAtomically(std::filesystem::path(options.out) / "manifest.json",
-                                    JsonText(manifest, 2) + "\n");
-        if (!error.empty()) {
-            std::fprintf(stderr, "error: %s\n", error.c_str());
-            return kExitUsage;
+        if (const int code = WriteManifestInto(options.out, JsonText(manifest, 2) + "\n"); code != 0) {
+            return code;
         }
     }
     const int invalid = report.InvalidCount();

@@ -4,6 +4,7 @@
 #include "tidepool/Manifest.h"
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/report/ImageMetrics.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
@@ -194,7 +195,7 @@ int RunPlan(const PlanCommandOptions& options) {
     }
     if (!out.empty()) {
         const std::filesystem::path path = std::filesystem::path(out) / "plans.json";
-        const std::string error = WriteJsonAtomically(path, json);
+        const std::string error = base::WriteFileAtomically(path, JsonText(json, 2) + "\n");
         if (!error.empty()) {
             std::fprintf(stderr, "error: %s\n", error.c_str());
             return kExitEnvironment;

@@ -19,7 +19,7 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SceneDescription.h"
@@ -109,7 +109,7 @@ int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesy
     const WrittenReport written = WriteReport(*model.model, out);
     if (!written.error.empty()) {
         std::fprintf(stderr, "error: %s\n", written.error.c_str());
-        return kExitUsage;
+        return written.refused ? kExitUsage : kExitEnvironment;
     }
     std::printf("%s", WhitepaperTableText(*model.model).c_str());
     const double seconds =
@@ -180,7 +180,7 @@ StageOutcome RunStabilityStage(runner::GlContext& context, const VariantConfig& 
         return outcome;
     }
     const std::filesystem::path path = render_dir / report::kStabilityFileName;
-    if (std::string e = WriteFileAtomically(path, StabilityReportJson(report)); !e.empty()) {
+    if (std::string e = base::WriteFileAtomically(path, StabilityReportJson(report)); !e.empty()) {
         std::fprintf(stderr, "error: %s\n", e.c_str());
         outcome.environment_error = true;
         return outcome;
@@ -192,10 +192,12 @@ StageOutcome RunStabilityStage(runner::GlContext& context, const VariantConfig& 
                          r.name.c_str(), r.max_error, r.bound);
         }
     }
-    std::fprintf(stderr, "stability: %zu cases at %dx%d, %d failed, %.0f s; %s\n",
+    // `render_dir` is the staging folder until the render folder is published: name the file only.
+    std::fprintf(stderr,
+                 "stability: %zu cases at %dx%d, %d failed, %.0f s; %s in the render folder\n",
                  report.cases.size(), width, height, outcome.failures,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                 path.c_str());
+                 std::string(report::kStabilityFileName).c_str());
     return outcome;
 }
 
@@ -261,16 +263,17 @@ StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& confi
         }
     }
     const std::filesystem::path path = render_dir / report::kPlansFileName;
-    if (std::string e = WriteJsonAtomically(path, PlansToJson(plans, plan_options)); !e.empty()) {
+    if (std::string e = base::WriteFileAtomically(path, JsonText(PlansToJson(plans, plan_options), 2) + "\n");
+        !e.empty()) {
         std::fprintf(stderr, "error: %s\n", e.c_str());
         outcome.environment_error = true;
         return outcome;
     }
     std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d not "
-                         "met, %.0f s; %s\n",
+                         "met, %.0f s; %s in the render folder\n",
                  plans.size(), width, height, rule.resolution_points, outcome.failures,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                 path.c_str());
+                 std::string(report::kPlansFileName).c_str());
     return outcome;
 }
 
@@ -328,6 +331,21 @@ int RunAll(const RunCommandOptions& options) {
     }
     const VariantConfig& config = *loaded.config;
     const ExpansionResult& expansion = loaded.expansion;
+    // Both outputs are checked before any work: neither a user's manifest.json nor a render
+    // folder tidepool did not write is ever replaced.
+    if (const int code = WriteManifestInto(manifest_path.parent_path(), "", true); code != 0) {
+        return code;
+    }
+    // The render folder (images, results.json, stability.json, plans.json) is staged whole and
+    // published before the report reads it, so a killed run leaves the previous one intact.
+    base::PublishError begin;
+    const std::unique_ptr<base::FolderPublisher> publisher =
+            base::FolderPublisher::Begin(render_dir, "tidepool run", &begin);
+    if (!publisher) {
+        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
+        return PublishExitCode(begin);
+    }
+    const std::filesystem::path& staging = publisher->Staging();
     ValidationOptions validation_options;
     validation_options.jobs = DefaultJobs();
     validation_options.targets = config.targets;
@@ -338,10 +356,9 @@ int RunAll(const RunCommandOptions& options) {
         PrintDiagnostics(verdict.diagnostics);
     }
     const nlohmann::json manifest = BuildManifest(config, expansion, &validation);
-    if (std::string error = WriteFileAtomically(manifest_path, JsonText(manifest, 2) + "\n");
-        !error.empty()) {
-        std::fprintf(stderr, "error: %s\n", error.c_str());
-        return kExitUsage;
+    if (const int code = WriteManifestInto(manifest_path.parent_path(), JsonText(manifest, 2) + "\n");
+        code != 0) {
+        return code;
     }
     std::fprintf(stderr, "validate: %zu variants, %llu pruned, %d invalid; manifest in %s\n",
                  expansion.variants.size(),
@@ -360,7 +377,7 @@ int RunAll(const RunCommandOptions& options) {
     run.settings.width = width;
     run.settings.height = height;
     run.settings.fourier = options.fourier;
-    run.out_dir = render_dir;
+    run.out_dir = staging;
     run.config_path = options.config;
     run.host = DescribeHost("run", options.config);
     ApplyTimingFlags(options.timing, backend, &run);
@@ -396,7 +413,8 @@ int RunAll(const RunCommandOptions& options) {
     for (const std::string& e : results.write_errors) {
         std::fprintf(stderr, "error: %s\n", e.c_str());
     }
-    if (std::string error = WriteJsonAtomically(results_path, ResultsToJson(results));
+    if (std::string error = base::WriteFileAtomically(staging / "results.json",
+                                                      JsonText(ResultsToJson(results), 2) + "\n");
         !error.empty() || !results.write_errors.empty()) {
         if (!error.empty()) {
             std::fprintf(stderr, "error: %s\n", error.c_str());
@@ -416,14 +434,18 @@ int RunAll(const RunCommandOptions& options) {
     if (!options.no_stability) {
         stability = RunStabilityStage(*context.context, config, expansion.variants,
                                       stability_width, stability_height, threads, options.config,
-                                      render_dir);
+                                      staging);
     }
     StageOutcome plans;
     if (!options.no_plans) {
         base::StoppingRule plan_rule = run.rule;
         plan_rule.resolution_points = options.plan_resolution;
         plans = RunPlanStage(*context.context, config, plan_width, plan_height, plan_rule,
-                             render_dir);
+                             staging);
+    }
+    if (const base::PublishError e = publisher->Publish(); e.Failed()) {
+        std::fprintf(stderr, "error: %s\n", e.message.c_str());
+        return PublishExitCode(e);
     }
 
     // 5. Report (written even when a stage above failed: it says what is missing and why).
@@ -431,8 +453,8 @@ int RunAll(const RunCommandOptions& options) {
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::fprintf(stderr, "run: %.0f s in all\n", seconds);
-    if (report_code == kExitUsage) {
-        return kExitUsage;
+    if (report_code == kExitUsage || report_code == kExitEnvironment) {
+        return report_code;
     }
     if (stability.environment_error || plans.environment_error) {
         return kExitEnvironment;

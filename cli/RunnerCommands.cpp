@@ -17,6 +17,8 @@
 #include "tidepool/Manifest.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -103,12 +105,21 @@ int RunRunner(const RunnerOptions& options) {
     run.settings.width = width;
     run.settings.height = height;
     run.settings.fourier = options.fourier;
-    run.out_dir = options.out;
     run.write_images = !options.no_images;
     run.config_path = options.config;
     run.host = DescribeHost(options.command, options.config);
     ApplyTimingFlags(options.timing, backend, &run);
     const std::string& threads = run.host.lp_num_threads;
+    // The whole folder (images, then results.json) is staged and published with one rename, so
+    // a killed or failed render leaves the previous good output as it was.
+    base::PublishError begin;
+    const std::unique_ptr<base::FolderPublisher> publisher =
+            base::FolderPublisher::Begin(options.out, "tidepool " + options.command, &begin);
+    if (!publisher) {
+        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
+        return PublishExitCode(begin);
+    }
+    run.out_dir = publisher->Staging();
     GlContextResult context = CreateGlContext(backend);
     if (!context.context) {
         std::fprintf(stderr, "error: %s\n", context.error.c_str());
@@ -150,8 +161,16 @@ int RunRunner(const RunnerOptions& options) {
     PrintDiagnostics(results.diagnostics);
 
     const nlohmann::json json = ResultsToJson(results);
-    const std::filesystem::path results_path = std::filesystem::path(options.out) / "results.json";
-    const std::string write_error = WriteJsonAtomically(results_path, json);
+    const std::filesystem::path results_path = publisher->Target() / "results.json";
+    std::string write_error =
+            base::WriteFileAtomically(publisher->Staging() / "results.json", JsonText(json, 2) + "\n");
+    int publish_code = kExitOk;
+    if (write_error.empty() && results.write_errors.empty()) {
+        if (const base::PublishError e = publisher->Publish(); e.Failed()) {
+            write_error = e.message;
+            publish_code = PublishExitCode(e);
+        }
+    }
     if (!write_error.empty()) {
         std::fprintf(stderr, "error: %s\n", write_error.c_str());
     }
@@ -199,8 +218,11 @@ int RunRunner(const RunnerOptions& options) {
                  options.command.c_str(), results.configurations.size(), failed,
                  results.disagreements.size(), FormatDuration(results.wall_seconds).c_str(),
                  results_path.c_str());
+    if (publish_code != kExitOk) {
+        return publish_code;
+    }
     if (!write_error.empty() || !results.write_errors.empty()) {
-        return kExitEnvironment;
+        return kExitEnvironment;  // nothing published: the previous output stays
     }
     return failed > 0 ? kExitShaderErrors : kExitOk;
 }
@@ -218,8 +240,10 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
     AddTimingFlags(command, &options->timing);
     command->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
         ->capture_default_str();
-    command->add_option("--out", options->out, "folder for results.json and images/")
-            ->transform(NormaliseOutPath)
+    command->add_option("--out", options->out,
+                        "folder for results.json and images/, replaced whole when the render "
+                        "succeeds; an existing folder must be tidepool's own output")
+        ->transform(NormaliseOutPath)
         ->capture_default_str();
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");

@@ -11,7 +11,7 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/GlBackend.h"
@@ -98,7 +98,7 @@ int RunStability(const StabilityOptions& options) {
 
     const std::string json = StabilityReportJson(report);
     const std::filesystem::path path = std::filesystem::path(options.out) / "stability.json";
-    const std::string write_error = WriteFileAtomically(path, json);
+    const std::string write_error = base::WriteFileAtomically(path, json);
     if (!write_error.empty()) {
         std::fprintf(stderr, "error: %s\n", write_error.c_str());
         return kExitEnvironment;

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
 
 namespace tidepool::report {
 namespace {
@@ -143,7 +143,7 @@ std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImag
     if (std::string error = EncodePng(image, &encoded); !error.empty()) {
         return path.string() + ": " + error;
     }
-    return WriteFileAtomically(path, encoded);
+    return base::WriteFileAtomically(path, encoded);
 }
 
 double Psnr(const RgbaImage& a, const RgbaImage& b) {

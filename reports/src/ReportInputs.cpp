@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <set>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -240,6 +241,18 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
             ViewImage image{StringOr(v, "view"), {}, StringList(v, "pass_names"), std::nullopt};
             const std::string relative = StringOr(v, "image");
             if (!relative.empty()) {
+                // Images are read and embedded in the page: only files inside the results
+                // folder, as `render` writes them, never a path a crafted file points elsewhere.
+                const std::filesystem::path path(relative);
+                bool escapes = path.is_absolute() || path.has_root_name();
+                for (const std::filesystem::path& part : path) {
+                    escapes = escapes || part == "..";
+                }
+                if (escapes) {
+                    return fmt::format("configuration '{}', view '{}': 'image' must be a path "
+                                       "inside the results folder, not '{}'",
+                                       c.id, image.view, relative);
+                }
                 image.image = folder / relative;
             }
             if (auto draws = v.find("draw_calls"); draws != v.end() && draws->is_number()) {
@@ -450,6 +463,36 @@ std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path,
     return json;
 }
 
+namespace {
+
+// The fields of each manifest variant the report reads, checked once here so the model can
+// rely on them: "" or what is wrong, naming the entry and field.
+std::string CheckManifestVariants(const nlohmann::json& variants) {
+    for (std::size_t i = 0; i < variants.size(); ++i) {
+        const nlohmann::json& v = variants[i];
+        if (!v.is_object()) {
+            return fmt::format("'variants[{}]' is not an object", i);
+        }
+        for (const char* key : {"id", "program"}) {
+            if (!v.contains(key) || !v[key].is_string() || v[key].get<std::string>().empty()) {
+                return fmt::format("'variants[{}].{}' is not a non-empty string", i, key);
+            }
+        }
+        for (const auto& [key, valid] :
+             {std::pair{"defines", !v.contains("defines") || v["defines"].is_array()},
+              std::pair{"valid", !v.contains("valid") || v["valid"].is_boolean()},
+              std::pair{"stages", !v.contains("stages") || v["stages"].is_object()},
+              std::pair{"target", !v.contains("target") || v["target"].is_string()}}) {
+            if (!valid) {
+                return fmt::format("'variants[{}].{}' has the wrong type", i, key);
+            }
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
 ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
                                     const std::filesystem::path& results_path) {
     ReportInputsResult out;
@@ -474,6 +517,10 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
                                 manifest_path.string());
         return out;
     }
+    if (std::string problem = CheckManifestVariants((*manifest)["variants"]); !problem.empty()) {
+        out.error = fmt::format("{}: {}", manifest_path.string(), problem);
+        return out;
+    }
     inputs.manifest = std::move(*manifest);
 
     std::optional<nlohmann::json> results = ReadJsonFile(results_path, &out.error);
@@ -490,11 +537,25 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         out.error = fmt::format("{}: lacks the 'configurations' array", results_path.string());
         return out;
     }
+    if ((*results)["configurations"].empty()) {
+        // A render always measures at least one configuration; an empty list would replace a
+        // good report with an empty one.
+        out.error = fmt::format("{}: 'configurations' is empty (render at least one)",
+                                results_path.string());
+        return out;
+    }
     const std::filesystem::path folder = results_path.parent_path();
+    std::set<std::string> ids;
     for (const nlohmann::json& entry : (*results)["configurations"]) {
         MeasuredConfiguration c;
         if (std::string problem = ParseConfiguration(entry, folder, &c); !problem.empty()) {
             out.error = fmt::format("{}: {}", results_path.string(), problem);
+            return out;
+        }
+        if (!ids.insert(c.id).second) {
+            out.error = fmt::format("{}: configuration id '{}' appears more than once in "
+                                    "'configurations'",
+                                    results_path.string(), c.id);
             return out;
         }
         inputs.configurations.push_back(std::move(c));

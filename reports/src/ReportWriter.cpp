@@ -1,19 +1,19 @@
 #include "tidepool/report/ReportWriter.h"
 #include "tidepool/report/WhitepaperTable.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <future>
 #include <atomic>
 #include <cmath>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <sstream>
 
 #include <fmt/format.h>
 
-#include "tidepool/AtomicFile.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/Manifest.h"
 
 namespace tidepool::report {
@@ -1885,37 +1885,6 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     return h;
 }
 
-// Replaces `dir` with the fully written `staging` folder; refuses to replace a folder this
-// writer did not create (no data.json), so a mistyped --out never deletes someone's files.
-std::string Publish(const std::filesystem::path& staging, const std::filesystem::path& dir) {
-    std::error_code ec;
-    std::filesystem::path old;
-    if (std::filesystem::exists(dir, ec)) {
-        if (!std::filesystem::exists(dir / "data.json", ec) && !std::filesystem::is_empty(dir, ec)) {
-            std::filesystem::remove_all(staging, ec);
-            return fmt::format("{}: exists and is not a tidepool report (no data.json); choose "
-                               "another --name or --out",
-                               dir.string());
-        }
-        old = dir.parent_path() / fmt::format(".{}.old.{}", dir.filename().string(), ::getpid());
-        std::filesystem::rename(dir, old, ec);
-        if (ec) {
-            std::filesystem::remove_all(staging, ec);
-            return fmt::format("{}: cannot replace: {}", dir.string(), ec.message());
-        }
-    }
-    std::filesystem::rename(staging, dir, ec);
-    if (ec) {
-        const std::string message = fmt::format("{}: cannot create: {}", dir.string(), ec.message());
-        std::filesystem::remove_all(staging, ec);
-        return message;
-    }
-    if (!old.empty()) {
-        std::filesystem::remove_all(old, ec);
-    }
-    return {};
-}
-
 }  // namespace
 
 WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path& out_dir) {
@@ -1927,16 +1896,22 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
         written.error = fmt::format("{}: cannot create: {}", out_dir.string(), ec.message());
         return written;
     }
-    const std::filesystem::path staging =
-            out_dir / fmt::format(".{}.staging.{}", model.options.name, ::getpid());
-    std::filesystem::remove_all(staging, ec);
+    base::PublishError begin;
+    const std::unique_ptr<base::FolderPublisher> publisher =
+            base::FolderPublisher::Begin(written.folder, "tidepool report", &begin);
+    if (!publisher) {
+        written.error = begin.message;
+        written.refused = begin.failure == base::PublishFailure::kRefused;
+        return written;
+    }
+    const std::filesystem::path& staging = publisher->Staging();
+    // The publisher removes its staging folder when it goes out of scope unpublished.
     auto fail = [&](std::string message) {
-        std::filesystem::remove_all(staging, ec);
         written.error = std::move(message);
         return written;
     };
     auto write = [&](const std::string& relative, std::string_view content) {
-        const std::string error = WriteFileAtomically(staging / relative, content);
+        const std::string error = base::WriteFileAtomically(staging / relative, content);
         if (error.empty()) {
             written.files.emplace_back(relative);
         }
@@ -2055,8 +2030,9 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
             return fail(e);
         }
     }
-    if (std::string e = Publish(staging, written.folder); !e.empty()) {
-        written.error = e;
+    if (base::PublishError e = publisher->Publish(); e.Failed()) {
+        written.error = e.message;
+        written.refused = e.failure == base::PublishFailure::kRefused;
         return written;
     }
     return written;

@@ -3,7 +3,9 @@
 
 #include <png.h>
 
-#include <system_error>
+#include <string>
+
+#include "tidepool/base/AtomicFile.h"
 
 namespace tidepool::runner {
 
@@ -13,22 +15,23 @@ std::string WritePng(const std::filesystem::path& path, const ImageRgba8& image)
                                     static_cast<std::size_t>(image.height) * 4) {
         return "image has no pixels or a size that does not match its pixel count";
     }
-    std::error_code error;
-    if (path.has_parent_path()) {
-        std::filesystem::create_directories(path.parent_path(), error);
-        if (error) {
-            return "cannot create " + path.parent_path().string() + ": " + error.message();
-        }
-    }
     png_image png{};
     png.version = PNG_IMAGE_VERSION;
     png.width = static_cast<png_uint_32>(image.width);
     png.height = static_cast<png_uint_32>(image.height);
     png.format = PNG_FORMAT_RGBA;
-    if (png_image_write_to_file(&png, path.c_str(), 0, image.pixels.data(), 0, nullptr) == 0) {
-        return "cannot write " + path.string() + ": " + png.message;
+    // Encoded in memory, then written whole: a failed or killed write never leaves a short PNG.
+    png_alloc_size_t size = 0;
+    if (png_image_write_get_memory_size(png, size, 0, image.pixels.data(), 0, nullptr) == 0) {
+        return "cannot encode " + path.string() + ": " + png.message;
     }
-    return "";
+    std::string encoded(size, '\0');
+    if (png_image_write_to_memory(&png, encoded.data(), &size, 0, image.pixels.data(), 0,
+                                  nullptr) == 0) {
+        return "cannot encode " + path.string() + ": " + png.message;
+    }
+    encoded.resize(size);
+    return base::WriteFileAtomically(path, encoded);
 }
 
 std::string ReadPng(const std::filesystem::path& path, ImageRgba8* image) {

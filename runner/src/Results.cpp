@@ -622,30 +622,4 @@ nlohmann::json ResultsToJson(const RunResults& results) {
     return json;
 }
 
-std::string WriteJsonAtomically(const std::filesystem::path& path, const nlohmann::json& json) {
-    std::error_code error;
-    if (path.has_parent_path()) {
-        std::filesystem::create_directories(path.parent_path(), error);
-        if (error) {
-            return "cannot create " + path.parent_path().string() + ": " + error.message();
-        }
-    }
-    std::filesystem::path temporary = path;
-    temporary += ".tmp";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        out << JsonText(json, 2) << '\n';
-        out.flush();
-        if (!out) {
-            return "cannot write " + temporary.string();
-        }
-    }
-    std::filesystem::rename(temporary, path, error);
-    if (error) {
-        return "cannot rename " + temporary.string() + " to " + path.string() + ": " +
-               error.message();
-    }
-    return "";
-}
-
 }  // namespace tidepool::runner

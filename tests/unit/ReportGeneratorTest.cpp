@@ -543,8 +543,14 @@ TEST(ReportWriterTest, WritesAllFormatsAndReplacesOnlyItsOwnFolder) {
     // A folder the writer did not make is never replaced.
     dir.Write("out2/t/precious.txt", "keep me");
     written = WriteReport(*built.model, dir.Path() / "out2");
-    EXPECT_NE(written.error.find("not a tidepool report"), std::string::npos) << written.error;
+    EXPECT_NE(written.error.find("not written by tidepool"), std::string::npos) << written.error;
+    EXPECT_TRUE(written.refused);
     EXPECT_TRUE(std::filesystem::exists(dir.Path() / "out2/t/precious.txt"));
+    // Nor is one that merely holds a data.json: only the marker file says a report is ours.
+    dir.Write("out3/t/data.json", "{}");
+    written = WriteReport(*built.model, dir.Path() / "out3");
+    EXPECT_TRUE(written.refused) << written.error;
+    EXPECT_EQ(ReadText(dir.Path() / "out3/t/data.json"), "{}");
 }
 
 TEST(ReportWriterTest, StabilityTablesAreRenderedGenerically) {
@@ -1069,3 +1075,61 @@ TEST(ReportReflectionTest, ResultsWithoutPassNamesStillLoadAndShowPassesAsUnknow
 }
 
 }  // namespace
+
+namespace {
+
+// Rewrites one stage file of a fake run through `edit` and returns what loading then says.
+template <typename Edit>
+ReportInputsResult LoadEdited(const TempDir& dir, const std::filesystem::path& file, Edit edit) {
+    nlohmann::json json = nlohmann::json::parse(ReadText(file));
+    edit(json);
+    dir.Write(std::filesystem::relative(file, dir.Path()).string(), json.dump());
+    return LoadReportInputs(dir.Path() / "manifest/manifest.json",
+                            dir.Path() / "render/results.json");
+}
+
+}  // namespace
+
+// Corrupt in meaning, though well typed: each replaced a good report with an empty or wrong
+// one and exit 0 before.
+TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
+    struct Case {
+        const char* what;
+        bool manifest;  // edit the manifest, else results.json
+        void (*edit)(nlohmann::json&);
+        const char* message;
+    };
+    const std::vector<Case> cases = {
+            {"empty configurations", false,
+             [](nlohmann::json& j) { j["configurations"] = nlohmann::json::array(); },
+             "'configurations' is empty"},
+            {"duplicate configuration id", false,
+             [](nlohmann::json& j) { j["configurations"][1]["id"] = j["configurations"][0]["id"]; },
+             "appears more than once"},
+            {"variant not an object", true,
+             [](nlohmann::json& j) { j["variants"][0] = 7; }, "'variants[0]' is not an object"},
+            {"variant without id", true, [](nlohmann::json& j) { j["variants"][1].erase("id"); },
+             "'variants[1].id' is not a non-empty string"},
+            {"variant valid not boolean", true,
+             [](nlohmann::json& j) { j["variants"][0]["valid"] = "yes"; },
+             "'variants[0].valid' has the wrong type"},
+            {"absolute image path", false,
+             [](nlohmann::json& j) { j["configurations"][0]["views"][0]["image"] = "/etc/passwd"; },
+             "'image' must be a path inside the results folder, not '/etc/passwd'"},
+            {"image path with ..", false,
+             [](nlohmann::json& j) {
+                 j["configurations"][0]["views"][0]["image"] = "images/../../secret.png";
+             },
+             "'image' must be a path inside the results folder, not 'images/../../secret.png'"},
+    };
+    for (const Case& c : cases) {
+        TempDir dir;
+        const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+        const ReportInputsResult loaded =
+                LoadEdited(dir, c.manifest ? run.manifest : run.results, c.edit);
+        EXPECT_FALSE(loaded.inputs) << c.what;
+        const std::filesystem::path file = c.manifest ? run.manifest : run.results;
+        EXPECT_EQ(loaded.error.rfind(file.string() + ": ", 0), 0u) << c.what << ": " << loaded.error;
+        EXPECT_NE(loaded.error.find(c.message), std::string::npos) << c.what << ": " << loaded.error;
+    }
+}

@@ -53,12 +53,13 @@ struct WrittenReport {
     std::uintmax_t html_bytes = 0;
     int image_downscale = 1;                   // factor applied to the images embedded in HTML
     std::string error;                         // "" on success, otherwise naming the path
+    bool refused = false;  // the error is a refusal to replace a folder tidepool did not write
 };
 
 /// Writes index.html, report.md, data.json, images/ and charts/ into a staging folder beside
 /// out_dir / name, then renames it into place (replacing an earlier report), so a reader never
 /// sees half a report. Fails (error naming the path, nothing published) when a file cannot be
-/// written or the destination exists and was not written by this function (no data.json).
+/// written, or (`refused`) the destination exists and is not tidepool's output (no marker file).
 WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path& out_dir);
 
 }  // namespace tidepool::report

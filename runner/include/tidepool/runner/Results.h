@@ -170,8 +170,4 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
 /// The results as JSON (schema kResultsSchema, version kResultsSchemaVersion). Never fails.
 nlohmann::json ResultsToJson(const RunResults& results);
 
-/// Writes `json` to `path` atomically: a temporary file in the same folder, then a rename, so a
-/// reader never sees half a file. Returns "" or what went wrong.
-std::string WriteJsonAtomically(const std::filesystem::path& path, const nlohmann::json& json);
-
 }  // namespace tidepool::runner
