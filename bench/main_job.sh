@@ -64,4 +64,18 @@ echo
 python3 "$root/bench/compare_verdicts.py" quiet "$out/quiet/default/data.json" \
     loaded "$out/loaded/default/data.json"
 echo
+python3 - "$out/quiet/render/plans.json" "$out/loaded/render/plans.json" <<'PY'
+import json, sys
+a, b = (json.load(open(p))["plans"] for p in sys.argv[1:3])
+same = 0
+print("scene plans (chosen configuration), quiet vs loaded:")
+for pa, pb in zip(a, b):
+    ca = pa.get("chosen", {}).get("id", "-")
+    cb = pb.get("chosen", {}).get("id", "-")
+    same += ca == cb
+    print(f"  {pa['scene']:<16} {'same' if ca == cb else 'DIFFERENT'}: {ca}" +
+          ("" if ca == cb else f" vs {cb}"))
+print(f"same plan for {same} of {len(a)} scenes (target: all)")
+PY
+echo
 echo "outputs in $out/{quiet,loaded}/"
