@@ -369,9 +369,10 @@ TechniqueComparison CompareTechnique(const TechniquePresets& presets, const Repo
                                  pairs.error.empty() ? t.ratio.error : pairs.error);
         }
         ChangeFromRatio(t.ratio, &t.change_percent, &t.change_ci);
-        if (std::isfinite(t.change_ci.low) && t.change_ci.low > 0) {
+        if (std::isfinite(t.change_ci.low) && t.change_ci.low > kDirectionMarginPoints) {
             t.direction = +1;
-        } else if (std::isfinite(t.change_ci.high) && t.change_ci.high < 0) {
+        } else if (std::isfinite(t.change_ci.high) &&
+                   t.change_ci.high < -kDirectionMarginPoints) {
             t.direction = -1;
         }
     }
@@ -615,7 +616,7 @@ bool IsFirmVerdict(Verdict verdict, FigureKind kind) {
     case Verdict::kOpposite:
         return true;
     case Verdict::kSameDirectionOnly:
-        return kind == FigureKind::kDirection;
+        return kind == FigureKind::kDirection;  // never given to other rows
     case Verdict::kBelowResolution:
     case Verdict::kFailed:
         return false;
@@ -646,7 +647,7 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
         }
     }
     const double bound = std::max(std::fabs(low), std::fabs(high));
-    const bool includes_no_change = low <= 0.0 && high >= 0.0;
+    const bool near_no_change = low <= kDirectionMarginPoints && high >= -kDirectionMarginPoints;
     if (row.kind == FigureKind::kNegligible) {
         const double band = 1.0 * kMagnitudeFactor;  // the whitepaper's "<1%", times the factor
         if (bound <= band) {
@@ -655,10 +656,10 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
             return Verdict::kNegligibleAsClaimed;
         }
     }
-    if (includes_no_change) {
-        *reason = fmt::format("below resolution: |change| < {:.1f}%; the interval includes no "
-                              "change, so no direction is claimed: {}{}",
-                              bound, interval, halves);
+    if (near_no_change) {
+        *reason = fmt::format("below resolution: |change| < {:.1f}%; the interval reaches within "
+                              "{:.1f} points of no change, so no direction is claimed: {}{}",
+                              bound, kDirectionMarginPoints, interval, halves);
         return Verdict::kBelowResolution;
     }
     const int direction = low > 0.0 ? +1 : -1;
@@ -685,23 +686,16 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
     const std::string band = row.kind == FigureKind::kNegligible
                                      ? fmt::format("|change| <= {:.0f}%", band_high)
                                      : fmt::format("{:.1f}% to {:.0f}%", band_low, band_high);
-    if (magnitude_low >= band_low && magnitude_high <= band_high) {
-        *reason = fmt::format("the whole interval lies within half to twice the whitepaper's "
-                              "figure ({}): {}{}",
+    if (magnitude_high >= band_low && magnitude_low <= band_high) {
+        *reason = fmt::format("the interval overlaps half to twice the whitepaper's figure ({}): "
+                              "{}{}",
                               band, interval, halves);
         return Verdict::kSameDirectionAndMagnitude;
     }
-    if (magnitude_high < band_low || magnitude_low > band_high) {
-        *reason = fmt::format("the whole interval lies outside half to twice the whitepaper's "
-                              "figure ({}): {}{}",
-                              band, interval, halves);
-        return Verdict::kSameDirectionDifferentMagnitude;
-    }
-    *reason = fmt::format("the direction holds, but the interval straddles an edge of half to "
-                          "twice the whitepaper's figure ({}), so the magnitude is not resolved: "
-                          "{}{}",
+    *reason = fmt::format("the whole interval lies outside half to twice the whitepaper's "
+                          "figure ({}): {}{}",
                           band, interval, halves);
-    return Verdict::kSameDirectionOnly;
+    return Verdict::kSameDirectionDifferentMagnitude;
 }
 
 StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries) {

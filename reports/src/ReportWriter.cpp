@@ -887,21 +887,22 @@ std::string GlossaryText() {
 std::string VerdictRuleText(const ReportModel& /*model*/) {
     return fmt::format(
             "Verdicts are decided by the 95% interval, never by the estimate alone. Below "
-            "resolution when the interval includes no change: no direction is claimed, and the "
-            "verdict says how small the change must be (|change| < X%, X the interval's larger "
-            "end). Opposite when the whole interval lies on the other side of no change. For a "
-            "figure in percent, magnitude agreement is relative: same direction and magnitude "
-            "when the whole interval lies between half and twice the whitepaper's figure "
-            "(factor {0:.0f}), different magnitude when it lies wholly outside, and direction "
-            "only when it straddles an edge of that band (the magnitude is then unresolved). "
-            "Row 6's \"<1%\" is negligible as claimed when the whole interval lies within "
-            "±{0:.0f}%. Rows 8-11 quote no number, so only the direction is compared. Why: a "
-            "fixed tolerance in points called -1.9% \"the same magnitude\" as -11%, and "
-            "verdicts from the estimate alone flipped between runs whenever the estimate sat "
-            "near a boundary; a verdict the interval decides changes between two runs only when "
-            "their intervals disagree. The halves of the pairs (baseline first, candidate "
-            "first) are compared too, and a disagreement in sign is said in the reason.",
-            kMagnitudeFactor);
+            "resolution when the interval reaches within ±{1:.1f} points of no change: no "
+            "direction is claimed, and the verdict says how small the change must be (|change| "
+            "< X%, X the interval's larger end). Why a margin and not 0: contention shifts "
+            "comparisons systematically, not only by noise (bench/verdict_stability.sh moved "
+            "row 7 from -1.2% to +1.2% between a quiet and a loaded run, each with an interval "
+            "excluding 0), so only a direction beyond that margin is one a second run will "
+            "repeat. Opposite when the whole interval lies beyond the margin on the other side. "
+            "For a figure in percent, magnitude agreement is relative: same direction and "
+            "magnitude when the interval overlaps half to twice the whitepaper's figure (factor "
+            "{0:.0f}), different magnitude when it lies wholly outside. Row 6's \"<1%\" is "
+            "negligible as claimed when the whole interval lies within ±{0:.0f}%. Rows 8-11 "
+            "quote no number, so only the direction is compared. Why relative: a fixed "
+            "tolerance in points called -1.9% \"the same magnitude\" as -11%. The halves of "
+            "the pairs (baseline first, candidate first) are compared too, and a disagreement in "
+            "sign is said in the reason.",
+            kMagnitudeFactor, kDirectionMarginPoints);
 }
 
 }  // namespace

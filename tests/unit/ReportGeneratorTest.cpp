@@ -249,8 +249,8 @@ TEST(ReportGradeRow, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure)
              Verdict::kSameDirectionAndMagnitude},
             {"row 1: [-25.9, -20] is slower but wholly under half of 60%", 1,
              Ratio(1.3, 1.25, 1.35), Verdict::kSameDirectionDifferentMagnitude},
-            {"row 1: [-33.3, -25.9] straddles half of 60%: magnitude unresolved", 1,
-             Ratio(1.4, 1.35, 1.5), Verdict::kSameDirectionOnly},
+            {"row 1: [-33.3, -25.9] overlaps half of 60%", 1, Ratio(1.4, 1.35, 1.5),
+             Verdict::kSameDirectionAndMagnitude},
             {"row 1: +25% faster is the opposite", 1, Ratio(0.8, 0.78, 0.82), Verdict::kOpposite},
             {"row 1: an interval through no change claims no direction", 1, Ratio(1.2, 0.9, 1.5),
              Verdict::kBelowResolution},
@@ -258,8 +258,10 @@ TEST(ReportGradeRow, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure)
              Verdict::kBelowResolution},
             {"row 2: [-9.1, -6.5] lies within 4.5..18% of -9%", 2, Ratio(1.087, 1.07, 1.1),
              Verdict::kSameDirectionAndMagnitude},
-            {"row 2: [-2, -1] is a fifth of -9%, not its magnitude", 2, Ratio(1.015, 1.01, 1.02),
+            {"row 2: [-3.8, -2] is under half of -9%", 2, Ratio(1.03, 1.02, 1.04),
              Verdict::kSameDirectionDifferentMagnitude},
+            {"row 2: [-2, -1] excludes no change, but not by the margin", 2,
+             Ratio(1.015, 1.01, 1.02), Verdict::kBelowResolution},
             {"row 6: [-1.5, +0.5] is negligible as the whitepaper's <1%", 6,
              Ratio(1.005, 0.995, 1.015), Verdict::kNegligibleAsClaimed},
             {"row 6: a definite 30% loss is not <1%", 6, Ratio(1.43, 1.4, 1.46),
@@ -288,7 +290,10 @@ TEST(ReportGradeRow, BelowResolutionSaysHowSmallTheChangeIs) {
     ASSERT_EQ(GradeRow(Row(3), Ratio(1.005, 0.99, 1.02), nullptr, &reason),
               Verdict::kBelowResolution);
     // The interval [-1.96%, +1.01%]: |change| < 2.0%.
-    EXPECT_NE(reason.find("below resolution: |change| < 2.0%"), std::string::npos) << reason;
+    EXPECT_NE(reason.find("below resolution: |change| < 2.0%; the interval reaches within 1.5 "
+                          "points of no change"),
+              std::string::npos)
+            << reason;
 }
 
 TEST(ReportGradeRow, HalvesThatDisagreeInSignAreSaidNotFoldedIntoTheCategory) {
@@ -334,8 +339,8 @@ TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
     EXPECT_EQ(model.rows[9].verdict, Verdict::kSameDirectionOnly);
     // Row 8: cube map 36 ms vs 30 ms is slower: opposite to the whitepaper.
     EXPECT_EQ(model.rows[7].verdict, Verdict::kOpposite);
-    // Row 9: 30.3 -> 30 ms is 1% faster: at the noise floor, so a direction.
-    EXPECT_EQ(model.rows[8].verdict, Verdict::kSameDirectionOnly);
+    // Row 9: 30.3 -> 30 ms is 1% faster, inside the 1.5-point margin: no direction.
+    EXPECT_EQ(model.rows[8].verdict, Verdict::kBelowResolution);
     EXPECT_TRUE(std::isfinite(model.largest_split_half_disagreement));
 }
 
