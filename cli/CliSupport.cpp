@@ -283,7 +283,7 @@ void AddTimingFlags(CLI::App* command, TimingFlags* flags) {
                         "timed frames of each configuration on its own (the accuracy chart)")
         ->capture_default_str();
     command->add_option("--warmup", flags->warmup,
-                        "untimed frames per configuration and thread first")
+                        "untimed frames before a compared configuration is timed, per thread")
         ->capture_default_str();
     command->add_option("--workers", flags->workers,
                         "rendering threads, each with its own GL context (0: one per core)")

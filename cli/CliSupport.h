@@ -113,7 +113,7 @@ struct TimingFlags {
     double resolution = 1.5;  // half-width of a comparison's 95% interval, percent points
     int min_pairs = 20;
     int max_pairs = 400;
-    int coarse_frames = 5;
+    int coarse_frames = 3;
     int warmup = 2;
     int workers = 0;  // rendering threads; 0: one per core
     int threads = 0;  // LP_NUM_THREADS: 0 renders on each worker's own thread

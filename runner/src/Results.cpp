@@ -177,8 +177,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     }
 
     ProgressMeter meter(progress, start);
-    const long per_configuration = static_cast<long>(options.views.size()) +
-                                   options.warmup_frames + options.coarse_frames;
+    const long per_configuration =
+            static_cast<long>(options.views.size()) + options.coarse_frames;
     meter.AddExpected(per_configuration * static_cast<long>(options.configurations.size()));
     std::vector<long> expected_frames(results.comparisons.size(), 2 * kInitialPairGuess);
     meter.AddExpected(2 * kInitialPairGuess * static_cast<long>(results.comparisons.size()));
@@ -196,16 +196,18 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
 
-    // Compiles configuration `i` in `w`'s context once, with warm-up frames (llvmpipe compiles
-    // shader variants on first draw, which must not land in a timed frame).
-    auto prepare = [&](RenderWorker& w, std::size_t i) -> const DriverVerdict& {
+    // Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too
+    // (llvmpipe compiles shader variants on first draw, which must not land in a timed frame).
+    // A configuration's own unit needs none: its images, every view once, come before its
+    // timed frames and warm it.
+    auto prepare = [&](RenderWorker& w, std::size_t i, bool warm) -> const DriverVerdict& {
         auto found = w.prepared.find(i);
         if (found != w.prepared.end()) {
             return found->second;
         }
         const RenderConfiguration& c = options.configurations[i];
         DriverVerdict verdict = w.renderer->Prepare(c);
-        if (verdict.valid && timing_view != nullptr) {
+        if (warm && verdict.valid && timing_view != nullptr) {
             for (int f = 0; f < options.warmup_frames; ++f) {
                 w.renderer->RenderFrame(c, *timing_view);
                 w.renderer->Finish();
@@ -238,11 +240,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
 
     auto run_configuration = [&](RenderWorker& w, std::size_t i) {
         ConfigurationResult& r = results.configurations[i];
-        r.verdict = prepare(w, i);
-        meter.Step("images", r.configuration.id, options.warmup_frames);
+        r.verdict = prepare(w, i, false);
         if (!r.verdict.valid) {
-            meter.Step("images", r.configuration.id,
-                       per_configuration - options.warmup_frames);
+            meter.Step("images", r.configuration.id, per_configuration);
             return;
         }
         for (const CameraView& view : options.views) {
@@ -299,7 +299,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
         if (out.error.empty()) {
             for (std::size_t i : {c.baseline, c.candidate}) {
-                if (!prepare(w, i).valid) {
+                if (!prepare(w, i, true).valid) {
                     out.error = fmt::format("configuration {} did not compile in Mesa",
                                             options.configurations[i].id);
                     break;

@@ -55,11 +55,12 @@ struct RunOptions {
     std::vector<CameraView> views;  // an image per configuration per view
     std::string timing_view;        // the view timed; "" means the first of `views`
     RenderSettings settings;
-    int warmup_frames = 2;          // per configuration and thread, untimed (llvmpipe compiles
-                                    // on first draw)
+    int warmup_frames = 2;          // untimed, per compared configuration and thread (llvmpipe
+                                    // compiles on first draw); images warm the others
+
     // Timed frames of every configuration on its own: enough for the accuracy-versus-time chart
     // (a coarse time), not for a comparison, which `comparisons` time in pairs.
-    int coarse_frames = 5;
+    int coarse_frames = 3;
     std::vector<TimedComparison> comparisons;
     base::StoppingRule rule;        // when a comparison has enough pairs
     // Frames with a glFinish after each pass, per compared configuration: the per-pass times
