@@ -34,6 +34,21 @@ std::vector<std::string> StringList(const nlohmann::json& object, const char* ke
     return list;
 }
 
+// Reads an optional boolean `key` of `object` into `out` (left as it is when absent); returns
+// "" or an error naming `where` and the field when it is present with another type.
+std::string ReadBool(const nlohmann::json& object, const char* key, const std::string& where,
+                     bool* out) {
+    auto it = object.find(key);
+    if (it == object.end()) {
+        return "";
+    }
+    if (!it->is_boolean()) {
+        return fmt::format("{}: '{}' must be true or false, not {}", where, key, it->dump());
+    }
+    *out = it->get<bool>();
+    return "";
+}
+
 std::string StringOr(const nlohmann::json& object, const char* key, std::string fallback = {}) {
     auto it = object.find(key);
     return it != object.end() && it->is_string() ? it->get<std::string>() : fallback;
@@ -203,16 +218,23 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
     c.defines = StringList(entry, "defines");
     c.effects = StringList(entry, "effects");
     c.presets = StringList(entry, "presets");
-    c.uniform_bools = entry.value("uniform_bools", false);
+    const std::string where = fmt::format("configuration '{}'", c.id);
+    if (std::string e = ReadBool(entry, "uniform_bools", where, &c.uniform_bools); !e.empty()) {
+        return e;
+    }
     if (auto passes = entry.find("passes"); passes != entry.end() && passes->is_object()) {
         c.reflection_size = static_cast<int>(NumberOr(*passes, "reflection_size", 256));
         // Results from before the option existed: the refraction shared the reflection's size.
         c.refraction_size =
                 static_cast<int>(NumberOr(*passes, "refraction_size", c.reflection_size));
-        c.low_res_water = passes->value("low_res_water", false);
         c.clip = StringOr(*passes, "clip", "oblique");
-        c.culling = passes->value("culling", true);
-        c.depth_fog = passes->value("depth_fog", true);
+        for (const auto& [key, field] : {std::pair{"low_res_water", &c.low_res_water},
+                                         std::pair{"culling", &c.culling},
+                                         std::pair{"depth_fog", &c.depth_fog}}) {
+            if (std::string e = ReadBool(*passes, key, where + " passes", field); !e.empty()) {
+                return e;
+            }
+        }
     }
     if (!entry.contains("ok") || !entry["ok"].is_boolean()) {
         return fmt::format("configuration '{}' has no boolean 'ok'", c.id);
@@ -220,7 +242,10 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
     c.ok = entry["ok"].get<bool>();
     c.gl_error = StringOr(entry, "gl_error");
     if (auto driver = entry.find("driver"); driver != entry.end() && driver->is_object()) {
-        c.driver_valid = driver->value("valid", false);
+        if (std::string e = ReadBool(*driver, "valid", where + " driver", &c.driver_valid);
+            !e.empty()) {
+            return e;
+        }
         if (auto d = driver->find("diagnostics"); d != driver->end() && d->is_array()) {
             for (const nlohmann::json& diagnostic : *d) {
                 c.driver_messages.push_back(

@@ -733,7 +733,28 @@ StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries) {
     return analysis;
 }
 
+namespace {
+ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
+                                            const ReportOptions& options);
+}  // namespace
+
 ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptions& options) {
+    // LoadReportInputs checks every field the model needs; a field it does not know of that has
+    // the wrong type must still be an error naming the files, never an abort.
+    try {
+        return BuildReportModelUnchecked(inputs, options);
+    } catch (const nlohmann::json::exception& e) {
+        ReportModelResult out;
+        out.error = fmt::format("{} or {}: a field has an unexpected type: {}",
+                                inputs.results_path.string(), inputs.manifest_path.string(),
+                                e.what());
+        return out;
+    }
+}
+
+namespace {
+ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
+                                            const ReportOptions& options) {
     ReportModelResult out;
     ReportModel model;
     model.options = options;
@@ -1036,5 +1057,7 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
     out.model = std::move(model);
     return out;
 }
+
+}  // namespace
 
 }  // namespace tidepool::report

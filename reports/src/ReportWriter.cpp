@@ -1888,7 +1888,25 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
 
 }  // namespace
 
+namespace {
+WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesystem::path& out_dir);
+}  // namespace
+
 WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path& out_dir) {
+    // The writers read a few settings straight from results.json; one of an unexpected type is
+    // an error naming the file, never an abort (nothing is published then).
+    try {
+        return WriteReportUnchecked(model, out_dir);
+    } catch (const nlohmann::json::exception& e) {
+        WrittenReport written;
+        written.error = fmt::format("{}: a field has an unexpected type: {}",
+                                    model.inputs->results_path.string(), e.what());
+        return written;
+    }
+}
+
+namespace {
+WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesystem::path& out_dir) {
     WrittenReport written;
     written.folder = out_dir / model.options.name;
     std::error_code ec;
@@ -2038,5 +2056,7 @@ WrittenReport WriteReport(const ReportModel& model, const std::filesystem::path&
     }
     return written;
 }
+
+}  // namespace
 
 }  // namespace tidepool::report

@@ -1126,6 +1126,16 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
                  j["configurations"][0]["views"][0]["image"] = "images/../../secret.png";
              },
              "'image' must be a path inside the results folder, not 'images/../../secret.png'"},
+            // Wrongly typed fields (issue 15 class 3): an error naming the field, not an abort.
+            {"uniform_bools a string", false,
+             [](nlohmann::json& j) { j["configurations"][0]["uniform_bools"] = "yes"; },
+             "'uniform_bools' must be true or false, not \"yes\""},
+            {"driver.valid a number", false,
+             [](nlohmann::json& j) { j["configurations"][0]["driver"]["valid"] = 1; },
+             "driver: 'valid' must be true or false, not 1"},
+            {"passes.culling a string", false,
+             [](nlohmann::json& j) { j["configurations"][0]["passes"]["culling"] = "no"; },
+             "passes: 'culling' must be true or false, not \"no\""},
     };
     for (const Case& c : cases) {
         TempDir dir;
