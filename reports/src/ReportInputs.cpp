@@ -342,35 +342,29 @@ std::string ParseComparison(const nlohmann::json& entry, std::size_t index,
     c->candidate = entry["candidate"].get<std::string>();
     c->decision = StringOr(entry, "decision");
     c->error = StringOr(entry, "error");
-    for (const auto& [key, out] : {std::pair{"baseline_ms", &c->baseline_ms},
-                                   std::pair{"candidate_ms", &c->candidate_ms}}) {
-        auto samples = entry.find(key);
+    // The times on the run's clock are required; the same frames on the wall clock optional.
+    struct Times {
+        const char* key;
+        std::vector<double>* out;
+        bool required;
+    };
+    for (const Times& t : {Times{"baseline_ms", &c->baseline_ms, true},
+                           Times{"candidate_ms", &c->candidate_ms, true},
+                           Times{"baseline_wall_ms", &c->baseline_wall_ms, false},
+                           Times{"candidate_wall_ms", &c->candidate_wall_ms, false}}) {
+        auto samples = entry.find(t.key);
+        if (samples == entry.end() && !t.required) {
+            continue;
+        }
         if (samples == entry.end() || !samples->is_array()) {
-            return fmt::format("comparisons[{}].{} is not an array of times", index, key);
+            return fmt::format("comparisons[{}].{} is not an array of times", index, t.key);
         }
         for (const nlohmann::json& v : *samples) {
             if (!v.is_number()) {
                 return fmt::format("comparisons[{}].{} holds a value that is not a number", index,
-                                   key);
+                                   t.key);
             }
-            out->push_back(v.get<double>());
-        }
-    }
-    for (const auto& [key, out] : {std::pair{"baseline_wall_ms", &c->baseline_wall_ms},
-                                   std::pair{"candidate_wall_ms", &c->candidate_wall_ms}}) {
-        auto samples = entry.find(key);
-        if (samples == entry.end()) {
-            continue;  // optional: the same frames on the wall clock
-        }
-        if (!samples->is_array()) {
-            return fmt::format("comparisons[{}].{} is not an array of times", index, key);
-        }
-        for (const nlohmann::json& v : *samples) {
-            if (!v.is_number()) {
-                return fmt::format("comparisons[{}].{} holds a value that is not a number", index,
-                                   key);
-            }
-            out->push_back(v.get<double>());
+            t.out->push_back(v.get<double>());
         }
     }
     if (c->baseline_ms.size() != c->candidate_ms.size()) {
