@@ -899,7 +899,7 @@ std::string VerdictRuleText(const ReportModel& /*model*/) {
             "{0:.0f}), different magnitude when it lies wholly outside. Row 6's \"<1%\" is "
             "negligible as claimed when the whole interval lies within ±{0:.0f}%. Rows 8-11 "
             "quote no number, so only the direction is compared. Why relative: a fixed "
-            "tolerance in points called -1.9% \"the same magnitude\" as -11%. The halves of "
+            "tolerance in points called a fifth of a figure \"the same magnitude\". The halves of "
             "the pairs (baseline first, candidate first) are compared too, and a disagreement in "
             "sign is said in the reason.",
             kMagnitudeFactor, kDirectionMarginPoints);
