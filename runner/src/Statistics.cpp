@@ -1,6 +1,8 @@
 // Order statistics for frame-time samples.
 #include "tidepool/runner/Statistics.h"
 
+#include "tidepool/base/SampleStatistics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -21,17 +23,6 @@ double BinomialHalfCdf(int n, int k) {
 
 }  // namespace
 
-double Quantile(const std::vector<double>& sorted, double p) {
-    if (sorted.empty()) {
-        return 0;
-    }
-    const double position = p * static_cast<double>(sorted.size() - 1);
-    const auto below = static_cast<std::size_t>(std::floor(position));
-    const std::size_t above = std::min(below + 1, sorted.size() - 1);
-    const double fraction = position - static_cast<double>(below);
-    return sorted[below] + (sorted[above] - sorted[below]) * fraction;
-}
-
 SampleStatistics ComputeSampleStatistics(std::vector<double> samples, double confidence) {
     SampleStatistics stats;
     if (samples.empty()) {
@@ -43,9 +34,9 @@ SampleStatistics ComputeSampleStatistics(std::vector<double> samples, double con
     stats.min = samples.front();
     stats.max = samples.back();
     stats.mean = std::accumulate(samples.begin(), samples.end(), 0.0) / n;
-    stats.median = Quantile(samples, 0.5);
-    stats.q1 = Quantile(samples, 0.25);
-    stats.q3 = Quantile(samples, 0.75);
+    stats.median = base::Quantile(samples, 0.5);
+    stats.q1 = base::Quantile(samples, 0.25);
+    stats.q3 = base::Quantile(samples, 0.75);
     stats.iqr = stats.q3 - stats.q1;
     // j is 1-based; j = 1 gives [min, max]. Take the largest j that still covers enough.
     int best_j = 1;

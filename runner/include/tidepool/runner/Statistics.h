@@ -29,8 +29,5 @@ struct SampleStatistics {
 /// coverage where the sample count allows. Fails (all zero, count 0) when samples is empty.
 SampleStatistics ComputeSampleStatistics(std::vector<double> samples, double confidence = 0.95);
 
-/// The p-th quantile (0..1) of sorted samples by linear interpolation between order statistics
-/// (Hyndman and Fan type 7, as R and NumPy default). Fails (returns 0) when `sorted` is empty.
-double Quantile(const std::vector<double>& sorted, double p);
 
 }  // namespace tidepool::runner
