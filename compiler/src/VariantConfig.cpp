@@ -90,6 +90,23 @@ std::vector<std::string> ProgramConfig::AllDefines() const {
     return names;
 }
 
+int DemoTargetSize(int width, int height) {
+    const int side = std::min(width, height);
+    int size = 1;
+    while (size <= side / 2) {
+        size *= 2;
+    }
+    return size;
+}
+
+int ReflectionSize(const PassOptions& passes, int width, int height) {
+    return passes.reflection_size > 0 ? passes.reflection_size : DemoTargetSize(width, height);
+}
+
+int RefractionSize(const PassOptions& passes, int width, int height) {
+    return passes.refraction_size > 0 ? passes.refraction_size : DemoTargetSize(width, height);
+}
+
 const ProgramConfig* VariantConfig::FindProgram(std::string_view name) const {
     auto it = std::find_if(programs.begin(), programs.end(),
                            [&](const ProgramConfig& p) { return p.name == name; });

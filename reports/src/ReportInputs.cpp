@@ -582,6 +582,8 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (auto settings = results->find("settings"); settings != results->end() &&
                                                      settings->is_object()) {
         inputs.timing_view = StringOr(*settings, "timing_view");
+        inputs.width = static_cast<int>(NumberOr(*settings, "width", inputs.width));
+        inputs.height = static_cast<int>(NumberOr(*settings, "height", inputs.height));
         if (auto views = settings->find("views"); views != settings->end() && views->is_array()) {
             for (const nlohmann::json& v : *views) {
                 if (v.is_object()) {

@@ -1,5 +1,7 @@
 #include "tidepool/report/ReportModel.h"
 
+#include "tidepool/VariantConfig.h"
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -17,11 +19,12 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// A configuration rendered with the default pass options (256 reflection and refraction,
-// oblique clip, no low-resolution water, culling, depth fog): only these share the pass work, so
-// their static counts are comparable with their times.
-bool HasDefaultPasses(const MeasuredConfiguration& c) {
-    return c.reflection_size == 256 && c.refraction_size == 256 && c.clip == "oblique" &&
+// A configuration rendered with the default pass options (reflection and refraction of the
+// window's demo size, oblique clip, no low-resolution water, culling, depth fog): only these
+// share the pass work, so their static counts are comparable with their times.
+bool HasDefaultPasses(const MeasuredConfiguration& c, const ReportInputs& inputs) {
+    const int size = DemoTargetSize(inputs.width, inputs.height);
+    return c.reflection_size == size && c.refraction_size == size && c.clip == "oblique" &&
            !c.low_res_water && c.culling && c.depth_fog;
 }
 
@@ -924,7 +927,7 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
     }
     std::vector<StaticCostEntry> static_entries;
     for (const MeasuredConfiguration& c : inputs.configurations) {
-        if (!c.ok || !HasDefaultPasses(c) || std::isnan(c.MedianOn(model.clock))) {
+        if (!c.ok || !HasDefaultPasses(c, inputs) || std::isnan(c.MedianOn(model.clock))) {
             continue;
         }
         auto it = manifest_variants.find(c.variant);

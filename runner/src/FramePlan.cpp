@@ -56,15 +56,6 @@ const char* PassName(PassKind kind) {
     return "?";
 }
 
-int DemoTargetSize(int width, int height) {
-    const int side = std::min(width, height);
-    int size = 1;
-    while (size <= side / 2) {
-        size *= 2;
-    }
-    return size;
-}
-
 int LowResWaterSize(const RenderSettings& settings) {
     return settings.low_res_water_size > 0 ? settings.low_res_water_size
                                            : DemoTargetSize(settings.width, settings.height);
@@ -166,7 +157,7 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
     if (water_visible && UsesPlanarReflection(c)) {
         PassPlan mirror;
         mirror.kind = PassKind::kReflection;
-        mirror.width = mirror.height = c.passes.reflection_size;
+        mirror.width = mirror.height = ReflectionSize(c.passes, settings.width, settings.height);
         mirror.view = view_matrix * MirrorMatrix(water_plane);
         mirror.projection = projection;
         mirror.mirrored = true;
@@ -186,7 +177,7 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
     if (water_visible && c.Has("ENABLE_REFRACTION")) {
         PassPlan pass;
         pass.kind = PassKind::kRefraction;
-        pass.width = pass.height = c.passes.refraction_size;
+        pass.width = pass.height = RefractionSize(c.passes, settings.width, settings.height);
         pass.view = view_matrix;
         pass.projection = projection;
         // Keep what is below the plane, moved up by the offset.

@@ -115,8 +115,15 @@ bool MakeCandidate(const ProgramConfig& water, const SceneDescription& scene,
     return true;
 }
 
-// Applies the drop of `effect` (a PlanCandidate::drops name) to a configuration.
-void ApplyDrop(const std::string& effect, std::vector<std::string>* defines, PassOptions* passes) {
+// Half the reflection texture of `passes` in the settings' window.
+int HalfReflectionSize(const PassOptions& passes, const RenderSettings& settings) {
+    return std::max(1, ReflectionSize(passes, settings.width, settings.height) / 2);
+}
+
+// Applies the drop of `effect` (a PlanCandidate::drops name) to a configuration rendered with
+// `settings`.
+void ApplyDrop(const std::string& effect, const RenderSettings& settings,
+               std::vector<std::string>* defines, PassOptions* passes) {
     if (effect == "refraction") {
         *defines = With(Without(*defines, {"ENABLE_REFRACTION", "ENABLE_FRESNEL",
                                            "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
@@ -132,15 +139,16 @@ void ApplyDrop(const std::string& effect, std::vector<std::string>* defines, Pas
     } else if (effect == "planar_reflection") {
         *defines = With(Without(*defines, {"REFLECTION_FOURIER"}), {"REFLECTION_CUBEMAP"});
     } else if (effect == "reflection_resolution") {
-        passes->reflection_size = std::max(1, passes->reflection_size / 2);
+        passes->reflection_size = HalfReflectionSize(*passes, settings);
     } else if (effect == "full_resolution_water") {
         passes->low_res_water = true;
     }
 }
 
-// True when `chosen` still has `effect` (a name of PlanCandidate::drops) that `full` has.
+// True when `chosen` still has `effect` (a name of PlanCandidate::drops) that `full` has, both
+// rendered with `settings`.
 bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
-           const std::string& effect) {
+           const std::string& effect, const RenderSettings& settings) {
     if (effect == "refraction") {
         return chosen.Has("ENABLE_REFRACTION");
     }
@@ -160,7 +168,8 @@ bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
         return !chosen.Has("REFLECTION_CUBEMAP") && !chosen.Has("REFLECTION_FOURIER");
     }
     if (effect == "reflection_resolution") {
-        return chosen.passes.reflection_size >= full.passes.reflection_size;
+        return ReflectionSize(chosen.passes, settings.width, settings.height) >=
+               ReflectionSize(full.passes, settings.width, settings.height);
     }
     if (effect == "full_resolution_water") {
         return !chosen.passes.low_res_water;
@@ -177,6 +186,7 @@ std::string PercentText(double percent) {
 std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
                                              const SceneDescription& scene,
                                              const std::string& full_preset,
+                                             const RenderSettings& settings,
                                              std::vector<Diagnostic>* diagnostics) {
     std::vector<PlanCandidate> candidates;
     const Preset* full = config.FindPreset(full_preset);
@@ -214,7 +224,7 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     }
     const PassOptions p = full->passes;
     PassOptions refl128 = p;
-    refl128.reflection_size = std::max(1, p.reflection_size / 2);
+    refl128.reflection_size = HalfReflectionSize(p, settings);
     PassOptions low_res = p;
     low_res.low_res_water = true;
 
@@ -388,7 +398,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     } else {
         plan.needed.push_back("reflection of the sky only");
     }
-    plan.candidates = ProposeCandidates(config, scene, options.full_preset, &plan.diagnostics);
+    plan.candidates = ProposeCandidates(config, scene, options.full_preset, options.settings,
+                                        &plan.diagnostics);
     if (plan.candidates.empty()) {
         return plan;
     }
@@ -519,7 +530,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         std::vector<std::string> defines = plan.candidates.front().configuration.variant.defines;
         PassOptions passes = plan.candidates.front().configuration.passes;
         for (const std::string& effect : passing) {
-            ApplyDrop(effect, &defines, &passes);
+            ApplyDrop(effect, options.settings, &defines, &passes);
         }
         PlanCandidate combined;
         const bool known = [&] {
@@ -655,7 +666,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                                               "to fog",
                                               scene.camera.view_range));
     }
-    if (cc.passes.reflection_size < fc.passes.reflection_size) {
+    if (ReflectionSize(cc.passes, options.settings.width, options.settings.height) <
+        ReflectionSize(fc.passes, options.settings.width, options.settings.height)) {
         drops.emplace_back("reflection_resolution",
                            scene.above_terrain ? "the reflection is soft enough at half size"
                                                : "only the smooth sky is reflected");
@@ -686,7 +698,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         plan.dropped.push_back(std::move(d));
     }
     for (const PlanCandidate& c : plan.candidates) {
-        if (c.drops.empty() || !c.valid || c.meets_quality || !Keeps(cc, fc, c.drops)) {
+        if (c.drops.empty() || !c.valid || c.meets_quality || !Keeps(cc, fc, c.drops, options.settings)) {
             continue;
         }
         DroppedEffect k;
@@ -712,7 +724,7 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
                      {"min_pairs", options.rule.min_pairs},
                      {"max_pairs", options.rule.max_pairs}};
     out["plans"] = nlohmann::json::array();
-    auto configuration = [](const PlanCandidate& c) {
+    auto configuration = [&options](const PlanCandidate& c) {
         long long pixels = 0;
         for (long long p : c.frame.pass_pixels) {
             pixels += p;
@@ -722,7 +734,9 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
                               {"passes", c.frame.pass_names},
                               {"pass_draw_calls", c.frame.pass_draw_calls},
                               {"pass_options",
-                               {{"reflection_size", c.configuration.passes.reflection_size},
+                               {{"reflection_size", ReflectionSize(c.configuration.passes,
+                                                                   options.settings.width,
+                                                                   options.settings.height)},
                                 {"low_res_water", c.configuration.passes.low_res_water}}},
                               {"draw_calls", c.frame.draw_calls},
                               {"image", c.image_path},

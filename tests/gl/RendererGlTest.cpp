@@ -73,6 +73,10 @@ RenderConfiguration Configuration(std::vector<std::string> defines, PassOptions 
     RenderConfiguration c;
     c.variant = MakeVariant("water", std::move(defines));
     c.effects = c.variant.defines;
+    // The checks below are sized for 256x256 targets magnified onto a 128x96 image, as at
+    // 640x480; the demo's rule would give 64x64 here (FramePlanTest covers the rule).
+    passes.reflection_size = passes.reflection_size > 0 ? passes.reflection_size : 256;
+    passes.refraction_size = passes.refraction_size > 0 ? passes.refraction_size : 256;
     c.passes = passes;
     c.id = ConfigurationId(c.variant, passes);
     return c;

@@ -197,7 +197,7 @@ TEST(ScenePlannerGlTest, OpenSeaReflectsOnlyTheSkyAndRefractsNothingTheFogHides)
     ASSERT_TRUE(renderer) << error;
     std::vector<Diagnostic> diagnostics;
     const std::vector<PlanCandidate> candidates =
-            ProposeCandidates(*Get().config, sea, "full", &diagnostics);
+            ProposeCandidates(*Get().config, sea, "full", settings, &diagnostics);
     ASSERT_FALSE(candidates.empty());
     const RenderConfiguration& full = candidates.front().configuration;
     ASSERT_TRUE(renderer->Prepare(full).valid);

@@ -347,5 +347,33 @@ TEST_F(FramePlanTest, TargetsFollowTheDemosRuleForTheWindow) {
     EXPECT_EQ(LowResWaterSize(small), 32);
 }
 
+// Reflection and refraction follow the window unless a pass option sets them (whitepaper row 11's
+// 128 and the reference's 512 stay what variants.yaml says at every window size).
+TEST_F(FramePlanTest, ReflectionAndRefractionFollowTheWindowUnlessAPassOptionSetsThem) {
+    auto pass_width = [&](const RenderConfiguration& c, int width, int height, const char* name) {
+        RenderSettings settings = settings_;
+        settings.width = width;
+        settings.height = height;
+        for (const PassPlan& pass : PlanFrame(c, settings, *scene_, DefaultViews().front()).passes) {
+            if (PassName(pass.kind) == std::string_view(name)) {
+                return pass.width;
+            }
+        }
+        return -1;
+    };
+    const RenderConfiguration& full = Preset("full");
+    EXPECT_EQ(pass_width(full, 640, 480, "reflection"), 256);
+    EXPECT_EQ(pass_width(full, 640, 480, "refraction"), 256);
+    EXPECT_EQ(pass_width(full, 320, 240, "reflection"), 128);
+    EXPECT_EQ(pass_width(full, 320, 240, "refraction"), 128);
+    EXPECT_EQ(pass_width(full, 1280, 720, "reflection"), 512);
+    const RenderConfiguration& row11 = Preset("full_reflection_128");
+    EXPECT_EQ(pass_width(row11, 320, 240, "reflection"), 128);
+    EXPECT_EQ(pass_width(row11, 1280, 720, "reflection"), 128);
+    EXPECT_EQ(pass_width(row11, 1280, 720, "refraction"), 512);
+    const RenderConfiguration& reference = Preset("reference");
+    EXPECT_EQ(pass_width(reference, 320, 240, "refraction"), 512);
+}
+
 }  // namespace
 }  // namespace tidepool::runner

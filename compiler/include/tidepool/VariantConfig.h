@@ -86,8 +86,9 @@ struct ProgramConfig {
 
 /// Render-pass options of a render configuration (the runner reads them; the compiler checks them).
 struct PassOptions {
-    int reflection_size = 256;      // reflection texture size, power of two
-    int refraction_size = 256;      // refraction texture size, power of two
+    // Texture sizes, powers of two; 0 follows the window by the demo's rule (DemoTargetSize).
+    int reflection_size = 0;
+    int refraction_size = 0;
     bool low_res_water = false;     // render the water into a small texture, then apply it
     std::string clip = "oblique";   // "oblique" (modified projection) or "discard"
     bool culling = true;            // CPU culling of objects per pass
@@ -96,6 +97,17 @@ struct PassOptions {
     // clear colour and its omitted sky as they are, so that it alone is whitepaper row 4.
     bool depth_fog = true;
 };
+
+/// The demo's render-to-texture size for a window: the largest power of two not above the
+/// window's smaller side (256 at 640x480, 128 at 320x240). Fails (returns 1) for an empty window.
+int DemoTargetSize(int width, int height);
+
+/// The reflection texture's size in a width x height window: passes.reflection_size, or
+/// DemoTargetSize when that is 0. Never fails.
+int ReflectionSize(const PassOptions& passes, int width, int height);
+
+/// The refraction texture's size, by the same rule as ReflectionSize. Never fails.
+int RefractionSize(const PassOptions& passes, int width, int height);
 
 /// A named configuration: a program, its defines and pass options (e.g. the whitepaper's setups).
 struct Preset {

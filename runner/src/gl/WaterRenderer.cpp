@@ -790,8 +790,11 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
         }
     }
     // Reflection and refraction targets of the configuration's sizes.
-    for (auto [targets, size] : {std::pair{&r.reflection_targets, c.passes.reflection_size},
-                                 std::pair{&r.refraction_targets, c.passes.refraction_size}}) {
+    const int width = r.settings.width;
+    const int height = r.settings.height;
+    for (auto [targets, size] :
+         {std::pair{&r.reflection_targets, ReflectionSize(c.passes, width, height)},
+          std::pair{&r.refraction_targets, RefractionSize(c.passes, width, height)}}) {
         if (!verdict.valid) {
             break;
         }
@@ -814,8 +817,10 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
     report.plan_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
     report.oblique_fallback = plan.oblique_fallback;
-    const auto reflection = r.reflection_targets.find(c.passes.reflection_size);
-    const auto refraction = r.refraction_targets.find(c.passes.refraction_size);
+    const auto reflection = r.reflection_targets.find(
+            ReflectionSize(c.passes, r.settings.width, r.settings.height));
+    const auto refraction = r.refraction_targets.find(
+            RefractionSize(c.passes, r.settings.width, r.settings.height));
     if (reflection == r.reflection_targets.end() || refraction == r.refraction_targets.end()) {
         report.gl_error = "RenderFrame before a successful Prepare of this configuration";
         return report;

@@ -120,6 +120,8 @@ struct ReportInputs {
     nlohmann::json results;   // as read (schema checked)
     std::vector<MeasuredConfiguration> configurations;  // in run order, failed ones included
     std::string timing_view;  // the view that was timed (the report's default view)
+    int width = 640;          // the render size of the run
+    int height = 480;
     std::vector<std::string> view_names;
     std::filesystem::path stability_path;      // where stability.json was looked for
     std::optional<nlohmann::json> stability;   // its content when present and valid

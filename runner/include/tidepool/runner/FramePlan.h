@@ -80,10 +80,6 @@ float DistortionConstant(const RenderConfiguration& configuration, const RenderS
 /// plane when it misses (looking up, or the water beyond the far plane). Never fails.
 float TypicalWaterDistance(const CameraView& view, float water_height);
 
-/// The demo's render-to-texture size for a window: the largest power of two not above the
-/// window's smaller side (256 at 640x480, 128 at 320x240). Fails (returns 1) for an empty window.
-int DemoTargetSize(int width, int height);
-
 /// The low-resolution water texture's size: settings.low_res_water_size, or DemoTargetSize of the
 /// window when that is 0. Never fails.
 int LowResWaterSize(const RenderSettings& settings);

@@ -140,10 +140,12 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
 /// The candidate list the rules propose for `scene` (at most 11, the full configuration first,
 /// then every effect dropped alone, then combinations the scene suggests),
 /// each a variant of program `water` with its pass options; a candidate whose defines break a
-/// rule of `config` is left out. Fails through diagnostics when `full_preset` does not exist.
+/// rule of `config` is left out. Sizes that follow the window (the half-size reflection) are
+/// taken from `settings`. Fails through diagnostics when `full_preset` does not exist.
 std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
                                              const SceneDescription& scene,
                                              const std::string& full_preset,
+                                             const RenderSettings& settings,
                                              std::vector<Diagnostic>* diagnostics);
 
 /// Plans `scene`: validates the candidates with glslang (invalid ones are skipped, never
