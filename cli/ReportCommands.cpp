@@ -4,15 +4,17 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include <fmt/format.h>
@@ -214,68 +216,94 @@ runner::ImageError MeasureImageError(const runner::ImageRgba8& reference,
 }
 
 // Every scenes/*.yaml planned (the library calls `tidepool plan --all` makes) into
-// render_dir/plans.json, candidate images under render_dir/images/.
-StageOutcome RunPlanStage(runner::GlContext& context, const VariantConfig& config, int width,
-                          int height, const base::StoppingRule& rule,
-                          const std::filesystem::path& render_dir) {
-    using namespace tidepool::runner;
-    StageOutcome outcome;
-    const auto start = std::chrono::steady_clock::now();
-    const std::filesystem::path scene_dir = config.base_dir / "scenes";
-    std::vector<std::filesystem::path> paths;
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
-        if (entry.path().extension() == ".yaml") {
-            paths.push_back(entry.path());
+// render_dir/plans.json, candidate images under render_dir/images/: Plan(i) plans scene i on
+// whatever rendering thread runs it, Finish() writes the file once every scene is planned.
+class PlanStage {
+public:
+    PlanStage(const VariantConfig& config, const runner::GlEnvironment& gl, int width, int height,
+              const base::StoppingRule& rule, const std::filesystem::path& render_dir)
+        : config_(config), start_(std::chrono::steady_clock::now()) {
+        const std::filesystem::path scene_dir = config.base_dir / "scenes";
+        std::error_code ec;
+        for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
+            if (entry.path().extension() == ".yaml") {
+                scenes_.push_back(entry.path());
+            }
         }
+        std::sort(scenes_.begin(), scenes_.end());
+        if (scenes_.empty()) {
+            std::fprintf(stderr, "error: plans: no scenes/*.yaml in %s\n", scene_dir.c_str());
+            outcome_.environment_error = true;
+        }
+        plans_.resize(scenes_.size());
+        options_.settings.width = width;
+        options_.settings.height = height;
+        options_.rule = rule;
+        const char* threads = std::getenv("LP_NUM_THREADS");
+        options_.clock =
+                runner::ChooseFrameClock(gl.renderer, threads != nullptr ? threads : "",
+                                         gl.timer_query)
+                        .clock;
+        options_.out_dir = render_dir;
     }
-    std::sort(paths.begin(), paths.end());
-    if (paths.empty()) {
-        std::fprintf(stderr, "error: plans: no scenes/*.yaml in %s\n", scene_dir.c_str());
-        outcome.environment_error = true;
-        return outcome;
-    }
-    PlanOptions plan_options;
-    plan_options.settings.width = width;
-    plan_options.settings.height = height;
-    plan_options.rule = rule;
-    const char* threads = std::getenv("LP_NUM_THREADS");
-    plan_options.clock = ChooseFrameClock(context.Environment().renderer,
-                                          threads != nullptr ? threads : "",
-                                          context.Environment().timer_query)
-                                 .clock;
-    plan_options.out_dir = render_dir;
-    std::vector<ScenePlan> plans;
-    for (const std::filesystem::path& path : paths) {
-        SceneResult scene = LoadSceneDescription(path);
+
+    std::size_t SceneCount() const { return scenes_.size(); }
+
+    // Plans scene `i` with `context` (current on the calling thread).
+    void Plan(runner::GlContext& context, std::size_t i) {
+        SceneResult scene = LoadSceneDescription(scenes_[i]);
         PrintDiagnostics(scene.diagnostics);
         if (!scene.scene) {
-            ++outcome.failures;  // a bad scene file cannot meet its target
-            continue;
+            return;  // a bad scene file cannot meet its target: Finish counts it
         }
-        plans.push_back(PlanScene(context, config, *scene.scene, plan_options, MeasureImageError));
-        const ScenePlan& plan = plans.back();
-        PrintDiagnostics(plan.diagnostics);
-        if (plan.chosen < 0 || !plan.met) {
-            ++outcome.failures;
-            std::fprintf(stderr, "plans: scene %s %s\n", plan.scene.name.c_str(),
-                         plan.chosen < 0 ? "could not be planned" : "misses its target");
+        plans_[i] = runner::PlanScene(context, config_, *scene.scene, options_, MeasureImageError);
+        PrintDiagnostics(plans_[i]->diagnostics);
+    }
+
+    // Writes plans.json beside results.json; the outcome counts scenes not planned or not met.
+    StageOutcome Finish() {
+        if (outcome_.environment_error) {
+            return outcome_;
         }
+        std::vector<runner::ScenePlan> plans;
+        for (std::optional<runner::ScenePlan>& plan : plans_) {
+            if (!plan) {
+                ++outcome_.failures;
+                continue;
+            }
+            if (plan->chosen < 0 || !plan->met) {
+                ++outcome_.failures;
+                std::fprintf(stderr, "plans: scene %s %s\n", plan->scene.name.c_str(),
+                             plan->chosen < 0 ? "could not be planned" : "misses its target");
+            }
+            plans.push_back(std::move(*plan));
+        }
+        const std::filesystem::path path = options_.out_dir / report::kPlansFileName;
+        if (std::string e = base::WriteFileAtomically(
+                    path, JsonText(runner::PlansToJson(plans, options_), 2) + "\n");
+            !e.empty()) {
+            std::fprintf(stderr, "error: %s\n", e.c_str());
+            outcome_.environment_error = true;
+            return outcome_;
+        }
+        std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d "
+                             "not met, done after %.0f s; %s in the render folder\n",
+                     plans.size(), options_.settings.width, options_.settings.height,
+                     options_.rule.resolution_points, outcome_.failures,
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
+                             .count(),
+                     std::string(report::kPlansFileName).c_str());
+        return outcome_;
     }
-    const std::filesystem::path path = render_dir / report::kPlansFileName;
-    if (std::string e = base::WriteFileAtomically(path, JsonText(PlansToJson(plans, plan_options), 2) + "\n");
-        !e.empty()) {
-        std::fprintf(stderr, "error: %s\n", e.c_str());
-        outcome.environment_error = true;
-        return outcome;
-    }
-    std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d not "
-                         "met, %.0f s; %s in the render folder\n",
-                 plans.size(), width, height, rule.resolution_points, outcome.failures,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-                 std::string(report::kPlansFileName).c_str());
-    return outcome;
-}
+
+private:
+    const VariantConfig& config_;
+    std::chrono::steady_clock::time_point start_;
+    std::vector<std::filesystem::path> scenes_;
+    std::vector<std::optional<runner::ScenePlan>> plans_;  // by scene; empty when not planned
+    runner::PlanOptions options_;
+    StageOutcome outcome_;
+};
 
 int RunAll(const RunCommandOptions& options) {
     using namespace tidepool::runner;
@@ -430,18 +458,40 @@ int RunAll(const RunCommandOptions& options) {
                  results_path.c_str());
 
     // 3. Numerical stability and 4. scene plans, beside results.json where the report looks.
+    // They share the render's threads: the catalogue is one job and each scene another, and
+    // each thread takes the next job, so the two stages overlap.
+    const auto after_render = std::chrono::steady_clock::now();
     StageOutcome stability;
-    if (!options.no_stability) {
-        stability = RunStabilityStage(*context.context, config, expansion.variants,
-                                      stability_width, stability_height, threads, options.config,
-                                      staging);
-    }
-    StageOutcome plans;
+    base::StoppingRule plan_rule = run.rule;
+    plan_rule.resolution_points = options.plan_resolution;
+    std::optional<PlanStage> plan_stage;
     if (!options.no_plans) {
-        base::StoppingRule plan_rule = run.rule;
-        plan_rule.resolution_points = options.plan_resolution;
-        plans = RunPlanStage(*context.context, config, plan_width, plan_height, plan_rule,
-                             staging);
+        plan_stage.emplace(config, gl, plan_width, plan_height, plan_rule, staging);
+    }
+    std::vector<std::function<void(GlContext&)>> jobs;
+    if (!options.no_stability) {
+        jobs.emplace_back([&](GlContext& c) {
+            stability = RunStabilityStage(c, config, expansion.variants, stability_width,
+                                          stability_height, threads, options.config, staging);
+        });
+    }
+    for (std::size_t i = 0; plan_stage && i < plan_stage->SceneCount(); ++i) {
+        jobs.emplace_back([&plan_stage, i](GlContext& c) { plan_stage->Plan(c, i); });
+    }
+    std::atomic<std::size_t> next_job{0};
+    const int job_threads = RunOnRenderingThreads(
+            *context.context, run.make_context, run.workers, [&](GlContext& c) {
+                for (std::size_t j = next_job++; j < jobs.size(); j = next_job++) {
+                    jobs[j](c);
+                }
+            });
+    const StageOutcome plans = plan_stage ? plan_stage->Finish() : StageOutcome{};
+    if (!jobs.empty()) {
+        std::fprintf(stderr, "stability and plans: %.0f s on %d threads\n",
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                                   after_render)
+                             .count(),
+                     job_threads);
     }
     if (const base::PublishError e = publisher->Publish(); e.Failed()) {
         std::fprintf(stderr, "error: %s\n", e.message.c_str());

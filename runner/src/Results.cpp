@@ -7,7 +7,6 @@
 #include <atomic>
 #include <cmath>
 #include <mutex>
-#include <thread>
 #include <chrono>
 #include <ctime>
 #include <fstream>
@@ -111,7 +110,6 @@ private:
 
 // One rendering thread's context, renderer and timer, and what it has compiled.
 struct RenderWorker {
-    std::unique_ptr<GlContext> owned_context;  // null for the calling thread's worker
     std::unique_ptr<WaterRenderer> renderer;
     std::unique_ptr<FrameTimer> timer;
     std::map<std::size_t, DriverVerdict> prepared;  // by configuration index
@@ -359,33 +357,19 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
     };
 
-    const int workers = std::max(1, options.workers);
-    std::vector<RenderWorker> worker_state(static_cast<std::size_t>(workers));
-    std::vector<std::thread> threads;
-    std::atomic<int> started{1};
-    for (int t = 1; t < workers && options.make_context; ++t) {
-        threads.emplace_back([&, t] {
-            RenderWorker& w = worker_state[static_cast<std::size_t>(t)];
-            w.owned_context = options.make_context();
-            if (!w.owned_context) {
-                return;  // the calling thread's worker does the work alone
-            }
-            ++started;
-            run_worker(w, *w.owned_context);
-            w.timer.reset();
-            w.renderer.reset();
-            w.owned_context.reset();
-        });
+    std::atomic<bool> rendered{false};
+    results.workers = RunOnRenderingThreads(
+            context, options.make_context, std::max(1, options.workers),
+            [&](GlContext& gl_context) {
+                RenderWorker w;
+                run_worker(w, gl_context);
+                if (w.renderer) {
+                    rendered = true;
+                }
+            });
+    if (!rendered) {
+        return results;  // the diagnostics say why
     }
-    run_worker(worker_state[0], context);
-    for (std::thread& t : threads) {
-        t.join();
-    }
-    results.workers = started.load();
-    if (!worker_state[0].renderer) {
-        return results;  // the diagnostic says why
-    }
-    context.MakeCurrent();
 
     for (ConfigurationResult& r : results.configurations) {
         for (const Diagnostic& d : r.verdict.diagnostics) {

@@ -3,8 +3,10 @@
 
 #include <fmt/format.h>
 
+#include <atomic>
 #include <cstring>
 #include <regex>
+#include <thread>
 
 #include "gl/GlApi.h"
 #include "gl/GlContextImpl.h"
@@ -88,6 +90,29 @@ GlContextResult CreateGlContext(BackendKind kind) {
         result.error = DescribeMissingGl(result.attempts);
     }
     return result;
+}
+
+int RunOnRenderingThreads(GlContext& context, const GlContextFactory& make_context, int threads,
+                          const std::function<void(GlContext&)>& body) {
+    std::atomic<int> started{1};
+    std::vector<std::thread> others;
+    for (int t = 1; t < threads && make_context; ++t) {
+        others.emplace_back([&] {
+            std::unique_ptr<GlContext> own = make_context();
+            if (!own || !own->MakeCurrent()) {
+                return;  // the threads that have a context do this one's share
+            }
+            ++started;
+            body(*own);
+        });
+    }
+    context.MakeCurrent();
+    body(context);
+    for (std::thread& t : others) {
+        t.join();
+    }
+    context.MakeCurrent();
+    return started.load();
 }
 
 namespace gl {

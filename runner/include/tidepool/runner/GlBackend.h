@@ -3,6 +3,7 @@
 // fallback. No GL header appears here; the renderer reaches the context through runner/src/gl/.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -78,5 +79,16 @@ struct GlContextResult {
 /// missing) when no requested backend gives a context with the entry points the runner needs.
 /// llvmpipe reads LP_NUM_THREADS when the first context is created, so the caller sets it first.
 GlContextResult CreateGlContext(BackendKind kind);
+
+/// Makes a new context for a rendering thread of its own; null when none can be made.
+using GlContextFactory = std::function<std::unique_ptr<GlContext>()>;
+
+/// Runs `body` on `threads` rendering threads at once (at least 1): the calling thread with
+/// `context`, each other thread with a context of its own from `make_context`, current on that
+/// thread. A thread whose context cannot be made runs nothing, so callers share work through a
+/// queue `body` drains, never by thread index. Returns how many threads ran `body`; `context` is
+/// current on the calling thread again when it returns. Never fails.
+int RunOnRenderingThreads(GlContext& context, const GlContextFactory& make_context, int threads,
+                          const std::function<void(GlContext&)>& body);
 
 }  // namespace tidepool::runner

@@ -46,9 +46,6 @@ struct TimedComparison {
     std::size_t candidate = 0;
 };
 
-/// Creates a further GL context for another rendering thread; null when it cannot.
-using GlContextFactory = std::function<std::unique_ptr<GlContext>()>;
-
 /// What a run renders and how.
 struct RunOptions {
     std::vector<RenderConfiguration> configurations;
