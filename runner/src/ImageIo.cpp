@@ -20,11 +20,12 @@ std::string WritePng(const std::filesystem::path& path, const ImageRgba8& image)
     png.width = static_cast<png_uint_32>(image.width);
     png.height = static_cast<png_uint_32>(image.height);
     png.format = PNG_FORMAT_RGBA;
-    // Encoded in memory, then written whole: a failed or killed write never leaves a short PNG.
-    png_alloc_size_t size = 0;
-    if (png_image_write_get_memory_size(png, size, 0, image.pixels.data(), 0, nullptr) == 0) {
-        return "cannot encode " + path.string() + ": " + png.message;
-    }
+    // libpng's fast setting: a run writes about 600 images, and at the default setting encoding
+    // took a fifth of the render's CPU time for files only about a quarter smaller.
+    png.flags = PNG_IMAGE_FLAG_FAST;
+    // Encoded in memory into libpng's upper bound (asking for the exact size first encodes
+    // twice), then written whole: a failed or killed write never leaves a short PNG.
+    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
     std::string encoded(size, '\0');
     if (png_image_write_to_memory(&png, encoded.data(), &size, 0, image.pixels.data(), 0,
                                   nullptr) == 0) {
