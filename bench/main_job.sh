@@ -44,6 +44,25 @@ for stage, m in found.items():
         print(f"  {stage:<15} {seconds:7.1f} s  {100 * seconds / total:5.1f}%")
 print(f"  {'validate, start-up and the rest':<15} {total - accounted:7.1f} s  "
       f"{100 * (total - accounted) / total:5.1f}%")
+# The render's progress lines against what happened: each line's predicted render end
+# (elapsed + ETA) and percentage against the render's real end, over lines after the first 10%.
+def duration_s(text):
+    m = re.fullmatch(r"(?:(\d+)m)?(\d+)s", text)
+    return int(m.group(1) or 0) * 60 + int(m.group(2)) if m else None
+render = found["render"]
+if render:
+    render_s = float(render.group(1))
+    eta_errors, percent_errors = [], []
+    for m in re.finditer(r"^\[\s*(\d+)%\] .*\(elapsed (\S+), ETA (\S+)\)$", log, re.M):
+        elapsed, eta = duration_s(m.group(2)), duration_s(m.group(3))
+        if elapsed is None or eta is None or elapsed < 0.1 * render_s:
+            continue
+        eta_errors.append(abs(elapsed + eta - render_s) / render_s * 100)
+        percent_errors.append(abs(int(m.group(1)) - 100 * elapsed / render_s))
+    if eta_errors:
+        print(f"  progress after the first 10% of the render ({len(eta_errors)} lines): predicted "
+              f"end off by at most {max(eta_errors):.0f}% (median {sorted(eta_errors)[len(eta_errors) // 2]:.0f}%), "
+              f"percentage off by at most {max(percent_errors):.0f} points (target: within 20%)")
 PY
 }
 

@@ -1,10 +1,13 @@
 #include "CliSupport.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <thread>
 #include <utility>
 
@@ -361,6 +364,42 @@ runner::HostInfo DescribeHost(const std::string& command, const std::string& con
     host.git_revision = GitRevision(std::filesystem::absolute(config_path).parent_path());
     host.command = command;
     return host;
+}
+
+std::string FormatDuration(double seconds) {
+    const long total = static_cast<long>(seconds + 0.5);
+    return total >= 60 ? fmt::format("{}m{:02}s", total / 60, total % 60)
+                       : fmt::format("{}s", total);
+}
+
+runner::ProgressCallback MakeProgressPrinter() {
+    struct State {
+        bool terminal = isatty(fileno(stderr)) != 0;
+        std::string last_stage;
+        double last_print = -1e9;
+    };
+    auto state = std::make_shared<State>();
+    return [state](const runner::RunProgress& p) {
+        if (state->terminal) {
+            std::fprintf(stderr, "\r\033[K[%3.0f%%] %-11s %s  ETA %s", p.percent, p.stage.c_str(),
+                         p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
+            std::fflush(stderr);
+        } else if (p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
+                   p.done == p.total) {
+            std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent,
+                         p.stage.c_str(), p.configuration.c_str(),
+                         FormatDuration(p.elapsed_seconds).c_str(),
+                         FormatDuration(p.eta_seconds).c_str());
+            state->last_print = p.elapsed_seconds;
+        }
+        state->last_stage = p.stage;
+    };
+}
+
+void FinishProgress() {
+    if (isatty(fileno(stderr)) != 0) {
+        std::fprintf(stderr, "\n");
+    }
 }
 
 }  // namespace tidepool::cli

@@ -133,6 +133,17 @@ bool CheckTimingFlags(const TimingFlags& flags);
 void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
                       runner::RunOptions* run);
 
+/// "42s" or "3m05s". Never fails.
+std::string FormatDuration(double seconds);
+
+/// A render progress callback printing to stderr: on a terminal one line rewritten in place
+/// (FinishProgress ends it), in a log a plain line on every stage change and at most every 10
+/// seconds. Never fails.
+runner::ProgressCallback MakeProgressPrinter();
+
+/// Ends the line a terminal progress printer left open. Never fails.
+void FinishProgress();
+
 /// What the run records about the machine and build for `command`, reading `config_path`'s
 /// folder for the git revision.
 runner::HostInfo DescribeHost(const std::string& command, const std::string& config_path);

@@ -1,8 +1,6 @@
 // `tidepool report` (build the report from a saved manifest and results) and `tidepool run`
 // (validate, render, stability catalogue, scene plans and report in one go): flags → options →
 // library calls → print → exit code.
-#include <unistd.h>
-
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -421,21 +419,8 @@ int RunAll(const RunCommandOptions& options) {
                  run.configurations.size(), run.views.size(), width, height, gl.renderer.c_str(),
                  threads.c_str(), run.workers, run.comparisons.size(),
                  run.rule.resolution_points);
-    std::string last_stage;
-    double last_print = -1e9;
-    auto progress = [&](const RunProgress& p) {
-        // Plain lines (logs and terminals alike): on every stage change and every 15 seconds.
-        if (p.stage != last_stage || p.elapsed_seconds - last_print >= 15.0) {
-            std::fprintf(stderr, "[%3.0f%%] %s (elapsed %.0fs, ETA %.0fs)\n",
-                         p.total > 0 ? 100.0 * static_cast<double>(p.done) /
-                                               static_cast<double>(p.total)
-                                     : 100.0,
-                         p.stage.c_str(), p.elapsed_seconds, p.eta_seconds);
-            last_print = p.elapsed_seconds;
-        }
-        last_stage = p.stage;
-    };
-    const RunResults results = RunRender(*context.context, config, run, progress);
+    const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
+    FinishProgress();
     PrintDiagnostics(results.diagnostics);
     const std::filesystem::path results_path = render_dir / "results.json";
     for (const std::string& e : results.write_errors) {

@@ -1,6 +1,4 @@
 // `tidepool render` and `tidepool bench`: flags → run options → RunRender → print → exit code.
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -41,12 +39,6 @@ struct RunnerOptions {
     bool no_images = false;
     tidepool::runner::FourierSettings fourier;
 };
-
-std::string FormatDuration(double seconds) {
-    const long total = static_cast<long>(seconds + 0.5);
-    return total >= 60 ? fmt::format("{}m{:02}s", total / 60, total % 60)
-                       : fmt::format("{}s", total);
-}
 
 int RunRunner(const RunnerOptions& options) {
     using namespace tidepool::runner;
@@ -133,31 +125,8 @@ int RunRunner(const RunnerOptions& options) {
                  height, gl.renderer.c_str(), gl.backend.c_str(), gl.version.c_str(),
                  threads.c_str(), run.workers, run.comparisons.size(),
                  run.rule.resolution_points);
-    const bool terminal = isatty(fileno(stderr)) != 0;
-    std::string last_stage;
-    double last_print = -1e9;
-    auto progress = [&](const RunProgress& p) {
-        const double percent =
-            p.total > 0 ? 100.0 * static_cast<double>(p.done) / static_cast<double>(p.total) : 100;
-        if (terminal) {
-            std::fprintf(stderr, "\r\033[K[%3.0f%%] %-7s %s  ETA %s", percent, p.stage.c_str(),
-                         p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
-            std::fflush(stderr);
-        } else if (p.stage != last_stage || p.elapsed_seconds - last_print >= 10.0 ||
-                   p.done == p.total) {
-            // Plain lines for logs: on every stage change and at most every 10 seconds.
-            std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", percent,
-                         p.stage.c_str(), p.configuration.c_str(),
-                         FormatDuration(p.elapsed_seconds).c_str(),
-                         FormatDuration(p.eta_seconds).c_str());
-            last_print = p.elapsed_seconds;
-        }
-        last_stage = p.stage;
-    };
-    const RunResults results = RunRender(*context.context, config, run, progress);
-    if (terminal) {
-        std::fprintf(stderr, "\n");
-    }
+    const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
+    FinishProgress();
     PrintDiagnostics(results.diagnostics);
 
     const nlohmann::json json = ResultsToJson(results);

@@ -150,7 +150,10 @@ struct RunProgress {
     long total = 0;             // frames expected: comparisons' pairs are re-estimated at
                                 // every look from the interval's width
     double elapsed_seconds = 0;
-    double eta_seconds = 0;     // elapsed / done × remaining; 0 until something is done
+    // The remaining frames of each kind (comparisons, images) times that kind's measured
+    // thread-seconds per frame, over the rendering threads; 0 until something is done.
+    double eta_seconds = 0;
+    double percent = 0;         // the share of the work done, each kind's frames weighed alike
 };
 
 /// Called after every unit of work; may print, must not throw.
