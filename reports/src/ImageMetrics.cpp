@@ -177,9 +177,19 @@ constexpr std::size_t kTaps = kSsimWindow;
 // y the reference's.
 enum class Moment { kX, kY, kXX, kYY, kXY };
 
+// The filtering loops are built twice, for AVX2 and for any x86-64, and the loader picks one:
+// a report filters hundreds of images, and 4 doubles per instruction instead of 2 nearly halve
+// its time. AVX2 alone does not fuse multiply and add, so both give the same bits.
+#if defined(__x86_64__) && defined(__GNUC__) && !defined(__clang__)
+#define TIDEPOOL_VECTOR_CLONES __attribute__((target_clones("avx2", "default")))
+#else
+#define TIDEPOOL_VECTOR_CLONES
+#endif
+
 // One row of one moment filtered horizontally: out[c] = sum over k of w[k] * q(c + k), the taps
 // added in order k = 0..10. Each loop sweeps contiguous columns, which the compiler vectorises
 // (a report computes hundreds of these).
+TIDEPOOL_VECTOR_CLONES
 void FilterRow(Moment moment, const double* x, const double* y, std::size_t out_width,
                const std::array<double, kSsimWindow>& weights, double* out) {
     std::fill(out, out + out_width, 0.0);
@@ -204,6 +214,22 @@ void FilterRow(Moment moment, const double* x, const double* y, std::size_t out_
             // w * (x * y), not (w * x) * y: keeps Ssim(a, b) == Ssim(b, a) bit for bit.
             for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * ys[c]);
             break;
+        }
+    }
+}
+
+// The horizontally filtered rows[0..10] filtered vertically: out[c] = sum over k of
+// w[k] * rows[k][c], the taps added in order.
+TIDEPOOL_VECTOR_CLONES
+void FilterColumns(const std::array<const double*, kTaps>& rows,
+                   const std::array<double, kSsimWindow>& weights, std::size_t out_width,
+                   double* out) {
+    std::fill(out, out + out_width, 0.0);
+    for (std::size_t k = 0; k < kTaps; ++k) {
+        const double w = weights[k];
+        const double* in = rows[k];
+        for (std::size_t c = 0; c < out_width; ++c) {
+            out[c] += w * in[c];
         }
     }
 }
@@ -236,15 +262,11 @@ void FilterWindows(const std::vector<Moment>& moments, const std::vector<double>
     for (std::size_t top = 0; top < out_height; ++top) {
         filter_row(top + kTaps - 1);
         for (std::size_t m = 0; m < count; ++m) {
-            double* acc = filtered.data() + m * out_width;
-            std::fill(acc, acc + out_width, 0.0);
+            std::array<const double*, kTaps> rows{};
             for (std::size_t k = 0; k < kTaps; ++k) {
-                const double w = weights[k];
-                const double* in = ring_row(m, top + k);
-                for (std::size_t c = 0; c < out_width; ++c) {
-                    acc[c] += w * in[c];
-                }
+                rows[k] = ring_row(m, top + k);
             }
+            FilterColumns(rows, weights, out_width, filtered.data() + m * out_width);
         }
         emit(top, filtered.data());
     }
