@@ -77,7 +77,8 @@ const std::vector<WhitepaperRow>& WhitepaperRows() {
             {11, "reflection texture 256x256 -> 128x128",
              "\"75% lower resolution\"; 256x256 \"proven effective\"", FigureKind::kDirection,
              std::numeric_limits<double>::quiet_NaN(), +1, "full", "full_reflection_128",
-             "Only the reflection shrinks; the refraction stays 256x256. A quarter of the "
+             "Only the reflection shrinks; the refraction stays at the window's size (256x256 at "
+             "640x480). A quarter of the "
              "reflection pass's pixels is a quarter of its software rasterisation and shading, "
              "so llvmpipe gains as the GPU did."},
     };
@@ -100,8 +101,11 @@ std::string RowDefinitionChanges() {
            "(so no longer 2.5x larger on screen) and clears to the fog colour (no horizon "
            "fringe). Row 8: the normalisation cube map has the demo's 8x8 texels per face "
            "(was 32x32). Row 10: discard clips the models only; the sky is no longer discarded. "
-           "Row 11: the refraction keeps 256x256 (pass option `refraction_size`); only the "
-           "reflection shrinks. Row 9 is unchanged.";
+           "Row 11: the refraction keeps the window's size (pass option `refraction_size`); only "
+           "the reflection shrinks. Row 9 is unchanged. All rows: reflection and refraction "
+           "textures follow the window by the demo's rule (the power of two at most its smaller "
+           "side, 256x256 at 640x480) unless a pass option sets them; they were 256x256 at any "
+           "size.";
 }
 
 }  // namespace tidepool::report
