@@ -15,10 +15,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "FileContents.h"
 #include "TempDir.h"
 
 namespace {
 
+using tidepool::testing::ReadText;
 using tidepool::testing::TempDir;
 
 struct CommandResult {
@@ -358,14 +360,26 @@ TEST_F(CliTest, CyclicAliasInConfigExitsTwoWithItsPosition) {
     }
 }
 
+// Every command that reads the configuration, `run` included: a Latin-1 byte in a preset's name
+// or in its description is an error at its line and column, and nothing is written.
 TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "presets:\n  caf\xE9: {program: p}\n");
-    const SplitResult r = RunTidepoolSplit("expand --json --config v.yaml", dir_.Path());
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_EQ(r.err, "v.yaml:6:6: error: this byte is not UTF-8; YAML files are Unicode text: "
-                     "save the file as UTF-8\n");
-    EXPECT_EQ(r.out, "");
+    const std::string program = "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n";
+    const std::pair<std::string, std::string> cases[] = {
+            {"presets:\n  caf\xE9: {program: p}\n", "v.yaml:6:6"},
+            {"presets:\n  cafe:\n    program: p\n    description: caf\xE9\n", "v.yaml:8:21"}};
+    for (const auto& [presets, place] : cases) {
+        dir_.Write("v.yaml", program + presets);
+        for (const char* command : {"expand --json", "validate --json --out out", "run --out out"}) {
+            const SplitResult r =
+                    RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
+            EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+            EXPECT_EQ(r.err, place + ": error: this byte is not UTF-8; YAML files are Unicode "
+                                     "text: save the file as UTF-8\n")
+                    << command;
+            EXPECT_EQ(r.out, "") << command;
+            EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "out")) << command;
+        }
+    }
 }
 
 TEST_F(CliTest, ConfigFileNameThatIsNotUtf8StillWritesJson) {
@@ -395,6 +409,37 @@ TEST_F(CliTest, ShaderDiagnosticQuotingANonUtf8ByteIsEscapedInJson) {
     EXPECT_EQ(matrix.exit_code, 1) << matrix.err;
     EXPECT_TRUE(nlohmann::json::accept(matrix.out));
     EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "m" / "manifest.json"));
+}
+
+// `run` writes every diagnostic into its manifest and report: one that quotes a byte that is not
+// UTF-8 is escaped there, never an abort. A tiny matrix (one water variant, the programs the
+// renderer draws with, and the broken program) at 16x16 keeps the render short.
+TEST_F(CliTest, RunWithAShaderDiagnosticQuotingANonUtf8ByteEscapesIt) {
+    const std::string shaders = std::string(TIDEPOOL_SOURCE_ROOT) + "/shaders/";
+    std::string config = "programs:\n";
+    for (const char* program : {"water", "water_composite", "skybox", "model"}) {
+        config += std::string("  ") + program + ":\n    vertex: " + shaders + program +
+                  ".vsh\n    fragment: " + shaders + program + ".fsh\n";
+    }
+    config += "  broken:\n    vertex: s.vsh\n    fragment: bad.fsh\n";
+    dir_.Write("v.yaml", config);
+    dir_.Write("bad.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+                          "vec4(caf\xE9); }\n");
+    const SplitResult r = RunTidepoolSplit(
+            "run --config v.yaml --out out --size 16x16 --coarse-frames 1 --warmup 0 "
+            "--min-pairs 10 --max-pairs 10 --no-stability --no-plans",
+            dir_.Path());
+    // 1 for the broken variant (and the comparisons, whose presets this matrix lacks); an abort
+    // of the JSON writer was 134.
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("bad.fsh:3:"), std::string::npos) << r.err;
+    const std::string manifest = ReadText(dir_.Path() / "out/manifest/manifest.json");
+    ASSERT_TRUE(nlohmann::json::accept(manifest)) << manifest.substr(0, 200);
+    // glslang quotes the byte alone; the manifest has U+FFFD (in UTF-8) in its place.
+    EXPECT_NE(manifest.find("\"message\": \"'\xEF\xBF\xBD' : unexpected token\""),
+              std::string::npos)
+            << manifest;
+    EXPECT_TRUE(nlohmann::json::accept(ReadText(dir_.Path() / "out/default/data.json")));
 }
 
 TEST_F(CliTest, ShaderWithAByteOrderMarkIsValidAndKeepsItsLineNumbers) {
