@@ -177,16 +177,27 @@ TEST(PublishCliTest, ExpandOutReplacesItsOwnOutputAlsoWithATrailingSlash) {
     EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"D"});
 }
 
-TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
-    TempDir dir;
-    dir.Write("D/manifest.json", "{\"name\": \"my web app\"}");
-    const Outcome r = RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()});
+// Runs `command --config kConfig --out D` against a folder D that holds a user's `file`, and
+// checks that it is refused before any work, naming the file as not a tidepool `what`, with the
+// file unchanged.
+void ExpectUsersFileRefused(const std::string& command, const std::string& file,
+                            const std::string& what, const TempDir& dir) {
+    const std::string mine = "{\"name\": \"my web app\"}";
+    dir.Write("D/" + file, mine);
+    const Outcome r =
+            RunBinary({command, "--config", kConfig, "--out", (dir.Path() / "D").string()});
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find((dir.Path() / "D/manifest.json").string() +
-                         ": exists and is not a tidepool manifest"),
+    EXPECT_NE(r.err.find((dir.Path() / "D" / file).string() + ": exists and is not a tidepool " +
+                         what),
               std::string::npos)
             << r.err;
-    EXPECT_EQ(ReadText(dir.Path() / "D/manifest.json"), "{\"name\": \"my web app\"}");
+    EXPECT_EQ(ReadText(dir.Path() / "D" / file), mine);
+    EXPECT_EQ(FolderEntries(dir.Path() / "D"), std::vector<std::string>{file});
+}
+
+TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
+    TempDir dir;
+    ExpectUsersFileRefused("validate", "manifest.json", "manifest", dir);
     // Its own manifest it replaces.
     fs::remove(dir.Path() / "D/manifest.json");
     ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()}).exit_code,
@@ -228,16 +239,7 @@ TEST(PublishCliTest, PlanOutRefusesAFolderTidepoolDidNotWriteBeforePlanning) {
 // folder): a stability.json that is not tidepool's is refused, the folder's other files kept.
 TEST(PublishCliTest, StabilityOutRefusesAUsersStabilityJsonBeforeRunning) {
     TempDir dir;
-    dir.Write("D/stability.json", "{\"mine\": true}");
-    const Outcome r =
-            RunBinary({"stability", "--config", kConfig, "--out", (dir.Path() / "D").string()});
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find((dir.Path() / "D/stability.json").string() +
-                         ": exists and is not a tidepool stability report"),
-              std::string::npos)
-            << r.err;
-    EXPECT_EQ(ReadText(dir.Path() / "D/stability.json"), "{\"mine\": true}");
-    EXPECT_EQ(FolderEntries(dir.Path() / "D"), std::vector<std::string>{"stability.json"});
+    ExpectUsersFileRefused("stability", "stability.json", "stability report", dir);
 }
 
 // --- Item 10: a failed write is exit 3 with nothing half-written -----------------------------
