@@ -26,9 +26,22 @@ int PublishExitCode(const base::PublishError& error) {
     return error.failure == base::PublishFailure::kRefused ? kExitUsage : kExitEnvironment;
 }
 
-int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
-                      bool check_only) {
-    const std::filesystem::path path = folder / "manifest.json";
+std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
+                                                       const std::string& writer, int* exit_code) {
+    base::PublishError begin;
+    std::unique_ptr<base::FolderPublisher> publisher =
+            base::FolderPublisher::Begin(target, writer, &begin);
+    if (!publisher) {
+        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
+        *exit_code = PublishExitCode(begin);
+    }
+    return publisher;
+}
+
+int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& file_name,
+                     const std::string& schema, const std::string& what, const std::string& text,
+                     bool check_only) {
+    const std::filesystem::path path = folder / file_name;
     std::error_code ec;
     if (std::filesystem::exists(path, ec) && !base::IsTidepoolOutput(folder)) {
         // A file named manifest.json is common (web apps, packages); the schema key inside it
@@ -36,12 +49,12 @@ int WriteManifestInto(const std::filesystem::path& folder, const std::string& te
         std::ifstream in(path, std::ios::binary);
         const nlohmann::json existing = nlohmann::json::parse(in, nullptr, false);
         const bool ours = existing.is_object() && existing.contains("schema") &&
-                          existing["schema"] == kManifestSchema;
+                          existing["schema"] == schema;
         if (!ours) {
-            std::fprintf(stderr, "error: %s: exists and is not a tidepool manifest (no \"schema\": "
+            std::fprintf(stderr, "error: %s: exists and is not a tidepool %s (no \"schema\": "
                                  "\"%s\"); nothing was changed. Choose another --out folder, or "
                                  "move the file yourself.\n",
-                         path.c_str(), kManifestSchema);
+                         path.c_str(), what.c_str(), schema.c_str());
             return kExitUsage;
         }
     }
@@ -53,6 +66,11 @@ int WriteManifestInto(const std::filesystem::path& folder, const std::string& te
         return kExitEnvironment;
     }
     return kExitOk;
+}
+
+int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
+                      bool check_only) {
+    return WriteOwnJsonInto(folder, "manifest.json", kManifestSchema, "manifest", text, check_only);
 }
 
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {

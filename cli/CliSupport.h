@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -25,6 +26,19 @@ namespace tidepool::cli {
 /// The exit code of a failed publication: kExitUsage when the folder is someone else's (choose
 /// another), kExitEnvironment when the file system failed (disk full, permissions).
 int PublishExitCode(const base::PublishError& error);
+
+/// Begins publishing the output folder `target` for `writer` ("tidepool expand"); on failure
+/// prints why and sets `*exit_code` (PublishExitCode) and returns null.
+std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
+                                                       const std::string& writer, int* exit_code);
+
+/// Writes `text` to `folder`/`file_name` atomically, refusing (exit kExitUsage, message printed
+/// naming the file as not a tidepool `what`, nothing changed) to overwrite a file there whose
+/// "schema" is not `schema`, unless the folder carries tidepool's marker. Returns kExitOk, or
+/// kExitEnvironment (message printed) when the write fails. With `check_only`, writes nothing.
+int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& file_name,
+                     const std::string& schema, const std::string& what, const std::string& text,
+                     bool check_only = false);
 
 /// Writes the manifest `text` to `folder`/manifest.json atomically, refusing (exit kExitUsage,
 /// message printed, nothing changed) to overwrite a manifest.json that is not tidepool's (its

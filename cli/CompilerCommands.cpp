@@ -105,12 +105,11 @@ int RunExpand(const CompilerOptions& options) {
         return kExitOk;
     }
     // Every variant's stage sources exactly as a GL driver receives them, plus the manifest.
-    base::PublishError begin;
+    int begin_code = kExitOk;
     const std::unique_ptr<base::FolderPublisher> publisher =
-            base::FolderPublisher::Begin(options.out, "tidepool expand", &begin);
+            BeginPublishing(options.out, "tidepool expand", &begin_code);
     if (!publisher) {
-        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
-        return PublishExitCode(begin);
+        return begin_code;
     }
     // Everything goes to a private staging folder, removed by the publisher unless published.
     const std::filesystem::path& staging = publisher->Staging();

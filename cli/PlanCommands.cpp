@@ -5,7 +5,9 @@
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/report/ImageMetrics.h"
+#include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
 #include "tidepool/runner/ScenePlanner.h"
@@ -161,6 +163,23 @@ int RunPlan(const PlanCommandOptions& options) {
         return kExitUsage;
     }
 
+    // The output folder (plans.json and the candidates' images) is published whole: a folder
+    // that is not tidepool's is refused before any rendering, and a killed run leaves the
+    // previous plans as they were.
+    std::string out = options.out;
+    if (out.empty() && options.all) {
+        out = "reports/out/plan";
+    }
+    std::unique_ptr<base::FolderPublisher> publisher;
+    if (!out.empty()) {
+        int begin_code = kExitOk;
+        publisher = BeginPublishing(out, "tidepool plan", &begin_code);
+        if (!publisher) {
+            return begin_code;
+        }
+        plan_options.out_dir = publisher->Staging();
+    }
+
     // llvmpipe reads its thread count when the first context is created.
     const std::string threads = std::to_string(options.threads);
     setenv("LP_NUM_THREADS", threads.c_str(), 1);
@@ -172,13 +191,6 @@ int RunPlan(const PlanCommandOptions& options) {
     plan_options.clock = ChooseFrameClock(context.context->Environment().renderer, threads,
                                           context.context->Environment().timer_query)
                                  .clock;
-    std::string out = options.out;
-    if (out.empty() && options.all) {
-        out = "reports/out/plan";
-    }
-    if (!out.empty()) {
-        plan_options.out_dir = out;
-    }
     std::vector<ScenePlan> plans;
     int failed = 0;
     for (const SceneDescription& scene : scenes) {
@@ -193,13 +205,18 @@ int RunPlan(const PlanCommandOptions& options) {
     if (options.json) {
         std::printf("%s\n", JsonText(json, 2).c_str());
     }
-    if (!out.empty()) {
-        const std::filesystem::path path = std::filesystem::path(out) / "plans.json";
-        const std::string error = base::WriteFileAtomically(path, JsonText(json, 2) + "\n");
+    if (publisher) {
+        const std::string error = base::WriteFileAtomically(
+                publisher->Staging() / report::kPlansFileName, JsonText(json, 2) + "\n");
         if (!error.empty()) {
             std::fprintf(stderr, "error: %s\n", error.c_str());
             return kExitEnvironment;
         }
+        if (const base::PublishError e = publisher->Publish(); e.Failed()) {
+            std::fprintf(stderr, "error: %s\n", e.message.c_str());
+            return PublishExitCode(e);
+        }
+        const std::filesystem::path path = publisher->Target() / report::kPlansFileName;
         std::fprintf(stderr, "plan: %zu scenes; plans in %s\n", plans.size(), path.c_str());
     }
     return failed > 0 ? kExitShaderErrors : kExitOk;

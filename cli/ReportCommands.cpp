@@ -364,12 +364,11 @@ int RunAll(const RunCommandOptions& options) {
     }
     // The render folder (images, results.json, stability.json, plans.json) is staged whole and
     // published before the report reads it, so a killed run leaves the previous one intact.
-    base::PublishError begin;
+    int begin_code = kExitOk;
     const std::unique_ptr<base::FolderPublisher> publisher =
-            base::FolderPublisher::Begin(render_dir, "tidepool run", &begin);
+            BeginPublishing(render_dir, "tidepool run", &begin_code);
     if (!publisher) {
-        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
-        return PublishExitCode(begin);
+        return begin_code;
     }
     const std::filesystem::path& staging = publisher->Staging();
     ValidationOptions validation_options;

@@ -104,12 +104,11 @@ int RunRunner(const RunnerOptions& options) {
     const std::string& threads = run.host.lp_num_threads;
     // The whole folder (images, then results.json) is staged and published with one rename, so
     // a killed or failed render leaves the previous good output as it was.
-    base::PublishError begin;
+    int begin_code = kExitOk;
     const std::unique_ptr<base::FolderPublisher> publisher =
-            base::FolderPublisher::Begin(options.out, "tidepool " + options.command, &begin);
+            BeginPublishing(options.out, "tidepool " + options.command, &begin_code);
     if (!publisher) {
-        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
-        return PublishExitCode(begin);
+        return begin_code;
     }
     run.out_dir = publisher->Staging();
     GlContextResult context = CreateGlContext(backend);

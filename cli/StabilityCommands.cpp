@@ -11,9 +11,9 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
-#include "tidepool/base/AtomicFile.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/StabilityReport.h"
 
@@ -28,6 +28,13 @@ struct StabilityOptions {
     int threads = 2;
     bool json = false;
 };
+
+int WriteStabilityInto(const std::string& folder, const std::string& json,
+                       bool check_only = false) {
+    return WriteOwnJsonInto(folder, std::string(report::kStabilityFileName),
+                            std::string(report::kStabilitySchemaName), "stability report", json,
+                            check_only);
+}
 
 // RGBA32F targets: 4096² is already 256 MiB each.
 constexpr int kMaxStabilitySide = 4096;
@@ -46,6 +53,13 @@ int RunStability(const StabilityOptions& options) {
     if (options.threads < 0) {
         std::fprintf(stderr, "error: --threads must be at least 0, not %d\n", options.threads);
         return kExitUsage;
+    }
+    // A stability.json of someone else's is refused before the catalogue runs; tidepool's own is
+    // replaced atomically, so a killed run leaves the previous one whole.
+    const std::filesystem::path path =
+            std::filesystem::path(options.out) / report::kStabilityFileName;
+    if (const int code = WriteStabilityInto(options.out, "", true); code != kExitOk) {
+        return code;
     }
     const LoadedMatrix loaded = LoadAndExpand(options.config);
     if (!loaded.config) {
@@ -97,11 +111,8 @@ int RunStability(const StabilityOptions& options) {
     }
 
     const std::string json = StabilityReportJson(report);
-    const std::filesystem::path path = std::filesystem::path(options.out) / "stability.json";
-    const std::string write_error = base::WriteFileAtomically(path, json);
-    if (!write_error.empty()) {
-        std::fprintf(stderr, "error: %s\n", write_error.c_str());
-        return kExitEnvironment;
+    if (const int code = WriteStabilityInto(options.out, json); code != kExitOk) {
+        return code;
     }
     int failed = 0;
     for (const StabilityCaseResult& r : report.cases) {

@@ -76,8 +76,30 @@ std::vector<std::vector<Token>> Lines(std::string_view text) {
     return lines;
 }
 
-// Object-like and function-like macros with their replacement lists; sizes are memoised and
-// capped at kMaxExpandedTokens + 1 so that even a 1000-level bomb is estimated in linear time.
+// Adds and multiplies token counts, saturating at kMaxExpandedTokens + 1 so that nothing
+// overflows and a 1000-level bomb costs no more to estimate than a small one.
+long long CappedSum(long long a, long long b) {
+    return std::min(a + b, kMaxExpandedTokens + 1);
+}
+long long CappedProduct(long long a, long long b) {
+    return a == 0 || b == 0 ? 0 : a > (kMaxExpandedTokens + 1) / b ? kMaxExpandedTokens + 1 : a * b;
+}
+
+// The size of some tokens once expanded, as an affine function of the sizes of the arguments of
+// the function-like macro they are the body of: constant + Σ per_param[p] × |argument p|. A
+// function-like macro that uses its parameter twice doubles it, so `#define B(x) A(A(x))` over
+// `#define A(x) x x` is 4 × |x|: nesting such macros 30 levels is 2^30 tokens, which this
+// estimate sees without expanding anything.
+struct Expansion {
+    long long constant = 0;
+    std::vector<long long> per_param;
+};
+
+// Object-like and function-like macros with their replacement lists; the expansion of each is
+// memoised, so even a 1000-level bomb is estimated in linear time. The estimate follows the
+// rules that matter for size (arguments are expanded before substitution, a macro is not
+// expanded inside its own expansion, C99 §6.10.3.1 and §6.10.3.4) and ignores the rest; it is
+// an upper estimate for the bombs that matter (repeated parameters and repeated names).
 class MacroTable {
 public:
     void Define(const std::vector<Token>& directive) {
@@ -90,54 +112,128 @@ public:
         if (directive.size() > 3 && directive[3].text == "(" &&
             directive[3].column ==
                     directive[2].column + static_cast<int>(directive[2].text.size())) {
+            macro.function_like = true;
             while (body < directive.size() && directive[body].text != ")") {
                 if (directive[body].identifier) {
-                    macro.params.insert(std::string(directive[body].text));
+                    macro.params.emplace_back(directive[body].text);
                 }
                 ++body;
             }
             ++body;
         }
         for (std::size_t k = body; k < directive.size(); ++k) {
-            macro.body.emplace_back(directive[k].text);
+            macro.body.push_back(directive[k].text);
         }
         macros_[std::string(directive[2].text)] = std::move(macro);
-        sizes_.clear();
+        expansions_.clear();
     }
     void Undefine(const std::vector<Token>& directive) {
         if (directive.size() >= 3) {
             macros_.erase(std::string(directive[2].text));
-            sizes_.clear();
+            expansions_.clear();
         }
     }
-    // Tokens `name` stands for once expanded (1 for a non-macro).
-    long long Size(const std::string& name) {
-        auto macro = macros_.find(name);
-        if (macro == macros_.end() || expanding_.count(name) != 0) {
-            return 1;  // not a macro, or (C99 §6.10.3.4) a name inside its own expansion
-        }
-        if (auto known = sizes_.find(name); known != sizes_.end()) {
-            return known->second;
-        }
-        expanding_.insert(name);
-        long long size = 0;
-        for (const std::string& token : macro->second.body) {
-            size += macro->second.params.count(token) != 0 ? 1 : Size(token);
-            size = std::min(size, kMaxExpandedTokens + 1);
-        }
-        expanding_.erase(name);
-        sizes_[name] = size;
-        return size;
+    // Tokens that tokens[*at] stands for once expanded (1 for a non-macro), advancing *at past
+    // the token and, for a function-like macro invoked there, past its arguments.
+    long long SizeAt(const std::vector<std::string_view>& tokens, std::size_t* at) {
+        return ExpandAt(tokens, at, {}).constant;
     }
 
 private:
     struct Macro {
-        std::set<std::string> params;
-        std::vector<std::string> body;
+        bool function_like = false;
+        std::vector<std::string> params;
+        std::vector<std::string_view> body;
     };
+
+    // The expansion of tokens[*at] (and of its arguments, when it invokes a function-like
+    // macro) inside the body of a macro with parameters `params`.
+    Expansion ExpandAt(const std::vector<std::string_view>& tokens, std::size_t* at,
+                       const std::vector<std::string>& params) {
+        const std::string_view token = tokens[*at];
+        ++*at;
+        Expansion result{0, std::vector<long long>(params.size(), 0)};
+        // Each level of macros within macros, or of invocations within arguments, is a level
+        // of recursion here (and in glslang): a file of 100,000 nested ones would overflow the
+        // stack, so deeper nesting than any shader needs counts as too large.
+        if (depth_ >= kMaxNesting) {
+            result.constant = kMaxExpandedTokens + 1;
+            return result;
+        }
+        ++depth_;
+        const struct Leave {
+            int& depth;
+            ~Leave() { --depth; }
+        } leave{depth_};
+        if (const auto param = std::find(params.begin(), params.end(), token);
+            param != params.end()) {
+            result.per_param[static_cast<std::size_t>(param - params.begin())] = 1;
+            return result;
+        }
+        const std::string name(token);
+        const auto macro = macros_.find(name);
+        const bool invoked = *at < tokens.size() && tokens[*at] == "(";
+        if (macro == macros_.end() || expanding_.count(name) != 0 ||
+            (macro->second.function_like && !invoked)) {
+            result.constant = 1;  // not a macro, a name inside its own expansion, or no call
+            return result;
+        }
+        const Expansion& own = Of(name, macro->second);
+        if (!macro->second.function_like) {
+            result.constant = own.constant;
+            return result;
+        }
+        // The arguments: each is expanded, then copied once per use of its parameter.
+        ++*at;  // (
+        result.constant = own.constant;
+        std::size_t arg = 0;
+        int depth = 0;
+        while (*at < tokens.size()) {
+            const std::string_view next = tokens[*at];
+            if (depth == 0 && (next == ")" || next == ",")) {
+                ++*at;
+                if (next == ")") {
+                    break;
+                }
+                ++arg;
+                continue;
+            }
+            depth += next == "(" ? 1 : next == ")" ? -1 : 0;
+            const long long copies = arg < own.per_param.size() ? own.per_param[arg] : 0;
+            const Expansion piece = ExpandAt(tokens, at, params);
+            result.constant = CappedSum(result.constant, CappedProduct(copies, piece.constant));
+            for (std::size_t p = 0; p < params.size(); ++p) {
+                result.per_param[p] = CappedSum(result.per_param[p],
+                                                CappedProduct(copies, piece.per_param[p]));
+            }
+        }
+        return result;
+    }
+
+    // The expansion of a macro's body in terms of its own parameters.
+    const Expansion& Of(const std::string& name, const Macro& macro) {
+        if (auto known = expansions_.find(name); known != expansions_.end()) {
+            return known->second;
+        }
+        expanding_.insert(name);
+        Expansion total{0, std::vector<long long>(macro.params.size(), 0)};
+        for (std::size_t at = 0; at < macro.body.size();) {
+            const Expansion piece = ExpandAt(macro.body, &at, macro.params);
+            total.constant = CappedSum(total.constant, piece.constant);
+            for (std::size_t p = 0; p < total.per_param.size(); ++p) {
+                total.per_param[p] = CappedSum(total.per_param[p], piece.per_param[p]);
+            }
+        }
+        expanding_.erase(name);
+        return expansions_[name] = std::move(total);
+    }
+
+    static constexpr int kMaxNesting = 1000;
+
     std::unordered_map<std::string, Macro> macros_;
-    std::unordered_map<std::string, long long> sizes_;
+    std::unordered_map<std::string, Expansion> expansions_;
     std::set<std::string> expanding_;
+    int depth_ = 0;
 };
 
 }  // namespace
@@ -158,41 +254,54 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
     }
     MacroTable macros;
     long long total = 0;
+    // Tokens of the lines since the last directive: a macro's arguments may span lines.
+    std::vector<Token> run;
+    // Adds up one run; false (with the error added) once the shader is too large.
+    auto measure = [&](bool in_file) {
+        std::vector<std::string_view> texts;
+        for (const Token& token : run) {
+            texts.push_back(token.text);
+        }
+        for (std::size_t at = 0; at < run.size();) {
+            const Token& token = run[at];
+            const long long size = macros.SizeAt(texts, &at);
+            total = CappedSum(total, size);
+            if (size > kMaxExpandedTokens || total > kMaxExpandedTokens) {
+                const std::string message =
+                        size > kMaxExpandedTokens
+                                ? fmt::format("macro '{}' expands to more than {} tokens (a "
+                                              "macro bomb); tidepool refuses shaders that large",
+                                              token.text, kMaxExpandedTokens)
+                                : fmt::format("the shader expands through its macros to more "
+                                              "than {} tokens; tidepool refuses shaders that "
+                                              "large",
+                                              kMaxExpandedTokens);
+                errors.push_back(MakeError(file, in_file ? token.line : 0,
+                                           in_file ? token.column : 0, message));
+                return false;
+            }
+        }
+        run.clear();
+        return true;
+    };
     for (const std::string_view part : {preamble, text}) {
         const bool in_file = part.data() == text.data();
         for (const std::vector<Token>& line : Lines(part)) {
-            if (line.empty()) {
+            if (line.empty() || line[0].text != "#") {
+                run.insert(run.end(), line.begin(), line.end());
                 continue;
             }
-            if (line[0].text == "#") {
-                if (line.size() >= 2 && line[1].text == "define") {
-                    macros.Define(line);
-                } else if (line.size() >= 2 && line[1].text == "undef") {
-                    macros.Undefine(line);
-                }
-                continue;
+            if (!measure(in_file)) {
+                return errors;
             }
-            for (const Token& token : line) {
-                const long long size = token.identifier ? macros.Size(std::string(token.text)) : 1;
-                total = std::min(total + size, kMaxExpandedTokens + 1);
-                if (size > kMaxExpandedTokens || total > kMaxExpandedTokens) {
-                    const std::string message =
-                            size > kMaxExpandedTokens
-                                    ? fmt::format(
-                                              "macro '{}' expands to more than {} tokens "
-                                              "(a macro bomb); tidepool refuses shaders "
-                                              "that large",
-                                              token.text, kMaxExpandedTokens)
-                                    : fmt::format(
-                                              "the shader expands through its macros to "
-                                              "more than {} tokens; tidepool refuses "
-                                              "shaders that large",
-                                              kMaxExpandedTokens);
-                    errors.push_back(MakeError(file, in_file ? token.line : 0,
-                                               in_file ? token.column : 0, message));
-                    return errors;
-                }
+            if (line.size() >= 2 && line[1].text == "define") {
+                macros.Define(line);
+            } else if (line.size() >= 2 && line[1].text == "undef") {
+                macros.Undefine(line);
             }
+        }
+        if (!measure(in_file)) {
+            return errors;
         }
     }
     return errors;
@@ -297,12 +406,88 @@ long long UniformVectors(const glslang::TType& type) {
     return per_element;
 }
 
+// Array elements one declaration of `type` holds: every dimension, times the elements of each
+// struct member for an array of structs (1 for a type with no array in it).
+long long ArrayElements(const glslang::TType& type) {
+    long long per_element = 1;
+    if (type.isStruct()) {
+        per_element = 0;
+        for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            per_element = std::min(per_element + ArrayElements(*member.type), 1LL << 40);
+        }
+        per_element = std::max(per_element, 1LL);
+    }
+    long long elements = per_element;
+    if (type.isArray()) {
+        const glslang::TArraySizes* sizes = type.getArraySizes();
+        for (int d = 0; d < sizes->getNumDims(); ++d) {
+            elements = std::min(elements * std::max(sizes->getDimSize(d), 1), 1LL << 40);
+        }
+    }
+    return elements;
+}
+
+bool HasArray(const glslang::TType& type) {
+    if (type.isArray()) {
+        return true;
+    }
+    if (type.isStruct()) {
+        for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            if (HasArray(*member.type)) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+// Every symbol the tree mentions (declarations with initialisers, parameters, uses), once each,
+// in the order first met.
+class SymbolCollector : public glslang::TIntermTraverser {
+public:
+    void visitSymbol(glslang::TIntermSymbol* symbol) override {
+        if (seen_.insert(symbol->getId()).second) {
+            symbols.push_back(symbol);
+        }
+    }
+    std::vector<glslang::TIntermSymbol*> symbols;
+
+private:
+    std::set<long long> seen_;
+};
+
 }  // namespace
 
 std::vector<Diagnostic> CheckStageRules(const glslang::TIntermediate& stage,
                                         const TBuiltInResource& resources, const std::string& file,
                                         std::string_view source) {
     std::vector<Diagnostic> errors;
+    // Arrays: globals are linker objects, and the tree holds every other declaration that
+    // matters (an unused local without an initialiser costs nothing and leaves no trace).
+    SymbolCollector symbols;
+    if (stage.getTreeRoot() != nullptr) {
+        stage.getTreeRoot()->traverse(&symbols);
+    }
+    std::set<std::string> reported;
+    for (glslang::TIntermSymbol* symbol : symbols.symbols) {
+        const glslang::TType& type = symbol->getType();
+        const std::string name = symbol->getName().c_str();
+        // A uniform has the tighter bound of the stage's uniform vectors, checked below.
+        if (type.getQualifier().storage == glslang::EvqUniform || IsBuiltIn(*symbol) ||
+            !HasArray(type) || reported.count(name) != 0) {
+            continue;
+        }
+        const long long elements = ArrayElements(type);
+        if (elements > kMaxArrayElements) {
+            reported.insert(name);
+            const auto [line, column] = FirstMention(source, name);
+            errors.push_back(MakeError(
+                    file, line, column,
+                    fmt::format("'{}' holds {} array elements, more than the {} one declaration "
+                                "may hold; no GPU gives a shader invocation that much memory",
+                                name, elements, kMaxArrayElements)));
+        }
+    }
     const bool vertex = stage.getStage() == EShLangVertex;
     const long long limit =
             vertex ? resources.maxVertexUniformVectors : resources.maxFragmentUniformVectors;

@@ -32,7 +32,16 @@ inline constexpr long long kMaxExpandedTokens = 1LL << 17;
 std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view preamble,
                                         const std::string& file);
 
-/// Checks one parsed stage: no uniform declaration may need more vectors than the stage has
+/// One declaration (a variable, a parameter, a struct member, counted through arrays of structs
+/// and every dimension of an array) may hold at most this many array elements.
+/// No GPU gives one shader invocation that much memory (64 Ki vec4s are 1 MiB per vertex or
+/// fragment, and llvmpipe puts local arrays on its threads' stacks), while the shipped shaders
+/// and the dEQP ES 2.0 corpus write no array size above 4.
+inline constexpr long long kMaxArrayElements = 1LL << 16;
+
+/// Checks one parsed stage: every array declaration the stage keeps (globals, and whatever the
+/// code uses: locals, parameters) holds at most kMaxArrayElements elements; and no uniform
+/// declaration may need more vectors than the stage has
 /// (GLSL ES 1.00 Appendix A §7 and §7.4, gl_MaxVertexUniformVectors and
 /// gl_MaxFragmentUniformVectors; GLSL ES 3.00 §4.3.5 and §7.3). `source` is the user's text,
 /// where the offending declaration is found for its line and column.

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <functional>
 #include <cctype>
+#include <cstdlib>
 #include <set>
 #include <fstream>
 #include <map>
@@ -50,16 +51,35 @@ namespace {
 // the sanitizers on a loaded two-core machine.
 constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0};
 
+// The limits in force. TIDEPOOL_TEST_GLSLANG_SECONDS (a number of seconds) lowers the time
+// limit so that tests can see a hang of glslang handled end to end in a second instead of 20;
+// it can only lower it, so no environment switches the guard off.
+const WorkerLimits& GlslangLimits() {
+    static const WorkerLimits limits = [] {
+        WorkerLimits chosen = kGlslangLimits;
+        if (const char* text = std::getenv("TIDEPOOL_TEST_GLSLANG_SECONDS"); text != nullptr) {
+            char* end = nullptr;
+            const double seconds = std::strtod(text, &end);
+            if (end != text && *end == '\0' && seconds > 0 && seconds < chosen.seconds_per_item) {
+                chosen.seconds_per_item = seconds;
+            }
+        }
+        return chosen;
+    }();
+    return limits;
+}
+
 // What a failed worker item means for the stage or link it was working on.
 std::string InternalCompilerError(const WorkerItemResult& result, std::string_view doing) {
     std::string what;
     switch (result.failure) {
         case WorkerFailure::kOutOfMemory:
             what = fmt::format("glslang ran out of memory (limit {} MiB)",
-                               kGlslangLimits.memory_bytes >> 20);
+                               GlslangLimits().memory_bytes >> 20);
             break;
         case WorkerFailure::kTimedOut:
-            what = fmt::format("glslang took longer than {} s", kGlslangLimits.seconds_per_item);
+            what = fmt::format("glslang took longer than {} s",
+                               GlslangLimits().seconds_per_item);
             break;
         default:
             what = fmt::format("glslang crashed ({})", result.detail);
@@ -358,7 +378,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         return !job.source->ok || !job.source->text_errors.empty();
     };
     const std::vector<WorkerItemResult> hashed = RunInWorkerProcesses(
-            group_list.size(), options.jobs, kGlslangLimits,
+            group_list.size(), options.jobs, GlslangLimits(),
             [&](std::size_t g, const ProgressNote&) {
                 StageJob& first = jobs[group_list[g]->front()];
                 HashStage(first);
@@ -452,7 +472,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         return GlslangStageInput{job.file, job.source->text, job.stage, job.target, job.defines};
     };
     RunInWorkerProcesses(
-            links.size(), options.jobs, kGlslangLimits,
+            links.size(), options.jobs, GlslangLimits(),
             [&](std::size_t i, const ProgressNote& note) -> std::string {
                 // In a worker, `decided` is the parent's state when the worker was forked.
                 const LinkJob& link = links[i];
@@ -578,7 +598,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
     auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
     std::vector<bool> reported(files.size(), false);
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
-            groups.size(), 2, kGlslangLimits,
+            groups.size(), 2, GlslangLimits(),
             [&](std::size_t g, const ProgressNote& note) {
                 std::vector<ItemStage> stages;
                 for (std::size_t i : groups[g]) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstddef>
 #include <cstring>
 #include <new>
 
@@ -14,6 +15,26 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#if defined(__SANITIZE_ADDRESS__)
+#define TIDEPOOL_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TIDEPOOL_ADDRESS_SANITIZER 1
+#endif
+#endif
+
+#if defined(TIDEPOOL_ADDRESS_SANITIZER)
+// From the sanitizer runtime's allocator interface (sanitizer/allocator_interface.h, which GCC 12
+// does not install): hooks called after every allocation and before every release, and the size
+// of a live allocation.
+extern "C" {
+int __sanitizer_install_malloc_and_free_hooks(void (*malloc_hook)(const volatile void*,
+                                                                  std::size_t),
+                                              void (*free_hook)(const volatile void*));
+std::size_t __sanitizer_get_allocated_size(const volatile void* pointer);
+}
+#endif
+
 namespace tidepool {
 namespace {
 
@@ -23,18 +44,40 @@ constexpr int kOutOfMemoryExit = 86;
 // A worker whose item threw something else.
 constexpr int kExceptionExit = 87;
 
+#if defined(TIDEPOOL_ADDRESS_SANITIZER)
 // AddressSanitizer reserves terabytes of address space for its shadow memory, so an
-// address-space limit would stop every sanitized worker before it starts.
-#if defined(__SANITIZE_ADDRESS__)
-constexpr bool kAddressSpaceLimitWorks = false;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAddressSpaceLimitWorks = false;
+// address-space limit would stop every sanitized worker before it starts; and it reports a
+// failed allocation and aborts instead of letting the new-handler see it. A sanitized worker
+// therefore counts what it holds through the sanitizer's allocation hooks and leaves as out of
+// memory once that passes the limit, so the limit and its handling are tested there too.
+//
+// Bytes the worker allocated since it started and still holds (signed: memory inherited from
+// the parent may be freed without having been counted), and the ceiling; one thread per worker.
+long long g_worker_bytes = 0;
+long long g_worker_ceiling = 0;
+
+void CountAllocation(const volatile void*, std::size_t size) {
+    g_worker_bytes += static_cast<long long>(size);
+    if (g_worker_ceiling > 0 && g_worker_bytes > g_worker_ceiling) {
+        ::_exit(kOutOfMemoryExit);
+    }
+}
+
+void CountRelease(const volatile void* pointer) {
+    g_worker_bytes -= static_cast<long long>(
+            __sanitizer_get_allocated_size(pointer));
+}
+
+void LimitMemory(std::uint64_t bytes) {
+    g_worker_ceiling = static_cast<long long>(bytes);
+    __sanitizer_install_malloc_and_free_hooks(CountAllocation, CountRelease);
+}
 #else
-constexpr bool kAddressSpaceLimitWorks = true;
-#endif
-#else
-constexpr bool kAddressSpaceLimitWorks = true;
+// An address-space limit: an allocation beyond it fails, and the new-handler ends the worker.
+void LimitMemory(std::uint64_t bytes) {
+    const rlimit memory{bytes, bytes};
+    ::setrlimit(RLIMIT_AS, &memory);
+}
 #endif
 
 using Clock = std::chrono::steady_clock;
@@ -85,9 +128,8 @@ bool SendRecord(int fd, char type, const std::string& bytes) {
         const std::function<std::string(std::size_t, const ProgressNote&)>& work) {
     const rlimit no_core{0, 0};
     ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
-    if (limits.memory_bytes > 0 && kAddressSpaceLimitWorks) {
-        const rlimit memory{limits.memory_bytes, limits.memory_bytes};
-        ::setrlimit(RLIMIT_AS, &memory);
+    if (limits.memory_bytes > 0) {
+        LimitMemory(limits.memory_bytes);
     }
     std::set_new_handler(ExitOutOfMemory);
     for (;;) {

@@ -3,6 +3,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -14,10 +15,12 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "FileContents.h"
 #include "TempDir.h"
 
 namespace {
 
+using tidepool::testing::ReadText;
 using tidepool::testing::TempDir;
 
 struct CommandResult {
@@ -42,8 +45,12 @@ CommandResult RunShell(const std::string& command) {
     return result;
 }
 
-std::string TidepoolCommand(const std::string& args, const std::filesystem::path& cwd) {
-    return "cd '" + cwd.string() + "' && '" + std::string(TIDEPOOL_BINARY) + "' " + args;
+// The shell command that runs tidepool with `args` in `cwd`, with `environment` (NAME=VALUE
+// words) set for it alone.
+std::string TidepoolCommand(const std::string& args, const std::filesystem::path& cwd,
+                            const std::string& environment = "") {
+    return "cd '" + cwd.string() + "' && " + environment + " '" + std::string(TIDEPOOL_BINARY) +
+           "' " + args;
 }
 
 // Runs the tidepool binary with `args` (a shell fragment) in `cwd`.
@@ -60,9 +67,11 @@ struct SplitResult {
 
 // Runs the tidepool binary with `args` in `cwd`, keeping stdout and stderr apart (stderr goes
 // through a file, so a diagnostic can never be mistaken for JSON on stdout).
-SplitResult RunTidepoolSplit(const std::string& args, const std::filesystem::path& cwd) {
+SplitResult RunTidepoolSplit(const std::string& args, const std::filesystem::path& cwd,
+                             const std::string& environment = "") {
     const std::filesystem::path err_file = cwd / ".tidepool-stderr";
-    const CommandResult r = RunShell(TidepoolCommand(args, cwd) + " 2>'" + err_file.string() + "'");
+    const CommandResult r = RunShell(TidepoolCommand(args, cwd, environment) + " 2>'" +
+                                     err_file.string() + "'");
     SplitResult split{r.exit_code, r.out, {}};
     std::ifstream in(err_file, std::ios::binary);
     std::ostringstream err;
@@ -351,14 +360,26 @@ TEST_F(CliTest, CyclicAliasInConfigExitsTwoWithItsPosition) {
     }
 }
 
+// Every command that reads the configuration, `run` included: a Latin-1 byte in a preset's name
+// or in its description is an error at its line and column, and nothing is written.
 TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "presets:\n  caf\xE9: {program: p}\n");
-    const SplitResult r = RunTidepoolSplit("expand --json --config v.yaml", dir_.Path());
-    EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_EQ(r.err, "v.yaml:6:6: error: this byte is not UTF-8; YAML files are Unicode text: "
-                     "save the file as UTF-8\n");
-    EXPECT_EQ(r.out, "");
+    const std::string program = "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n";
+    const std::pair<std::string, std::string> cases[] = {
+            {"presets:\n  caf\xE9: {program: p}\n", "v.yaml:6:6"},
+            {"presets:\n  cafe:\n    program: p\n    description: caf\xE9\n", "v.yaml:8:21"}};
+    for (const auto& [presets, place] : cases) {
+        dir_.Write("v.yaml", program + presets);
+        for (const char* command : {"expand --json", "validate --json --out out", "run --out out"}) {
+            const SplitResult r =
+                    RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
+            EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
+            EXPECT_EQ(r.err, place + ": error: this byte is not UTF-8; YAML files are Unicode "
+                                     "text: save the file as UTF-8\n")
+                    << command;
+            EXPECT_EQ(r.out, "") << command;
+            EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "out")) << command;
+        }
+    }
 }
 
 TEST_F(CliTest, ConfigFileNameThatIsNotUtf8StillWritesJson) {
@@ -388,6 +409,37 @@ TEST_F(CliTest, ShaderDiagnosticQuotingANonUtf8ByteIsEscapedInJson) {
     EXPECT_EQ(matrix.exit_code, 1) << matrix.err;
     EXPECT_TRUE(nlohmann::json::accept(matrix.out));
     EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "m" / "manifest.json"));
+}
+
+// `run` writes every diagnostic into its manifest and report: one that quotes a byte that is not
+// UTF-8 is escaped there, never an abort. A tiny matrix (one water variant, the programs the
+// renderer draws with, and the broken program) at 16x16 keeps the render short.
+TEST_F(CliTest, RunWithAShaderDiagnosticQuotingANonUtf8ByteEscapesIt) {
+    const std::string shaders = std::string(TIDEPOOL_SOURCE_ROOT) + "/shaders/";
+    std::string config = "programs:\n";
+    for (const char* program : {"water", "water_composite", "skybox", "model"}) {
+        config += std::string("  ") + program + ":\n    vertex: " + shaders + program +
+                  ".vsh\n    fragment: " + shaders + program + ".fsh\n";
+    }
+    config += "  broken:\n    vertex: s.vsh\n    fragment: bad.fsh\n";
+    dir_.Write("v.yaml", config);
+    dir_.Write("bad.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+                          "vec4(caf\xE9); }\n");
+    const SplitResult r = RunTidepoolSplit(
+            "run --config v.yaml --out out --size 16x16 --coarse-frames 1 --warmup 0 "
+            "--min-pairs 10 --max-pairs 10 --no-stability --no-plans",
+            dir_.Path());
+    // 1 for the broken variant (and the comparisons, whose presets this matrix lacks); an abort
+    // of the JSON writer was 134.
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("bad.fsh:3:"), std::string::npos) << r.err;
+    const std::string manifest = ReadText(dir_.Path() / "out/manifest/manifest.json");
+    ASSERT_TRUE(nlohmann::json::accept(manifest)) << manifest.substr(0, 200);
+    // glslang quotes the byte alone; the manifest has U+FFFD (in UTF-8) in its place.
+    EXPECT_NE(manifest.find("\"message\": \"'\xEF\xBF\xBD' : unexpected token\""),
+              std::string::npos)
+            << manifest;
+    EXPECT_TRUE(nlohmann::json::accept(ReadText(dir_.Path() / "out/default/data.json")));
 }
 
 TEST_F(CliTest, ShaderWithAByteOrderMarkIsValidAndKeepsItsLineNumbers) {
@@ -428,6 +480,54 @@ TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err, "bomb.vsh:32:15: error: macro 'M0' expands to more than 131072 tokens (a "
                      "macro bomb); tidepool refuses shaders that large\n");
+}
+
+// A shader that keeps glslang busy far beyond its time limit: an `#if` whose condition expands
+// to 2^40 tokens (the macro-size check measures code, not `#if` lines; the time limit is the
+// guard for what that check misses). TIDEPOOL_TEST_GLSLANG_SECONDS lowers the 20 s limit to 1 s.
+TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
+    std::string fragment = "#version 100\nprecision mediump float;\n";
+    for (int level = 0; level < 40; ++level) {
+        fragment += "#define M" + std::to_string(level) + " M" + std::to_string(level + 1) +
+                    " + M" + std::to_string(level + 1) + "\n";
+    }
+    fragment += "#define M40 1\n#ifdef HANG\n#if M0\n#endif\n#endif\n"
+                "void main() { gl_FragColor = vec4(1.0); }\n";
+    dir_.Write("s.fsh", fragment);
+    WriteConfig("", "    features: [HANG]\n");
+    const auto start = std::chrono::steady_clock::now();
+    const SplitResult r = RunTidepoolSplit(
+            "validate --config v.yaml", dir_.Path(), "TIDEPOOL_TEST_GLSLANG_SECONDS=1");
+    const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err, "s.fsh: error: internal compiler error: glslang took longer than 1 s while "
+                     "preprocessing this stage; the shader may be valid or not, and the run went "
+                     "on without it [p:HANG]\n");
+    // The variant without HANG was validated, and found valid.
+    EXPECT_NE(r.out.find("2 variants"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("; 1 INVALID"), std::string::npos) << r.out;
+    EXPECT_LT(seconds, 15.0);
+}
+
+TEST_F(CliTest, FunctionLikeMacroBombIsRefusedQuicklyWithItsPosition) {
+    // Each level uses its parameter twice over: F29(x) is 2^59 copies of x.
+    std::string bomb = "#version 100\n#define F0(x) x x\n";
+    for (int level = 1; level < 30; ++level) {
+        bomb += "#define F" + std::to_string(level) + "(x) F" + std::to_string(level - 1) + "(F" +
+                std::to_string(level - 1) + "(x))\n";
+    }
+    bomb += "attribute vec4 p;\nvoid main() { gl_Position = p * F29(1.0); }\n";
+    dir_.Write("bomb.vsh", bomb);
+    const auto start = std::chrono::steady_clock::now();
+    const SplitResult r = RunTidepoolSplit("validate bomb.vsh", dir_.Path());
+    const double seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "bomb.vsh:33:33: error: macro 'F29' expands to more than 131072 tokens (a "
+                     "macro bomb); tidepool refuses shaders that large\n");
+    // Refused by the pre-check, not by the worker's 20 s limit.
+    EXPECT_LT(seconds, 5.0);
 }
 
 TEST_F(CliTest, DefineTakesOneValueSoTheFileAfterItIsValidated) {
@@ -505,6 +605,14 @@ INSTANTIATE_TEST_SUITE_P(
                                 "vectors, more than the 16 a fragment shader has "
                                 "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, GLSL "
                                 "ES 3.00 §4.3.5)\n"},
+                RejectedShaders{"huge local array",
+                                {{"local.fsh", "#version 100\nprecision mediump float;\nvoid "
+                                               "main() {\n  float big[1000000000];\n  "
+                                               "gl_FragColor = vec4(big[0]);\n}\n"}},
+                                "local.fsh",
+                                "local.fsh:4:9: error: 'big' holds 1000000000 array elements, "
+                                "more than the 65536 one declaration may hold; no GPU gives a "
+                                "shader invocation that much memory\n"},
                 RejectedShaders{"stages of different versions",
                                 {{"es3.fsh", "#version 300 es\nprecision mediump float;\nout "
                                              "vec4 c;\nvoid main() { c = vec4(1.0); }\n"}},

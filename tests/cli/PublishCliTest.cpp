@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <random>
@@ -177,16 +178,27 @@ TEST(PublishCliTest, ExpandOutReplacesItsOwnOutputAlsoWithATrailingSlash) {
     EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"D"});
 }
 
-TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
-    TempDir dir;
-    dir.Write("D/manifest.json", "{\"name\": \"my web app\"}");
-    const Outcome r = RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()});
+// Runs `command --config kConfig --out D` against a folder D that holds a user's `file`, and
+// checks that it is refused before any work, naming the file as not a tidepool `what`, with the
+// file unchanged.
+void ExpectUsersFileRefused(const std::string& command, const std::string& file,
+                            const std::string& what, const TempDir& dir) {
+    const std::string mine = "{\"name\": \"my web app\"}";
+    dir.Write("D/" + file, mine);
+    const Outcome r =
+            RunBinary({command, "--config", kConfig, "--out", (dir.Path() / "D").string()});
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find((dir.Path() / "D/manifest.json").string() +
-                         ": exists and is not a tidepool manifest"),
+    EXPECT_NE(r.err.find((dir.Path() / "D" / file).string() + ": exists and is not a tidepool " +
+                         what),
               std::string::npos)
             << r.err;
-    EXPECT_EQ(ReadText(dir.Path() / "D/manifest.json"), "{\"name\": \"my web app\"}");
+    EXPECT_EQ(ReadText(dir.Path() / "D" / file), mine);
+    EXPECT_EQ(FolderEntries(dir.Path() / "D"), std::vector<std::string>{file});
+}
+
+TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
+    TempDir dir;
+    ExpectUsersFileRefused("validate", "manifest.json", "manifest", dir);
     // Its own manifest it replaces.
     fs::remove(dir.Path() / "D/manifest.json");
     ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()}).exit_code,
@@ -195,16 +207,40 @@ TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
               0);
 }
 
-TEST(PublishCliTest, RenderOutRefusesAUsersResultsBeforeRendering) {
+// Runs the command `args_for(D)` makes against a folder D of a user's that holds `file` and an
+// image, and checks that it is refused with nothing changed.
+void ExpectUsersFolderRefused(std::vector<std::string> (*args_for)(const fs::path&),
+                              const std::string& file) {
     TempDir dir;
-    dir.Write("D/results.json", "mine");
+    dir.Write("D/" + file, "mine");
     dir.Write("D/images/photo.png", "mine");
-    const Outcome r = RunBinary(RenderArgs(dir.Path() / "D"));
+    const Outcome r = RunBinary(args_for(dir.Path() / "D"));
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("was not written by tidepool"), std::string::npos) << r.err;
-    EXPECT_EQ(ReadText(dir.Path() / "D/results.json"), "mine");
+    EXPECT_EQ(ReadText(dir.Path() / "D" / file), "mine");
     EXPECT_EQ(ReadText(dir.Path() / "D/images/photo.png"), "mine");
     EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"D"});
+}
+
+TEST(PublishCliTest, RenderOutRefusesAUsersResultsBeforeRendering) {
+    ExpectUsersFolderRefused(RenderArgs, "results.json");
+}
+
+// `plan` writes plans.json and its candidates' images: a folder, published whole.
+std::vector<std::string> PlanArgs(const fs::path& out) {
+    return {"plan", "--config", kConfig, "--scene", "clear_lake", "--size", "16x16",
+            "--resolution", "50", "--out", out.string()};
+}
+
+TEST(PublishCliTest, PlanOutRefusesAFolderTidepoolDidNotWriteBeforePlanning) {
+    ExpectUsersFolderRefused(PlanArgs, "plans.json");
+}
+
+// `stability` writes one file, stability.json, into a folder it shares (by default the render
+// folder): a stability.json that is not tidepool's is refused, the folder's other files kept.
+TEST(PublishCliTest, StabilityOutRefusesAUsersStabilityJsonBeforeRunning) {
+    TempDir dir;
+    ExpectUsersFileRefused("stability", "stability.json", "stability report", dir);
 }
 
 // --- Item 10: a failed write is exit 3 with nothing half-written -----------------------------
@@ -330,6 +366,48 @@ TEST(PublishCliTest, KilledRenderNeverDamagesThePreviousOutputNorLeaksStaging) {
     TempDir dir;
     const fs::path out = dir.Path() / "D";
     KillAtRandomPoints(RenderArgs(out), out, 20, IsWholeRender);
+}
+
+// A plan folder is whole when it carries the marker, plans.json parses, and every file besides
+// them is a PNG that plans.json names.
+bool IsWholePlan(const std::map<std::string, std::string>& files) {
+    auto plans = files.find("plans.json");
+    if (plans == files.end() || files.count(".tidepool-output") == 0) {
+        return false;
+    }
+    const nlohmann::json json = nlohmann::json::parse(plans->second, nullptr, false);
+    if (!json.is_object() || json.value("schema", "") != "tidepool.plans") {
+        return false;
+    }
+    std::vector<std::string> named;
+    const std::function<void(const nlohmann::json&)> collect = [&](const nlohmann::json& j) {
+        if (j.is_object() && j.contains("image") && j["image"].is_string() &&
+            !j["image"].get<std::string>().empty()) {
+            named.push_back(j["image"]);
+        }
+        if (j.is_structured()) {
+            for (const nlohmann::json& child : j) {
+                collect(child);
+            }
+        }
+    };
+    collect(json);
+    for (const auto& [name, content] : files) {
+        if (name == "plans.json" || name == ".tidepool-output") {
+            continue;
+        }
+        if (std::find(named.begin(), named.end(), name) == named.end() ||
+            content.compare(0, 4, "\x89PNG") != 0) {
+            return false;
+        }
+    }
+    return !named.empty();
+}
+
+TEST(PublishCliTest, KilledPlanNeverDamagesThePreviousOutputNorLeaksStaging) {
+    TempDir dir;
+    const fs::path out = dir.Path() / "D";
+    KillAtRandomPoints(PlanArgs(out), out, 8, IsWholePlan);
 }
 
 // Before, two `expand --out D` at once failed about 1 run in 60 with "Directory not empty".

@@ -257,6 +257,25 @@ std::string MacroBomb() {
     return bomb + "void main() {\n  M0;\n}\n";
 }
 
+std::string Repeated(const std::string& text, int times) {
+    std::string all;
+    for (int i = 0; i < times; ++i) {
+        all += text;
+    }
+    return all;
+}
+
+// `#define F0(x) x x`, `#define F1(x) F0(F0(x))` ... 30 levels: 4^29 × 2 copies of the argument
+// of F29, used on line 32, column 25 with its argument spread over two lines.
+std::string FunctionLikeMacroBomb() {
+    std::string bomb = "#version 100\n#define F0(x) x x\n";
+    for (int level = 1; level < 30; ++level) {
+        bomb += "#define F" + std::to_string(level) + "(x) F" + std::to_string(level - 1) + "(F" +
+                std::to_string(level - 1) + "(x))\n";
+    }
+    return bomb + "void main() { float f = F29(\n1.0); }\n";
+}
+
 TEST(GlslValidatorTest, ByteOrderMarkIsAcceptedAndLinesStayRight) {
     TempDir dir;
     const std::string path = dir.Write("bom.vsh", "\xEF\xBB\xBF#version 100\nattribute vec4 p;\n"
@@ -330,6 +349,17 @@ INSTANTIATE_TEST_SUITE_P(
                 PlainFileCase{"macro bomb, refused before glslang runs", nullptr, MacroBomb(),
                               "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
                               "(a macro bomb); tidepool refuses shaders that large"},
+                PlainFileCase{"100,000 nested invocations, refused without a stack overflow",
+                              nullptr,
+                              "#version 100\n#define F(x) x\nvoid main() { float f = " +
+                                      Repeated("F(", 100000) + "1.0" + Repeated(")", 100000) +
+                                      "; }\n",
+                              "a.fsh:3:25: error: macro 'F' expands to more than 131072 "
+                              "tokens (a macro bomb); tidepool refuses shaders that large"},
+                PlainFileCase{"function-like macro bomb, refused before glslang runs", nullptr,
+                              FunctionLikeMacroBomb(),
+                              "a.fsh:32:25: error: macro 'F29' expands to more than 131072 "
+                              "tokens (a macro bomb); tidepool refuses shaders that large"},
                 PlainFileCase{"uniform clash: glslang 12 calls the vertex side 'unknown stage'",
                               "#version 100\nuniform vec2 u;\nvoid main() { gl_Position = "
                               "vec4(u, 0.0, 1.0); }\n",
@@ -337,6 +367,69 @@ INSTANTIATE_TEST_SUITE_P(
                               "main() { gl_FragColor = vec4(u, 1.0); }\n",
                               "a.fsh: error: Linking vertex and fragment stages: Types must "
                               "match:"}));
+
+// Every kind of array declaration has the one bound, kMaxArrayElements (65536) elements.
+std::string ArrayError(const std::string& place, const std::string& name, long long elements) {
+    return place + ": error: '" + name + "' holds " + std::to_string(elements) +
+           " array elements, more than the 65536 one declaration may hold; no GPU gives a shader "
+           "invocation that much memory";
+}
+constexpr const char* kFragment300 =
+        "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+
+INSTANTIATE_TEST_SUITE_P(
+        ArrayBounds, PlainFileRuleTest,
+        ::testing::Values(
+                PlainFileCase{"global", nullptr,
+                              "#version 100\nprecision mediump float;\nfloat big[100000];\n"
+                              "void main() { gl_FragColor = vec4(big[0]); }\n",
+                              ArrayError("a.fsh:3:7", "big", 100000)},
+                PlainFileCase{"local", nullptr,
+                              "#version 100\nprecision mediump float;\nvoid main() {\n  float "
+                              "big[100000];\n  gl_FragColor = vec4(big[0]);\n}\n",
+                              ArrayError("a.fsh:4:9", "big", 100000)},
+                PlainFileCase{"varying", "#version 100\nattribute vec4 p;\nvarying float "
+                                         "big[100000];\nvoid main() { big[0] = 1.0; gl_Position "
+                                         "= p; }\n",
+                              "#version 100\nprecision mediump float;\nvoid main() { "
+                              "gl_FragColor = vec4(1.0); }\n",
+                              ArrayError("a.vsh:3:15", "big", 100000)},
+                PlainFileCase{"vertex output (ES 3.00)",
+                              "#version 300 es\nin vec4 p;\nout float big[100000];\nvoid main() "
+                              "{ big[0] = 1.0; gl_Position = p; }\n",
+                              kFragment300,
+                              ArrayError("a.vsh:3:11", "big", 100000)},
+                PlainFileCase{"const parameter", nullptr,
+                              "#version 100\nprecision mediump float;\nfloat first(const in "
+                              "float values[100000]) { return values[0]; }\nvoid main() {\n  "
+                              "float v[100000];\n  gl_FragColor = vec4(first(v));\n}\n",
+                              ArrayError("a.fsh:3:28", "values", 100000)},
+                PlainFileCase{"struct member", nullptr,
+                              "#version 100\nprecision mediump float;\nstruct Big { float "
+                              "m[100000]; };\nBig b;\nvoid main() { gl_FragColor = "
+                              "vec4(b.m[0]); }\n",
+                              ArrayError("a.fsh:4:5", "b", 100000)},
+                PlainFileCase{"array of structs with arrays", nullptr,
+                              "#version 100\nprecision mediump float;\nstruct S { float m[300]; "
+                              "};\nS s[300];\nvoid main() { gl_FragColor = vec4(s[0].m[0]); }\n",
+                              ArrayError("a.fsh:4:3", "s", 90000)},
+                // GLSL ES 3.00 has no arrays of arrays (3.10 added them): glslang refuses them.
+                PlainFileCase{"array of arrays (ES 3.00)", nullptr,
+                              "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid "
+                              "main() {\n  float grid[300][300];\n  c = vec4(grid[0][0]);\n}\n",
+                              "a.fsh:5: error: 'arrays of arrays' : not supported for this "
+                              "version or the enabled extensions"}));
+
+TEST(GlslValidatorTest, ArrayOfExactlyTheBoundIsAccepted) {
+    TempDir dir;
+    const std::string path =
+            dir.Write("a.fsh", "#version 100\nprecision mediump float;\nvoid main() {\n  float "
+                               "ok[65536];\n  gl_FragColor = vec4(ok[0]);\n}\n")
+                    .string();
+    const ValidationReport report = ValidateShaderFiles({{path, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_TRUE(report.verdicts[0].valid) << Formatted(report.verdicts[0].diagnostics)[0];
+}
 
 TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {
     TempDir dir;
