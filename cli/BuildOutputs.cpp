@@ -24,7 +24,8 @@ bool KeepOnlyProgram(LoadedMatrix* loaded, const std::string& name) {
             names.push_back(program.name);
         }
         std::fprintf(stderr, "error: --program %s: %s has no such program; it has %s\n",
-                     name.c_str(), config.path.c_str(), fmt::format("{}", fmt::join(names, ", ")).c_str());
+                     name.c_str(), config.path.c_str(),
+                     fmt::format("{}", fmt::join(names, ", ")).c_str());
         return false;
     }
     auto other = [&name](const auto& item) { return item.program != name; };
@@ -116,7 +117,8 @@ bool HoldsExactly(const std::filesystem::path& path, const std::string& content)
     if (!in) {
         return false;
     }
-    const std::string existing{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    const std::string existing{std::istreambuf_iterator<char>(in),
+                               std::istreambuf_iterator<char>()};
     return existing == content;
 }
 

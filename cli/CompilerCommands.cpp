@@ -144,7 +144,8 @@ int RunExpand(const CompilerOptions& options) {
     }
     // Everything goes to a private staging folder, removed by the publisher unless published.
     const std::filesystem::path& staging = publisher->Staging();
-    if (const int code = WriteVariantSources(config, expansion.variants, staging); code != kExitOk) {
+    if (const int code = WriteVariantSources(config, expansion.variants, staging);
+        code != kExitOk) {
         return code;
     }
     if (std::string error =
@@ -239,7 +240,8 @@ void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manife
         }
         entry["sources"] = {
                 {"vertex", VariantSourcePath(target, variant, Stage::kVertex).generic_string()},
-                {"fragment", VariantSourcePath(target, variant, Stage::kFragment).generic_string()}};
+                {"fragment",
+                 VariantSourcePath(target, variant, Stage::kFragment).generic_string()}};
     }
 }
 
@@ -308,7 +310,8 @@ int RunValidate(const CompilerOptions& options) {
     nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
     if (!options.out.empty()) {
         if (options.sources) {
-            if (const int code = WriteVariantSources(config, loaded.expansion.variants, options.out);
+            if (const int code =
+                        WriteVariantSources(config, loaded.expansion.variants, options.out);
                 code != kExitOk) {
                 return code;
             }

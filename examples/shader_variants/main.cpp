@@ -48,7 +48,8 @@ int main(int argc, char** argv) {
             !variant["valid"].get<bool>()) {
             continue;
         }
-        const std::string vertex = ReadFile(folder / variant["sources"]["vertex"].get<std::string>());
+        const std::string vertex =
+                ReadFile(folder / variant["sources"]["vertex"].get<std::string>());
         const std::string fragment =
                 ReadFile(folder / variant["sources"]["fragment"].get<std::string>());
         std::printf("%s\n  vertex   %s (%zu bytes)\n  fragment %s (%zu bytes)\n",
