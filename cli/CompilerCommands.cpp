@@ -13,12 +13,14 @@
 
 #include <fmt/format.h>
 
+#include "BuildOutputs.h"
 #include "CliSupport.h"
 #include "Commands.h"
 #include "tidepool/base/AtomicFile.h"
 #include "tidepool/base/FolderPublisher.h"
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
+#include "tidepool/SarifLog.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/TextFile.h"
 #include "tidepool/VariantConfig.h"
@@ -38,16 +40,41 @@ struct CompilerOptions {
     std::vector<std::string> files;  // validate: plain shader files
     std::string stage;               // validate: force the stage of plain files
     std::vector<std::string> defines;
+    // For build systems and CI (BuildOutputs.h): one program's slice, a depfile beside --out,
+    // validate's driver-ready sources, and validate's report format and file.
+    std::string program;
+    std::string depfile;
+    bool sources = false;
+    std::string format = "text";  // text, json (as --json) or sarif
+    std::string output_file;      // where json or sarif goes instead of stdout
 };
 
-// The configuration and its expansion, or the exit code that explains why there is none.
-
-std::string SafeFileName(const std::string& id) {
-    std::string name;
-    for (char c : id) {
-        name += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '.';
+// Prints `text` (a JSON or SARIF report) on stdout, or writes it to --output-file atomically.
+int EmitReport(const CompilerOptions& options, const std::string& text) {
+    if (options.output_file.empty()) {
+        std::printf("%s\n", text.c_str());
+        return kExitOk;
     }
-    return name;
+    if (const std::string error = base::WriteFileAtomically(options.output_file, text + "\n");
+        !error.empty()) {
+        std::fprintf(stderr, "error: --output-file: %s\n", error.c_str());
+        return kExitEnvironment;
+    }
+    return kExitOk;
+}
+
+// With --depfile, the depfile of --out's manifest.json (see WriteDepfile).
+int WriteDepfileIfAsked(const CompilerOptions& options, const VariantConfig& config) {
+    if (options.depfile.empty()) {
+        return kExitOk;
+    }
+    return WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json",
+                        config);
+}
+
+// The report format asked for: --json is --format json.
+std::string ReportFormat(const CompilerOptions& options) {
+    return options.json ? "json" : options.format;
 }
 
 int RunExpand(const CompilerOptions& options) {
@@ -59,6 +86,9 @@ int RunExpand(const CompilerOptions& options) {
     LoadedMatrix loaded = LoadAndExpand(options.config, limits);
     if (!loaded.config) {
         return loaded.exit_code;
+    }
+    if (!options.program.empty() && !KeepOnlyProgram(&loaded, options.program)) {
+        return kExitUsage;
     }
     const VariantConfig& config = *loaded.config;
     const ExpansionResult& expansion = loaded.expansion;
@@ -113,34 +143,9 @@ int RunExpand(const CompilerOptions& options) {
     }
     // Everything goes to a private staging folder, removed by the publisher unless published.
     const std::filesystem::path& staging = publisher->Staging();
-    std::map<std::string, std::string> sources;  // path → text, read once
-    for (GlslTarget target : config.targets) {
-        for (const Variant& variant : loaded.expansion.variants) {
-            const ProgramConfig* program = config.FindProgram(variant.program);
-            for (Stage stage : {Stage::kVertex, Stage::kFragment}) {
-                const std::string& path =
-                        stage == Stage::kVertex ? program->vertex_path : program->fragment_path;
-                if (sources.count(path) == 0) {
-                    TextFileRead read = ReadShaderFile(config.Resolve(path));
-                    if (!read.ok) {
-                        std::fprintf(stderr, "%s: error: cannot read shader file: %s\n",
-                                     path.c_str(), read.error.c_str());
-                        return kExitUsage;
-                    }
-                    sources[path] = std::move(read.text);
-                }
-                const std::filesystem::path file =
-                        staging / TargetName(target) / variant.program /
-                        fmt::format("{}.{}", SafeFileName(variant.Id()),
-                                    stage == Stage::kVertex ? "vert" : "frag");
-                const std::string error = base::WriteFileAtomically(
-                        file, AssembleDriverSource(sources[path], variant.defines, stage, target));
-                if (!error.empty()) {
-                    std::fprintf(stderr, "error: %s\n", error.c_str());
-                    return kExitEnvironment;
-                }
-            }
-        }
+    if (const int code = WriteVariantSources(config, expansion.variants, staging);
+        code != kExitOk) {
+        return code;
     }
     if (std::string error =
                 base::WriteFileAtomically(staging / "manifest.json", JsonText(manifest, 2) + "\n");
@@ -151,6 +156,9 @@ int RunExpand(const CompilerOptions& options) {
     if (base::PublishError error = publisher->Publish(); error.Failed()) {
         std::fprintf(stderr, "error: %s\n", error.message.c_str());
         return PublishExitCode(error);
+    }
+    if (const int code = WriteDepfileIfAsked(options, config); code != kExitOk) {
+        return code;
     }
     if (!options.json) {
         std::printf("wrote %s/<target>/<program>/<variant>.vert|.frag and %s/manifest.json\n",
@@ -182,6 +190,7 @@ int RunValidateFiles(const CompilerOptions& options) {
         files.push_back(file);
     }
     const ValidationReport report = ValidateShaderFiles(files, options.defines);
+    const std::string format = ReportFormat(options);
     int errors = 0;
     nlohmann::json json = nlohmann::json::array();
     for (const VariantVerdict& verdict : report.verdicts) {
@@ -191,19 +200,78 @@ int RunValidateFiles(const CompilerOptions& options) {
         for (const Diagnostic& d : verdict.diagnostics) {
             diagnostics.push_back(ToJson(d));
         }
-        json.push_back({{"files", verdict.variant.program},
-                        {"valid", verdict.valid},
-                        {"diagnostics", diagnostics}});
+        nlohmann::json entry = {{"files", verdict.variant.program},
+                                {"valid", verdict.valid},
+                                {"diagnostics", diagnostics}};
+        entry.update(StepsJson(verdict));
+        json.push_back(std::move(entry));
     }
-    if (options.json) {
-        std::printf("%s\n", JsonText(json, 2).c_str());
+    if (format == "sarif") {
+        if (const int code =
+                    EmitReport(options, JsonText(BuildSarifLog(report, "", TIDEPOOL_VERSION), 2));
+            code != kExitOk) {
+            return code;
+        }
+    } else if (format == "json") {
+        if (const int code = EmitReport(options, JsonText(json, 2)); code != kExitOk) {
+            return code;
+        }
     } else {
         std::printf("%zu file(s): %s\n", files.size(), errors == 0 ? "valid" : "INVALID");
     }
     return errors == 0 ? kExitOk : kExitShaderErrors;
 }
 
+// Records in each variant entry of `manifest` where WriteVariantSources put its stages:
+// "sources": {"vertex": PATH, "fragment": PATH}, relative to the manifest's folder.
+void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manifest) {
+    std::map<std::string, const Variant*> by_id;
+    for (const Variant& variant : variants) {
+        by_id[variant.Id()] = &variant;
+    }
+    for (nlohmann::json& entry : (*manifest)["variants"]) {
+        const Variant& variant = *by_id.at(entry["id"].get<std::string>());
+        GlslTarget target = GlslTarget::kEs100;
+        for (GlslTarget candidate : {GlslTarget::kEs100, GlslTarget::kEs300}) {
+            if (entry["target"] == TargetName(candidate)) {
+                target = candidate;
+            }
+        }
+        entry["sources"] = {
+                {"vertex", VariantSourcePath(target, variant, Stage::kVertex).generic_string()},
+                {"fragment",
+                 VariantSourcePath(target, variant, Stage::kFragment).generic_string()}};
+    }
+}
+
+// Adds the flags validate has for build systems and CI; the rest of validate's flags stay where
+// they are registered.
+void AddValidateOutputFlags(CLI::App* validate, CompilerOptions& options, CLI::Option* out) {
+    validate->add_option("--format", options.format,
+                         "report on stdout as text, json (as --json) or sarif (SARIF 2.1.0, for "
+                         "code scanning)")
+            ->check(CLI::IsMember({"text", "json", "sarif"}))
+            ->excludes(validate->get_option("--json"));
+    validate->add_option("--output-file", options.output_file,
+                         "write the json or sarif report to this file (atomically), not stdout");
+    validate->add_option("--program", options.program,
+                         "validate only this program of the configuration");
+    validate->add_flag("--sources", options.sources,
+                       "with --out, also write each variant's driver-ready sources (rewritten "
+                       "only when changed) and name them in the manifest")
+            ->needs(out);
+    validate->add_option("--depfile", options.depfile,
+                         "with --out, write a Make/Ninja depfile naming the configuration and "
+                         "every shader read")
+            ->needs(out);
+}
+
 int RunValidate(const CompilerOptions& options) {
+    if (!options.output_file.empty() && ReportFormat(options) == "text") {
+        std::fprintf(stderr, "error: --output-file takes the json or sarif report; add --format "
+                             "json or --format sarif\n");
+        return kExitUsage;
+    }
     if (!CheckDefineOptions(options.defines)) {
         return kExitUsage;
     }
@@ -218,6 +286,9 @@ int RunValidate(const CompilerOptions& options) {
     LoadedMatrix loaded = LoadAndExpand(options.config, options.limits);
     if (!loaded.config) {
         return loaded.exit_code;
+    }
+    if (!options.program.empty() && !KeepOnlyProgram(&loaded, options.program)) {
+        return kExitUsage;
     }
     const VariantConfig& config = *loaded.config;
     // Refused before the validation's work, not after it.
@@ -235,15 +306,35 @@ int RunValidate(const CompilerOptions& options) {
     for (const VariantVerdict& verdict : report.verdicts) {
         PrintDiagnostics(verdict.diagnostics);
     }
-    const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
+    nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
     if (!options.out.empty()) {
+        if (options.sources) {
+            if (const int code =
+                        WriteVariantSources(config, loaded.expansion.variants, options.out);
+                code != kExitOk) {
+                return code;
+            }
+            AddSourcePaths(loaded.expansion.variants, &manifest);
+        }
         if (const int code = WriteManifestInto(options.out, JsonText(manifest, 2) + "\n"); code != 0) {
+            return code;
+        }
+        if (const int code = WriteDepfileIfAsked(options, config); code != kExitOk) {
             return code;
         }
     }
     const int invalid = report.InvalidCount();
-    if (options.json) {
-        std::printf("%s\n", JsonText(manifest, 2).c_str());
+    const std::string format = ReportFormat(options);
+    if (format == "sarif") {
+        if (const int code = EmitReport(
+                    options, JsonText(BuildSarifLog(report, config.base_dir, TIDEPOOL_VERSION), 2));
+            code != kExitOk) {
+            return code;
+        }
+    } else if (format == "json") {
+        if (const int code = EmitReport(options, JsonText(manifest, 2)); code != kExitOk) {
+            return code;
+        }
     } else {
         std::printf("%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
                     "%zu distinct stage programs (%d shared), %d links; %s\n",
@@ -337,9 +428,17 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                                    kVariantCeiling))
             ->capture_default_str()
             ->needs(pruned);
-    expand->add_option("--out", expand_options.out,
-                       "folder for <target>/<program>/<variant>.vert|.frag and manifest.json")
-            ->transform(NormaliseOutPath);
+    CLI::Option* expand_out =
+            expand->add_option("--out", expand_options.out,
+                               "folder for <target>/<program>/<variant>.vert|.frag and "
+                               "manifest.json")
+                    ->transform(NormaliseOutPath);
+    expand->add_option("--program", expand_options.program,
+                       "expand only this program of the configuration");
+    expand->add_option("--depfile", expand_options.depfile,
+                       "with --out, write a Make/Ninja depfile naming the configuration and "
+                       "every shader read")
+            ->needs(expand_out);
     expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });
 
     CLI::App* validate = app.add_subcommand(
@@ -356,8 +455,10 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                          "define for plain files: NAME or NAME=VALUE")
             ->allow_extra_args(false);
     validate->add_option("-j,--jobs", validate_options.jobs, "worker threads (default: cores)");
-    validate->add_option("--out", validate_options.out, "folder to write manifest.json into")
-            ->transform(NormaliseOutPath);
+    AddValidateOutputFlags(validate, validate_options,
+                           validate->add_option("--out", validate_options.out,
+                                                "folder to write manifest.json into")
+                                   ->transform(NormaliseOutPath));
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

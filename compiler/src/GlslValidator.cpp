@@ -29,6 +29,18 @@ int ValidationReport::InvalidCount() const {
                                           [](const VariantVerdict& v) { return !v.valid; }));
 }
 
+const char* StepStatusName(StepStatus status) {
+    switch (status) {
+        case StepStatus::kValid:
+            return "valid";
+        case StepStatus::kInvalid:
+            return "invalid";
+        case StepStatus::kNotRun:
+            break;
+    }
+    return "not run";
+}
+
 bool StageFromExtension(const std::string& path, Stage* stage) {
     const std::string ext = std::filesystem::path(path).extension().string();
     if (ext == ".vert" || ext == ".vsh" || ext == ".vs") {
@@ -315,6 +327,19 @@ std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::s
     return diagnostics;
 }
 
+// A step that ran, with its messages tagged with the variant.
+StepVerdict RanStep(bool valid, const std::vector<Diagnostic>& diagnostics, const std::string& id) {
+    return StepVerdict{valid ? StepStatus::kValid : StepStatus::kInvalid, Tagged(diagnostics, id)};
+}
+
+// Fills `verdict.diagnostics` from its steps, vertex, fragment, then link.
+void CollectStepDiagnostics(VariantVerdict& verdict) {
+    for ([[maybe_unused]] const auto& [name, step] : verdict.NamedSteps()) {
+        verdict.diagnostics.insert(verdict.diagnostics.end(), step->diagnostics.begin(),
+                                   step->diagnostics.end());
+    }
+}
+
 }  // namespace
 
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
@@ -546,11 +571,14 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         verdict.vertex_hash = vs.hash;
         verdict.fragment_hash = fs.hash;
         verdict.valid = vs.valid && fs.valid && link.linked;
-        for (const auto* diagnostics : {&vs.diagnostics, &fs.diagnostics, &link.diagnostics}) {
-            for (Diagnostic d : Tagged(*diagnostics, vjob.variant_id)) {
-                verdict.diagnostics.push_back(std::move(d));
-            }
-        }
+        verdict.vertex = RanStep(vs.valid, vs.diagnostics, vjob.variant_id);
+        verdict.fragment = RanStep(fs.valid, fs.diagnostics, vjob.variant_id);
+        // A link is attempted only when both stages parsed.
+        verdict.link = vs.valid && fs.valid
+                               ? RanStep(link.linked, link.diagnostics, vjob.variant_id)
+                               : StepVerdict{StepStatus::kNotRun,
+                                             Tagged(link.diagnostics, vjob.variant_id)};
+        CollectStepDiagnostics(verdict);
         report.verdicts.push_back(std::move(verdict));
     }
     return report;
@@ -630,15 +658,18 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
             names.push_back(files[i].path);
             const StageProgram& program = report.stage_programs[i];
             stages_ok = stages_ok && program.valid;
-            verdict.diagnostics.insert(verdict.diagnostics.end(), program.diagnostics.begin(),
-                                       program.diagnostics.end());
-            (files[i].stage == Stage::kVertex ? verdict.vertex_hash : verdict.fragment_hash) =
-                    program.hash;
+            const bool is_vertex = files[i].stage == Stage::kVertex;
+            (is_vertex ? verdict.vertex : verdict.fragment) =
+                    StepVerdict{program.valid ? StepStatus::kValid : StepStatus::kInvalid,
+                                program.diagnostics};
+            (is_vertex ? verdict.vertex_hash : verdict.fragment_hash) = program.hash;
         }
         verdict.variant = Variant{fmt::format("{}", fmt::join(names, "+")), defines};
         verdict.valid = stages_ok && link.ok;
-        verdict.diagnostics.insert(verdict.diagnostics.end(), link.diagnostics.begin(),
-                                   link.diagnostics.end());
+        verdict.link = StepVerdict{stages_ok ? (link.ok ? StepStatus::kValid : StepStatus::kInvalid)
+                                             : StepStatus::kNotRun,
+                                   link.diagnostics};
+        CollectStepDiagnostics(verdict);
         report.links += stages_ok ? 1 : 0;
         report.verdicts.push_back(std::move(verdict));
     }

@@ -17,6 +17,18 @@ nlohmann::json ToJson(const Diagnostic& diagnostic) {
             {"variant", diagnostic.variant}};
 }
 
+nlohmann::json StepsJson(const VariantVerdict& verdict) {
+    nlohmann::json steps = nlohmann::json::object();
+    nlohmann::json failed = nlohmann::json::array();
+    for (const auto& [name, step] : verdict.NamedSteps()) {
+        steps[name] = StepStatusName(step->status);
+        if (step->status == StepStatus::kInvalid) {
+            failed.push_back(name);
+        }
+    }
+    return {{"steps", steps}, {"failed_steps", failed}};
+}
+
 namespace {
 
 nlohmann::json DiagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
@@ -92,6 +104,7 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
                                      {{"vertex", {{"hash", verdict.vertex_hash}}},
                                       {"fragment", {{"hash", verdict.fragment_hash}}}}},
                                     {"diagnostics", DiagnosticsJson(verdict.diagnostics)}};
+            entry.update(StepsJson(verdict));
             if (program != nullptr) {
                 for (const auto& [stage, file, hash] :
                      {std::tuple{"vertex", program->vertex_path, verdict.vertex_hash},

@@ -2,7 +2,9 @@
 // every distinct stage program is parsed once, every program is linked.
 #pragma once
 
+#include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "tidepool/Diagnostic.h"
@@ -32,6 +34,20 @@ struct StageProgram {
     StageCost cost;
 };
 
+/// What one step of a variant's validation (a stage's parse, or the link) came to. kNotRun: the
+/// step had nothing to work on (the link after a failed stage; a stage plain-file mode lacks).
+enum class StepStatus { kNotRun, kValid, kInvalid };
+
+/// "not run", "valid" or "invalid".
+const char* StepStatusName(StepStatus status);
+
+/// One step of a variant's validation with the messages it produced, so that a CI report can say
+/// which stage failed and file each message under it.
+struct StepVerdict {
+    StepStatus status = StepStatus::kNotRun;
+    std::vector<Diagnostic> diagnostics;  // tagged with the variant's id
+};
+
 /// The verdict on one variant for one target: both stages and the link.
 struct VariantVerdict {
     Variant variant;
@@ -40,6 +56,14 @@ struct VariantVerdict {
     std::string fragment_hash;
     bool valid = false;
     std::vector<Diagnostic> diagnostics;  // stage and link messages, tagged with this variant's id
+    StepVerdict vertex;                   // the same messages, step by step
+    StepVerdict fragment;
+    StepVerdict link;
+
+    /// The three steps by name ("vertex", "fragment", "link"), in that order.
+    std::array<std::pair<const char*, const StepVerdict*>, 3> NamedSteps() const {
+        return {{{"vertex", &vertex}, {"fragment", &fragment}, {"link", &link}}};
+    }
 };
 
 /// Everything validation found.

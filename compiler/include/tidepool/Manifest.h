@@ -23,6 +23,11 @@ std::string JsonText(const nlohmann::json& json, int indent = -1);
 /// A diagnostic as a JSON object {severity, file, line, column, message, variant}.
 nlohmann::json ToJson(const Diagnostic& diagnostic);
 
+/// What each step of a variant's validation came to, as the JSON fields every verdict carries:
+/// "steps" {vertex, fragment, link: "valid" | "invalid" | "not run"} and "failed_steps", the
+/// names of the steps that are invalid, in that order (empty when the variant is valid).
+nlohmann::json StepsJson(const VariantVerdict& verdict);
+
 /// Builds the manifest; `validation` may be null (then verdicts and costs are left out, as for
 /// `tidepool expand`).
 nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult& expansion,

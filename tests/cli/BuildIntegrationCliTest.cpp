@@ -1,0 +1,226 @@
+// The build integration as a user project sees it: `--depfile` and `--program` on the command
+// line, and the CMake module (cmake/TidepoolShaderVariants.cmake) driving examples/shader_variants
+// from a clean folder with Ninja and with Make: it builds, a build with nothing changed runs
+// nothing, and touching one shader reruns only the step of the program that reads it.
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "FileContents.h"
+#include "TempDir.h"
+#include "TidepoolProcess.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+using tidepool::testing::CommandResult;
+using tidepool::testing::ReadText;
+using tidepool::testing::RunShell;
+using tidepool::testing::RunTidepoolSplit;
+using tidepool::testing::SplitResult;
+using tidepool::testing::TempDir;
+
+constexpr const char* kVertex =
+        "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n";
+constexpr const char* kFragment =
+        "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+
+// A folder with shaders s.vsh, "a b.vsh", s.fsh and t.fsh, for configurations to name.
+class DepfileCliTest : public ::testing::Test {
+protected:
+    DepfileCliTest() {
+        for (const char* name : {"s.vsh", "a b.vsh"}) {
+            dir_.Write(name, kVertex);
+        }
+        for (const char* name : {"s.fsh", "t.fsh"}) {
+            dir_.Write(name, kFragment);
+        }
+    }
+    // The depfile expected for o/manifest.json and these files of the folder, in this order.
+    std::string Depfile(const std::vector<std::string>& files) const {
+        const std::string root = dir_.Path().string();
+        std::string text = root + "/o/manifest.json:";
+        for (const std::string& file : files) {
+            text += " \\\n  " + root + "/" + file;
+        }
+        return text + "\n";
+    }
+    TempDir dir_;
+};
+
+TEST_F(DepfileCliTest, ValidateDepfileNamesTheManifestTheConfigAndEveryShaderRead) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: a b.vsh\n    fragment: s.fsh\n"
+                         "  q:\n    vertex: a b.vsh\n    fragment: t.fsh\n");
+    const SplitResult r =
+            RunTidepoolSplit("validate --config v.yaml --out o --depfile o.d", dir_.Path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // A space is escaped for Make and Ninja; a shader two programs share is named once.
+    EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "a\\ b.vsh", "s.fsh", "t.fsh"}));
+}
+
+TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+                         "    features: [A]\n  q:\n    vertex: s.vsh\n    fragment: t.fsh\n");
+    const SplitResult r = RunTidepoolSplit(
+            "validate --config v.yaml --program q --out o --sources --depfile o.d", dir_.Path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "t.fsh"}));
+    const nlohmann::json manifest =
+            nlohmann::json::parse(ReadText(dir_.Path() / "o/manifest.json"));
+    ASSERT_EQ(manifest["variants"].size(), 1u);
+    EXPECT_EQ(manifest["variants"][0]["id"], "q:");
+    EXPECT_EQ(manifest["variants"][0]["sources"]["fragment"], "100/q/q..frag");
+    EXPECT_EQ(ReadText(dir_.Path() / "o/100/q/q..frag"),
+              "#version 100\n#line 2\nprecision mediump float;\nvoid main() { gl_FragColor = "
+              "vec4(1.0); }\n");
+    const SplitResult unknown =
+            RunTidepoolSplit("validate --config v.yaml --program r", dir_.Path());
+    EXPECT_EQ(unknown.exit_code, 2);
+    EXPECT_NE(unknown.err.find("error: --program r: v.yaml has no such program; it has p, q"),
+              std::string::npos)
+            << unknown.err;
+    EXPECT_EQ(RunTidepoolSplit("validate --config v.yaml --depfile o.d", dir_.Path()).exit_code,
+              2)
+            << "a depfile names the output it belongs to, so it needs --out";
+}
+
+TEST_F(DepfileCliTest, ExpandWritesADepfileToo) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    ASSERT_EQ(
+            RunTidepoolSplit("expand --config v.yaml --out o --depfile o.d", dir_.Path()).exit_code,
+            0);
+    EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "s.fsh"}));
+}
+
+// examples/shader_variants, copied to a clean folder and built with one CMake generator.
+class ExampleProjectTest : public ::testing::TestWithParam<const char*> {
+protected:
+    ExampleProjectTest() {
+        fs::copy(fs::path(TIDEPOOL_SOURCE_ROOT) / "examples/shader_variants", Source(),
+                 fs::copy_options::recursive);
+    }
+    fs::path Source() const { return dir_.Path() / "src"; }
+    fs::path Build() const { return dir_.Path() / "build"; }
+
+    CommandResult Configure() const {
+        return RunShell("'" CMAKE_COMMAND "' -S '" + Source().string() + "' -B '" +
+                        Build().string() + "' -G '" + GetParam() +
+                        "' -Dtidepool_DIR='" TIDEPOOL_BUILD_DIR "' 2>&1");
+    }
+    // Builds; with Ninja, `-d explain` says why each step ran.
+    CommandResult BuildAll() const {
+        const bool ninja = std::string(GetParam()) == "Ninja";
+        return RunShell("'" CMAKE_COMMAND "' --build '" + Build().string() + "'" +
+                        (ninja ? " -- -d explain" : "") + " 2>&1");
+    }
+    // Runs the example's program with `args`.
+    CommandResult RunLoader(const std::string& args) const {
+        // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "'" + string + "...".
+        std::string command = "'";
+        command += (Build() / "variant_loader").string();
+        command += "' ";
+        command += args;
+        command += " 2>&1";
+        return RunShell(command);
+    }
+    // Gives `file` a time stamp later than every output so far, without changing its content.
+    static void Touch(const fs::path& file) {
+        // File time stamps come from the kernel's coarse clock (a few ms), so wait past one tick.
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+        fs::last_write_time(file, fs::file_time_type::clock::now());
+    }
+    TempDir dir_;
+};
+
+bool Contains(const std::string& text, const std::string& part) {
+    return text.find(part) != std::string::npos;
+}
+
+TEST_P(ExampleProjectTest, BuildsFromACleanFolderAndRebuildsOnlyWhatATouchedShaderFeeds) {
+    const CommandResult configure = Configure();
+    ASSERT_EQ(configure.exit_code, 0) << configure.out;
+    const CommandResult first = BuildAll();
+    ASSERT_EQ(first.exit_code, 0) << first.out;
+    EXPECT_TRUE(Contains(first.out, "validating the tint variants")) << first.out;
+    EXPECT_TRUE(Contains(first.out, "validating the outline variants")) << first.out;
+
+    // The program finds a variant by its feature set, in any order, and refuses a pruned one.
+    const CommandResult loaded = RunLoader("tint TINT FOG");
+    EXPECT_EQ(loaded.exit_code, 0) << loaded.out;
+    EXPECT_TRUE(Contains(loaded.out, "tint:FOG,TINT\n  vertex   100/tint/tint.FOG.TINT.vert"))
+            << loaded.out;
+    const CommandResult pruned = RunLoader("tint FOG_EXP2");
+    EXPECT_EQ(pruned.exit_code, 1) << pruned.out;
+
+    // Nothing changed: nothing runs.
+    const CommandResult idle = BuildAll();
+    ASSERT_EQ(idle.exit_code, 0) << idle.out;
+    EXPECT_FALSE(Contains(idle.out, "validating")) << idle.out;
+    EXPECT_FALSE(Contains(idle.out, "Linking")) << idle.out;
+    if (std::string(GetParam()) == "Ninja") {
+        EXPECT_TRUE(Contains(idle.out, "ninja: no work to do.")) << idle.out;
+    }
+
+    // One shader of one program: that program's step alone, and nothing is relinked.
+    const fs::path tint_source = Build() / "shaders/tint/100/tint/tint.FOG.TINT.frag";
+    const fs::file_time_type tint_stamp = fs::last_write_time(tint_source);
+    Touch(Source() / "shaders/outline.frag");
+    const CommandResult outline = BuildAll();
+    ASSERT_EQ(outline.exit_code, 0) << outline.out;
+    EXPECT_TRUE(Contains(outline.out, "validating the outline variants")) << outline.out;
+    EXPECT_FALSE(Contains(outline.out, "validating the tint variants")) << outline.out;
+    EXPECT_FALSE(Contains(outline.out, "Linking")) << outline.out;
+    if (std::string(GetParam()) == "Ninja") {
+        // Ninja's reason names the shader the depfile listed.
+        EXPECT_TRUE(Contains(outline.out, "outline.frag")) << outline.out;
+    }
+    EXPECT_EQ(fs::last_write_time(tint_source), tint_stamp);
+    const CommandResult settled = BuildAll();
+    EXPECT_FALSE(Contains(settled.out, "validating")) << settled.out;
+
+    // A touched shader whose content is unchanged reruns its step, which rewrites the manifest
+    // but leaves every variant's source (and so whatever an engine builds from it) untouched.
+    const fs::file_time_type manifest_stamp =
+            fs::last_write_time(Build() / "shaders/tint/manifest.json");
+    Touch(Source() / "shaders/tint.frag");
+    const CommandResult tint = BuildAll();
+    ASSERT_EQ(tint.exit_code, 0) << tint.out;
+    EXPECT_TRUE(Contains(tint.out, "validating the tint variants")) << tint.out;
+    EXPECT_FALSE(Contains(tint.out, "validating the outline variants")) << tint.out;
+    EXPECT_EQ(fs::last_write_time(tint_source), tint_stamp);
+    EXPECT_GT(fs::last_write_time(Build() / "shaders/tint/manifest.json"), manifest_stamp);
+
+    // The configuration feeds every program.
+    Touch(Source() / "variants.yaml");
+    const CommandResult config = BuildAll();
+    ASSERT_EQ(config.exit_code, 0) << config.out;
+    EXPECT_TRUE(Contains(config.out, "validating the tint variants")) << config.out;
+    EXPECT_TRUE(Contains(config.out, "validating the outline variants")) << config.out;
+}
+
+TEST_P(ExampleProjectTest, AnInvalidVariantFailsTheBuildAtTheShaderLine) {
+    ASSERT_EQ(Configure().exit_code, 0);
+    ASSERT_EQ(BuildAll().exit_code, 0);
+    std::string shader = ReadText(Source() / "shaders/outline.frag");
+    shader.replace(shader.find("gl_FragColor = colour;"), 22, "gl_FragColor = oops;");
+    dir_.Write("src/shaders/outline.frag", shader);
+    const CommandResult broken = BuildAll();
+    EXPECT_NE(broken.exit_code, 0);
+    EXPECT_TRUE(Contains(broken.out, "shaders/outline.frag:6:")) << broken.out;
+    EXPECT_TRUE(Contains(broken.out, "'oops' : undeclared identifier")) << broken.out;
+    // A failed step is not recorded as done: the next build tries again.
+    EXPECT_NE(BuildAll().exit_code, 0);
+}
+
+INSTANTIATE_TEST_SUITE_P(Generators, ExampleProjectTest,
+                         ::testing::Values("Ninja", "Unix Makefiles"),
+                         [](const ::testing::TestParamInfo<const char*>& param) {
+                             return std::string(param.param) == "Ninja" ? "Ninja" : "Make";
+                         });
+
+}  // namespace
