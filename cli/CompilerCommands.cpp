@@ -38,6 +38,7 @@ struct CompilerOptions {
     std::vector<std::string> files;  // validate: plain shader files
     std::string stage;               // validate: force the stage of plain files
     std::vector<std::string> defines;
+    CacheFlags cache;                // validate: --cache, --no-cache
 };
 
 // The configuration and its expansion, or the exit code that explains why there is none.
@@ -230,8 +231,11 @@ int RunValidate(const CompilerOptions& options) {
     ValidationOptions validation_options;
     validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
     validation_options.targets = config.targets;
+    const std::unique_ptr<base::ContentCache> cache = OpenCache(options.cache);
+    validation_options.cache = cache.get();
     const ValidationReport report =
             ValidateVariants(config, loaded.expansion.variants, validation_options);
+    WarnAboutCache(cache.get());
     PrintDiagnostics(report.diagnostics);
     for (const VariantVerdict& verdict : report.verdicts) {
         PrintDiagnostics(verdict.diagnostics);
@@ -359,6 +363,7 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
     validate->add_option("-j,--jobs", validate_options.jobs, "worker threads (default: cores)");
     validate->add_option("--out", validate_options.out, "folder to write manifest.json into")
             ->transform(NormaliseOutPath);
+    AddCacheFlags(validate, &validate_options.cache);
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

@@ -14,32 +14,18 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "ShellCommand.h"
 #include "TempDir.h"
 
 namespace {
 
 using tidepool::testing::TempDir;
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string out;  // stdout (and stderr, where the command sends it there)
-};
+using CommandResult = tidepool::testing::ShellResult;  // stdout (and stderr, where redirected)
 
 // Runs a shell command and collects its stdout.
 CommandResult RunShell(const std::string& command) {
-    CommandResult result;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return result;
-    }
-    std::array<char, 4096> buffer{};
-    std::size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        result.out.append(buffer.data(), n);
-    }
-    const int status = ::pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return tidepool::testing::RunShellCommand(command);
 }
 
 std::string TidepoolCommand(const std::string& args, const std::filesystem::path& cwd) {

@@ -16,31 +16,17 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "ShellCommand.h"
 #include "TempDir.h"
 
 namespace {
 
 using tidepool::testing::TempDir;
 
-struct CommandResult {
-    int exit_code = -1;
-    std::string out;  // stdout and stderr together
-};
+using CommandResult = tidepool::testing::ShellResult;  // stdout and stderr together
 
 CommandResult Shell(const std::string& command) {
-    CommandResult result;
-    FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-    if (pipe == nullptr) {
-        return result;
-    }
-    std::array<char, 4096> buffer{};
-    std::size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        result.out.append(buffer.data(), n);
-    }
-    const int status = ::pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    return result;
+    return tidepool::testing::RunShellCommand(command + " 2>&1");
 }
 
 // Runs the tidepool binary with `args` (a shell fragment) in the source root.
