@@ -240,7 +240,10 @@ int RunValidate(const CompilerOptions& options) {
     for (const VariantVerdict& verdict : report.verdicts) {
         PrintDiagnostics(verdict.diagnostics);
     }
-    const nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
+    // Built only when printed or written: it costs as much as a validation the cache answers.
+    const nlohmann::json manifest = options.json || !options.out.empty()
+                                            ? BuildManifest(config, loaded.expansion, &report)
+                                            : nlohmann::json();
     if (!options.out.empty()) {
         if (const int code = WriteManifestInto(options.out, JsonText(manifest, 2) + "\n"); code != 0) {
             return code;

@@ -243,6 +243,7 @@ struct StageJob {
     Stage stage = Stage::kVertex;
     GlslTarget target = GlslTarget::kEs100;
     std::vector<std::string> defines;
+    const Variant* variant = nullptr;  // the variant this slot belongs to
     std::string variant_id;
     std::string key;     // dedupe key: file + stage + target + content hash
     std::string hash;    // content hash of the preprocessed text
@@ -413,6 +414,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 job.stage = stage;
                 job.target = target;
                 job.defines = variant.defines;
+                job.variant = &variant;
                 job.variant_id = variant.Id();
                 jobs.push_back(std::move(job));
             }
@@ -698,14 +700,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         const StageProgram& fs = report.stage_programs[program_index[fjob.key]];
         const LinkJob& link = links[verdict_link[v]];
         VariantVerdict verdict;
-        const Variant* variant = nullptr;
-        for (const Variant& candidate : variants) {
-            if (candidate.Id() == vjob.variant_id) {
-                variant = &candidate;
-                break;
-            }
-        }
-        verdict.variant = variant != nullptr ? *variant : Variant{};
+        verdict.variant = *vjob.variant;
         verdict.target = vjob.target;
         verdict.vertex_hash = vs.hash;
         verdict.fragment_hash = fs.hash;
