@@ -23,9 +23,6 @@
 //
 // Exit codes: 0 (figures printed), 1 when the binary cannot run or a case gives a wrong count,
 // 2 on a bad argument.
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -39,8 +36,6 @@
 
 #include "BenchSupport.h"
 
-extern char** environ;
-
 namespace {
 
 struct Case {
@@ -53,64 +48,6 @@ struct Case {
     std::vector<double> rss_mb;
     bool wrong = false;
 };
-
-struct RunResult {
-    bool ok = false;
-    double wall_ms = 0;
-    double rss_mb = 0;
-    std::string last_line;
-};
-
-// Runs `binary args...`, reading its stdout (stderr too) to the end; wall time and peak RSS of
-// that one child.
-RunResult RunOnce(const std::string& binary, const std::vector<std::string>& args) {
-    RunResult result;
-    int pipe_fds[2];
-    if (pipe(pipe_fds) != 0) {
-        return result;
-    }
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDOUT_FILENO);
-    posix_spawn_file_actions_adddup2(&actions, pipe_fds[1], STDERR_FILENO);
-    posix_spawn_file_actions_addclose(&actions, pipe_fds[0]);
-    std::vector<char*> argv;
-    argv.push_back(const_cast<char*>(binary.c_str()));
-    for (const std::string& arg : args) {
-        argv.push_back(const_cast<char*>(arg.c_str()));
-    }
-    argv.push_back(nullptr);
-    const double start = tidepool::bench::NowSeconds();
-    pid_t pid = 0;
-    const int spawned = posix_spawn(&pid, binary.c_str(), &actions, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&actions);
-    close(pipe_fds[1]);
-    std::string out;
-    if (spawned == 0) {
-        char buffer[65536];
-        ssize_t n = 0;
-        while ((n = read(pipe_fds[0], buffer, sizeof buffer)) > 0) {
-            out.append(buffer, static_cast<std::size_t>(n));
-        }
-    }
-    close(pipe_fds[0]);
-    if (spawned != 0) {
-        return result;
-    }
-    int status = 0;
-    rusage usage{};
-    wait4(pid, &status, 0, &usage);
-    result.wall_ms = (tidepool::bench::NowSeconds() - start) * 1000.0;
-    result.rss_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // Linux: kilobytes
-    result.ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
-    while (!out.empty() && out.back() == '\n') {
-        out.pop_back();
-    }
-    result.last_line = out.substr(out.find_last_of('\n') == std::string::npos
-                                          ? 0
-                                          : out.find_last_of('\n') + 1);
-    return result;
-}
 
 void WriteFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
@@ -151,22 +88,17 @@ std::string AxesConfig() {
 }  // namespace
 
 int main(int argc, char** argv) {
-    int rounds = 7;
-    if (argc > 1) {
-        rounds = std::atoi(argv[1]);
-        if (rounds < 1 || rounds > 1000) {
-            std::fprintf(stderr, "usage: expand_scaling [ROUNDS 1..1000] [TIDEPOOL_BINARY]\n");
-            return 2;
-        }
+    const int rounds = tidepool::bench::RoundsArgument(
+            argc, argv, 7, 1000, "expand_scaling [ROUNDS 1..1000] [TIDEPOOL_BINARY]");
+    if (rounds == 0) {
+        return 2;
     }
     const std::string binary = argc > 2 ? argv[2] : TIDEPOOL_BINARY;
 
-    char folder_template[] = "/tmp/tidepool-expand-scaling-XXXXXX";
-    if (mkdtemp(folder_template) == nullptr) {
-        std::fprintf(stderr, "error: cannot create a temporary folder\n");
+    const std::filesystem::path dir = tidepool::bench::MakeTempFolder("expand-scaling");
+    if (dir.empty()) {
         return 1;
     }
-    const std::filesystem::path dir(folder_template);
     WriteFile(dir / "s.vsh", "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n");
     WriteFile(dir / "s.fsh", "#version 100\nprecision mediump float;\nvoid main() { "
                              "gl_FragColor = vec4(1.0); }\n");
@@ -195,7 +127,7 @@ int main(int argc, char** argv) {
     cases.push_back({"default variants.yaml",
                      {"expand", "--config",
                       (std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml").string()},
-                     "157 variants, ",
+                     "163 variants, ",
                      "24598",
                      "-",
                      {},
@@ -207,7 +139,7 @@ int main(int argc, char** argv) {
     bool all_right = true;
     for (int round = 0; round < rounds; ++round) {
         for (Case& c : cases) {
-            const RunResult run = RunOnce(binary, c.args);
+            const tidepool::bench::ProcessRun run = tidepool::bench::RunProcess(binary, c.args);
             if (!run.ok || run.last_line.rfind(c.expected_last_line, 0) != 0) {
                 if (!c.wrong) {
                     std::fprintf(stderr, "%s: WRONG: exit %s, last line '%s', expected '%s...'\n",

@@ -1,7 +1,5 @@
 #include "CliSupport.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -18,7 +16,6 @@
 #include "Commands.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/base/AtomicFile.h"
-#include "tidepool/report/ReportModel.h"
 
 namespace tidepool::cli {
 
@@ -71,6 +68,19 @@ int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& fil
 int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
                       bool check_only) {
     return WriteOwnJsonInto(folder, "manifest.json", kManifestSchema, "manifest", text, check_only);
+}
+
+int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
+    app.require_subcommand(1);
+    app.set_version_flag("--version", kVersionText);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        const int code = app.exit(e);
+        // CLI11 returns 0 for --help/--version and its own codes for usage errors; ours is 2.
+        return code == 0 ? kExitOk : kExitUsage;
+    }
+    return exit_code;
 }
 
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
@@ -140,15 +150,6 @@ bool ParseSizeOption(std::string_view flag, const std::string& text, int min_sid
     }
     std::fprintf(stderr, "error: %.*s must be WxH with %d..%d each, not '%s'\n",
                  static_cast<int>(flag.size()), flag.data(), min_side, max_side, text.c_str());
-    return false;
-}
-
-bool ParseBackendOption(const std::string& text, runner::BackendKind* backend) {
-    if (runner::ParseBackendKind(text, backend)) {
-        return true;
-    }
-    std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
-                 text.c_str());
     return false;
 }
 
@@ -261,163 +262,50 @@ bool CheckDefineOptions(const std::vector<std::string>& defines) {
     return true;
 }
 
+void AddCacheFlags(CLI::App* command, CacheFlags* flags) {
+    CLI::Option* folder = command->add_option(
+            "--cache", flags->folder,
+            "folder of the validation cache (default: $XDG_CACHE_HOME/tidepool, else "
+            "~/.cache/tidepool; at most 64 MiB, least recently used entries evicted)");
+    command->add_flag("--no-cache", flags->off, "neither read nor write the validation cache")
+            ->excludes(folder);
+}
+
+std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags) {
+    if (flags.off) {
+        return nullptr;
+    }
+    if (!flags.folder.empty()) {
+        return std::make_unique<base::ContentCache>(flags.folder);
+    }
+    // The XDG base directory rules: a relative $XDG_CACHE_HOME is invalid and ignored.
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    if (xdg != nullptr && xdg[0] == '/') {
+        return std::make_unique<base::ContentCache>(std::filesystem::path(xdg) / "tidepool");
+    }
+    const char* home = std::getenv("HOME");
+    if (home != nullptr && home[0] == '/') {
+        return std::make_unique<base::ContentCache>(std::filesystem::path(home) / ".cache" /
+                                                    "tidepool");
+    }
+    return nullptr;
+}
+
+void WarnAboutCache(const base::ContentCache* cache) {
+    if (cache == nullptr) {
+        return;
+    }
+    const base::ContentCacheStats stats = cache->Stats();
+    if (!stats.error.empty()) {
+        std::fprintf(stderr, "warning: validation cache %s: %s (results were not kept; use "
+                             "--cache DIR or --no-cache)\n",
+                     cache->Folder().c_str(), stats.error.c_str());
+    }
+}
+
 int DefaultJobs() {
     const unsigned cores = std::thread::hardware_concurrency();
     return cores == 0 ? 1 : static_cast<int>(cores);
-}
-
-void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings) {
-    command
-        ->add_option("--fourier-coefficients", settings->coefficients,
-                     "REFLECTION_FOURIER: Fourier terms kept per water vertex, 1..8 "
-                     "(a0, a1, b1, a2, b2, a3, b3, a4)")
-        ->capture_default_str();
-    command
-        ->add_option("--fourier-directions", settings->directions,
-                     "REFLECTION_FOURIER: directions the terrain is marched in per vertex (>= 3)")
-        ->capture_default_str();
-}
-
-bool CheckFourierOptions(const runner::FourierSettings& settings) {
-    const std::string error = runner::CheckFourierSettings(settings);
-    if (!error.empty()) {
-        std::fprintf(stderr,
-                     "error: %s (set --fourier-coefficients 1..8 and --fourier-directions >= 3)\n",
-                     error.c_str());
-        return false;
-    }
-    return true;
-}
-
-void AddTimingFlags(CLI::App* command, TimingFlags* flags) {
-    command->add_option("--resolution", flags->resolution,
-                        "stop timing a comparison when its 95% interval is this narrow "
-                        "(half-width, percent points of frame rate)")
-        ->capture_default_str();
-    command->add_option("--min-pairs", flags->min_pairs, "pairs of frames per comparison, at least")
-        ->capture_default_str();
-    command->add_option("--max-pairs", flags->max_pairs,
-                        "pairs of frames per comparison, at most (the resolution reached is "
-                        "reported)")
-        ->capture_default_str();
-    command->add_option("--coarse-frames", flags->coarse_frames,
-                        "timed frames of each configuration on its own (the accuracy chart)")
-        ->capture_default_str();
-    command->add_option("--warmup", flags->warmup,
-                        "untimed frames before a compared configuration is timed, per thread")
-        ->capture_default_str();
-    command->add_option("--workers", flags->workers,
-                        "rendering threads, each with its own GL context (0: one per core)")
-        ->capture_default_str();
-    command->add_option("--threads", flags->threads,
-                        "llvmpipe threads (LP_NUM_THREADS; 0 renders on each worker's thread, "
-                        "timed on that thread's CPU clock)")
-        ->capture_default_str();
-}
-
-bool CheckTimingFlags(const TimingFlags& flags) {
-    if (!(flags.resolution > 0 && flags.resolution <= 50)) {
-        std::fprintf(stderr, "error: --resolution must be above 0 and at most 50 percent points, "
-                             "not %g\n",
-                     flags.resolution);
-        return false;
-    }
-    if (flags.min_pairs < base::kMinimumPairs || flags.max_pairs < flags.min_pairs ||
-        flags.max_pairs > 100000) {
-        std::fprintf(stderr, "error: --min-pairs must be at least %d and --max-pairs between "
-                             "--min-pairs and 100000, not %d and %d\n",
-                     base::kMinimumPairs, flags.min_pairs, flags.max_pairs);
-        return false;
-    }
-    if (flags.coarse_frames < 1 || flags.warmup < 0 || flags.workers < 0 || flags.workers > 64 ||
-        flags.threads < 0 || flags.threads > 64) {
-        std::fprintf(stderr, "error: --coarse-frames must be at least 1, --warmup at least 0, "
-                             "--workers and --threads between 0 and 64\n");
-        return false;
-    }
-    return true;
-}
-
-void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
-                      runner::RunOptions* run) {
-    setenv("LP_NUM_THREADS", std::to_string(flags.threads).c_str(), 1);
-    run->host.lp_num_threads = std::to_string(flags.threads);
-    run->rule.resolution_points = flags.resolution;
-    run->rule.min_pairs = flags.min_pairs;
-    run->rule.max_pairs = flags.max_pairs;
-    run->coarse_frames = flags.coarse_frames;
-    run->warmup_frames = flags.warmup;
-    run->workers = flags.workers > 0 ? flags.workers : DefaultJobs();
-    run->make_context = [backend] { return runner::CreateGlContext(backend).context; };
-    run->comparisons.clear();
-    auto find = [&](const std::string& preset) -> std::optional<std::size_t> {
-        for (std::size_t i = 0; i < run->configurations.size(); ++i) {
-            const auto& presets = run->configurations[i].presets;
-            if (std::find(presets.begin(), presets.end(), preset) != presets.end()) {
-                return i;
-            }
-        }
-        return std::nullopt;
-    };
-    for (const report::PresetPair& pair : report::ComparedPresetPairs()) {
-        const std::optional<std::size_t> a = find(pair.baseline);
-        const std::optional<std::size_t> b = find(pair.candidate);
-        if (a && b && *a != *b) {
-            run->comparisons.push_back({pair.label, *a, *b});
-        }
-    }
-}
-
-runner::HostInfo DescribeHost(const std::string& command, const std::string& config_path) {
-    runner::HostInfo host;
-    host.cpu_model = CpuModel();
-    if (const char* threads = std::getenv("LP_NUM_THREADS"); threads != nullptr) {
-        host.lp_num_threads = threads;
-    }
-#ifdef NDEBUG
-    host.build_type = "release (NDEBUG)";
-#else
-    host.build_type = "debug (assertions on)";
-#endif
-    host.git_revision = GitRevision(std::filesystem::absolute(config_path).parent_path());
-    host.command = command;
-    return host;
-}
-
-std::string FormatDuration(double seconds) {
-    const long total = static_cast<long>(seconds + 0.5);
-    return total >= 60 ? fmt::format("{}m{:02}s", total / 60, total % 60)
-                       : fmt::format("{}s", total);
-}
-
-runner::ProgressCallback MakeProgressPrinter() {
-    struct State {
-        bool terminal = isatty(fileno(stderr)) != 0;
-        std::string last_stage;
-        double last_print = -1e9;
-    };
-    auto state = std::make_shared<State>();
-    return [state](const runner::RunProgress& p) {
-        if (state->terminal) {
-            std::fprintf(stderr, "\r\033[K[%3.0f%%] %-11s %s  ETA %s", p.percent, p.stage.c_str(),
-                         p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
-            std::fflush(stderr);
-        } else if (p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
-                   p.done == p.total) {
-            std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent,
-                         p.stage.c_str(), p.configuration.c_str(),
-                         FormatDuration(p.elapsed_seconds).c_str(),
-                         FormatDuration(p.eta_seconds).c_str());
-            state->last_print = p.elapsed_seconds;
-        }
-        state->last_stage = p.stage;
-    };
-}
-
-void FinishProgress() {
-    if (isatty(fileno(stderr)) != 0) {
-        std::fprintf(stderr, "\n");
-    }
 }
 
 }  // namespace tidepool::cli

@@ -1,4 +1,5 @@
 // Small pieces every `tidepool` command shares: printing diagnostics, reading the host, sizes.
+// Nothing here needs GL: the GL commands' own pieces are in GlCliSupport.h.
 #pragma once
 
 #include <cstdint>
@@ -12,16 +13,19 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/ContentCache.h"
 #include "tidepool/base/FolderPublisher.h"
-#include "tidepool/runner/FourierReflection.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/Results.h"
 
 namespace CLI {
 class App;
 }
 
 namespace tidepool::cli {
+
+/// What `tidepool --help` and `tidepool --version` say, in both executables.
+inline constexpr const char* kAppDescription =
+        "tidepool: shader-variant compiler and validation toolchain for GLSL ES water effects";
+inline constexpr const char* kVersionText = "tidepool 0.1.0";
 
 /// The exit code of a failed publication: kExitUsage when the folder is someone else's (choose
 /// another), kExitEnvironment when the file system failed (disk full, permissions).
@@ -47,6 +51,11 @@ int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& fil
 int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
                       bool check_only = false);
 
+/// Parses `argv` into `app` (whose command callbacks store `exit_code`) and returns the process
+/// exit code: 0 for --help/--version, kExitUsage for a usage error (CLI11's message printed),
+/// else what the command stored.
+int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code);
+
 /// Prints each diagnostic in GCC form on stderr, one per line.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
@@ -67,10 +76,6 @@ bool ParseSize(const std::string& text, int min_side, int* width, int* height,
 /// "error: FLAG must be WxH with MIN..MAX each, not 'TEXT'" and returns false.
 bool ParseSizeOption(std::string_view flag, const std::string& text, int min_side, int* width,
                      int* height, int max_side = kMaxRenderSide);
-
-/// Parses --backend; on failure prints "error: --backend must be auto, egl or osmesa, not
-/// 'TEXT'" and returns false.
-bool ParseBackendOption(const std::string& text, runner::BackendKind* backend);
 
 /// A configuration file loaded and expanded, or the exit code of why not.
 struct LoadedMatrix {
@@ -111,55 +116,24 @@ std::string NormaliseOutPath(std::string path);
 /// returns false otherwise.
 bool CheckDefineOptions(const std::vector<std::string>& defines);
 
-/// Validation jobs when the user gives none: one per core (1 when unknown).
-int DefaultJobs();
-
-/// Adds --fourier-coefficients and --fourier-directions (REFLECTION_FOURIER) to `command`,
-/// writing into `settings`.
-void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings);
-
-/// Prints why `settings` cannot be used, naming the options, and returns false; true when they
-/// can.
-bool CheckFourierOptions(const runner::FourierSettings& settings);
-
-/// The timing flags `render`, `bench` and `run` share (the one timing engine's settings).
-struct TimingFlags {
-    double resolution = 1.5;  // half-width of a comparison's 95% interval, percent points
-    int min_pairs = 20;
-    int max_pairs = 400;
-    int coarse_frames = 3;
-    int warmup = 2;
-    int workers = 0;  // rendering threads; 0: one per core
-    int threads = 0;  // LP_NUM_THREADS: 0 renders on each worker's own thread
+/// --cache DIR and --no-cache as a command received them.
+struct CacheFlags {
+    std::string folder;  // --cache; "" for the default folder
+    bool off = false;    // --no-cache
 };
 
-/// Adds --resolution, --min-pairs, --max-pairs, --coarse-frames, --warmup, --workers and
-/// --threads to `command`, writing into `flags`.
-void AddTimingFlags(CLI::App* command, TimingFlags* flags);
+/// Adds --cache DIR and --no-cache (mutually exclusive) to `command`, writing into `flags`.
+void AddCacheFlags(CLI::App* command, CacheFlags* flags);
 
-/// Prints why `flags` cannot be used, naming the option and its range, and returns false.
-bool CheckTimingFlags(const TimingFlags& flags);
+/// The validation cache the flags ask for: --cache DIR, else $XDG_CACHE_HOME/tidepool (when
+/// absolute), else $HOME/.cache/tidepool; none with --no-cache or when no folder can be named.
+std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags);
 
-/// Sets LP_NUM_THREADS from `flags` (llvmpipe reads it when the first context is created) and
-/// fills the timing part of `run`: rule, frames, workers and a factory for the workers'
-/// contexts on `backend`. Comparisons are every pair of ComparedPresetPairs() whose two presets
-/// are both among `run->configurations`.
-void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
-                      runner::RunOptions* run);
+/// Prints "warning: validation cache DIR: ..." on stderr when the cache could not be written or
+/// trimmed (validation itself is unaffected).
+void WarnAboutCache(const base::ContentCache* cache);
 
-/// "42s" or "3m05s". Never fails.
-std::string FormatDuration(double seconds);
-
-/// A render progress callback printing to stderr: on a terminal one line rewritten in place
-/// (FinishProgress ends it), in a log a plain line on every stage change and at most every 10
-/// seconds. Never fails.
-runner::ProgressCallback MakeProgressPrinter();
-
-/// Ends the line a terminal progress printer left open. Never fails.
-void FinishProgress();
-
-/// What the run records about the machine and build for `command`, reading `config_path`'s
-/// folder for the git revision.
-runner::HostInfo DescribeHost(const std::string& command, const std::string& config_path);
+/// Validation jobs when the user gives none: one per core (1 when unknown).
+int DefaultJobs();
 
 }  // namespace tidepool::cli

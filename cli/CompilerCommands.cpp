@@ -47,6 +47,7 @@ struct CompilerOptions {
     bool sources = false;
     std::string format = "text";  // text, json (as --json) or sarif
     std::string output_file;      // where json or sarif goes instead of stdout
+    CacheFlags cache;                // validate: --cache, --no-cache
 };
 
 // Prints `text` (a JSON or SARIF report) on stdout, or writes it to --output-file atomically.
@@ -300,13 +301,19 @@ int RunValidate(const CompilerOptions& options) {
     ValidationOptions validation_options;
     validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
     validation_options.targets = config.targets;
+    const std::unique_ptr<base::ContentCache> cache = OpenCache(options.cache);
+    validation_options.cache = cache.get();
     const ValidationReport report =
             ValidateVariants(config, loaded.expansion.variants, validation_options);
+    WarnAboutCache(cache.get());
     PrintDiagnostics(report.diagnostics);
     for (const VariantVerdict& verdict : report.verdicts) {
         PrintDiagnostics(verdict.diagnostics);
     }
-    nlohmann::json manifest = BuildManifest(config, loaded.expansion, &report);
+    // Built only when printed or written: it costs as much as a validation the cache answers.
+    nlohmann::json manifest = ReportFormat(options) == "json" || !options.out.empty()
+                                      ? BuildManifest(config, loaded.expansion, &report)
+                                      : nlohmann::json();
     if (!options.out.empty()) {
         if (options.sources) {
             if (const int code =
@@ -459,6 +466,7 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                            validate->add_option("--out", validate_options.out,
                                                 "folder to write manifest.json into")
                                    ->transform(NormaliseOutPath));
+    AddCacheFlags(validate, &validate_options.cache);
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "CliSupport.h"
+#include "GlCliSupport.h"
 #include "Commands.h"
 #include <fmt/format.h>
 
@@ -226,10 +227,7 @@ int RunPlan(const PlanCommandOptions& options) {
 
 void RegisterPlanCommands(CLI::App& app, int& exit_code) {
     auto options = std::make_shared<PlanCommandOptions>();
-    CLI::App* plan = app.add_subcommand(
-            "plan",
-            "pick the cheapest water configuration that meets a scene's quality target, "
-            "by rendering and timing a short candidate list (scenes/NAME.yaml)");
+    CLI::App* plan = app.add_subcommand("plan", GlCommandSummary("plan"));
     plan->add_option("--config", options->config, "variants.yaml to read; scenes/ lies next to it")
             ->capture_default_str();
     plan->add_option("--scene", options->scenes, "plan scenes/NAME.yaml (repeatable)");

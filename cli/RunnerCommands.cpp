@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "CliSupport.h"
+#include "GlCliSupport.h"
 #include "Commands.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/VariantConfig.h"
@@ -223,9 +224,7 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
 void RegisterRunnerCommands(CLI::App& app, int& exit_code) {
     auto render_options = std::make_shared<RunnerOptions>();
     render_options->command = "render";
-    CLI::App* render = app.add_subcommand(
-        "render", "render every configuration headless through Mesa: images at every view, the "
-                  "driver's verdict and a short timing");
+    CLI::App* render = app.add_subcommand("render", GlCommandSummary("render"));
     AddRunnerFlags(render, render_options.get());
     render->callback([render_options, &exit_code] { exit_code = RunRunner(*render_options); });
 
@@ -237,10 +236,7 @@ void RegisterRunnerCommands(CLI::App& app, int& exit_code) {
     bench_options->timing.coarse_frames = 15;
     bench_options->views = {"three_quarter"};
     bench_options->out = "reports/out/bench";
-    CLI::App* bench = app.add_subcommand(
-        "bench", "time configurations through Mesa: each configuration's median on the run's "
-                 "clock, and every compared pair of presets timed pair by pair to a stated "
-                 "resolution");
+    CLI::App* bench = app.add_subcommand("bench", GlCommandSummary("bench"));
     AddRunnerFlags(bench, bench_options.get());
     bench->callback([bench_options, &exit_code] { exit_code = RunRunner(*bench_options); });
 }

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "CliSupport.h"
+#include "GlCliSupport.h"
 #include "Commands.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
@@ -145,10 +146,7 @@ int RunStability(const StabilityOptions& options) {
 
 void RegisterStabilityCommands(CLI::App& app, int& exit_code) {
     auto options = std::make_shared<StabilityOptions>();
-    CLI::App* command = app.add_subcommand(
-            "stability", "Run the numerical hard cases (CPU sweeps, every water variant rendered "
-                         "into a float target), the mediump precision study and the shader-guard "
-                         "comparison; write DIR/stability.json");
+    CLI::App* command = app.add_subcommand("stability", GlCommandSummary("stability"));
     command->add_option("--config", options->config, "variants.yaml to read")
             ->capture_default_str();
     command->add_option("--out", options->out, "folder for stability.json")

@@ -26,7 +26,8 @@ void SyncFolder(const std::filesystem::path& folder) {
 
 }  // namespace
 
-std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view content) {
+std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view content,
+                                Durability durability) {
     std::error_code ec;
     const std::filesystem::path folder = path.parent_path();
     if (!folder.empty()) {
@@ -69,7 +70,7 @@ std::string WriteFileAtomically(const std::filesystem::path& path, std::string_v
     if (::fchmod(fd, 0644) != 0) {
         return fail("cannot set permissions", errno);
     }
-    if (::fsync(fd) != 0) {
+    if (durability == Durability::kSynced && ::fsync(fd) != 0) {
         return fail("cannot write", errno);
     }
     if (::close(fd) != 0) {
@@ -82,7 +83,9 @@ std::string WriteFileAtomically(const std::filesystem::path& path, std::string_v
         ::unlink(temp.c_str());
         return path.string() + ": cannot replace: " + SystemError(error);
     }
-    SyncFolder(folder);
+    if (durability == Durability::kSynced) {
+        SyncFolder(folder);
+    }
     return {};
 }
 

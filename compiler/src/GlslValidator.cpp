@@ -16,10 +16,12 @@
 
 #include <fmt/format.h>
 
+#include "CompilerSourceDigest.h"
 #include "GlslEsRules.h"
 #include "GlslangSession.h"
 #include "WorkerProcessPool.h"
 #include "tidepool/TextFile.h"
+#include "tidepool/base/Sha256.h"
 #include "StaticCostAnalyzer.h"
 
 namespace tidepool {
@@ -209,6 +211,12 @@ std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNot
     return std::string(bytes.begin(), bytes.end());
 }
 
+// A link's outcome from ParseAndLink's encoding (also the link entries of the cache).
+LinkResult DecodeLink(const std::string& payload) {
+    const nlohmann::json json = nlohmann::json::from_cbor(payload);
+    return LinkResult{json.at("ok").get<bool>(), DiagnosticsFromJson(json.at("diagnostics"))};
+}
+
 // Parent side of a link item: the link's outcome, or the internal compiler error of whichever
 // step failed (a stage, reported through `on_stage_error`, or the link itself).
 LinkResult LinkOutcome(const WorkerItemResult& result, std::string_view link_file,
@@ -216,9 +224,7 @@ LinkResult LinkOutcome(const WorkerItemResult& result, std::string_view link_fil
     LinkResult link;
     if (result.failure == WorkerFailure::kNone) {
         if (!result.payload.empty()) {
-            const nlohmann::json json = nlohmann::json::from_cbor(result.payload);
-            link.ok = json.at("ok").get<bool>();
-            link.diagnostics = DiagnosticsFromJson(json.at("diagnostics"));
+            link = DecodeLink(result.payload);
         }
         return link;
     }
@@ -269,9 +275,11 @@ struct StageJob {
     Stage stage = Stage::kVertex;
     GlslTarget target = GlslTarget::kEs100;
     std::vector<std::string> defines;
+    const Variant* variant = nullptr;  // the variant this slot belongs to
     std::string variant_id;
-    std::string key;   // dedupe key: file + stage + target + content hash
-    std::string hash;  // content hash of the preprocessed text
+    std::string key;     // dedupe key: file + stage + target + content hash
+    std::string hash;    // content hash of the preprocessed text
+    std::string digest;  // SHA-256 of the same text, for the cache's link keys
 };
 
 void HashStage(StageJob& job) {
@@ -281,8 +289,10 @@ void HashStage(StageJob& job) {
     // per define set and the parse reports the error at its line.
     const std::string material =
             pre.ok ? pre.text : job.source->text + "\n//" + DefinePreamble(job.defines);
-    job.hash = Fnv1a64Hex(fmt::format("{}|{}|{}", StageName(job.stage), TargetName(job.target),
-                                      material));
+    const std::string text =
+            fmt::format("{}|{}|{}", StageName(job.stage), TargetName(job.target), material);
+    job.hash = Fnv1a64Hex(text);
+    job.digest = base::Sha256Hex(text);
     job.key = job.file + "|" + job.hash;
 }
 
@@ -320,6 +330,67 @@ std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>&
     return key;
 }
 
+// The start of every cache key: the validation code and what glslang decides with, as one
+// digest (the resource limits alone are kilobytes, too much to hash again for every key).
+const std::string& CacheKeyPrefix() {
+    static const std::string prefix =
+            base::Sha256Hex(fmt::format("tidepool validation cache 1\n{}\n{}\n",
+                                        kCompilerSourceDigest, GlslangIdentity())) +
+            "\n";
+    return prefix;
+}
+
+// The cache key of a preprocessing group: its file's name and text (as a digest) and what
+// PreprocessGroupKey keeps, which decide glslang's input exactly (see MentionedIdentifiers).
+std::string StageCacheKey(const std::string& group_key, const std::string& file_digest) {
+    return base::Sha256()
+            .Update(CacheKeyPrefix())
+            .Update("stage\n")
+            .Update(group_key)
+            .Update("\n")
+            .Update(file_digest)
+            .FinishHex();
+}
+
+// The cache key of a link: both stages' files and preprocessed texts (as digests).
+std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
+    return base::Sha256()
+            .Update(CacheKeyPrefix())
+            .Update(fmt::format("link\n{}\n{}\n{}\n{}\n", vertex.file, vertex.digest,
+                                fragment.file, fragment.digest))
+            .FinishHex();
+}
+
+// A stage program's outcome as the cache stores it, with the two hashes of its text.
+struct CachedStage {
+    std::string hash;
+    std::string digest;
+    StageOutcome outcome;
+};
+
+std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
+    const nlohmann::json json{{"hash", program.hash},
+                              {"digest", digest},
+                              {"valid", program.valid},
+                              {"diagnostics", DiagnosticsToJson(program.diagnostics)},
+                              {"cost", ToJson(program.cost)}};
+    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(json);
+    return std::string(bytes.begin(), bytes.end());
+}
+
+// The entry's outcome, or none when it does not decode (it is then recomputed and replaced).
+std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
+    try {
+        const nlohmann::json json = nlohmann::json::from_cbor(payload);
+        return CachedStage{json.at("hash").get<std::string>(), json.at("digest").get<std::string>(),
+                           StageOutcome{json.at("valid").get<bool>(),
+                                        DiagnosticsFromJson(json.at("diagnostics")),
+                                        CostFromJson(json.at("cost"))}};
+    } catch (const nlohmann::json::exception&) {
+        return std::nullopt;
+    }
+}
+
 std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::string& id) {
     for (Diagnostic& d : diagnostics) {
         d.variant = id;
@@ -344,8 +415,18 @@ void CollectStepDiagnostics(VariantVerdict& verdict) {
 
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options) {
-    WarmUpGlslang(options.targets);  // before the workers fork, so none builds the tables again
     ValidationReport report;
+    base::ContentCache* const cache = options.cache;
+    const std::uint64_t stored_before = cache != nullptr ? cache->Stats().stored : 0;
+    // Before the first workers fork, so none builds the tables again; not at all when the cache
+    // answers everything.
+    bool warm = false;
+    auto warm_up = [&] {
+        if (!warm) {
+            WarmUpGlslang(options.targets);
+            warm = true;
+        }
+    };
 
     // Read every shader file once.
     std::map<std::string, FileText> files;
@@ -378,6 +459,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 job.stage = stage;
                 job.target = target;
                 job.defines = variant.defines;
+                job.variant = &variant;
                 job.variant_id = variant.Id();
                 jobs.push_back(std::move(job));
             }
@@ -395,29 +477,63 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         groups[PreprocessGroupKey(jobs[i], mentioned[jobs[i].file])].push_back(i);
     }
     std::vector<const std::vector<std::size_t>*> group_list;
+    std::vector<const std::string*> group_keys;
     for (const auto& [key, members] : groups) {
         group_list.push_back(&members);
+        group_keys.push_back(&key);
     }
     // A file glslang must not see (unreadable, or refused by CheckSourceText) is one program.
     auto blocked = [](const StageJob& job) {
         return !job.source->ok || !job.source->text_errors.empty();
     };
+    // A group the cache knows needs neither the preprocessor nor the parser.
+    std::vector<std::string> group_cache_key(group_list.size());
+    std::vector<std::optional<CachedStage>> group_cached(group_list.size());
+    if (cache != nullptr) {
+        std::map<std::string, std::string> file_digest;
+        for (const auto& [path, text] : files) {
+            file_digest[path] = base::Sha256Hex(text.text);
+        }
+        for (std::size_t g = 0; g < group_list.size(); ++g) {
+            const StageJob& first = jobs[group_list[g]->front()];
+            if (!blocked(first)) {
+                group_cache_key[g] = StageCacheKey(*group_keys[g], file_digest[first.file]);
+                if (std::optional<std::string> payload = cache->Load(group_cache_key[g])) {
+                    group_cached[g] = DecodeCachedStage(*payload);
+                }
+            }
+        }
+    }
+    auto hash_group = [&](std::size_t g) {
+        return !blocked(jobs[group_list[g]->front()]) && !group_cached[g];
+    };
+    for (std::size_t g = 0; g < group_list.size() && !warm; ++g) {
+        if (hash_group(g)) {
+            warm_up();
+        }
+    }
     const std::vector<WorkerItemResult> hashed = RunInWorkerProcesses(
             group_list.size(), options.jobs, GlslangLimits(),
             [&](std::size_t g, const ProgressNote&) {
                 StageJob& first = jobs[group_list[g]->front()];
                 HashStage(first);
-                return first.hash;
+                return first.hash + " " + first.digest;
             },
-            [&](std::size_t g) { return !blocked(jobs[group_list[g]->front()]); });
+            hash_group);
     std::map<std::string, std::string> preprocess_errors;  // key → internal compiler error
     for (std::size_t g = 0; g < group_list.size(); ++g) {
         const std::vector<std::size_t>& members = *group_list[g];
         StageJob& first = jobs[members.front()];
         if (blocked(first)) {
             first.key = first.file + "|unusable";
+        } else if (group_cached[g]) {
+            first.hash = group_cached[g]->hash;
+            first.digest = group_cached[g]->digest;
+            first.key = first.file + "|" + first.hash;
         } else if (hashed[g].failure == WorkerFailure::kNone) {
-            first.hash = hashed[g].payload;
+            const std::size_t space = hashed[g].payload.find(' ');
+            first.hash = hashed[g].payload.substr(0, space);
+            first.digest = hashed[g].payload.substr(space + 1);
             first.key = first.file + "|" + first.hash;
         } else {
             first.hash = fmt::format("failed-{}", g);
@@ -427,6 +543,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         for (std::size_t i : members) {
             jobs[i].hash = first.hash;
+            jobs[i].digest = first.digest;
             jobs[i].key = first.key;
         }
     }
@@ -464,6 +581,20 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             decided[i] = true;
         }
     }
+    // Programs decided by glslang's own verdict (from the cache, or parsed in step 3), not by an
+    // internal compiler error: the ones the cache may keep.
+    std::vector<bool> keepable(report.stage_programs.size(), false);
+    for (std::size_t g = 0; g < group_list.size(); ++g) {
+        const std::size_t index = program_index[jobs[group_list[g]->front()].key];
+        if (group_cached[g] && !decided[index]) {
+            StageProgram& program = report.stage_programs[index];
+            program.valid = group_cached[g]->outcome.valid;
+            program.diagnostics = group_cached[g]->outcome.diagnostics;
+            program.cost = group_cached[g]->outcome.cost;
+            decided[index] = true;
+            keepable[index] = true;
+        }
+    }
 
     // 3. Parse and link each distinct (vertex, fragment) pair in a worker. A worker parses both
     // stages of its pair and hands the parses straight to the link (a glslang tree is finalised
@@ -473,6 +604,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         std::size_t fragment = 0;
         bool linked = false;
         std::vector<Diagnostic> diagnostics;
+        std::string cache_key;  // "" when the cache is off or a stage has no digest
+        bool cached = false;    // decided by the cache
     };
     std::vector<LinkJob> links;
     std::map<std::pair<std::size_t, std::size_t>, std::size_t> link_index;
@@ -482,7 +615,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         const std::size_t fs = program_index[jobs[2 * v + 1].key];
         auto [it, inserted] = link_index.emplace(std::make_pair(vs, fs), links.size());
         if (inserted) {
-            links.push_back(LinkJob{vs, fs, false, {}});
+            links.push_back(LinkJob{vs, fs, false, {}, {}, false});
         }
         verdict_link[v] = it->second;
     }
@@ -492,10 +625,48 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     auto broken = [&](std::size_t index) {
         return decided[index] && !report.stage_programs[index].valid;
     };
+    // Links of two stages the cache decided valid: the cache may know the link too.
+    if (cache != nullptr) {
+        for (LinkJob& link : links) {
+            const StageJob& vertex = *representative[link.vertex];
+            const StageJob& fragment = *representative[link.fragment];
+            if (vertex.digest.empty() || fragment.digest.empty()) {
+                continue;
+            }
+            link.cache_key = LinkCacheKey(vertex, fragment);
+            if (!decided[link.vertex] || !decided[link.fragment] ||
+                !report.stage_programs[link.vertex].valid ||
+                !report.stage_programs[link.fragment].valid) {
+                continue;
+            }
+            if (std::optional<std::string> payload = cache->Load(link.cache_key)) {
+                try {
+                    const LinkResult outcome = DecodeLink(*payload);
+                    link.linked = outcome.ok;
+                    link.diagnostics = outcome.diagnostics;
+                    link.cached = true;
+                } catch (const nlohmann::json::exception&) {
+                    // Recomputed below, and the entry replaced.
+                }
+            }
+        }
+    }
     auto input_of = [&](std::size_t index) {
         const StageJob& job = *representative[index];
         return GlslangStageInput{job.file, job.source->text, job.stage, job.target, job.defines};
     };
+    auto link_runs = [&](std::size_t i) {
+        // Skipped when the cache decided it, or when it can neither link nor decide a stage: a
+        // stage that crashed glslang would only crash it again.
+        const LinkJob& link = links[i];
+        return !link.cached && !((broken(link.vertex) || broken(link.fragment)) &&
+                                 decided[link.vertex] && decided[link.fragment]);
+    };
+    for (std::size_t i = 0; i < links.size() && !warm; ++i) {
+        if (link_runs(i)) {
+            warm_up();
+        }
+    }
     RunInWorkerProcesses(
             links.size(), options.jobs, GlslangLimits(),
             [&](std::size_t i, const ProgressNote& note) -> std::string {
@@ -516,14 +687,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                                      {link.fragment, input_of(link.fragment)}},
                                     note, &reported);
             },
-            [&](std::size_t i) {
-                // Skipped only when it can neither link nor decide a stage: a stage that
-                // crashed glslang would only crash it again.
-                const LinkJob& link = links[i];
-                return !((broken(link.vertex) || broken(link.fragment)) &&
-                         decided[link.vertex] && decided[link.fragment]);
-            },
+            link_runs,
             [&](std::size_t i, const WorkerItemResult& result) {
+                if (links[i].cached) {
+                    return;  // skipped: the cache's outcome stands
+                }
                 for (auto& [index, outcome] : DecodeStages(result.notes)) {
                     if (!decided[index]) {
                         StageProgram& program = report.stage_programs[index];
@@ -531,6 +699,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                         program.diagnostics = std::move(outcome.diagnostics);
                         program.cost = outcome.cost;
                         decided[index] = true;
+                        keepable[index] = true;
                     }
                 }
                 LinkJob& link = links[i];
@@ -544,7 +713,24 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                         });
                 link.linked = outcome.ok;
                 link.diagnostics = outcome.diagnostics;
+                if (cache != nullptr && !link.cache_key.empty() &&
+                    result.failure == WorkerFailure::kNone && !result.payload.empty()) {
+                    cache->Store(link.cache_key, result.payload);
+                }
             });
+    if (cache != nullptr) {
+        for (std::size_t g = 0; g < group_list.size(); ++g) {
+            const StageJob& first = jobs[group_list[g]->front()];
+            const std::size_t index = program_index[first.key];
+            if (!group_cache_key[g].empty() && !group_cached[g] && keepable[index]) {
+                cache->Store(group_cache_key[g],
+                             EncodeCachedStage(report.stage_programs[index], first.digest));
+            }
+        }
+        if (cache->Stats().stored > stored_before) {
+            cache->Trim();
+        }
+    }
     for (LinkJob& link : links) {
         link.linked = link.linked && report.stage_programs[link.vertex].valid &&
                       report.stage_programs[link.fragment].valid;
@@ -559,14 +745,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         const StageProgram& fs = report.stage_programs[program_index[fjob.key]];
         const LinkJob& link = links[verdict_link[v]];
         VariantVerdict verdict;
-        const Variant* variant = nullptr;
-        for (const Variant& candidate : variants) {
-            if (candidate.Id() == vjob.variant_id) {
-                variant = &candidate;
-                break;
-            }
-        }
-        verdict.variant = variant != nullptr ? *variant : Variant{};
+        verdict.variant = *vjob.variant;
         verdict.target = vjob.target;
         verdict.vertex_hash = vs.hash;
         verdict.fragment_hash = fs.hash;

@@ -14,6 +14,7 @@
 #pragma GCC diagnostic ignored "-Wshadow"
 #pragma GCC diagnostic ignored "-Wpedantic"
 #include <glslang/Public/ResourceLimits.h>
+#include <glslang/build_info.h>
 #include <glslang/Public/ShaderLang.h>
 #pragma GCC diagnostic pop
 
@@ -128,6 +129,13 @@ const TBuiltInResource* ResourcesFor(int version) {
 }
 
 }  // namespace
+
+std::string GlslangIdentity() {
+    // The ES 1.00 adjustments of ResourcesFor are code, covered by the compiler's source digest.
+    return fmt::format("glslang {}.{}.{}{}\n{}", GLSLANG_VERSION_MAJOR, GLSLANG_VERSION_MINOR,
+                       GLSLANG_VERSION_PATCH, GLSLANG_VERSION_FLAVOR,
+                       GetDefaultTBuiltInResourceString());
+}
 
 void WarmUpGlslang(const std::vector<GlslTarget>& targets) {
     static const std::string kVertex = "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n";

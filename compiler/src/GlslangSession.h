@@ -53,6 +53,10 @@ struct LinkResult {
     std::vector<Diagnostic> diagnostics;
 };
 
+/// What, besides a stage's text, decides glslang's verdict on it: glslang's version and the
+/// default resource limits, as text for cache keys. Never fails.
+std::string GlslangIdentity();
+
 /// Initialises glslang once per process (thread-safe); every function below calls it.
 void EnsureGlslangInitialized();
 

@@ -5,8 +5,12 @@
 # run's output), OUT.exit (its exit code) and OUT.log (its stdout and stderr together).
 file(REMOVE_RECURSE "${OUT}")
 file(REMOVE "${OUT}.exit" "${OUT}.log")
+# The validation cache goes beside the output, never into the real ~/.cache (--cache, not
+# XDG_CACHE_HOME, which would also move Mesa's shader cache and make the run slower).
+file(REMOVE_RECURSE "${OUT}.cache")
 execute_process(
   COMMAND "${CMAKE_COMMAND}" -E env LP_NUM_THREADS=2 "${TIDEPOOL}" ${ARGS} --out "${OUT}"
+          --cache "${OUT}.cache"
   WORKING_DIRECTORY "${SOURCE_ROOT}"
   OUTPUT_VARIABLE log
   ERROR_VARIABLE log

@@ -1,6 +1,11 @@
 #include "tidepool/GlslValidator.h"
 
+#include <filesystem>
+#include <fstream>
+
 #include <gtest/gtest.h>
+
+#include "tidepool/Manifest.h"
 
 #include "TempDir.h"
 
@@ -49,11 +54,13 @@ VariantConfig ConfigIn(const TempDir& dir, const std::string& vertex_name,
     return config;
 }
 
-ValidationReport ValidateAll(const VariantConfig& config, int jobs = 1) {
+ValidationReport ValidateAll(const VariantConfig& config, int jobs = 1,
+                             base::ContentCache* cache = nullptr) {
     const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
     ValidationOptions options;
     options.jobs = jobs;
     options.targets = config.targets;
+    options.cache = cache;
     return ValidateVariants(config, expansion.variants, options);
 }
 
@@ -119,6 +126,108 @@ TEST(GlslValidatorTest, ValidationWithSeveralJobsGivesTheSameVerdicts) {
         EXPECT_EQ(one.verdicts[i].fragment_hash, four.verdicts[i].fragment_hash);
         EXPECT_EQ(one.verdicts[i].valid, four.verdicts[i].valid);
     }
+}
+
+// Everything a report says about its variants, as text, to compare two reports whole.
+std::vector<std::string> Described(const ValidationReport& report) {
+    std::vector<std::string> lines{"slots " + std::to_string(report.stage_slots) + " programs " +
+                                   std::to_string(report.stage_programs.size()) + " links " +
+                                   std::to_string(report.links)};
+    for (const VariantVerdict& verdict : report.verdicts) {
+        lines.push_back(verdict.variant.Id() + (verdict.valid ? " valid " : " invalid ") +
+                        verdict.vertex_hash + " " + verdict.fragment_hash);
+        for (const std::string& d : Formatted(verdict.diagnostics)) {
+            lines.push_back(d);
+        }
+    }
+    for (const StageProgram& program : report.stage_programs) {
+        lines.push_back(program.file + " " + program.hash + (program.valid ? " valid " : " invalid ") +
+                        ToJson(program.cost).dump());
+    }
+    return lines;
+}
+
+// A matrix with a stage error in one variant, a link error in another and valid ones: every
+// kind of result the cache keeps.
+VariantConfig MixedConfig(const TempDir& dir) {
+    dir.Write("m.vsh",
+              "#version 100\nuniform highp float k;\nattribute vec4 p;\n"
+              "void main() { gl_Position = p * k; }\n");
+    // MISMATCH: k's precision differs from the vertex stage's (a link error); BROKEN: an
+    // undeclared name at line 7 (a stage error).
+    dir.Write("m.fsh",
+              "#version 100\nprecision mediump float;\n#ifdef MISMATCH\nuniform mediump float k;\n"
+              "#endif\n#ifdef BROKEN\nfloat b = oops;\n#endif\n"
+              "void main() {\n  gl_FragColor = vec4(1.0);\n#ifdef MISMATCH\n  gl_FragColor *= k;\n"
+              "#endif\n}\n");
+    return ConfigIn(dir, "m.vsh", "m.fsh", {"BROKEN", "MISMATCH"});
+}
+
+TEST(GlslValidatorTest, CacheHitGivesTheSameReportAsAMiss) {
+    TempDir dir;
+    const VariantConfig config = MixedConfig(dir);
+    const ValidationReport uncached = ValidateAll(config);
+    base::ContentCache cache(dir.Path() / "cache");
+    const ValidationReport cold = ValidateAll(config, 2, &cache);
+    const base::ContentCacheStats after_cold = cache.Stats();
+    EXPECT_EQ(after_cold.hits, 0U);
+    EXPECT_GT(after_cold.stored, 0U);
+    const ValidationReport warm = ValidateAll(config, 2, &cache);
+    const base::ContentCacheStats after_warm = cache.Stats();
+    EXPECT_EQ(after_warm.misses, after_cold.misses) << "the warm run missed";
+    EXPECT_EQ(after_warm.stored, after_cold.stored) << "the warm run stored";
+    EXPECT_GT(after_warm.hits, 0U);
+    EXPECT_EQ(Described(cold), Described(uncached));
+    EXPECT_EQ(Described(warm), Described(uncached));
+    // The mixed matrix really has each kind: a stage error and a link error.
+    EXPECT_EQ(uncached.InvalidCount(), 3);
+}
+
+TEST(GlslValidatorTest, CorruptCacheEntryIsIgnoredAndRewritten) {
+    TempDir dir;
+    const VariantConfig config = MixedConfig(dir);
+    base::ContentCache cache(dir.Path() / "cache");
+    const ValidationReport cold = ValidateAll(config, 1, &cache);
+    std::vector<std::filesystem::path> entries;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.Path() / "cache")) {
+        if (entry.is_regular_file()) {
+            entries.push_back(entry.path());
+        }
+    }
+    ASSERT_FALSE(entries.empty());
+    for (const std::filesystem::path& path : entries) {
+        // The same length, one byte of the payload changed: only the checksum can tell.
+        std::fstream file(path, std::ios::binary | std::ios::in | std::ios::out);
+        file.seekp(-1, std::ios::end);
+        file.put('\x7f');
+    }
+    base::ContentCache reopened(dir.Path() / "cache");
+    const ValidationReport damaged = ValidateAll(config, 1, &reopened);
+    // Every stage entry is read and found corrupt; link entries are not even read, since their
+    // stages are recomputed, and are rewritten all the same.
+    EXPECT_GT(reopened.Stats().corrupt, 0U);
+    EXPECT_EQ(reopened.Stats().hits, 0U);
+    EXPECT_EQ(Described(damaged), Described(cold));
+    base::ContentCache again(dir.Path() / "cache");
+    const ValidationReport rewritten = ValidateAll(config, 1, &again);
+    EXPECT_EQ(again.Stats().corrupt, 0U);
+    EXPECT_EQ(again.Stats().misses, 0U);
+    EXPECT_EQ(Described(rewritten), Described(cold));
+}
+
+TEST(GlslValidatorTest, EditedShaderMissesTheCacheAndIsValidatedAgain) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kFragment);
+    const VariantConfig config = ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG"});
+    base::ContentCache cache(dir.Path() / "cache");
+    ASSERT_EQ(ValidateAll(config, 1, &cache).InvalidCount(), 0);
+    std::string broken = kFragment;
+    broken.replace(broken.find("FogColour, 0.5"), 9, "FogColor ");
+    dir.Write("a.fsh", broken);
+    const ValidationReport edited = ValidateAll(config, 1, &cache);
+    EXPECT_EQ(Described(edited), Described(ValidateAll(config)));
+    EXPECT_EQ(edited.InvalidCount(), 1);
 }
 
 TEST(GlslValidatorTest, InterfaceMismatchIsCaughtOnlyAtLinkTime) {

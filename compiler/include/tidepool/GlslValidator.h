@@ -12,6 +12,7 @@
 #include "tidepool/StaticCost.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/ContentCache.h"
 
 namespace tidepool {
 
@@ -19,6 +20,11 @@ namespace tidepool {
 struct ValidationOptions {
     int jobs = 1;                                       // worker threads
     std::vector<GlslTarget> targets = {GlslTarget::kEs100};
+    /// Where stage and link results are looked up before glslang runs and stored after, keyed
+    /// by the stage's source as glslang receives it (file text and the defines it names),
+    /// file name, stage, target, glslang's version and resource limits and tidepool's
+    /// validation code; none: no cache. Not owned; its Stats() say what it did.
+    base::ContentCache* cache = nullptr;
 };
 
 /// One distinct stage program: all variants whose preprocessed stage source is identical share it.

@@ -7,10 +7,16 @@
 
 namespace tidepool::base {
 
-/// Writes `content` to `path` atomically and durably, creating parent folders: a uniquely named
-/// temp file in the same folder (mkstemp), fsync, rename over `path`, fsync of the folder. Returns
-/// "" on success, otherwise a message naming the path and the system error; on failure no temp
-/// file is left and an earlier `path` is untouched.
-std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view content);
+/// Whether a write must survive a power cut (kSynced: fsync of the file and its folder) or only a
+/// process crash (kUnsynced: for caches, whose entries carry their own checksum and cost only a
+/// recomputation when lost; fsync costs milliseconds per file).
+enum class Durability { kSynced, kUnsynced };
+
+/// Writes `content` to `path` atomically and (kSynced) durably, creating parent folders: a
+/// uniquely named temp file in the same folder (mkstemp), fsync, rename over `path`, fsync of
+/// the folder. Returns "" on success, otherwise a message naming the path and the system error;
+/// on failure no temp file is left and an earlier `path` is untouched.
+std::string WriteFileAtomically(const std::filesystem::path& path, std::string_view content,
+                                Durability durability = Durability::kSynced);
 
 }  // namespace tidepool::base

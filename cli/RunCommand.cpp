@@ -1,6 +1,5 @@
-// `tidepool report` (build the report from a saved manifest and results) and `tidepool run`
-// (validate, render, stability catalogue, scene plans and report in one go): flags → options →
-// library calls → print → exit code.
+// `tidepool run` (validate, render, stability catalogue, scene plans and report in one go):
+// flags → options → library calls → print → exit code. Built into `tidepool-gl`.
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -18,6 +17,7 @@
 #include <fmt/format.h>
 
 #include "CliSupport.h"
+#include "GlCliSupport.h"
 #include "Commands.h"
 #include "tidepool/base/AtomicFile.h"
 #include "tidepool/GlslValidator.h"
@@ -26,9 +26,7 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/report/ImageMetrics.h"
-#include "tidepool/report/ReportInputs.h"
 #include "tidepool/report/ReportModel.h"
-#include "tidepool/report/ReportWriter.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -38,13 +36,6 @@
 
 namespace tidepool::cli {
 namespace {
-
-struct ReportCommandOptions {
-    std::string manifest = "reports/out/manifest/manifest.json";
-    std::string results = "reports/out/render/results.json";
-    std::string name = "default";
-    std::string out = "reports/out";
-};
 
 // `run` times through the one timing engine (TimingFlags): each configuration coarsely on its
 // own, each compared pair of presets pair by pair until its interval is +/-1.5 points.
@@ -67,69 +58,8 @@ struct RunCommandOptions {
     std::string plan_size = "160x120";
     double plan_resolution = 3.0;
     tidepool::runner::FourierSettings fourier;
+    CacheFlags cache;
 };
-
-std::string UtcNow() {
-    const std::time_t now = std::time(nullptr);
-    std::tm tm{};
-    gmtime_r(&now, &tm);
-    char buffer[32] = {0};
-    std::strftime(buffer, sizeof buffer, "%Y-%m-%dT%H:%M:%SZ", &tm);
-    return buffer;
-}
-
-// Loads the inputs, builds and writes the report, prints the table; returns the exit code.
-int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesystem::path& results,
-                        const std::string& name, const std::filesystem::path& out) {
-    using namespace tidepool::report;
-    const auto start = std::chrono::steady_clock::now();
-    ReportInputsResult loaded = LoadReportInputs(manifest, results);
-    if (!loaded.inputs) {
-        std::fprintf(stderr, "error: %s\n", loaded.error.c_str());
-        return kExitUsage;
-    }
-    if (!loaded.inputs->stability_error.empty()) {
-        std::fprintf(stderr, "warning: %s (the report says so)\n",
-                     loaded.inputs->stability_error.c_str());
-    }
-    if (!loaded.inputs->plans_error.empty()) {
-        std::fprintf(stderr, "warning: %s (the report says so)\n",
-                     loaded.inputs->plans_error.c_str());
-    }
-    ReportOptions options;
-    options.name = name;
-    options.generated_utc = UtcNow();
-    ReportModelResult model = BuildReportModel(*loaded.inputs, options);
-    const double model_seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (!model.model) {
-        std::fprintf(stderr, "error: %s\n", model.error.c_str());
-        return kExitUsage;
-    }
-    const WrittenReport written = WriteReport(*model.model, out);
-    if (!written.error.empty()) {
-        std::fprintf(stderr, "error: %s\n", written.error.c_str());
-        return written.refused ? kExitUsage : kExitEnvironment;
-    }
-    std::printf("%s", WhitepaperTableText(*model.model).c_str());
-    const double seconds =
-            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("report: %zu configurations (%d failed), %zu on the Pareto frontier, static-cost "
-                "Spearman rho %.3f; written in %.1f s to %s/ (index.html %.1f MB%s, report.md, "
-                "data.json, %zu files; reading and comparing images %.1f s)\n",
-                model.model->accuracy.size(), model.model->failed_configurations,
-                model.model->frontier.size(), model.model->static_cost.spearman_rho, seconds,
-                written.folder.c_str(), static_cast<double>(written.html_bytes) / 1e6,
-                written.image_downscale > 1
-                        ? fmt::format(", images downscaled {}x", written.image_downscale).c_str()
-                        : "",
-                written.files.size(), model_seconds);
-    return model.model->failed_configurations > 0 ? kExitShaderErrors : kExitOk;
-}
-
-int RunReport(const ReportCommandOptions& options) {
-    return BuildAndWriteReport(options.manifest, options.results, options.name, options.out);
-}
 
 // What a follow-up stage of `run` ended with.
 struct StageOutcome {
@@ -374,8 +304,11 @@ int RunAll(const RunCommandOptions& options) {
     ValidationOptions validation_options;
     validation_options.jobs = DefaultJobs();
     validation_options.targets = config.targets;
+    const std::unique_ptr<base::ContentCache> cache = OpenCache(options.cache);
+    validation_options.cache = cache.get();
     const ValidationReport validation =
             ValidateVariants(config, expansion.variants, validation_options);
+    WarnAboutCache(cache.get());
     PrintDiagnostics(validation.diagnostics);
     for (const VariantVerdict& verdict : validation.verdicts) {
         PrintDiagnostics(verdict.diagnostics);
@@ -501,29 +434,9 @@ int RunAll(const RunCommandOptions& options) {
 
 }  // namespace
 
-void RegisterReportCommands(CLI::App& app, int& exit_code) {
-    auto report_options = std::make_shared<ReportCommandOptions>();
-    CLI::App* report = app.add_subcommand(
-            "report", "build the report (whitepaper table, accuracy vs time, static cost, "
-                      "validation, images, method) from a saved manifest and results");
-    report->add_option("--manifest", report_options->manifest,
-                       "manifest.json written by `tidepool validate --out DIR`")
-            ->capture_default_str();
-    report->add_option("--results", report_options->results,
-                       "results.json written by `tidepool render`")
-            ->capture_default_str();
-    report->add_option("--name", report_options->name, "report folder name under --out")
-            ->capture_default_str();
-    report->add_option("--out", report_options->out, "folder that receives <name>/")
-            ->transform(NormaliseOutPath)
-            ->capture_default_str();
-    report->callback([report_options, &exit_code] { exit_code = RunReport(*report_options); });
-
+void RegisterRunCommand(CLI::App& app, int& exit_code) {
     auto run_options = std::make_shared<RunCommandOptions>();
-    CLI::App* run = app.add_subcommand(
-            "run", "validate, render, run the stability catalogue and the scene plans, and "
-                   "report in one go: <out>/manifest/, <out>/render/ (results.json, "
-                   "stability.json, plans.json) and the report in <out>/<name>/");
+    CLI::App* run = app.add_subcommand("run", GlCommandSummary("run"));
     run->add_option("--config", run_options->config, "variants.yaml to read")
             ->capture_default_str();
     run->add_option("--name", run_options->name, "report folder name under --out")
@@ -548,6 +461,7 @@ void RegisterReportCommands(CLI::App& app, int& exit_code) {
                     "time each plan candidate against the full effect to this half-width "
                     "(percent points)")
             ->capture_default_str();
+    AddCacheFlags(run, &run_options->cache);
     run->callback([run_options, &exit_code] { exit_code = RunAll(*run_options); });
 }
 

@@ -1,0 +1,38 @@
+// SHA-256 (FIPS 180-4), for content keys that must not collide by accident: the validation
+// cache names results by the digest of everything that decides them.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+namespace tidepool::base {
+
+/// An incremental SHA-256: Update any number of times, then Finish once. Never fails.
+class Sha256 {
+public:
+    Sha256();
+
+    /// Appends `data` to the message.
+    Sha256& Update(std::string_view data);
+
+    /// The digest of everything appended; the object must not be used afterwards.
+    std::array<std::uint8_t, 32> Finish();
+
+    /// The digest of everything appended as 64 lowercase hex digits; as Finish.
+    std::string FinishHex();
+
+private:
+    void Compress(const std::uint8_t* block);
+
+    std::array<std::uint32_t, 8> state_;
+    std::array<std::uint8_t, 64> buffer_{};
+    std::size_t buffered_ = 0;
+    std::uint64_t length_ = 0;  // bytes appended
+};
+
+/// The SHA-256 of `data` as 64 lowercase hex digits.
+std::string Sha256Hex(std::string_view data);
+
+}  // namespace tidepool::base

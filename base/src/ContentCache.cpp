@@ -1,0 +1,205 @@
+#include "tidepool/base/ContentCache.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <ctime>
+#include <utility>
+#include <vector>
+
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/Sha256.h"
+
+namespace tidepool::base {
+namespace {
+
+// The first line of every entry; a change of the layout below changes it (and the v1 folder).
+constexpr std::string_view kMagic = "tidepool-cache-entry 1\n";
+
+// A hit refreshes an entry's time for Trim only when it is older than this, so a warm run costs
+// one system call per entry at most once an hour.
+constexpr std::time_t kRefreshSeconds = 3600;
+
+// Temp files older than this belong to a writer that died; younger ones may be mid-write.
+constexpr std::time_t kStaleTempSeconds = 3600;
+
+bool IsKey(std::string_view key) {
+    return key.size() >= 8 && std::all_of(key.begin(), key.end(), [](char c) {
+               return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+           });
+}
+
+// Reads the whole of `fd`; false on a read error.
+bool ReadAll(int fd, std::string* text) {
+    char buffer[16384];
+    for (;;) {
+        const ssize_t n = ::read(fd, buffer, sizeof buffer);
+        if (n < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            return false;
+        }
+        if (n == 0) {
+            return true;
+        }
+        text->append(buffer, static_cast<std::size_t>(n));
+    }
+}
+
+// Takes "<name> <value>\n" off the front of `text`.
+bool TakeField(std::string_view* text, std::string_view name, std::string_view* value) {
+    const std::size_t end = text->find('\n');
+    if (end == std::string_view::npos || text->substr(0, name.size()) != name ||
+        end <= name.size() || (*text)[name.size()] != ' ') {
+        return false;
+    }
+    *value = text->substr(name.size() + 1, end - name.size() - 1);
+    text->remove_prefix(end + 1);
+    return true;
+}
+
+// The payload of an entry for `key`, or none when the text is not a whole, matching entry.
+std::optional<std::string> ParseEntry(std::string_view text, std::string_view key) {
+    if (text.substr(0, kMagic.size()) != kMagic) {
+        return std::nullopt;
+    }
+    text.remove_prefix(kMagic.size());
+    std::string_view stored_key;
+    std::string_view size_text;
+    std::string_view digest;
+    if (!TakeField(&text, "key", &stored_key) || stored_key != key ||
+        !TakeField(&text, "size", &size_text) || !TakeField(&text, "sha256", &digest)) {
+        return std::nullopt;
+    }
+    std::size_t size = 0;
+    const auto parsed = std::from_chars(size_text.data(), size_text.data() + size_text.size(), size);
+    if (parsed.ec != std::errc() || parsed.ptr != size_text.data() + size_text.size() ||
+        text.size() != size || Sha256Hex(text) != digest) {
+        return std::nullopt;
+    }
+    return std::string(text);
+}
+
+}  // namespace
+
+ContentCache::ContentCache(std::filesystem::path folder, std::uint64_t max_bytes)
+    : folder_(std::move(folder)), max_bytes_(max_bytes) {}
+
+std::filesystem::path ContentCache::EntryPath(std::string_view key) const {
+    return folder_ / "v1" / std::string(key.substr(0, 2)) / std::string(key);
+}
+
+std::optional<std::string> ContentCache::Load(std::string_view key) {
+    std::optional<std::string> payload;
+    bool corrupt = false;
+    if (IsKey(key)) {
+        const int fd = ::open(EntryPath(key).c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd >= 0) {
+            std::string text;
+            if (ReadAll(fd, &text)) {
+                payload = ParseEntry(text, key);
+                corrupt = !payload;
+            }
+            struct stat info {};
+            if (payload && ::fstat(fd, &info) == 0 &&
+                std::time(nullptr) - info.st_mtime > kRefreshSeconds) {
+                ::futimens(fd, nullptr);  // most recently used: the last to be trimmed
+            }
+            ::close(fd);
+        }
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++(payload ? stats_.hits : stats_.misses);
+    stats_.corrupt += corrupt ? 1 : 0;
+    return payload;
+}
+
+void ContentCache::Store(std::string_view key, std::string_view payload) {
+    if (!IsKey(key)) {
+        RecordError("internal error: cache key '" + std::string(key) + "' is not hex");
+        return;
+    }
+    std::string entry(kMagic);
+    entry += "key ";
+    entry += key;
+    entry += "\nsize " + std::to_string(payload.size()) + "\nsha256 " + Sha256Hex(payload) + "\n";
+    entry += payload;
+    // Unsynced: after a power cut an entry may be lost or truncated, and the checksum turns a
+    // truncated one into a miss; fsync would cost milliseconds per entry.
+    const std::string error = WriteFileAtomically(EntryPath(key), entry, Durability::kUnsynced);
+    if (!error.empty()) {
+        RecordError(error);
+        return;
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    ++stats_.stored;
+}
+
+void ContentCache::Trim() {
+    struct File {
+        std::filesystem::path path;
+        std::time_t mtime;
+        std::uint64_t size;
+    };
+    std::vector<File> files;
+    std::uint64_t total = 0;
+    std::error_code ec;
+    const std::time_t now = std::time(nullptr);
+    for (std::filesystem::recursive_directory_iterator it(folder_ / "v1", ec), end;
+         !ec && it != end; it.increment(ec)) {
+        struct stat info {};
+        if (::lstat(it->path().c_str(), &info) != 0 || !S_ISREG(info.st_mode)) {
+            continue;
+        }
+        const bool temp = it->path().filename().string().rfind('.', 0) == 0;
+        if (temp && now - info.st_mtime > kStaleTempSeconds) {
+            ::unlink(it->path().c_str());  // left by a writer that died
+            continue;
+        }
+        const auto size = static_cast<std::uint64_t>(info.st_size);
+        total += size;
+        if (!temp) {
+            files.push_back({it->path(), info.st_mtime, size});
+        }
+    }
+    if (total <= max_bytes_) {
+        return;
+    }
+    // Down to 3/4 of the bound, so that a full cache is not trimmed again on every run.
+    const std::uint64_t target = max_bytes_ / 4 * 3;
+    std::sort(files.begin(), files.end(),
+              [](const File& a, const File& b) { return a.mtime < b.mtime; });
+    std::uint64_t evicted = 0;
+    for (const File& file : files) {
+        if (total <= target) {
+            break;
+        }
+        if (::unlink(file.path.c_str()) == 0) {
+            total -= file.size;
+            ++evicted;
+        } else if (errno == ENOENT) {
+            total -= file.size;  // another process trimmed it first
+        }
+    }
+    const std::lock_guard<std::mutex> lock(mutex_);
+    stats_.evicted += evicted;
+}
+
+ContentCacheStats ContentCache::Stats() const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return stats_;
+}
+
+void ContentCache::RecordError(const std::string& error) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (stats_.error.empty()) {
+        stats_.error = error;
+    }
+}
+
+}  // namespace tidepool::base

@@ -1,0 +1,147 @@
+// `tidepool validate` with its validation cache, as a user runs it: --cache, --no-cache, the
+// default folder, concurrent processes.
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "TidepoolProcess.h"
+#include "TempDir.h"
+
+namespace {
+
+using tidepool::testing::RunShell;
+using tidepool::testing::CommandResult;
+using tidepool::testing::TempDir;
+
+std::string Quoted(const std::filesystem::path& path) {
+    std::string quoted(1, '\'');  // appended, not `"'" + string`: GCC 12 warns falsely (-Wrestrict)
+    quoted += path.string();
+    quoted += '\'';
+    return quoted;
+}
+
+// `tidepool ARGS` in `cwd`, stdout and stderr together.
+CommandResult Tidepool(const std::string& args, const std::filesystem::path& cwd) {
+    return RunShell("cd " + Quoted(cwd) + " && '" TIDEPOOL_BINARY "' " + args + " 2>&1");
+}
+
+std::string Read(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+std::size_t EntryCount(const std::filesystem::path& folder) {
+    std::size_t count = 0;
+    std::error_code ec;
+    for (std::filesystem::recursive_directory_iterator it(folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
+        count += it->is_regular_file() ? 1U : 0U;
+    }
+    return count;
+}
+
+class CacheCliTest : public ::testing::Test {
+protected:
+    CacheCliTest() {
+        dir_.Write("s.vsh", "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n");
+        dir_.Write("s.fsh",
+                   "#version 100\nprecision mediump float;\nvoid main() {\n#ifdef B\n"
+                   "  gl_FragColor = vec4(oops);\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n");
+        dir_.Write("v.yaml",
+                   "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    features: [A, B]\n");
+    }
+    TempDir dir_;
+};
+
+TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
+    const std::string cache = Quoted(dir_.Path() / "cache");
+    const CommandResult uncached = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
+    const CommandResult cold = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    const CommandResult warm = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    EXPECT_EQ(uncached.exit_code, 1) << uncached.out;
+    EXPECT_NE(uncached.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
+              std::string::npos)
+            << uncached.out;
+    EXPECT_EQ(cold.exit_code, 1);
+    EXPECT_EQ(warm.exit_code, 1);
+    EXPECT_EQ(cold.out, uncached.out);
+    EXPECT_EQ(warm.out, uncached.out);
+    EXPECT_GT(EntryCount(dir_.Path() / "cache"), 0U);
+}
+
+TEST_F(CacheCliTest, NoCacheWritesNothing) {
+    dir_.Write("xdg/keep", "");
+    const CommandResult r = Tidepool(
+            "validate --config v.yaml --no-cache", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    const CommandResult with_env = RunShell(
+            "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
+            " '" TIDEPOOL_BINARY "' validate --config v.yaml --no-cache 2>&1");
+    EXPECT_EQ(with_env.exit_code, 1) << with_env.out;
+    EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg" / "tidepool"));
+}
+
+TEST_F(CacheCliTest, DefaultFolderIsTidepoolUnderXdgCacheHome) {
+    const CommandResult r = RunShell(
+            "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
+            " '" TIDEPOOL_BINARY "' validate --config v.yaml 2>&1");
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_GT(EntryCount(dir_.Path() / "xdg" / "tidepool" / "v1"), 0U);
+}
+
+TEST_F(CacheCliTest, CacheAndNoCacheTogetherAreAUsageError) {
+    const CommandResult r = Tidepool("validate --config v.yaml --no-cache --cache c", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2) << r.out;
+    EXPECT_NE(r.out.find("--no-cache"), std::string::npos) << r.out;
+}
+
+TEST_F(CacheCliTest, UnwritableCacheFolderWarnsAndStillValidates) {
+    dir_.Write("file", "a file where the cache folder should be");
+    const CommandResult r = Tidepool(
+            "validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
+            dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_NE(r.out.find("warning: validation cache"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;
+}
+
+TEST_F(CacheCliTest, ConcurrentProcessesShareOneCacheFolderWithoutError) {
+    // The default matrix, cold: both processes miss, store the same entries and race on every
+    // rename; then two warm processes read what the first two wrote.
+    const std::string cache = Quoted(dir_.Path() / "cache");
+    for (const char* round : {"cold", "warm"}) {
+        SCOPED_TRACE(round);
+        // Both in the background, each with its own output files; `wait` for both.
+        std::string script;
+        for (const char* name : {"a", "b"}) {
+            const std::filesystem::path out = dir_.Path() / (std::string(round) + name);
+            script += "( '" TIDEPOOL_BINARY "' validate --json --config '" TIDEPOOL_SOURCE_ROOT
+                      "/variants.yaml' --cache " +
+                      cache + " > " + Quoted(out.string() + ".out") + " 2> " +
+                      Quoted(out.string() + ".err") + "; echo $? > " +
+                      Quoted(out.string() + ".code") + " ) & ";
+        }
+        script += "wait";
+        ASSERT_EQ(RunShell(script).exit_code, 0);
+        const std::filesystem::path a = dir_.Path() / (std::string(round) + "a");
+        const std::filesystem::path b = dir_.Path() / (std::string(round) + "b");
+        EXPECT_EQ(Read(a.string() + ".code"), "0\n") << Read(a.string() + ".err");
+        EXPECT_EQ(Read(b.string() + ".code"), "0\n") << Read(b.string() + ".err");
+        EXPECT_EQ(Read(a.string() + ".err"), "");
+        EXPECT_EQ(Read(b.string() + ".err"), "");
+        // EXPECT_TRUE, not EXPECT_EQ: a failure must not print two manifests of 400 kB.
+        const std::string manifest = Read(a.string() + ".out");
+        EXPECT_TRUE(manifest == Read(b.string() + ".out")) << "the two processes disagree";
+        EXPECT_TRUE(manifest == Read((dir_.Path() / "colda").string() + ".out"))
+                << "the warm processes disagree with the cold ones";
+        EXPECT_NE(manifest.find("\"invalid\": 0"), std::string::npos);
+    }
+    EXPECT_GT(EntryCount(dir_.Path() / "cache"), 0U);
+}
+
+}  // namespace

@@ -1,0 +1,186 @@
+#include "tidepool/base/ContentCache.h"
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "TempDir.h"
+#include "tidepool/base/Sha256.h"
+
+namespace tidepool::base {
+namespace {
+
+using testing::TempDir;
+
+std::string Key(const std::string& name) {
+    return Sha256Hex(name);
+}
+
+std::string ReadBytes(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+// Stores `count` entries of `payload` under Key("0"), Key("1"), ...; entry i was last used
+// count - i hours ago, so entry 0 is the least recently used.
+void StoreAged(ContentCache& cache, int count, const std::string& payload) {
+    const auto now = std::filesystem::file_time_type::clock::now();
+    for (int i = 0; i < count; ++i) {
+        const std::string key = Key(std::to_string(i));
+        cache.Store(key, payload);
+        std::filesystem::last_write_time(cache.EntryPath(key), now - std::chrono::hours(count - i));
+    }
+}
+
+TEST(ContentCacheTest, StoredPayloadIsLoadedBackByteForByte) {
+    TempDir dir;
+    ContentCache cache(dir.Path() / "cache");
+    const std::string payload("binary\0payload\nwith\xff bytes", 26);
+    cache.Store(Key("a"), payload);
+    EXPECT_EQ(cache.Load(Key("a")), payload);
+    const ContentCacheStats stats = cache.Stats();
+    EXPECT_EQ(stats.stored, 1U);
+    EXPECT_EQ(stats.hits, 1U);
+    EXPECT_EQ(stats.misses, 0U);
+    EXPECT_EQ(stats.error, "");
+}
+
+TEST(ContentCacheTest, AbsentKeyIsAMissAndNotCorrupt) {
+    TempDir dir;
+    ContentCache cache(dir.Path());
+    EXPECT_FALSE(cache.Load(Key("absent")));
+    EXPECT_EQ(cache.Stats().misses, 1U);
+    EXPECT_EQ(cache.Stats().corrupt, 0U);
+}
+
+TEST(ContentCacheTest, KeyThatIsNotHexIsNeverAPath) {
+    TempDir dir;
+    ContentCache cache(dir.Path());
+    cache.Store("../../escape", "x");
+    EXPECT_NE(cache.Stats().error, "");
+    EXPECT_FALSE(cache.Load("../../escape"));
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "escape"));
+}
+
+// Every way an entry can go bad: each is a miss counted as corrupt, never a wrong payload, and
+// the next Store of the key makes it whole again.
+TEST(ContentCacheTest, DamagedEntryIsCorruptAndTheNextStoreReplacesIt) {
+    const std::string payload = "the payload of a stage";
+    struct Damage {
+        const char* why;
+        std::string (*apply)(const std::string& entry);
+    };
+    const Damage damages[] = {
+            {"truncated", [](const std::string& e) { return e.substr(0, e.size() - 3); }},
+            {"payload byte flipped",
+             [](const std::string& e) {
+                 std::string d = e;
+                 d.back() = static_cast<char>(d.back() ^ 1);
+                 return d;
+             }},
+            {"bytes appended", [](const std::string& e) { return e + "junk"; }},
+            {"empty file", [](const std::string&) { return std::string(); }},
+            {"another format",
+             [](const std::string& e) {
+                 std::string d = e;
+                 d[0] = 'x';
+                 return d;
+             }},
+    };
+    for (const Damage& damage : damages) {
+        SCOPED_TRACE(damage.why);
+        TempDir dir;
+        ContentCache cache(dir.Path());
+        cache.Store(Key("k"), payload);
+        const std::filesystem::path path = cache.EntryPath(Key("k"));
+        WriteBytes(path, damage.apply(ReadBytes(path)));
+        EXPECT_FALSE(cache.Load(Key("k")));
+        EXPECT_EQ(cache.Stats().corrupt, 1U);
+        cache.Store(Key("k"), payload);
+        EXPECT_EQ(cache.Load(Key("k")), payload);
+    }
+}
+
+TEST(ContentCacheTest, EntryOfAnotherKeyIsNotTrusted) {
+    TempDir dir;
+    ContentCache cache(dir.Path());
+    cache.Store(Key("a"), "payload of a");
+    std::filesystem::create_directories(cache.EntryPath(Key("b")).parent_path());
+    std::filesystem::copy_file(cache.EntryPath(Key("a")), cache.EntryPath(Key("b")));
+    EXPECT_FALSE(cache.Load(Key("b")));
+    EXPECT_EQ(cache.Stats().corrupt, 1U);
+}
+
+TEST(ContentCacheTest, TrimEvictsLeastRecentlyUsedEntriesUntilUnderTheBound) {
+    TempDir dir;
+    const std::string payload(1000, 'p');
+    // Ten entries of about 1.1 kB under a 5 kB bound: Trim keeps the newest three (3/4 of 5 kB).
+    ContentCache cache(dir.Path(), 5000);
+    StoreAged(cache, 10, payload);
+    cache.Trim();
+    EXPECT_EQ(cache.Stats().evicted, 7U);
+    for (int i = 0; i < 10; ++i) {
+        EXPECT_EQ(std::filesystem::exists(cache.EntryPath(Key(std::to_string(i)))), i >= 7) << i;
+    }
+    cache.Trim();  // under the bound now: nothing more goes
+    EXPECT_EQ(cache.Stats().evicted, 7U);
+}
+
+TEST(ContentCacheTest, HitRefreshesAnOldEntrySoTrimKeepsIt) {
+    TempDir dir;
+    const std::string payload(1000, 'p');
+    ContentCache cache(dir.Path(), 2500);
+    StoreAged(cache, 3, payload);
+    ASSERT_TRUE(cache.Load(Key("0")));  // the oldest, used again
+    cache.Trim();
+    EXPECT_TRUE(std::filesystem::exists(cache.EntryPath(Key("0"))));
+    EXPECT_FALSE(std::filesystem::exists(cache.EntryPath(Key("1"))));
+}
+
+TEST(ContentCacheTest, UnwritableFolderIsAnErrorAndEveryLoadAMiss) {
+    TempDir dir;
+    dir.Write("file", "a file where the cache folder should be");
+    ContentCache cache(dir.Path() / "file" / "cache");
+    cache.Store(Key("a"), "payload");
+    EXPECT_NE(cache.Stats().error.find("file"), std::string::npos) << cache.Stats().error;
+    EXPECT_FALSE(cache.Load(Key("a")));
+}
+
+TEST(ContentCacheTest, ConcurrentWritersAndReadersOfOneKeyNeverSeeHalfAnEntry) {
+    TempDir dir;
+    ContentCache cache(dir.Path());
+    const std::string payload(100000, 'x');
+    std::vector<std::thread> threads;
+    for (int t = 0; t < 4; ++t) {
+        threads.emplace_back([&cache, &payload, t] {
+            for (int i = 0; i < 50; ++i) {
+                if (t % 2 == 0) {
+                    cache.Store(Key("shared"), payload);
+                } else if (std::optional<std::string> loaded = cache.Load(Key("shared"))) {
+                    EXPECT_EQ(*loaded, payload);
+                }
+            }
+        });
+    }
+    for (std::thread& thread : threads) {
+        thread.join();
+    }
+    EXPECT_EQ(cache.Stats().corrupt, 0U);
+    EXPECT_EQ(cache.Stats().error, "");
+}
+
+}  // namespace
+}  // namespace tidepool::base
