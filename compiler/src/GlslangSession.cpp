@@ -1,10 +1,13 @@
 #include "GlslangSession.h"
 
+#include "ConformanceRules.h"
 #include "GlslEsRules.h"
 
 #include <algorithm>
 #include <mutex>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -163,16 +166,57 @@ StageParse ParseStage(const GlslangStageInput& input) {
         return result;
     }
     const char* text = prepared.text.c_str();
-    result.shader = MakeShader(input, prepared, &text);
-    result.ok = result.shader->parse(ResourcesFor(prepared.default_version),
-                                     prepared.default_version, EEsProfile, prepared.force_version,
-                                     false, kMessages);
+    const int version = prepared.default_version;
+    auto parse = [&](EShMessages messages) {
+        auto shader = MakeShader(input, prepared, &text);
+        const bool ok = shader->parse(ResourcesFor(version), version, EEsProfile,
+                                      prepared.force_version, false, messages);
+        return std::make_pair(ok, std::move(shader));
+    };
+    std::tie(result.ok, result.shader) = parse(kMessages);
     result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
+    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
+        // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
+        // RelaxedParseIsSound refuses), so the second parse is the specification's verdict.
+        auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
+        std::vector<Diagnostic> relaxed =
+                ParseGlslangLog(shader->getInfoLog(), input.file, input.text);
+        if (ok && RelaxedParseIsSound(relaxed)) {
+            result.ok = true;
+            result.shader = std::move(shader);
+            result.diagnostics = std::move(relaxed);
+        } else if (!ok && RelaxedParseIsSound(relaxed)) {
+            // Still invalid, for a real error the first parse never reached: report that one.
+            result.diagnostics = std::move(relaxed);
+        }
+    }
+    result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
+    result.ok = result.ok && !HasErrors(result.diagnostics);
+    if (result.ok && MayHaveLateExtension(input.text)) {
+        // Only the user's defines go with the text: Es300Preamble declares an output, which
+        // would count as a token before the user's own #extension lines.
+        const std::string defines = DefinePreamble(input.defines);
+        auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
+        shader->setStrings(&text, 1);
+        shader->setPreamble(defines.c_str());
+        std::string preprocessed;
+        glslang::TShader::ForbidIncluder includer;
+        if (shader->preprocess(ResourcesFor(version), version, EEsProfile,
+                               prepared.force_version, false, kMessages, &preprocessed,
+                               includer)) {
+            const std::vector<Diagnostic> late = CheckExtensionPlacement(preprocessed, input.file);
+            result.diagnostics.insert(result.diagnostics.end(), late.begin(), late.end());
+            result.ok = late.empty();
+        }
+    }
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();
         std::vector<Diagnostic> broken = CheckStageRules(
                 *result.intermediate, *ResourcesFor(prepared.default_version), input.file,
                 input.text);
+        const std::vector<Diagnostic> conformance =
+                CheckStageConformance(*result.intermediate, input.file);
+        broken.insert(broken.end(), conformance.begin(), conformance.end());
         if (!broken.empty()) {
             result.ok = false;
             result.intermediate = nullptr;
@@ -206,6 +250,11 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
                                             *parses[1].shader->getIntermediate(),
                                             inputs[1]->file);
+        if (!HasErrors(result.diagnostics)) {
+            result.diagnostics = CheckLinkConformance(
+                    *parses[0].shader->getIntermediate(), inputs[0]->file,
+                    *parses[1].shader->getIntermediate(), inputs[1]->file, inputs[1]->text);
+        }
         if (HasErrors(result.diagnostics)) {
             return result;  // glslang's own link would only add confusion to these
         }
