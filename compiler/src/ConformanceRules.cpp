@@ -462,15 +462,16 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
     return any;
 }
 
-bool RelaxedParseIsSound(const std::vector<Diagnostic>& diagnostics) {
-    return std::all_of(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) {
-        if (d.severity != Severity::kWarning) {
-            return true;  // errors stay errors in relaxed mode; only warnings can hide one
-        }
+std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics) {
+    for (Diagnostic& d : diagnostics) {
         // In 3.00 the reserved-name warning is glslang's strict verdict too (and is made an
         // error by PromoteReservedMacroNames); in 1.00 it is the relaxed form of the error.
-        return Mentions(d, kDefinedFromMacroRelaxed) || Mentions(d, kReservedMacroWarning);
-    });
+        if (d.severity == Severity::kWarning && !Mentions(d, kDefinedFromMacroRelaxed) &&
+            !Mentions(d, kReservedMacroWarning)) {
+            d.severity = Severity::kError;
+        }
+    }
+    return diagnostics;
 }
 
 std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagnostics,

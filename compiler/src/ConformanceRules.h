@@ -52,10 +52,11 @@ std::vector<Diagnostic> CheckExtensionPlacement(std::string_view preprocessed,
 /// reserved, "does not itself result in an error").
 bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version);
 
-/// True when a parse with glslang's relaxed errors demoted nothing but the relaxable reasons
-/// above: every other error glslang relaxes turns into a warning, and a warning not on the list
-/// means the relaxed verdict cannot be trusted.
-bool RelaxedParseIsSound(const std::vector<Diagnostic>& diagnostics);
+/// The log of a parse with glslang's relaxed errors, with every warning except the relaxable
+/// reasons above made an error again: relaxed mode demotes other errors to warnings too (an
+/// undefined name in `#if`, a disabled extension's feature, ...), and a warning it did not
+/// demote is also taken as one, which can only make a shader invalid, never valid.
+std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics);
 
 /// In a `#version 300 es` shader, glslang only warns when `#define` or `#undef` names a macro
 /// containing `__`; GLSL ES 3.00 §3.4 reserves those names, so each such warning becomes an

@@ -167,32 +167,10 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     const char* text = prepared.text.c_str();
     const int version = prepared.default_version;
-    auto parse = [&](EShMessages messages) {
-        auto shader = MakeShader(input, prepared, &text);
-        const bool ok = shader->parse(ResourcesFor(version), version, EEsProfile,
-                                      prepared.force_version, false, messages);
-        return std::make_pair(ok, std::move(shader));
-    };
-    std::tie(result.ok, result.shader) = parse(kMessages);
-    result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
-    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
-        // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
-        // RelaxedParseIsSound refuses), so the second parse is the specification's verdict.
-        auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
-        std::vector<Diagnostic> relaxed =
-                ParseGlslangLog(shader->getInfoLog(), input.file, input.text);
-        if (ok && RelaxedParseIsSound(relaxed)) {
-            result.ok = true;
-            result.shader = std::move(shader);
-            result.diagnostics = std::move(relaxed);
-        } else if (!ok && RelaxedParseIsSound(relaxed)) {
-            // Still invalid, for a real error the first parse never reached: report that one.
-            result.diagnostics = std::move(relaxed);
-        }
-    }
-    result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
-    result.ok = result.ok && !HasErrors(result.diagnostics);
-    if (result.ok && MayHaveLateExtension(input.text)) {
+    // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
+    // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
+    std::vector<Diagnostic> late_extensions;
+    if (MayHaveLateExtension(input.text)) {
         // Only the user's defines go with the text: Es300Preamble declares an output, which
         // would count as a token before the user's own #extension lines.
         const std::string defines = DefinePreamble(input.defines);
@@ -204,10 +182,36 @@ StageParse ParseStage(const GlslangStageInput& input) {
         if (shader->preprocess(ResourcesFor(version), version, EEsProfile,
                                prepared.force_version, false, kMessages, &preprocessed,
                                includer)) {
-            const std::vector<Diagnostic> late = CheckExtensionPlacement(preprocessed, input.file);
-            result.diagnostics.insert(result.diagnostics.end(), late.begin(), late.end());
-            result.ok = late.empty();
+            late_extensions = CheckExtensionPlacement(preprocessed, input.file);
         }
+    }
+    auto parse = [&](EShMessages messages) {
+        auto shader = MakeShader(input, prepared, &text);
+        const bool ok = shader->parse(ResourcesFor(version), version, EEsProfile,
+                                      prepared.force_version, false, messages);
+        return std::make_pair(ok, std::move(shader));
+    };
+    std::tie(result.ok, result.shader) = parse(kMessages);
+    result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
+    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
+        // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
+        // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
+        auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
+        // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
+        // first one, goes past the relaxable error to the real one.
+        result.diagnostics = RestoreDemotedErrors(
+                ParseGlslangLog(shader->getInfoLog(), input.file, input.text));
+        if (ok && !HasErrors(result.diagnostics)) {
+            result.ok = true;
+            result.shader = std::move(shader);
+        }
+    }
+    result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
+    result.ok = result.ok && !HasErrors(result.diagnostics);
+    if (result.ok && !late_extensions.empty()) {
+        result.ok = false;
+        result.diagnostics.insert(result.diagnostics.end(), late_extensions.begin(),
+                                  late_extensions.end());
     }
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();
