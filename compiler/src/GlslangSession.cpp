@@ -111,7 +111,28 @@ constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
 // section 7.4 minimums), not glslang's defaults, which are desktop-sized (32 draw buffers, 80
 // texture units): with those, gl_FragData[1] was accepted although an ES 2.0 driver without
 // GL_EXT_draw_buffers rejects it (dEQP-GLES2.functional.shaders.fragdata.invalid_assign_to_1).
+// `#version 300 es` likewise gets the minimums every ES 3.0 context has (GLSL ES 3.00 §7.3), not
+// glslang's defaults: gl_MaxDrawBuffers 4 instead of 32, gl_MaxVertexOutputVectors 16 instead of
+// 64, so a shader that only fits a large desktop GPU is not reported as portable.
 const TBuiltInResource* ResourcesFor(int version) {
+    if (version == 300) {
+        static const TBuiltInResource es300 = [] {
+            TBuiltInResource resources = *GetDefaultResources();
+            resources.maxVertexAttribs = 16;
+            resources.maxVertexUniformVectors = 256;
+            resources.maxVertexOutputVectors = 16;
+            resources.maxFragmentInputVectors = 15;
+            resources.maxVertexTextureImageUnits = 16;
+            resources.maxCombinedTextureImageUnits = 32;
+            resources.maxTextureImageUnits = 16;
+            resources.maxFragmentUniformVectors = 224;
+            resources.maxDrawBuffers = 4;
+            resources.minProgramTexelOffset = -8;
+            resources.maxProgramTexelOffset = 7;
+            return resources;
+        }();
+        return &es300;
+    }
     if (version != 100) {
         return GetDefaultResources();
     }

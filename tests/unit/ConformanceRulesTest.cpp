@@ -258,5 +258,31 @@ INSTANTIATE_TEST_SUITE_P(
                          "3.00 reserves such names, so a '#version 300 es' shader may not define "
                          "or undefine them (GLSL ES 3.00 §3.4)"}));
 
+// GLSL ES 3.00 §7.3: a `#version 300 es` shader sees the ES 3.0 minimum limits, not glslang's
+// desktop-sized defaults. An array sized from a limit shows the value the shader sees.
+INSTANTIATE_TEST_SUITE_P(
+        Es300Limits, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"gl_MaxDrawBuffers is 4", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float probe[5 - gl_MaxDrawBuffers];\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         ""},
+                RuleCase{"gl_MaxDrawBuffers is not more than 4", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float probe[4 - gl_MaxDrawBuffers];\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         "a.fsh:4: error: '' : array size must be a positive integer"},
+                RuleCase{"gl_MaxVertexOutputVectors is 16",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "float probe[17 - gl_MaxVertexOutputVectors];\n"
+                         "void main() { gl_Position = position; }\n",
+                         nullptr, ""}));
+
 }  // namespace
 }  // namespace tidepool
