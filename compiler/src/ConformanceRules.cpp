@@ -1,6 +1,7 @@
 #include "ConformanceRules.h"
 
-#include "GlslEsRules.h"
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
 
 #include <algorithm>
 #include <cctype>
@@ -8,16 +9,8 @@
 #include <optional>
 #include <set>
 
+#include "GlslEsRules.h"
 #include <fmt/format.h>
-
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wconversion"
-#pragma GCC diagnostic ignored "-Wsign-conversion"
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wpedantic"
-#include <glslang/Include/intermediate.h>
-#include <glslang/MachineIndependent/localintermediate.h>
-#pragma GCC diagnostic pop
 
 namespace tidepool {
 namespace {
@@ -223,8 +216,7 @@ std::optional<PrecisionClash> MemberPrecisionClash(const glslang::TType& vertex,
                 return clash;
             }
         } else if (v.getQualifier().precision != f.getQualifier().precision) {
-            return PrecisionClash{member, v.getQualifier().precision,
-                                  f.getQualifier().precision};
+            return PrecisionClash{member, v.getQualifier().precision, f.getQualifier().precision};
         }
     }
     return std::nullopt;
@@ -284,6 +276,11 @@ std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& verte
                                              const std::string& fragment_file,
                                              std::string_view fragment_source) {
     std::vector<Diagnostic> errors;
+    // Reported at the fragment stage's declaration: the vertex side is named in the message.
+    auto report = [&](std::string_view name, std::string message) {
+        const auto [line, column] = FirstMention(fragment_source, name);
+        errors.push_back(MakeError(fragment_file, line, column, std::move(message)));
+    };
     std::map<std::string, const glslang::TIntermSymbol*> vertex_uniforms;
     std::map<std::string, const glslang::TIntermSymbol*> vertex_outputs;
     for (const glslang::TIntermSymbol* symbol : LinkerObjects(vertex)) {
@@ -308,15 +305,13 @@ std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& verte
             if (!clash) {
                 continue;
             }
-            const auto [line, column] = FirstMention(fragment_source, shown);
-            errors.push_back(MakeError(
-                    fragment_file, line, column,
-                    fmt::format("uniform member '{}' is {} here but {} in the vertex shader {}; a "
-                                "uniform declared in both stages must match in type and "
-                                "precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 "
-                                "§4.3.5)",
-                                clash->member, PrecisionName(clash->fragment),
-                                PrecisionName(clash->vertex), vertex_file)));
+            report(shown,
+                   fmt::format("uniform member '{}' is {} here but {} in the vertex shader {}; a "
+                               "uniform declared in both stages must match in type and "
+                               "precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 "
+                               "§4.3.5)",
+                               clash->member, PrecisionName(clash->fragment),
+                               PrecisionName(clash->vertex), vertex_file));
         } else if (type.getQualifier().storage == glslang::EvqVaryingIn &&
                    fragment.getVersion() >= 300) {
             const auto output = vertex_outputs.find(name);
@@ -324,15 +319,13 @@ std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& verte
                 output->second->getType().getQualifier().flat == type.getQualifier().flat) {
                 continue;
             }
-            const auto [line, column] = FirstMention(fragment_source, name);
-            errors.push_back(MakeError(
-                    fragment_file, line, column,
-                    fmt::format("input '{}' is {} here but {} in the vertex shader {}; the "
-                                "interpolation qualifiers of an output and its input must match "
-                                "(GLSL ES 3.00 §4.3.9)",
-                                name, InterpolationName(type.getQualifier()),
-                                InterpolationName(output->second->getType().getQualifier()),
-                                vertex_file)));
+            report(name,
+                   fmt::format("input '{}' is {} here but {} in the vertex shader {}; the "
+                               "interpolation qualifiers of an output and its input must match "
+                               "(GLSL ES 3.00 §4.3.9)",
+                               name, InterpolationName(type.getQualifier()),
+                               InterpolationName(output->second->getType().getQualifier()),
+                               vertex_file));
         }
     }
     return errors;
@@ -384,8 +377,8 @@ std::optional<std::string> DirectiveOf(const std::string& line) {
         return std::string("#");
     }
     std::size_t end = word;
-    while (end < line.size() && (std::isalnum(static_cast<unsigned char>(line[end])) != 0 ||
-                                 line[end] == '_')) {
+    while (end < line.size() &&
+           (std::isalnum(static_cast<unsigned char>(line[end])) != 0 || line[end] == '_')) {
         ++end;
     }
     return line.substr(word, end - word);
@@ -482,8 +475,8 @@ std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagno
     for (Diagnostic& d : diagnostics) {
         if (d.severity == Severity::kWarning && Mentions(d, kReservedMacroWarning)) {
             const std::size_t colon = d.message.rfind(':');
-            const std::string name = colon == std::string::npos ? std::string("?")
-                                                                : d.message.substr(colon + 2);
+            const std::string name =
+                    colon == std::string::npos ? std::string("?") : d.message.substr(colon + 2);
             d.severity = Severity::kError;
             d.message = fmt::format(
                     "macro name '{}' contains '__'; GLSL ES 3.00 reserves such names, so a "
