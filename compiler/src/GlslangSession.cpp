@@ -114,19 +114,35 @@ constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
 // `#version 300 es` likewise gets the minimums every ES 3.0 context has (GLSL ES 3.00 §7.3), not
 // glslang's defaults: gl_MaxDrawBuffers 4 instead of 32, gl_MaxVertexOutputVectors 16 instead of
 // 64, so a shader that only fits a large desktop GPU is not reported as portable.
+// The limits both versions name, as GLSL ES lists its built-in constants.
+struct EsMinimums {
+    int vertex_attribs;
+    int vertex_uniform_vectors;
+    int vertex_texture_image_units;
+    int combined_texture_image_units;
+    int texture_image_units;
+    int fragment_uniform_vectors;
+    int draw_buffers;
+};
+
+TBuiltInResource WithMinimums(const EsMinimums& minimums) {
+    TBuiltInResource resources = *GetDefaultResources();
+    resources.maxVertexAttribs = minimums.vertex_attribs;
+    resources.maxVertexUniformVectors = minimums.vertex_uniform_vectors;
+    resources.maxVertexTextureImageUnits = minimums.vertex_texture_image_units;
+    resources.maxCombinedTextureImageUnits = minimums.combined_texture_image_units;
+    resources.maxTextureImageUnits = minimums.texture_image_units;
+    resources.maxFragmentUniformVectors = minimums.fragment_uniform_vectors;
+    resources.maxDrawBuffers = minimums.draw_buffers;
+    return resources;
+}
+
 const TBuiltInResource* ResourcesFor(int version) {
     if (version == 300) {
         static const TBuiltInResource es300 = [] {
-            TBuiltInResource resources = *GetDefaultResources();
-            resources.maxVertexAttribs = 16;
-            resources.maxVertexUniformVectors = 256;
+            TBuiltInResource resources = WithMinimums({16, 256, 16, 32, 16, 224, 4});
             resources.maxVertexOutputVectors = 16;
             resources.maxFragmentInputVectors = 15;
-            resources.maxVertexTextureImageUnits = 16;
-            resources.maxCombinedTextureImageUnits = 32;
-            resources.maxTextureImageUnits = 16;
-            resources.maxFragmentUniformVectors = 224;
-            resources.maxDrawBuffers = 4;
             resources.minProgramTexelOffset = -8;
             resources.maxProgramTexelOffset = 7;
             return resources;
@@ -137,15 +153,8 @@ const TBuiltInResource* ResourcesFor(int version) {
         return GetDefaultResources();
     }
     static const TBuiltInResource es100 = [] {
-        TBuiltInResource resources = *GetDefaultResources();
-        resources.maxVertexAttribs = 8;
-        resources.maxVertexUniformVectors = 128;
+        TBuiltInResource resources = WithMinimums({8, 128, 0, 8, 8, 16, 1});
         resources.maxVaryingVectors = 8;
-        resources.maxVertexTextureImageUnits = 0;
-        resources.maxCombinedTextureImageUnits = 8;
-        resources.maxTextureImageUnits = 8;
-        resources.maxFragmentUniformVectors = 16;
-        resources.maxDrawBuffers = 1;
         return resources;
     }();
     return &es100;
