@@ -1,14 +1,31 @@
-// Conformance of `tidepool validate` against the dEQP GLES2 shader corpus: each case's vertex and
-// fragment files are validated together (both stages parsed, then linked), exactly as
-// `tidepool validate a.vert b.frag` does, and the verdict is compared with the case's expectation.
+// Conformance of `tidepool validate` against a dEQP shader-case corpus (the shared GLES2 one by
+// default): each case's vertex and fragment files are validated together (both stages parsed, then
+// linked), exactly as `tidepool validate VERT FRAG --json` does, and the verdict is compared with
+// the case's expectation. glslangValidator is measured in the same run on the same cases with the
+// same rules, so the figures side by side are comparable.
 //
-// Usage: deqp_conformance [CORPUS_DIR]
+// Usage: deqp_conformance [--ci] [--baseline FILE] [--record FILE] [CORPUS_DIR]
 //   CORPUS_DIR defaults to <source root>/../shared/corpus/deqp-gles2; its README.md describes
-//   manifest.tsv. Without an argument and without the folder, the benchmark says so and exits 0.
+//   manifest.tsv.
+//   --ci            in-process only (ValidateShaderFiles, the function `tidepool validate` calls)
+//                   and no glslangValidator: the quick pass the CI check runs.
+//   --baseline FILE fail (exit 1) when a strict figure falls below the one recorded in FILE.
+//   --record FILE   write this run's strict figures to FILE (the baseline format).
+// Without --ci, every case is also run through the tidepool binary (`tidepool validate VERT FRAG
+// --json`) and its `valid` is the verdict counted; a case where it differs from the in-process
+// verdict is listed. The in-process run tells where a rejection happened (a stage or the link),
+// which the strict rule needs and the JSON does not say.
 //
-// A benchmark reports; it never fails a build: exit 0 whatever the agreement, 2 on usage errors
-// (too many arguments, a named corpus folder that does not exist, a malformed manifest).
+// Counting rules (the dEQP shader-case expectations; `build_successful` is `pass`):
+//   strict  (dEQP's own): pass → both compile and link; compile_fail → a stage fails to compile;
+//           link_fail → both compile, the link fails; compile_or_link_fail → anything rejected.
+//   lenient: as strict, but a compile_fail case rejected only at link also counts.
+//
+// Exit codes: 0 (figures printed; below a baseline only with --baseline), 1 a strict figure below
+// the baseline, 2 usage errors (bad arguments, a named corpus folder that does not exist, a
+// malformed manifest or baseline), 77 no corpus with --baseline (ctest's "skipped").
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -17,9 +34,11 @@
 #include <string>
 #include <vector>
 
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "BenchSupport.h"
 #include "tidepool/Diagnostic.h"
@@ -31,12 +50,9 @@ namespace fs = std::filesystem;
 using tidepool::bench::HardwareThreads;
 using tidepool::bench::NowSeconds;
 
+constexpr int kExitBelowBaseline = 1;
 constexpr int kExitUsage = 2;
-// How many ids each disagreement group lists: enough to see the pattern, short enough to read.
-constexpr std::size_t kIdsPerGroup = 15;
-// glslangValidator's agreement on dEQP GLES2+GLES3, as the corpus README states it (not measured
-// here, and over a larger corpus than this one).
-constexpr double kReferenceAgreementPercent = 99.4;
+constexpr int kExitSkipped = 77;  // ctest's SKIP_RETURN_CODE
 
 // A requirement of the manifest's `requires` column and a probe that shows whether tidepool's
 // validator provides it: a small GLSL ES 1.00 fragment shader that compiles (or is rejected) only
@@ -90,7 +106,7 @@ std::map<std::string, bool> ProbeRequirements() {
 
 struct Case {
     std::string id;
-    std::string expect;      // pass, compile_fail or link_fail
+    std::string expect;      // pass, compile_fail, link_fail or compile_or_link_fail
     std::string test_stage;  // vertex, fragment or program
     std::string vertex_file;
     std::string fragment_file;
@@ -100,12 +116,12 @@ struct Case {
     std::string origin;      // test_file:line in the original .test file
 };
 
-// What tidepool said about one case.
+// What one validator said about one case.
 struct Outcome {
     bool ran = false;  // false for skipped cases
     bool vertex_ok = false;
     bool fragment_ok = false;
-    bool linked = false;  // meaningful only when both stages compiled
+    bool accepted = false;  // both stages compiled and the program linked
     std::string first_error;
     double seconds = 0.0;
 };
@@ -137,7 +153,9 @@ std::vector<std::string> SplitList(const std::string& text, char separator) {
 
 // Reads manifest.tsv by column name (not position), so added columns do not break it; returns an
 // error message instead of cases when a needed column or a field is missing.
-bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* error) {
+// `corpus_name` is "<suite>, GLSL ES <version>" from the manifest's own columns.
+bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* corpus_name,
+                  std::string* error) {
     std::ifstream in(path);
     if (!in) {
         *error = fmt::format("{}: cannot open the manifest", path.string());
@@ -173,8 +191,10 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* e
         auto field = [&](const char* name) { return fields[column[name]]; };
         Case c;
         c.id = field("id");
-        c.expect = field("expect");
-        if (c.expect != "pass" && c.expect != "compile_fail" && c.expect != "link_fail") {
+        // Every expectation of dEQP's shader-case format; build_successful means pass.
+        c.expect = field("expect") == "build_successful" ? "pass" : field("expect");
+        if (c.expect != "pass" && c.expect != "compile_fail" && c.expect != "link_fail" &&
+            c.expect != "compile_or_link_fail") {
             *error = fmt::format("{}:{}: unknown expectation '{}'", path.string(), line_number,
                                  c.expect);
             return false;
@@ -186,6 +206,11 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* e
         c.in_mustpass = field("in_mustpass") == "True";
         c.issue_list = field("mustpass_issue_list");
         c.origin = fmt::format("{}:{}", field("test_file"), field("line"));
+        if (corpus_name->empty() && column.count("suite") != 0 &&
+            column.count("glsl_version") != 0) {
+            *corpus_name = fmt::format("dEQP {}, GLSL ES {}", field("suite"),
+                                       field("glsl_version"));
+        }
         cases->push_back(std::move(c));
     }
     return true;
@@ -217,7 +242,7 @@ Outcome Validate(const fs::path& corpus, const Case& c) {
     outcome.seconds = NowSeconds() - start;
     outcome.vertex_ok = report.stage_programs.size() == 2 && report.stage_programs[0].valid;
     outcome.fragment_ok = report.stage_programs.size() == 2 && report.stage_programs[1].valid;
-    outcome.linked = !report.verdicts.empty() && report.verdicts[0].valid;
+    outcome.accepted = !report.verdicts.empty() && report.verdicts[0].valid;
     for (const tidepool::VariantVerdict& verdict : report.verdicts) {
         for (const tidepool::Diagnostic& d : verdict.diagnostics) {
             if (d.severity == tidepool::Severity::kError && outcome.first_error.empty()) {
@@ -231,11 +256,85 @@ Outcome Validate(const fs::path& corpus, const Case& c) {
     return outcome;
 }
 
-// Where tidepool rejected a case, in words: "vertex compile", "fragment compile", "both
-// compiles", "link", or "" when it accepted.
-std::string RejectionPlace(const Outcome& o) {
+std::string Quoted(const std::string& word) {
+    std::string quoted = "'";
+    for (char ch : word) {
+        quoted += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+    }
+    return quoted + "'";
+}
+
+// Runs a shell command line; returns its exit status (-1 when it did not exit normally) and
+// what it printed (the command line chooses where stderr goes).
+int RunCommand(const std::string& command, std::string* output) {
+    FILE* pipe = popen(command.c_str(), "r");
+    if (pipe == nullptr) {
+        return -1;
+    }
+    std::array<char, 4096> buffer{};
+    for (std::size_t n; (n = fread(buffer.data(), 1, buffer.size(), pipe)) > 0;) {
+        output->append(buffer.data(), n);
+    }
+    const int status = pclose(pipe);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// glslangValidator with both stages and -l, one process per case as a shell user runs it: exit 0
+// means all compiled and linked, 2 a compile failure (glslang's EFailCompile), 3 a link failure.
+Outcome ValidateWithGlslang(const fs::path& corpus, const Case& c) {
+    Outcome outcome;
+    outcome.ran = true;
+    const double start = NowSeconds();
+    std::string output;
+    const int status =
+            RunCommand(fmt::format("glslangValidator -l {} {} 2>&1",
+                                   Quoted((corpus / c.vertex_file).string()),
+                                   Quoted((corpus / c.fragment_file).string())),
+                       &output);
+    outcome.seconds = NowSeconds() - start;
+    outcome.vertex_ok = outcome.fragment_ok = status == 0 || status == 3;
+    outcome.accepted = status == 0;
+    if (status != 0) {
+        std::istringstream lines(output);
+        for (std::string line; std::getline(lines, line);) {
+            if (line.rfind("ERROR: ", 0) == 0) {
+                outcome.first_error = line;
+                break;
+            }
+        }
+        if (status != 2 && status != 3) {
+            outcome.first_error = fmt::format("glslangValidator exited with {}: {}", status,
+                                              outcome.first_error);
+        }
+    }
+    return outcome;
+}
+
+// `tidepool validate VERT FRAG --json` as a user runs it: true when every verdict is valid;
+// `error` is set when the output is not the JSON the command prints.
+bool ValidateWithCli(const std::string& binary, const fs::path& corpus, const Case& c,
+                     std::string* error) {
+    std::string output;
+    const int status = RunCommand(
+            fmt::format("{} validate {} {} --json 2>/dev/null", Quoted(binary),
+                        Quoted((corpus / c.vertex_file).string()),
+                        Quoted((corpus / c.fragment_file).string())),
+            &output);
+    const nlohmann::json json = nlohmann::json::parse(output, nullptr, false);
+    if (!json.is_array() || json.empty()) {
+        *error = fmt::format("exit {}, output not JSON: {}", status, output.substr(0, 200));
+        return false;
+    }
+    return std::all_of(json.begin(), json.end(), [](const nlohmann::json& verdict) {
+        return verdict.value("valid", false);
+    });
+}
+
+// Where a validator rejected a case, in words: "vertex compile", "fragment compile", "both
+// compiles", "a compile" (glslangValidator does not say which), "link", or "" when it accepted.
+std::string RejectionPlace(const Outcome& o, bool stages_known) {
     if (!o.vertex_ok && !o.fragment_ok) {
-        return "both compiles";
+        return stages_known ? "both compiles" : "a compile";
     }
     if (!o.vertex_ok) {
         return "vertex compile";
@@ -243,43 +342,31 @@ std::string RejectionPlace(const Outcome& o) {
     if (!o.fragment_ok) {
         return "fragment compile";
     }
-    return o.linked ? "" : "link";
+    return o.accepted ? "" : "link";
 }
 
-// The rule that decides agreement:
-//   pass         → both stages compile and the program links;
-//   compile_fail → anything rejected (a check glslang runs at link time still rejects the
-//                  shader, which is what the conformance test observes);
-//   link_fail    → both stages compile and the link fails.
-bool Matches(const Case& c, const Outcome& o) {
-    const bool accepted = o.vertex_ok && o.fragment_ok && o.linked;
+enum class Rule { kStrict, kLenient };
+
+bool Matches(const Case& c, const Outcome& o, Rule rule) {
+    const bool compiled = o.vertex_ok && o.fragment_ok;
     if (c.expect == "pass") {
-        return accepted;
+        return o.accepted;
     }
     if (c.expect == "compile_fail") {
-        return !accepted;
+        return rule == Rule::kStrict ? !compiled : !o.accepted;
     }
-    return o.vertex_ok && o.fragment_ok && !o.linked;
+    if (c.expect == "link_fail") {
+        return compiled && !o.accepted;
+    }
+    return !o.accepted;  // compile_or_link_fail
 }
 
-// For a matched compile_fail: did the stage under test fail to compile (for "program" cases,
-// either stage)?
-bool FailedAtTestStage(const Case& c, const Outcome& o) {
-    if (c.test_stage == "vertex") {
-        return !o.vertex_ok;
-    }
-    if (c.test_stage == "fragment") {
-        return !o.fragment_ok;
-    }
-    return !o.vertex_ok || !o.fragment_ok;
-}
-
-std::string DisagreementKind(const Case& c, const Outcome& o) {
-    const std::string place = RejectionPlace(o);
+std::string DisagreementKind(const Case& c, const Outcome& o, bool stages_known) {
+    const std::string place = RejectionPlace(o, stages_known);
     if (place.empty()) {
-        return fmt::format("expected {}, we accepted", c.expect);
+        return fmt::format("expected {}, accepted", c.expect);
     }
-    return fmt::format("expected {}, we rejected at {}", c.expect, place);
+    return fmt::format("expected {}, rejected at {}", c.expect, place);
 }
 
 std::string Percent(std::size_t part, std::size_t whole) {
@@ -287,18 +374,94 @@ std::string Percent(std::size_t part, std::size_t whole) {
                                                                static_cast<double>(whole));
 }
 
+// Matched / run over a set of cases, for one validator and one rule.
+struct Figure {
+    std::size_t matched = 0;
+    std::size_t ran = 0;
+    std::string Text() const {
+        return fmt::format("{} / {} = {}", matched, ran, Percent(matched, ran));
+    }
+};
+
+Figure Count(const std::vector<Case>& cases, const std::vector<Outcome>& outcomes, Rule rule,
+             bool (*selected)(const Case&)) {
+    Figure figure;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        if (outcomes[i].ran && selected(cases[i])) {
+            ++figure.ran;
+            figure.matched += Matches(cases[i], outcomes[i], rule) ? 1U : 0U;
+        }
+    }
+    return figure;
+}
+
+bool AllCases(const Case&) { return true; }
+bool MustPass(const Case& c) { return c.in_mustpass; }
+
+// The recorded figures a run must not fall below: "key matched/ran" lines, '#' comments.
+struct Baseline {
+    std::map<std::string, Figure> figures;
+};
+
+bool LoadBaseline(const fs::path& path, Baseline* baseline, std::string* error) {
+    std::ifstream in(path);
+    if (!in) {
+        *error = fmt::format("{}: cannot open the baseline", path.string());
+        return false;
+    }
+    int number = 0;
+    for (std::string line; std::getline(in, line);) {
+        ++number;
+        if (line.empty() || line[0] == '#') {
+            continue;
+        }
+        std::istringstream words(line);
+        std::string key;
+        std::string value;
+        char slash = 0;
+        Figure figure;
+        words >> key >> value;
+        std::istringstream numbers(value);
+        if (key == "corpus") {
+            continue;
+        }
+        if (!(numbers >> figure.matched >> slash >> figure.ran) || slash != '/') {
+            *error = fmt::format("{}:{}: expected 'KEY MATCHED/RAN', got '{}'", path.string(),
+                                 number, line);
+            return false;
+        }
+        baseline->figures[key] = figure;
+    }
+    return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc > 2) {
-        std::fprintf(stderr, "usage: %s [CORPUS_DIR]\n", argv[0]);
-        return kExitUsage;
+    bool ci = false;
+    std::string baseline_path;
+    std::string record_path;
+    std::string corpus_arg;
+    for (int i = 1; i < argc; ++i) {
+        const std::string arg = argv[i];
+        if (arg == "--ci") {
+            ci = true;
+        } else if ((arg == "--baseline" || arg == "--record") && i + 1 < argc) {
+            (arg == "--baseline" ? baseline_path : record_path) = argv[++i];
+        } else if (!arg.empty() && arg[0] != '-' && corpus_arg.empty()) {
+            corpus_arg = arg;
+        } else {
+            std::fprintf(stderr,
+                         "usage: %s [--ci] [--baseline FILE] [--record FILE] [CORPUS_DIR]\n",
+                         argv[0]);
+            return kExitUsage;
+        }
     }
-    const bool named = argc == 2;
-    const fs::path corpus = named ? fs::path(argv[1])
+    const bool named = !corpus_arg.empty();
+    const fs::path corpus = named ? fs::path(corpus_arg)
                                   : fs::path(TIDEPOOL_SOURCE_ROOT) / ".." / "shared" / "corpus" /
                                             "deqp-gles2";
-    fmt::print("deqp_conformance: tidepool validate over the dEQP GLES2 shader corpus\n");
+    fmt::print("deqp_conformance: tidepool validate over a dEQP shader-case corpus\n");
     fmt::print("environment: {}\n", tidepool::bench::DescribeEnvironment());
     if (!fs::is_directory(corpus)) {
         if (named) {
@@ -306,87 +469,123 @@ int main(int argc, char** argv) {
             return kExitUsage;
         }
         fmt::print("skipped: the corpus folder {} is absent\n", corpus.lexically_normal().string());
-        return 0;
+        return baseline_path.empty() ? 0 : kExitSkipped;
     }
     std::vector<Case> cases;
+    std::string corpus_name;
     std::string error;
-    if (!LoadManifest(corpus / "manifest.tsv", &cases, &error)) {
+    if (!LoadManifest(corpus / "manifest.tsv", &cases, &corpus_name, &error)) {
         fmt::print(stderr, "error: {}\n", error);
         return kExitUsage;
     }
-    fmt::print("corpus: {} ({} cases)\n", fs::weakly_canonical(corpus).string(), cases.size());
+    Baseline baseline;
+    if (!baseline_path.empty() && !LoadBaseline(baseline_path, &baseline, &error)) {
+        fmt::print(stderr, "error: {}\n", error);
+        return kExitUsage;
+    }
+    const std::string folder_name = fs::weakly_canonical(corpus).filename().string();
+    fmt::print("corpus: {} ({}; {} cases) at {}\n", folder_name,
+               corpus_name.empty() ? "suite not named in the manifest" : corpus_name, cases.size(),
+               fs::weakly_canonical(corpus).string());
 
-    // Each case is independent and glslang is thread-safe once initialised, so the cases are
-    // spread over every hardware thread.
+    // In process, one case after another: ValidateShaderFiles forks its glslang workers, and two
+    // threads forking at once let each pool's worker inherit the other pool's socket, so neither
+    // worker ever sees its end of input (a hang seen on the loaded CI machine). The commands run
+    // below (the binary, glslangValidator) exec at once and are spread over every thread.
     const std::map<std::string, bool> provided = ProbeRequirements();
     const int jobs = HardwareThreads();
     std::vector<Outcome> outcomes(cases.size());
     const double start = NowSeconds();
-    tidepool::bench::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
+    for (std::size_t i = 0; i < cases.size(); ++i) {
         if (MissingRequirements(cases[i], provided).empty()) {
             outcomes[i] = Validate(corpus, cases[i]);
         }
-    });
+    }
     const double wall = NowSeconds() - start;
 
-    std::size_t ran = 0;
-    std::size_t matched = 0;
-    std::size_t mustpass_ran = 0;
-    std::size_t mustpass_matched = 0;
-    std::map<std::string, std::size_t> ran_by_expect;
-    std::map<std::string, std::size_t> matched_by_expect;
-    std::size_t compile_fail_matched = 0;
-    std::size_t compile_fail_at_stage = 0;
-    std::vector<std::string> compile_fail_elsewhere;  // matched, but not at the stage under test
-    std::map<std::string, std::vector<std::size_t>> disagreements;
-    std::map<std::string, std::vector<std::size_t>> skipped;  // by missing requirement
-    double case_seconds = 0.0;
-    for (std::size_t i = 0; i < cases.size(); ++i) {
-        const Case& c = cases[i];
-        const Outcome& o = outcomes[i];
-        if (!o.ran) {
-            skipped[fmt::format("{}", fmt::join(MissingRequirements(c, provided), ", "))]
-                    .push_back(i);
-            continue;
-        }
-        case_seconds += o.seconds;
-        ++ran;
-        ++ran_by_expect[c.expect];
-        if (c.in_mustpass) {
-            ++mustpass_ran;
-        }
-        if (!Matches(c, o)) {
-            disagreements[DisagreementKind(c, o)].push_back(i);
-            continue;
-        }
-        ++matched;
-        ++matched_by_expect[c.expect];
-        if (c.in_mustpass) {
-            ++mustpass_matched;
-        }
-        if (c.expect == "compile_fail") {
-            ++compile_fail_matched;
-            if (FailedAtTestStage(c, o)) {
-                ++compile_fail_at_stage;
-            } else {
-                compile_fail_elsewhere.push_back(fmt::format(
-                        "{} (test stage {}, we rejected at {})", c.id, c.test_stage,
-                        RejectionPlace(o)));
+    // The same verdicts as a user gets them from the binary; the binary's word is the one counted.
+    std::vector<std::string> cli_differences;
+    double cli_wall = 0.0;
+    if (!ci) {
+        std::vector<std::string> notes(cases.size());
+        const double cli_start = NowSeconds();
+        tidepool::bench::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
+            if (!outcomes[i].ran) {
+                return;
+            }
+            std::string cli_error;
+            const bool valid = ValidateWithCli(TIDEPOOL_BINARY, corpus, cases[i], &cli_error);
+            if (!cli_error.empty() || valid != outcomes[i].accepted) {
+                notes[i] = fmt::format("{}: binary says {}, in-process says {}{}", cases[i].id,
+                                       valid ? "valid" : "invalid",
+                                       outcomes[i].accepted ? "valid" : "invalid",
+                                       cli_error.empty() ? "" : " (" + cli_error + ")");
+                outcomes[i].accepted = valid;
+                if (!valid && outcomes[i].vertex_ok && outcomes[i].fragment_ok) {
+                    outcomes[i].first_error = "rejected by the binary only";
+                }
+            }
+        });
+        cli_wall = NowSeconds() - cli_start;
+        for (std::string& note : notes) {
+            if (!note.empty()) {
+                cli_differences.push_back(std::move(note));
             }
         }
     }
 
-    fmt::print("\nmethod: each case's vertex_file and fragment_file go to ValidateShaderFiles "
-               "together (both parsed, then linked); cases spread over {} threads.\n"
-               "  pass = both compile and link; compile_fail = any rejection (compile or link); "
-               "link_fail = both compile, link fails.\n",
-               jobs);
-    fmt::print("time: {:.2f} s wall for {} cases ({:.2f} ms per case, mean of per-case wall "
-               "times measured inside the worker threads)\n",
-               wall, ran, ran == 0 ? 0.0 : 1000.0 * case_seconds / static_cast<double>(ran));
+    // glslangValidator on exactly the cases tidepool ran.
+    std::vector<Outcome> reference(cases.size());
+    double reference_wall = 0.0;
+    std::string output;
+    const bool have_glslang = !ci && RunCommand("glslangValidator --version 2>&1", &output) == 0;
+    if (have_glslang) {
+        const double reference_start = NowSeconds();
+        tidepool::bench::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
+            if (outcomes[i].ran) {
+                reference[i] = ValidateWithGlslang(corpus, cases[i]);
+            }
+        });
+        reference_wall = NowSeconds() - reference_start;
+    }
 
-    fmt::print("\nrequirements (probed: a small 1.00 fragment shader that compiles, or is rejected, "
-               "only when the validator provides it):\n");
+    std::size_t ran = 0;
+    double case_seconds = 0.0;
+    std::map<std::string, std::vector<std::size_t>> skipped;  // by missing requirement
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        if (!outcomes[i].ran) {
+            skipped[fmt::format("{}", fmt::join(MissingRequirements(cases[i], provided), ", "))]
+                    .push_back(i);
+            continue;
+        }
+        ++ran;
+        case_seconds += outcomes[i].seconds;
+    }
+
+    fmt::print("\nmethod: each case's vertex_file and fragment_file validated together (both "
+               "parsed, then linked); in process one case at a time, commands over {} threads;\n"
+               "  tidepool: {};\n"
+               "  glslangValidator: {}.\n",
+               jobs,
+               ci ? "in process (ValidateShaderFiles, what `tidepool validate VERT FRAG` calls); "
+                    "--ci, so the binary was not run"
+                  : "`tidepool validate VERT FRAG --json` per case (its `valid` is counted), "
+                    "and in process to tell a stage's rejection from the link's",
+               have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases "
+                              "(exit 2 = a compile failed, 3 = the link failed)"
+                            : (ci ? "not run (--ci)" : "not installed, not run"));
+    fmt::print("time: {:.2f} s wall in process for {} cases ({:.2f} ms per case)",
+               wall, ran, ran == 0 ? 0.0 : 1000.0 * case_seconds / static_cast<double>(ran));
+    if (!ci) {
+        fmt::print("; {:.2f} s for the binary", cli_wall);
+    }
+    if (have_glslang) {
+        fmt::print("; {:.2f} s for glslangValidator", reference_wall);
+    }
+    fmt::print("\n");
+
+    fmt::print("\nrequirements (probed: a small 1.00 fragment shader that compiles, or is "
+               "rejected, only when the validator provides it):\n");
     for (const RequirementProbe& probe : RequirementProbes()) {
         std::size_t count = 0;
         for (const Case& c : cases) {
@@ -398,7 +597,7 @@ int main(int argc, char** argv) {
         fmt::print("  {}: {}; it means {}; {} case(s) require it\n", probe.name,
                    provided.at(probe.name) ? "provided" : "NOT provided", probe.meaning, count);
     }
-    fmt::print("skipped: {} case(s) need something tidepool does not provide\n",
+    fmt::print("skipped (both validators): {} case(s) need something tidepool does not provide\n",
                cases.size() - ran);
     for (const auto& [requirement, indices] : skipped) {
         fmt::print("  requires {} ({} case(s)):\n", requirement, indices.size());
@@ -407,50 +606,106 @@ int main(int argc, char** argv) {
         }
     }
 
-    fmt::print("\nagreement (matched / cases run):\n");
-    fmt::print("  all cases:        {:>4} / {:>4} = {}\n", matched, ran, Percent(matched, ran));
-    fmt::print("  in_mustpass:      {:>4} / {:>4} = {}\n", mustpass_matched, mustpass_ran,
-               Percent(mustpass_matched, mustpass_ran));
-    for (const auto& [expect, count] : ran_by_expect) {
-        fmt::print("  expect {:<12} {:>4} / {:>4} = {}\n", expect + ":", matched_by_expect[expect],
-                   count, Percent(matched_by_expect[expect], count));
+    const Figure strict_all = Count(cases, outcomes, Rule::kStrict, AllCases);
+    const Figure strict_mustpass = Count(cases, outcomes, Rule::kStrict, MustPass);
+    fmt::print("\nagreement, matched / cases run (strict = dEQP's own rule; lenient = a "
+               "compile_fail case may be rejected at link):\n");
+    fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", "", "tidepool strict",
+               "tidepool lenient", "glslangValidator strict", "glslangValidator lenient");
+    for (const auto& [label, selected] :
+         {std::pair<const char*, bool (*)(const Case&)>{"all cases", AllCases},
+          {"in_mustpass", MustPass}}) {
+        auto reference_text = [&](Rule rule) {
+            return have_glslang ? Count(cases, reference, rule, selected).Text()
+                                : std::string("not run");
+        };
+        fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", label,
+                   Count(cases, outcomes, Rule::kStrict, selected).Text(),
+                   Count(cases, outcomes, Rule::kLenient, selected).Text(),
+                   reference_text(Rule::kStrict), reference_text(Rule::kLenient));
     }
-    fmt::print("  compile_fail matched at the stage under test: {} of {} (the rest were rejected "
-               "by the other stage or at link)\n",
-               compile_fail_at_stage, compile_fail_matched);
-    for (const std::string& line : compile_fail_elsewhere) {
-        fmt::print("    {}\n", line);
+    std::map<std::string, Figure> by_expect;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+        if (outcomes[i].ran) {
+            Figure& figure = by_expect[cases[i].expect];
+            ++figure.ran;
+            figure.matched += Matches(cases[i], outcomes[i], Rule::kStrict) ? 1U : 0U;
+        }
     }
-    fmt::print("  reference: glslangValidator 12.0.0 with both stages and -l agrees on {}% of "
-               "dEQP GLES2+GLES3 (corpus README; not measured here)\n",
-               kReferenceAgreementPercent);
-    const bool met = ran > 0 && 100.0 * static_cast<double>(matched) / static_cast<double>(ran) >=
-                                        kReferenceAgreementPercent;
-    fmt::print("  target: >= {}% of all cases: {}; 100% of in_mustpass: {}\n",
-               kReferenceAgreementPercent, met ? "met" : "NOT met",
-               mustpass_matched == mustpass_ran ? "met" : "NOT met");
+    for (const auto& [expect, figure] : by_expect) {
+        fmt::print("  tidepool strict, expect {:<22} {}\n", expect + ":", figure.Text());
+    }
+    if (!ci) {
+        fmt::print("  the binary and the in-process call disagreed on {} case(s)\n",
+                   cli_differences.size());
+        for (const std::string& line : cli_differences) {
+            fmt::print("    {}\n", line);
+        }
+    }
 
-    fmt::print("\ndisagreements: {}\n", ran - matched);
-    for (const auto& [kind, indices] : disagreements) {
-        std::size_t mustpass = 0;
-        for (std::size_t i : indices) {
-            if (cases[i].in_mustpass) {
-                ++mustpass;
+    auto print_misses = [&](const char* who, const std::vector<Outcome>& results,
+                            bool stages_known) {
+        std::map<std::string, std::vector<std::size_t>> misses;
+        std::size_t count = 0;
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            if (results[i].ran && !Matches(cases[i], results[i], Rule::kStrict)) {
+                misses[DisagreementKind(cases[i], results[i], stages_known)].push_back(i);
+                ++count;
             }
         }
-        fmt::print("  {}: {} case(s), {} in_mustpass\n", kind, indices.size(), mustpass);
-        for (std::size_t k = 0; k < indices.size() && k < kIdsPerGroup; ++k) {
-            const Case& c = cases[indices[k]];
-            const Outcome& o = outcomes[indices[k]];
-            const std::string flag =
-                    c.in_mustpass ? "" : fmt::format(" [not mustpass: {} issue]", c.issue_list);
-            fmt::print("    {}{}\n      {}\n", c.id, flag,
-                       o.first_error.empty() ? fmt::format("(no error; case at {})", c.origin)
-                                             : o.first_error);
+        fmt::print("\n{} misses under the strict rule: {} (each with its cause: the first error, "
+                   "or where the case stands)\n",
+                   who, count);
+        for (const auto& [kind, indices] : misses) {
+            const auto mustpass = std::count_if(indices.begin(), indices.end(),
+                                                [&](std::size_t i) { return cases[i].in_mustpass; });
+            fmt::print("  {}: {} case(s), {} in_mustpass\n", kind, indices.size(), mustpass);
+            for (std::size_t i : indices) {
+                const Case& c = cases[i];
+                const std::string flag =
+                        c.in_mustpass ? "" : fmt::format(" [not mustpass: {} issue]", c.issue_list);
+                fmt::print("    {}{}\n      {}\n", c.id, flag,
+                           results[i].first_error.empty()
+                                   ? fmt::format("(no error; case at {})", c.origin)
+                                   : results[i].first_error);
+            }
         }
-        if (indices.size() > kIdsPerGroup) {
-            fmt::print("    ... and {} more\n", indices.size() - kIdsPerGroup);
+    };
+    print_misses("tidepool", outcomes, true);
+    if (have_glslang) {
+        print_misses("glslangValidator", reference, false);
+    }
+
+    if (!record_path.empty()) {
+        std::ofstream out(record_path);
+        out << "# Strict figures of bench/deqp_conformance (matched/run), recorded with --record.\n"
+               "# The CI check (ctest DeqpConformanceStrict) fails when a run falls below them.\n"
+            << fmt::format("corpus {}\nstrict_all {}/{}\nstrict_mustpass {}/{}\n", folder_name,
+                           strict_all.matched, strict_all.ran, strict_mustpass.matched,
+                           strict_mustpass.ran);
+        fmt::print("\nrecorded the strict figures in {}\n", record_path);
+    }
+    if (!baseline_path.empty()) {
+        bool below = false;
+        fmt::print("\nbaseline {}:\n", baseline_path);
+        for (const auto& [key, figure] :
+             {std::pair<std::string, Figure>{"strict_all", strict_all},
+              {"strict_mustpass", strict_mustpass}}) {
+            const auto recorded = baseline.figures.find(key);
+            if (recorded == baseline.figures.end()) {
+                continue;
+            }
+            // Compared as counts over the same number of cases: a changed corpus is a new
+            // baseline, not a pass or a failure.
+            const bool same_cases = recorded->second.ran == figure.ran;
+            const bool ok = same_cases && figure.matched >= recorded->second.matched;
+            below = below || !ok;
+            fmt::print("  {}: {} now, {} recorded: {}\n", key, figure.Text(),
+                       recorded->second.Text(),
+                       ok ? "ok" : (same_cases ? "BELOW the recorded figure"
+                                               : "a different number of cases; record again"));
         }
+        return below ? kExitBelowBaseline : 0;
     }
     return 0;
 }

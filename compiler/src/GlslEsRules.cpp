@@ -307,11 +307,8 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
     return errors;
 }
 
-namespace {
-
 // ---- Parsed stages ---------------------------------------------------------------------------
 
-// The declarations glslang keeps for the linker (every global the stage declares).
 std::vector<glslang::TIntermSymbol*> LinkerObjects(const glslang::TIntermediate& stage) {
     std::vector<glslang::TIntermSymbol*> symbols;
     glslang::TIntermAggregate* root =
@@ -332,6 +329,8 @@ std::vector<glslang::TIntermSymbol*> LinkerObjects(const glslang::TIntermediate&
     }
     return symbols;
 }
+
+namespace {
 
 // The symbols code reads or writes (linker objects are declarations, not uses), each with the
 // place of its first use.
@@ -359,8 +358,8 @@ std::map<std::string, glslang::TSourceLoc> StaticallyUsed(const glslang::TInterm
     return collector.used;
 }
 
-// glslang 12 keeps no position on its linker objects, so a declaration is found in the text: the
-// first whole-word mention of its name (declarations come before uses in GLSL ES).
+}  // namespace
+
 std::pair<int, int> FirstMention(std::string_view source, std::string_view name) {
     auto is_ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
     for (std::size_t at = source.find(name); at != std::string_view::npos;
@@ -378,6 +377,8 @@ std::pair<int, int> FirstMention(std::string_view source, std::string_view name)
     }
     return {0, 0};
 }
+
+namespace {
 
 bool IsBuiltIn(const glslang::TIntermSymbol& symbol) {
     return std::string_view(symbol.getName().c_str()).rfind("gl_", 0) == 0;

@@ -10,12 +10,14 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 struct TBuiltInResource;
 
 namespace glslang {
 class TIntermediate;
+class TIntermSymbol;
 }  // namespace glslang
 
 namespace tidepool {
@@ -48,6 +50,14 @@ inline constexpr long long kMaxArrayElements = 1LL << 16;
 std::vector<Diagnostic> CheckStageRules(const glslang::TIntermediate& stage,
                                         const TBuiltInResource& resources, const std::string& file,
                                         std::string_view source);
+
+/// The declarations glslang keeps for the linker: every global the stage declares.
+std::vector<glslang::TIntermSymbol*> LinkerObjects(const glslang::TIntermediate& stage);
+
+/// Line and column of the first whole-word mention of `name` in `source` ({0, 0} when none):
+/// glslang 12 keeps no position on its linker objects, and in GLSL ES a declaration comes before
+/// any use.
+std::pair<int, int> FirstMention(std::string_view source, std::string_view name);
 
 /// Checks a vertex and a fragment stage that are linked together: both declare the same
 /// language version (GLSL ES 3.00 §3.3: 1.00 and 3.00 shaders cannot be linked), and every

@@ -1,10 +1,13 @@
 #include "GlslangSession.h"
 
+#include "ConformanceRules.h"
 #include "GlslEsRules.h"
 
 #include <algorithm>
 #include <mutex>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -109,20 +112,50 @@ constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
 // section 7.4 minimums), not glslang's defaults, which are desktop-sized (32 draw buffers, 80
 // texture units): with those, gl_FragData[1] was accepted although an ES 2.0 driver without
 // GL_EXT_draw_buffers rejects it (dEQP-GLES2.functional.shaders.fragdata.invalid_assign_to_1).
+// `#version 300 es` likewise gets the minimums every ES 3.0 context has (GLSL ES 3.00 §7.3), not
+// glslang's defaults: gl_MaxDrawBuffers 4 instead of 32, gl_MaxVertexOutputVectors 16 instead of
+// 64, so a shader that only fits a large desktop GPU is not reported as portable.
+// The limits both versions name, as GLSL ES lists its built-in constants.
+struct EsMinimums {
+    int vertex_attribs;
+    int vertex_uniform_vectors;
+    int vertex_texture_image_units;
+    int combined_texture_image_units;
+    int texture_image_units;
+    int fragment_uniform_vectors;
+    int draw_buffers;
+};
+
+TBuiltInResource WithMinimums(const EsMinimums& minimums) {
+    TBuiltInResource resources = *GetDefaultResources();
+    resources.maxVertexAttribs = minimums.vertex_attribs;
+    resources.maxVertexUniformVectors = minimums.vertex_uniform_vectors;
+    resources.maxVertexTextureImageUnits = minimums.vertex_texture_image_units;
+    resources.maxCombinedTextureImageUnits = minimums.combined_texture_image_units;
+    resources.maxTextureImageUnits = minimums.texture_image_units;
+    resources.maxFragmentUniformVectors = minimums.fragment_uniform_vectors;
+    resources.maxDrawBuffers = minimums.draw_buffers;
+    return resources;
+}
+
 const TBuiltInResource* ResourcesFor(int version) {
+    if (version == 300) {
+        static const TBuiltInResource es300 = [] {
+            TBuiltInResource resources = WithMinimums({16, 256, 16, 32, 16, 224, 4});
+            resources.maxVertexOutputVectors = 16;
+            resources.maxFragmentInputVectors = 15;
+            resources.minProgramTexelOffset = -8;
+            resources.maxProgramTexelOffset = 7;
+            return resources;
+        }();
+        return &es300;
+    }
     if (version != 100) {
         return GetDefaultResources();
     }
     static const TBuiltInResource es100 = [] {
-        TBuiltInResource resources = *GetDefaultResources();
-        resources.maxVertexAttribs = 8;
-        resources.maxVertexUniformVectors = 128;
+        TBuiltInResource resources = WithMinimums({8, 128, 0, 8, 8, 16, 1});
         resources.maxVaryingVectors = 8;
-        resources.maxVertexTextureImageUnits = 0;
-        resources.maxCombinedTextureImageUnits = 8;
-        resources.maxTextureImageUnits = 8;
-        resources.maxFragmentUniformVectors = 16;
-        resources.maxDrawBuffers = 1;
         return resources;
     }();
     return &es100;
@@ -171,16 +204,61 @@ StageParse ParseStage(const GlslangStageInput& input) {
         return result;
     }
     const char* text = prepared.text.c_str();
-    result.shader = MakeShader(input, prepared, &text);
-    result.ok = result.shader->parse(ResourcesFor(prepared.default_version),
-                                     prepared.default_version, EEsProfile, prepared.force_version,
-                                     false, kMessages);
+    const int version = prepared.default_version;
+    // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
+    // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
+    std::vector<Diagnostic> late_extensions;
+    if (MayHaveLateExtension(input.text)) {
+        // Only the user's defines go with the text: Es300Preamble declares an output, which
+        // would count as a token before the user's own #extension lines.
+        const std::string defines = DefinePreamble(input.defines);
+        auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
+        shader->setStrings(&text, 1);
+        shader->setPreamble(defines.c_str());
+        std::string preprocessed;
+        glslang::TShader::ForbidIncluder includer;
+        if (shader->preprocess(ResourcesFor(version), version, EEsProfile,
+                               prepared.force_version, false, kMessages, &preprocessed,
+                               includer)) {
+            late_extensions = CheckExtensionPlacement(preprocessed, input.file);
+        }
+    }
+    auto parse = [&](EShMessages messages) {
+        auto shader = MakeShader(input, prepared, &text);
+        const bool ok = shader->parse(ResourcesFor(version), version, EEsProfile,
+                                      prepared.force_version, false, messages);
+        return std::make_pair(ok, std::move(shader));
+    };
+    std::tie(result.ok, result.shader) = parse(kMessages);
     result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
+    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
+        // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
+        // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
+        auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
+        // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
+        // first one, goes past the relaxable error to the real one.
+        result.diagnostics = RestoreDemotedErrors(
+                ParseGlslangLog(shader->getInfoLog(), input.file, input.text));
+        if (ok && !HasErrors(result.diagnostics)) {
+            result.ok = true;
+            result.shader = std::move(shader);
+        }
+    }
+    result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
+    result.ok = result.ok && !HasErrors(result.diagnostics);
+    if (result.ok && !late_extensions.empty()) {
+        result.ok = false;
+        result.diagnostics.insert(result.diagnostics.end(), late_extensions.begin(),
+                                  late_extensions.end());
+    }
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();
         std::vector<Diagnostic> broken = CheckStageRules(
                 *result.intermediate, *ResourcesFor(prepared.default_version), input.file,
                 input.text);
+        const std::vector<Diagnostic> conformance =
+                CheckStageConformance(*result.intermediate, input.file);
+        broken.insert(broken.end(), conformance.begin(), conformance.end());
         if (!broken.empty()) {
             result.ok = false;
             result.intermediate = nullptr;
@@ -214,6 +292,11 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
                                             *parses[1].shader->getIntermediate(),
                                             inputs[1]->file);
+        if (!HasErrors(result.diagnostics)) {
+            result.diagnostics = CheckLinkConformance(
+                    *parses[0].shader->getIntermediate(), inputs[0]->file,
+                    *parses[1].shader->getIntermediate(), inputs[1]->file, inputs[1]->text);
+        }
         if (HasErrors(result.diagnostics)) {
             return result;  // glslang's own link would only add confusion to these
         }

@@ -1,0 +1,288 @@
+// The conformance rules (compiler/src/ConformanceRules.h), each shown from both sides: a shader
+// pair written for the rule that breaks it, with the exact first diagnostic, and one that keeps
+// it and is accepted. Run through ValidateShaderFiles, as `tidepool validate VERT FRAG` does.
+#include "tidepool/GlslValidator.h"
+
+#include <gtest/gtest.h>
+
+#include "TempDir.h"
+
+namespace tidepool {
+namespace {
+
+using testing::TempDir;
+
+struct RuleCase {
+    const char* why;
+    const char* vertex;    // nullptr: no vertex file
+    const char* fragment;  // nullptr: no fragment file
+    const char* expected;  // the first error, folder left out; "" when the pair is valid
+};
+
+class ConformanceRuleTest : public ::testing::TestWithParam<RuleCase> {};
+
+TEST_P(ConformanceRuleTest, GivesTheExpectedVerdictAndFirstError) {
+    const RuleCase& c = GetParam();
+    TempDir dir;
+    std::vector<ShaderFile> files;
+    if (c.vertex != nullptr) {
+        files.push_back({dir.Write("a.vsh", c.vertex).string(), Stage::kVertex});
+    }
+    if (c.fragment != nullptr) {
+        files.push_back({dir.Write("a.fsh", c.fragment).string(), Stage::kFragment});
+    }
+    const ValidationReport report = ValidateShaderFiles(files, {});
+    ASSERT_EQ(report.verdicts.size(), 1U) << c.why;
+    std::string first_error;
+    for (const Diagnostic& d : report.verdicts[0].diagnostics) {
+        if (d.severity == Severity::kError && first_error.empty()) {
+            first_error = FormatDiagnostic(d);
+        }
+    }
+    const std::string folder = dir.Path().string() + "/";
+    for (std::size_t at = first_error.find(folder); at != std::string::npos;
+         at = first_error.find(folder)) {
+        first_error.erase(at, folder.size());
+    }
+    EXPECT_EQ(report.verdicts[0].valid, std::string(c.expected).empty()) << c.why;
+    EXPECT_EQ(first_error, c.expected) << c.why;
+}
+
+// GLSL ES 1.00 §6.1, 3.00 §6.1: no recursion, even static; a compile error, not a link error.
+INSTANTIATE_TEST_SUITE_P(
+        StaticRecursion, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"two functions calling each other, neither called from main", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "float fall(float h);\n"
+                         "float bounce(float h) { return h > 1.0 ? fall(h * 0.5) : h; }\n"
+                         "float fall(float h) { return bounce(h - 0.1); }\n"
+                         "void main() { gl_FragColor = vec4(0.5); }\n",
+                         "a.fsh:5:44: error: 'bounce' is called recursively (bounce -> fall -> "
+                         "bounce); GLSL ES allows no recursion, not even in code that never runs "
+                         "(GLSL ES 1.00 §6.1, GLSL ES 3.00 §6.1)"},
+                RuleCase{"a 3.00 vertex function calling itself",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "float depth(float x) {\n"
+                         "    return x < 1.0 ? x : depth(x / 2.0);\n"
+                         "}\n"
+                         "void main() { gl_Position = position * depth(4.0); }\n",
+                         nullptr,
+                         "a.vsh:4:39: error: 'depth' is called recursively (depth -> depth); "
+                         "GLSL ES allows no recursion, not even in code that never runs (GLSL ES "
+                         "1.00 §6.1, GLSL ES 3.00 §6.1)"},
+                RuleCase{"a call chain without a cycle is fine", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "float fall(float h);\n"
+                         "float bounce(float h) { return h > 1.0 ? fall(h * 0.5) : h; }\n"
+                         "float fall(float h) { return h - 0.1; }\n"
+                         "void main() { gl_FragColor = vec4(bounce(2.0)); }\n",
+                         ""}));
+
+// GLSL ES 1.00 §7.2: gl_FragColor or gl_FragData, never both, wherever the writes stand.
+INSTANTIATE_TEST_SUITE_P(
+        FragColorAndFragData, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"gl_FragData written in a function nobody calls", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "void unused() {\n"
+                         "    gl_FragData[0].rgb = vec3(0.0);\n"
+                         "}\n"
+                         "void main() {\n"
+                         "    gl_FragColor = vec4(1.0);\n"
+                         "}\n",
+                         "a.fsh:7:18: error: 'gl_FragColor' is written, but this shader also "
+                         "writes 'gl_FragData' (line 4); a fragment shader may write gl_FragColor "
+                         "or gl_FragData, not both (GLSL ES 1.00 §7.2)"},
+                RuleCase{"gl_FragData alone, read back after the write", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "void main() {\n"
+                         "    gl_FragData[0] = vec4(0.25);\n"
+                         "    gl_FragData[0] *= 2.0;\n"
+                         "}\n",
+                         ""}));
+
+// GLSL ES 1.00 §4.5.3, 3.00 §4.3.5: a uniform in both stages matches in precision, members too.
+INSTANTIATE_TEST_SUITE_P(
+        UniformMemberPrecision, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"struct member highp in one stage, mediump in the other",
+                         "#version 100\n"
+                         "struct Fog { highp float density; };\n"
+                         "uniform Fog fog;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * fog.density; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Fog { mediump float density; };\n"
+                         "uniform Fog fog;\n"
+                         "void main() { gl_FragColor = vec4(fog.density); }\n",
+                         "a.fsh:4:13: error: uniform member 'fog.density' is mediump here but "
+                         "highp in the vertex shader a.vsh; a uniform declared in both stages "
+                         "must match in type and precision, members included (GLSL ES 1.00 "
+                         "§4.5.3, GLSL ES 3.00 §4.3.5)"},
+                RuleCase{"a member without a qualifier takes the stage's default precision",
+                         "#version 100\n"
+                         "struct Fog { lowp vec3 colour; };\n"
+                         "uniform Fog fog;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * fog.colour.x; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Fog { vec3 colour; };\n"
+                         "uniform Fog fog;\n"
+                         "void main() { gl_FragColor = vec4(fog.colour, 1.0); }\n",
+                         "a.fsh:4:13: error: uniform member 'fog.colour' is mediump here but lowp "
+                         "in the vertex shader a.vsh; a uniform declared in both stages must "
+                         "match in type and precision, members included (GLSL ES 1.00 §4.5.3, "
+                         "GLSL ES 3.00 §4.3.5)"},
+                RuleCase{"the same struct with the same precisions in both stages",
+                         "#version 100\n"
+                         "struct Fog { mediump float density; lowp vec3 colour; };\n"
+                         "uniform Fog fog;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * fog.density; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Fog { float density; lowp vec3 colour; };\n"
+                         "uniform Fog fog;\n"
+                         "void main() { gl_FragColor = vec4(fog.colour * fog.density, 1.0); }\n",
+                         ""}));
+
+// GLSL ES 3.00 §4.3.9: an output and the input of the same name interpolate the same way.
+INSTANTIATE_TEST_SUITE_P(
+        Interpolation, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"flat output read as a smooth input",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "flat out float layer;\n"
+                         "void main() { layer = position.z; gl_Position = position; }\n",
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "in float layer;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(layer); }\n",
+                         "a.fsh:3:10: error: input 'layer' is smooth here but flat in the vertex "
+                         "shader a.vsh; the interpolation qualifiers of an output and its input "
+                         "must match (GLSL ES 3.00 §4.3.9)"},
+                RuleCase{"flat on both sides",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "flat out float layer;\n"
+                         "void main() { layer = position.z; gl_Position = position; }\n",
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "flat in float layer;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(layer); }\n",
+                         ""}));
+
+// GLSL ES 1.00 §3.4, 3.00 §3.4: #extension before any non-preprocessor token.
+INSTANTIATE_TEST_SUITE_P(
+        ExtensionPlacement, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"#extension after a declaration", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#extension GL_OES_standard_derivatives : enable\n"
+                         "void main() { gl_FragColor = vec4(1.0); }\n",
+                         "a.fsh:3:1: error: '#extension' after the first non-preprocessor token "
+                         "(line 2); extension directives must come before any of them (GLSL ES "
+                         "1.00 §3.4, GLSL ES 3.00 §3.4)"},
+                RuleCase{"#extension first; a later one only inside an inactive block", nullptr,
+                         "#version 100\n"
+                         "#extension GL_OES_standard_derivatives : enable\n"
+                         "precision mediump float;\n"
+                         "#if 0\n"
+                         "#extension GL_OES_standard_derivatives : disable\n"
+                         "#endif\n"
+                         "void main() { gl_FragColor = vec4(1.0); }\n",
+                         ""}));
+
+// `defined` from a macro expansion inside #if works (dEQP requires it); nothing else is relaxed.
+INSTANTIATE_TEST_SUITE_P(
+        DefinedFromMacro, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"defined() produced by a macro", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#define HAS_FOG defined(FOG_DENSITY)\n"
+                         "#if HAS_FOG\n"
+                         "#error fog is not defined here\n"
+                         "#endif\n"
+                         "void main() { gl_FragColor = vec4(1.0); }\n",
+                         ""},
+                RuleCase{"the same, but an undefined name in the #if is still an error", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#define HAS_FOG defined(FOG_DENSITY)\n"
+                         "#if HAS_FOG || FOG_LEVEL\n"
+                         "#endif\n"
+                         "void main() { gl_FragColor = vec4(1.0); }\n",
+                         "a.fsh:4: error: 'preprocessor evaluation' : undefined macro in "
+                         "expression not allowed in es profile FOG_LEVEL"},
+                RuleCase{"a GL_ macro stays an error even beside a relaxable one", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#define HAS_FOG defined(FOG_DENSITY)\n"
+                         "#if HAS_FOG\n"
+                         "#endif\n"
+                         "#define GL_FOG 1\n"
+                         "void main() { gl_FragColor = vec4(1.0); }\n",
+                         "a.fsh:6:1: error: '#define' : names beginning with \"GL_\" can't be "
+                         "(un)defined: GL_FOG"}));
+
+// GLSL ES 1.00 §3.4: a macro name with "__" is reserved, not an error; 3.00 §3.4 makes it one.
+INSTANTIATE_TEST_SUITE_P(
+        ReservedMacroNames, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"#define of a name with __ in 1.00", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#define FOG__DENSITY 0.5\n"
+                         "void main() { gl_FragColor = vec4(FOG__DENSITY); }\n",
+                         ""},
+                RuleCase{"#define of a name with __ in 3.00", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "#define FOG__DENSITY 0.5\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(FOG__DENSITY); }\n",
+                         "a.fsh:3:1: error: macro name 'FOG__DENSITY' contains '__'; GLSL ES "
+                         "3.00 reserves such names, so a '#version 300 es' shader may not define "
+                         "or undefine them (GLSL ES 3.00 §3.4)"}));
+
+// GLSL ES 3.00 §7.3: a `#version 300 es` shader sees the ES 3.0 minimum limits, not glslang's
+// desktop-sized defaults. An array sized from a limit shows the value the shader sees.
+INSTANTIATE_TEST_SUITE_P(
+        Es300Limits, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"gl_MaxDrawBuffers is 4", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float probe[5 - gl_MaxDrawBuffers];\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         ""},
+                RuleCase{"gl_MaxDrawBuffers is not more than 4", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float probe[4 - gl_MaxDrawBuffers];\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         "a.fsh:4: error: '' : array size must be a positive integer"},
+                RuleCase{"gl_MaxVertexOutputVectors is 16",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "float probe[17 - gl_MaxVertexOutputVectors];\n"
+                         "void main() { gl_Position = position; }\n",
+                         nullptr, ""}));
+
+}  // namespace
+}  // namespace tidepool
