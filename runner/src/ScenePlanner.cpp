@@ -306,11 +306,15 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
     };
     const int count = static_cast<int>(candidates.size());
     if (quality_bounds) {
-        // Faster than full beyond the interval: its whole interval lies below no change.
+        // Faster than full beyond the interval: its whole interval lies below no change by
+        // the report's direction margin, so a shift that load alone causes never decides.
+        const auto clearly_faster = [](const CandidateMeasure& c) {
+            return c.time_change_high < -base::kDirectionMarginPoints;
+        };
         int fastest = -1;
         for (int i = 1; i < count; ++i) {
             const CandidateMeasure& c = at(i);
-            if (c.valid && c.meets_quality && c.time_change_high < 0 &&
+            if (c.valid && c.meets_quality && clearly_faster(c) &&
                 (fastest < 0 || c.time_change_percent < at(fastest).time_change_percent)) {
                 fastest = i;
             }
@@ -319,8 +323,11 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
             if (count > 0 && at(0).valid && at(0).meets_quality &&
                 (!frame_budget_ms || at(0).time_ms <= *frame_budget_ms)) {
                 choice.index = 0;
-                choice.reason = "no candidate that meets the target is faster than the full "
-                                "effect beyond its 95% interval, so the full effect is kept";
+                choice.reason = fmt::format(
+                        "no candidate that meets the target is faster than the full effect by "
+                        "more than {:.1f} points beyond its 95% interval, so the full effect is "
+                        "kept",
+                        base::kDirectionMarginPoints);
                 return choice;
             }
         } else {
@@ -331,7 +338,7 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                 const CandidateMeasure& c = at(i);
                 const bool overlaps = c.time_change_low <= at(fastest).time_change_high &&
                                       at(fastest).time_change_low <= c.time_change_high;
-                if (i != fastest && c.valid && c.meets_quality && c.time_change_high < 0 &&
+                if (i != fastest && c.valid && c.meets_quality && clearly_faster(c) &&
                     overlaps && c.psnr_db > at(kept).psnr_db) {
                     kept = i;
                 }

@@ -107,6 +107,17 @@ TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
     EXPECT_NE(choice.reason.find("full effect is kept"), std::string::npos) << choice.reason;
 }
 
+TEST(PlannerChoiceTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
+    // -2.5% [-3.5, -1.0]: faster beyond the interval, but not beyond the 1.5-point margin a
+    // shift under load can reach, so it is not a reason to drop an effect.
+    const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
+                                                      Candidate(-2.5, -3.5, -1.0, 40)};
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+    const std::vector<CandidateMeasure> clear = {Candidate(0, 0, 0, 99),
+                                                 Candidate(-3.5, -4.5, -2.0, 40)};
+    EXPECT_EQ(ChooseCandidate(clear, true, std::nullopt).index, 1);
+}
+
 TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
     std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
                                                 Candidate(-40, -42, -38, 20)};

@@ -28,6 +28,16 @@ inline constexpr double kConfidenceLevel = 0.95;
 /// within a point of its nominal coverage from about 10 pairs on.
 inline constexpr int kMinimumPairs = 10;
 
+/// A direction (faster, slower) is claimed only when the whole 95% interval of a change lies
+/// beyond this many percent points of no change: the report's verdicts and the planner's choices
+/// alike. Why not beyond 0: contention is not only noise. bench/verdict_stability.sh moved one
+/// comparison (row 7, low-resolution water) from -1.2% [-2.4, -0.1] on a quiet machine to
+/// +1.2% [+0.1, +2.5] with two competing processes: shared caches and cores slow memory-bound
+/// and arithmetic-bound passes by different amounts, a systematic shift of up to 2.4 points that
+/// no within-run interval can show. 1.5 points, the default resolution, keeps such a shift from
+/// turning into two opposite directions; effects of 3% and more still clear it.
+inline constexpr double kDirectionMarginPoints = 1.5;
+
 /// A paired comparison of candidate against baseline frame times.
 struct PairedEstimate {
     int pairs = 0;

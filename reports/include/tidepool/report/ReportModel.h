@@ -16,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "tidepool/base/PairedEstimate.h"
 #include "tidepool/report/ImageMetrics.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/report/Statistics.h"
@@ -34,14 +35,8 @@ inline constexpr std::string_view kReferencePreset = "reference";
 /// between runs whenever the estimate sat near a boundary.
 inline constexpr double kMagnitudeFactor = 2.0;
 
-/// A direction is claimed only when the whole 95% interval lies beyond this many percent points
-/// of no change. Why not beyond 0: contention is not only noise. bench/verdict_stability.sh
-/// moved one comparison (row 7, low-resolution water) from -1.2% [-2.4, -0.1] on a quiet
-/// machine to +1.2% [+0.1, +2.5] with two competing processes: shared caches and cores slow
-/// memory-bound and arithmetic-bound passes by different amounts, a systematic shift of up to
-/// 2.4 points that no within-run interval can show. 1.5 points, the default resolution, keeps
-/// such a shift from turning into two opposite directions; effects of 3% and more still clear it.
-inline constexpr double kDirectionMarginPoints = 1.5;
+/// A direction is claimed only beyond this margin (base/PairedEstimate.h says why).
+inline constexpr double kDirectionMarginPoints = base::kDirectionMarginPoints;
 
 /// How many configurations the static-cost section lists as most misleading.
 inline constexpr std::size_t kMisleadingCount = 6;
