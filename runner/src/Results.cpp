@@ -74,8 +74,7 @@ namespace {
 // frames follow its interval (pairs needed ~ pairs so far x (half-width / resolution)^2, the
 // square-root law of an interval's width). Frames of the two kinds cost very differently (an
 // image frame compiles on first use and encodes a PNG), so the share done and the ETA weigh
-// each kind by its measured thread-seconds per frame; until a kind has any, by the other's
-// rate times kImageFrameWeight.
+// each kind by its measured thread-seconds per frame (SecondsPerFrame).
 class ProgressMeter {
 public:
     enum Kind : std::size_t { kComparison = 0, kImage = 1 };
@@ -131,6 +130,8 @@ private:
     // An image frame costs this many timed comparison frames until images have been measured:
     // about 1 on the default matrix at 640x480 since PNGs are encoded fast (2 before).
     static constexpr double kImageFrameWeight = 1.0;
+    // How many frames' worth of evidence the prior counts for: about 20 configurations' images.
+    static constexpr double kPriorFrames = 150.0;
 
     struct KindState {
         long done = 0;
@@ -138,17 +139,23 @@ private:
         double busy_seconds = 0;
     };
 
+    // A kind's seconds per frame: its measurement, shrunk towards the other kind's rate times
+    // kImageFrameWeight as if that prior were kPriorFrames frames already measured. The first
+    // frames of a kind are few and uneven (a Fourier variant costs three light ones), so alone
+    // they would throw the ETA about; the prior's weight fades as frames are measured.
     double SecondsPerFrame(std::size_t kind) const {
         const KindState& k = kinds_[kind];
-        if (k.done > 0) {
-            return k.busy_seconds / static_cast<double>(k.done);
-        }
         const KindState& other = kinds_[1 - kind];
+        const double measured =
+                k.done > 0 ? k.busy_seconds / static_cast<double>(k.done) : 0.0;
         if (other.done == 0) {
-            return 0.0;
+            return measured;
         }
         const double other_rate = other.busy_seconds / static_cast<double>(other.done);
-        return kind == kImage ? other_rate * kImageFrameWeight : other_rate / kImageFrameWeight;
+        const double prior =
+                kind == kImage ? other_rate * kImageFrameWeight : other_rate / kImageFrameWeight;
+        return (k.busy_seconds + prior * kPriorFrames) /
+               (static_cast<double>(k.done) + kPriorFrames);
     }
 
     const ProgressCallback& callback_;
