@@ -43,21 +43,6 @@ struct PlanCommandOptions {
     std::string out;
 };
 
-report::RgbaImage ToReportImage(const runner::ImageRgba8& image) {
-    return report::RgbaImage{image.width, image.height, image.pixels};
-}
-
-runner::ImageError MeasureWithReportMetrics(const runner::ImageRgba8& reference,
-                                            const runner::ImageRgba8& candidate) {
-    const report::RgbaImage a = ToReportImage(reference);
-    const report::RgbaImage b = ToReportImage(candidate);
-    runner::ImageError error;
-    error.psnr_db = report::Psnr(a, b);
-    error.ssim = report::Ssim(a, b);
-    error.share_visible = report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold);
-    return error;
-}
-
 void PrintPlan(const runner::ScenePlan& plan) {
     std::printf("scene %s: %s\n", plan.scene.name.c_str(), plan.scene.description.c_str());
     for (const Diagnostic& d : plan.diagnostics) {

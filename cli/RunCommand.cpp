@@ -131,18 +131,6 @@ StageOutcome RunStabilityStage(runner::GlContext& context, const VariantConfig& 
     return outcome;
 }
 
-// Image error with the report's metrics, as `tidepool plan` measures it.
-runner::ImageError MeasureImageError(const runner::ImageRgba8& reference,
-                                     const runner::ImageRgba8& candidate) {
-    const report::RgbaImage a{reference.width, reference.height, reference.pixels};
-    const report::RgbaImage b{candidate.width, candidate.height, candidate.pixels};
-    runner::ImageError error;
-    error.psnr_db = report::Psnr(a, b);
-    error.ssim = report::Ssim(a, b);
-    error.share_visible = report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold);
-    return error;
-}
-
 // Every scenes/*.yaml planned (the library calls `tidepool plan --all` makes) into
 // render_dir/plans.json, candidate images under render_dir/images/: Plan(i) plans scene i on
 // whatever rendering thread runs it, Finish() writes the file once every scene is planned.
@@ -184,7 +172,8 @@ public:
         if (!scene.scene) {
             return;  // a bad scene file cannot meet its target: Finish counts it
         }
-        plans_[i] = runner::PlanScene(context, config_, *scene.scene, options_, MeasureImageError);
+        plans_[i] = runner::PlanScene(context, config_, *scene.scene, options_,
+                                      MeasureWithReportMetrics);
         PrintDiagnostics(plans_[i]->diagnostics);
     }
 
