@@ -393,7 +393,17 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                     const double ratio = e.HalfWidthPoints() / options.rule.resolution_points;
                     needed = static_cast<long>(std::ceil(pairs * ratio * ratio));
                 }
-                needed = std::clamp(needed, static_cast<long>(pairs),
+                // The rule stops only at a look: the first look at or after `needed`, up to a
+                // quarter more pairs than `needed` itself, which the ETA would otherwise miss.
+                long look = pairs;
+                while (look < needed) {
+                    const int step = base::PairsBeforeNextLook(static_cast<int>(look), options.rule);
+                    if (step <= 0) {
+                        break;
+                    }
+                    look += step;
+                }
+                needed = std::clamp(look, static_cast<long>(pairs),
                                     static_cast<long>(options.rule.max_pairs));
                 meter.Reestimate(expected_frames[k], 2 * needed);
                 expected_frames[k] = 2 * needed;
