@@ -231,13 +231,14 @@ private:
             return false;
         }
         if (pid == 0) {
-            ::close(fds[0]);
-            // Another worker's socket held open here would hide that worker's death from us.
-            for (const Worker& other : workers_) {
-                if (other.fd >= 0) {
-                    ::close(other.fd);
-                }
+            // Every descriptor but stdio and this worker's socket goes: another worker's socket
+            // held open here would hide that worker's death from us, and a socket of a pool on
+            // another thread (`run` plans scenes on two) would keep that pool's worker from ever
+            // seeing its end, so both pools would wait forever.
+            if (fds[1] > 3) {
+                ::close_range(3, static_cast<unsigned>(fds[1]) - 1, 0);
             }
+            ::close_range(static_cast<unsigned>(fds[1]) + 1, ~0U, 0);
             WorkerMain(fds[1], limits_, work_);
         }
         ::close(fds[1]);

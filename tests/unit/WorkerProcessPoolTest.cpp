@@ -1,6 +1,8 @@
 #include "WorkerProcessPool.h"
 
+#include <chrono>
 #include <csignal>
+#include <future>
 #include <memory>
 #include <new>
 #include <thread>
@@ -19,6 +21,33 @@ TEST(WorkerProcessPoolTest, ResultsComeBackInItemOrderFromSeveralWorkers) {
     for (std::size_t i = 0; i < results.size(); ++i) {
         EXPECT_EQ(results[i].failure, WorkerFailure::kNone);
         EXPECT_EQ(results[i].payload, std::to_string(i * i));
+    }
+}
+
+// `run` plans scenes on two threads, and each plan validates its candidates in a pool of its
+// own: a worker forked by one pool must not hold the other pool's sockets open, or neither
+// pool's workers see their end and both wait forever.
+TEST(WorkerProcessPoolTest, PoolsOnSeveralThreadsAtOnceAllFinish) {
+    constexpr int kThreads = 4;
+    std::vector<std::future<std::size_t>> runs;
+    for (int t = 0; t < kThreads; ++t) {
+        runs.push_back(std::async(std::launch::async, [] {
+            std::size_t finished = 0;
+            for (int round = 0; round < 5; ++round) {
+                const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+                        6, 2, WorkerLimits{},
+                        [](std::size_t i, const ProgressNote&) { return std::to_string(i); });
+                for (const WorkerItemResult& r : results) {
+                    finished += r.failure == WorkerFailure::kNone ? 1 : 0;
+                }
+            }
+            return finished;
+        }));
+    }
+    for (std::future<std::size_t>& run : runs) {
+        ASSERT_EQ(run.wait_for(std::chrono::seconds(60)), std::future_status::ready)
+                << "pools on several threads wait for each other's workers";
+        EXPECT_EQ(run.get(), 30U);
     }
 }
 
