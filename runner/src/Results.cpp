@@ -127,9 +127,6 @@ public:
     }
 
 private:
-    // An image frame costs this many timed comparison frames until images have been measured:
-    // about 1 on the default matrix at 640x480 since PNGs are encoded fast (2 before).
-    static constexpr double kImageFrameWeight = 1.0;
     // How many frames' worth of evidence the prior counts for: about 20 configurations' images.
     static constexpr double kPriorFrames = 150.0;
 
@@ -139,21 +136,18 @@ private:
         double busy_seconds = 0;
     };
 
-    // A kind's seconds per frame: its measurement, shrunk towards the other kind's rate times
-    // kImageFrameWeight as if that prior were kPriorFrames frames already measured. The first
-    // frames of a kind are few and uneven (a Fourier variant costs three light ones), so alone
-    // they would throw the ETA about; the prior's weight fades as frames are measured.
+    // A kind's seconds per frame: its measurement, shrunk towards the other kind's rate as if
+    // that prior were kPriorFrames frames already measured (with PNGs encoded fast, an image
+    // frame costs about a timed frame on the default matrix). The first frames of a kind are few
+    // and uneven (a Fourier variant costs several light ones), so alone they would throw the ETA
+    // about; the prior's weight fades as frames are measured.
     double SecondsPerFrame(std::size_t kind) const {
         const KindState& k = kinds_[kind];
         const KindState& other = kinds_[1 - kind];
-        const double measured =
-                k.done > 0 ? k.busy_seconds / static_cast<double>(k.done) : 0.0;
         if (other.done == 0) {
-            return measured;
+            return k.done > 0 ? k.busy_seconds / static_cast<double>(k.done) : 0.0;
         }
-        const double other_rate = other.busy_seconds / static_cast<double>(other.done);
-        const double prior =
-                kind == kImage ? other_rate * kImageFrameWeight : other_rate / kImageFrameWeight;
+        const double prior = other.busy_seconds / static_cast<double>(other.done);
         return (k.busy_seconds + prior * kPriorFrames) /
                (static_cast<double>(k.done) + kPriorFrames);
     }
