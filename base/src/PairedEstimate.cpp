@@ -125,10 +125,23 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
     return out;
 }
 
+bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rule) {
+    if (!estimate.Valid()) {
+        return false;
+    }
+    const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
+    const double reach = rule.boundary_standard_errors * estimate.HalfWidthPoints() / z;
+    return std::fabs(estimate.change_high + kDirectionMarginPoints) < reach ||
+           std::fabs(estimate.change_low - kDirectionMarginPoints) < reach;
+}
+
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
-    if (estimate.pairs >= rule.min_pairs && estimate.Valid() &&
-        estimate.HalfWidthPoints() <= rule.resolution_points) {
-        return StopDecision::kResolved;
+    if (estimate.pairs >= rule.min_pairs && estimate.Valid()) {
+        const double half_width = estimate.HalfWidthPoints();
+        if (half_width <= rule.resolution_points / 2.0 ||
+            (half_width <= rule.resolution_points && !NearDirectionMargin(estimate, rule))) {
+            return StopDecision::kResolved;
+        }
     }
     if (estimate.pairs >= rule.max_pairs) {
         return StopDecision::kCapped;
@@ -140,6 +153,29 @@ int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
     const int target = pairs < rule.min_pairs ? rule.min_pairs
                                               : pairs + std::max(rule.batch_pairs, pairs / 4);
     return std::max(0, std::min(target, rule.max_pairs) - pairs);
+}
+
+int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback) {
+    const int pairs = estimate.pairs;
+    long needed = fallback;
+    const double half_width = estimate.HalfWidthPoints();
+    if (estimate.Valid() && half_width > 0) {
+        const double wanted = NearDirectionMargin(estimate, rule) ? rule.resolution_points / 2.0
+                                                                  : rule.resolution_points;
+        const double ratio = half_width / wanted;
+        needed = static_cast<long>(std::ceil(pairs * std::min(ratio * ratio, 1e6)));
+    }
+    // The rule stops only at a look: the first look at or after `needed`.
+    long look = pairs;
+    while (look < needed) {
+        const int step = PairsBeforeNextLook(static_cast<int>(look), rule);
+        if (step <= 0) {
+            break;
+        }
+        look += step;
+    }
+    return static_cast<int>(std::clamp(look, static_cast<long>(pairs),
+                                       static_cast<long>(std::max(pairs, rule.max_pairs))));
 }
 
 const char* StopDecisionName(StopDecision decision) {

@@ -123,8 +123,9 @@ std::map<std::string, double> FrameTimer::TimePasses(const RenderConfiguration& 
     return out;
 }
 
-ComparisonTiming TimeComparison(const TimeSide& time_side, const base::StoppingRule& rule,
-                                const std::function<void(int pairs)>& after_look) {
+ComparisonTiming TimeComparison(
+        const TimeSide& time_side, const base::StoppingRule& rule,
+        const std::function<void(const ComparisonTiming& so_far)>& after_look) {
     ComparisonTiming out;
     PairSamples& s = out.samples;
     for (;;) {
@@ -144,7 +145,7 @@ ComparisonTiming TimeComparison(const TimeSide& time_side, const base::StoppingR
         out.decision = batch == 0 ? base::StopDecision::kCapped
                                   : base::DecideStop(out.estimate, rule);
         if (after_look) {
-            after_look(static_cast<int>(s.baseline_ms.size()));
+            after_look(out);
         }
         if (out.decision != base::StopDecision::kContinue) {
             return out;

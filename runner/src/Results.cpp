@@ -375,30 +375,13 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             [&](bool is_candidate) {
                 return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
             },
-            options.rule, [&](int pairs) {
+            options.rule, [&](const ComparisonTiming& so_far) {
                 // Frames this look took, and a new guess of the pairs the interval needs.
-                const PairedEstimate e =
-                    EstimatePaired(out.timing.samples.baseline_ms, out.timing.samples.candidate_ms);
-                const long frames = 2L * pairs;
+                const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
                 meter.Step(ProgressMeter::kComparison, c.label, frames - done);
                 done = frames;
-                long needed = kInitialPairGuess;
-                if (e.Valid() && e.HalfWidthPoints() > 0) {
-                    const double ratio = e.HalfWidthPoints() / options.rule.resolution_points;
-                    needed = static_cast<long>(std::ceil(pairs * ratio * ratio));
-                }
-                // The rule stops only at a look: the first look at or after `needed`, up to a
-                // quarter more pairs than `needed` itself, which the ETA would otherwise miss.
-                long look = pairs;
-                while (look < needed) {
-                    const int step = base::PairsBeforeNextLook(static_cast<int>(look), options.rule);
-                    if (step <= 0) {
-                        break;
-                    }
-                    look += step;
-                }
-                needed = std::clamp(look, static_cast<long>(pairs),
-                                    static_cast<long>(options.rule.max_pairs));
+                const long needed = base::PairsExpectedAtStop(so_far.estimate, options.rule,
+                                                              kInitialPairGuess);
                 meter.Reestimate(expected_frames[k], 2 * needed);
                 expected_frames[k] = 2 * needed;
             });

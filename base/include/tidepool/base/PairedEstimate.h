@@ -71,7 +71,17 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
 double PerformanceChangePercent(double frame_time_ratio);
 
 /// When a comparison has enough pairs: its interval's half-width is at most
-/// `resolution_points`, or it has `max_pairs`. Never fewer than `min_pairs`.
+/// `resolution_points` and neither end of the interval sits on a verdict's boundary, or its
+/// half-width is at most half of `resolution_points`, or it has `max_pairs`. Never fewer than
+/// `min_pairs`.
+///
+/// Why the boundary clause: a direction is claimed when an end of the interval clears
+/// +/-kDirectionMarginPoints. An interval that stops with that end within a standard error or so
+/// of the margin would come out on the other side in every other run, so a row would be firm in
+/// one run and below resolution in the next (bench/verdict_stability.sh saw it: -2.6% [-3.9,
+/// -1.4] quiet, -2.9% [-4.4, -1.6] loaded). Such a comparison keeps taking pairs until that end
+/// clears the margin by `boundary_standard_errors`, up to the finer resolution. Comparisons far
+/// from the margin, most of them, stop as before.
 struct StoppingRule {
     double resolution_points = 1.5;  // half-width of the 95% interval, percent points
     int min_pairs = 20;
@@ -80,6 +90,9 @@ struct StoppingRule {
     // pairs so far, so a comparison needing n pairs is looked at about 5 ln(n / min_pairs)
     // times (each look costs O(n^2) Walsh averages, and fewer looks bias the stop less).
     int batch_pairs = 10;
+    // How far, in standard errors of the estimate, an end of the interval must lie from the
+    // direction margin before the rule stops at `resolution_points` (0: no boundary clause).
+    double boundary_standard_errors = 1.5;
 };
 
 /// What the sequential rule says after a look.
@@ -92,6 +105,16 @@ enum class StopDecision {
 /// Applies `rule` to the estimate of the pairs so far. Never fails: an invalid estimate below
 /// max_pairs continues, at max_pairs it is capped.
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// True when an end of the estimate's interval lies within `rule.boundary_standard_errors`
+/// standard errors of the direction margin it is compared with (the upper end with
+/// -kDirectionMarginPoints, the lower end with +kDirectionMarginPoints). False when invalid.
+bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
+/// scaled by (half-width / the half-width the rule waits for)^2, rounded up to the next look
+/// and clamped to [pairs so far, max_pairs]; `fallback` when the estimate gives no interval.
+int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
 /// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
 /// then max(batch_pairs, pairs / 4), never past max_pairs. Never fails (0 at max_pairs).

@@ -100,9 +100,10 @@ using TimeSide = std::function<FrameTime(bool candidate)>;
 /// when i is even, the other way round when odd, so neither side always goes first and the two
 /// frames of a pair lie milliseconds apart (drift on a shared machine cancels in their ratio).
 /// Looks at the interval after PairsBeforeNextLook pairs each time and stops as `rule` says.
-/// `after_look` (may be empty) sees the pairs so far after every look. Never fails: a side
-/// whose frames cannot be timed makes the estimate's error say so.
-ComparisonTiming TimeComparison(const TimeSide& time_side, const base::StoppingRule& rule,
-                                const std::function<void(int pairs)>& after_look = {});
+/// `after_look` (may be empty) sees the timing so far (samples, estimate, decision) after every
+/// look. Never fails: a side whose frames cannot be timed makes the estimate's error say so.
+ComparisonTiming TimeComparison(
+        const TimeSide& time_side, const base::StoppingRule& rule,
+        const std::function<void(const ComparisonTiming& so_far)>& after_look = {});
 
 }  // namespace tidepool::runner
