@@ -87,10 +87,37 @@ public:
         kinds_[kind].total += frames;
     }
 
-    // Replaces `old_expected` comparison frames of the total by `new_expected`.
-    void Reestimate(long old_expected, long new_expected) {
+    // `count` comparisons, each expected to take `guess` frames until it says otherwise.
+    void AddComparisons(std::size_t count, long guess) {
         std::lock_guard<std::mutex> lock(mutex_);
-        kinds_[kComparison].total += new_expected - old_expected;
+        comparison_guess_ = guess;
+        comparison_frames_.assign(count, guess);
+        comparison_state_.assign(count, ComparisonState::kWaiting);
+        SumComparisons();
+    }
+
+    // Comparison `k` now expects `frames` in all (a running comparison's guess, from its
+    // interval), or took `frames` when `finished` (0: it failed before timing). The comparisons still waiting then expect
+    // what the finished ones took on average, the first guess counting as one of them: a run
+    // whose comparisons resolve at the minimum should not expect the guess of every later one.
+    void ComparisonExpects(std::size_t k, long frames, bool finished) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        comparison_frames_[k] = frames;
+        comparison_state_[k] = finished ? ComparisonState::kFinished : ComparisonState::kRunning;
+        long finished_frames = comparison_guess_;
+        long finished_count = 1;
+        for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
+            if (comparison_state_[i] == ComparisonState::kFinished && comparison_frames_[i] > 0) {
+                finished_frames += comparison_frames_[i];
+                ++finished_count;
+            }
+        }
+        for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
+            if (comparison_state_[i] == ComparisonState::kWaiting) {
+                comparison_frames_[i] = finished_frames / finished_count;
+            }
+        }
+        SumComparisons();
     }
 
     // `frames` of `kind` finished on the calling thread since its last step.
@@ -152,10 +179,24 @@ private:
                (static_cast<double>(k.done) + kPriorFrames);
     }
 
+    enum class ComparisonState { kWaiting, kRunning, kFinished };
+
+    // The comparison kind's total: the frames every comparison expects (mutex_ held).
+    void SumComparisons() {
+        long total = 0;
+        for (long frames : comparison_frames_) {
+            total += frames;
+        }
+        kinds_[kComparison].total = std::max(total, kinds_[kComparison].done);
+    }
+
     const ProgressCallback& callback_;
     Clock::time_point start_;
     std::mutex mutex_;
     std::array<KindState, 2> kinds_;
+    long comparison_guess_ = 0;
+    std::vector<long> comparison_frames_;
+    std::vector<ComparisonState> comparison_state_;
     std::map<std::thread::id, Clock::time_point> last_step_;
     RunProgress state_;
 };
@@ -231,9 +272,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             static_cast<long>(options.views.size()) + options.coarse_frames;
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
-    std::vector<long> expected_frames(results.comparisons.size(), 2 * kInitialPairGuess);
-    meter.AddExpected(ProgressMeter::kComparison,
-                      2 * kInitialPairGuess * static_cast<long>(results.comparisons.size()));
+    meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
 
     // Comparisons first: they are the long units, and a queue that ends on short ones keeps
     // both threads busy to the end.
@@ -365,7 +404,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             }
         }
         if (!out.error.empty()) {
-            meter.Reestimate(expected_frames[k], 0);
+            meter.ComparisonExpects(k, 0, true);
             return;
         }
         const RenderConfiguration& baseline = options.configurations[c.baseline];
@@ -382,8 +421,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                 done = frames;
                 const long needed = base::PairsExpectedAtStop(so_far.estimate, options.rule,
                                                               kInitialPairGuess);
-                meter.Reestimate(expected_frames[k], 2 * needed);
-                expected_frames[k] = 2 * needed;
+                const bool finished = so_far.decision != base::StopDecision::kContinue;
+                meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
             });
         time_passes(w, c.baseline);
         time_passes(w, c.candidate);
