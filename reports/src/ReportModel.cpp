@@ -14,8 +14,19 @@
 
 #include <fmt/format.h>
 
+#include "tidepool/base/ImageMetrics.h"
+
 namespace tidepool::report {
 namespace {
+
+using base::DifferenceHeatMap;
+using base::kHeatMapFullScale;
+using base::kVisibleDifferenceThreshold;
+using base::Psnr;
+using base::RgbaImage;
+using base::ShareAboveThreshold;
+using base::Ssim;
+using base::SsimReference;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -82,7 +93,7 @@ using ImageCache = std::map<std::string, ReferenceImage>;
 
 // Reads `path`, or returns the error naming it.
 std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::string* error) {
-    ImageResult read = ReadPng(path);
+    base::ImageResult read = base::ReadPng(path);
     if (!read.image) {
         *error = read.error.empty() ? path.string() + ": cannot read image" : read.error;
         return std::nullopt;
