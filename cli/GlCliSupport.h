@@ -9,7 +9,6 @@
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
 
 namespace tidepool::cli {
 

@@ -9,7 +9,7 @@
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include <algorithm>
 #include <cstdio>

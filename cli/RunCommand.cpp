@@ -30,8 +30,8 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/ScenePlanner.h"
+#include "tidepool/lab/StabilityReport.h"
 
 namespace tidepool::cli {
 namespace {

@@ -5,7 +5,7 @@
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include <gtest/gtest.h>
 

@@ -11,15 +11,16 @@
 
 #include "tidepool/base/RgbaImage.h"
 
-namespace tidepool::testing {
+// In base's namespace, beside the type they make, so the image tests use them unqualified.
+namespace tidepool::base {
 
 struct Rgba {
     int r, g, b, a;
 };
 
-inline base::RgbaImage MakeImage(int width, int height,
+inline RgbaImage MakeImage(int width, int height,
                                  const std::function<Rgba(int, int)>& colour) {
-    base::RgbaImage image;
+    RgbaImage image;
     image.width = width;
     image.height = height;
     for (int y = 0; y < height; ++y) {
@@ -33,7 +34,7 @@ inline base::RgbaImage MakeImage(int width, int height,
     return image;
 }
 
-inline Rgba PixelAt(const base::RgbaImage& image, int x, int y) {
+inline Rgba PixelAt(const RgbaImage& image, int x, int y) {
     const int pixel = y * image.width + x;
     const auto i = static_cast<std::size_t>(pixel) * 4;
     return {image.pixels[i], image.pixels[i + 1], image.pixels[i + 2], image.pixels[i + 3]};
@@ -44,11 +45,11 @@ inline Rgba PixelAt(const base::RgbaImage& image, int x, int y) {
 inline Rgba Pattern(int x, int y) {
     return {(x * 7 + y * 13) % 256, (x * x + 3 * y) % 256, (x * y) % 256, 255};
 }
-inline base::RgbaImage PatternImage() {
+inline RgbaImage PatternImage() {
     return MakeImage(40, 30, Pattern);
 }
 
-inline void ExpectPixel(const base::RgbaImage& image, int x, int y, Rgba expected) {
+inline void ExpectPixel(const RgbaImage& image, int x, int y, Rgba expected) {
     const Rgba actual = PixelAt(image, x, y);
     EXPECT_EQ(actual.r, expected.r) << "at " << x << "," << y;
     EXPECT_EQ(actual.g, expected.g) << "at " << x << "," << y;
@@ -56,4 +57,4 @@ inline void ExpectPixel(const base::RgbaImage& image, int x, int y, Rgba expecte
     EXPECT_EQ(actual.a, expected.a) << "at " << x << "," << y;
 }
 
-}  // namespace tidepool::testing
+}  // namespace tidepool::base

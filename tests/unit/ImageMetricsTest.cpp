@@ -10,12 +10,6 @@
 namespace tidepool::base {
 namespace {
 
-using testing::ExpectPixel;
-using testing::MakeImage;
-using testing::Pattern;
-using testing::PatternImage;
-using testing::Rgba;
-
 // --- PSNR ------------------------------------------------------------------------------------
 
 TEST(ImageMetricsTest, PsnrOfIdenticalImagesIsInfinite) {

@@ -14,12 +14,7 @@
 namespace tidepool::base {
 namespace {
 
-using testing::ExpectPixel;
-using testing::MakeImage;
-using testing::Pattern;
-using testing::PatternImage;
 using testing::ReadText;
-using testing::Rgba;
 using testing::TempDir;
 
 // --- PNG input and output --------------------------------------------------------------------

@@ -1,6 +1,6 @@
 // The scene planner. Rules only propose: every candidate is rendered and timed, and the choice
 // is made on the measurements, so a rule that guesses wrong costs time, never quality.
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include "tidepool/base/SampleStatistics.h"
 #include "tidepool/runner/FrameTimer.h"
