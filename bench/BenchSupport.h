@@ -1,6 +1,7 @@
 // What every benchmark needs and none of the libraries should offer: a wall clock, order
-// statistics over repeated runs, a parallel loop, and a description of the machine and build, so
-// that every printed figure can be read next to the conditions it was measured under.
+// statistics over repeated runs and a description of the machine and build, so that every
+// printed figure can be read next to the conditions it was measured under. (The parallel loop
+// is base::ParallelFor.)
 #pragma once
 
 #include <spawn.h>
@@ -9,7 +10,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -73,33 +73,6 @@ inline double Median(std::vector<double> samples) {
 /// The smallest of `samples`; 0 when empty.
 inline double Min(const std::vector<double>& samples) {
     return samples.empty() ? 0.0 : *std::min_element(samples.begin(), samples.end());
-}
-
-/// Runs fn(i) for every i in [0, count) on up to `jobs` threads, each index exactly once, in no
-/// particular order; fn must only touch state owned by index i.
-template <typename Fn>
-void ParallelFor(std::size_t count, int jobs, Fn fn) {
-    const std::size_t workers =
-            std::min<std::size_t>(count, static_cast<std::size_t>(std::max(jobs, 1)));
-    if (workers <= 1) {
-        for (std::size_t i = 0; i < count; ++i) {
-            fn(i);
-        }
-        return;
-    }
-    std::atomic<std::size_t> next{0};
-    std::vector<std::thread> threads;
-    threads.reserve(workers);
-    for (std::size_t w = 0; w < workers; ++w) {
-        threads.emplace_back([&] {
-            for (std::size_t i = next++; i < count; i = next++) {
-                fn(i);
-            }
-        });
-    }
-    for (std::thread& thread : threads) {
-        thread.join();
-    }
 }
 
 /// One line naming the machine and how this binary was built. The build type is inferred from

@@ -43,6 +43,7 @@
 #include "BenchSupport.h"
 #include "tidepool/Diagnostic.h"
 #include "tidepool/GlslValidator.h"
+#include "tidepool/base/ParallelFor.h"
 
 namespace {
 
@@ -509,7 +510,7 @@ int main(int argc, char** argv) {
     if (!ci) {
         std::vector<std::string> notes(cases.size());
         const double cli_start = NowSeconds();
-        tidepool::bench::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
+        tidepool::base::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
             if (!outcomes[i].ran) {
                 return;
             }
@@ -541,7 +542,7 @@ int main(int argc, char** argv) {
     const bool have_glslang = !ci && RunCommand("glslangValidator --version 2>&1", &output) == 0;
     if (have_glslang) {
         const double reference_start = NowSeconds();
-        tidepool::bench::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
+        tidepool::base::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
             if (outcomes[i].ran) {
                 reference[i] = ValidateWithGlslang(corpus, cases[i]);
             }

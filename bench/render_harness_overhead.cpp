@@ -71,7 +71,7 @@ int main() {
             plan_ms.push_back(report.plan_seconds * 1000.0);
         }
         // A benchmark checks what it rendered: a wrong (e.g. empty) image must not post a time.
-        const ImageRgba8 image = renderer->ReadImage();
+        const base::RgbaImage image = renderer->ReadImage();
         std::set<std::uint32_t> colours;
         for (std::size_t p = 0; p + 3 < image.pixels.size(); p += 4 * 97) {
             colours.insert(static_cast<std::uint32_t>(image.pixels[p]) << 16 |

@@ -11,7 +11,6 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "tidepool/report/ImageMetrics.h"
 #include "tidepool/report/ReportModel.h"
 
 namespace tidepool::cli {
@@ -141,17 +140,6 @@ runner::HostInfo DescribeHost(const std::string& command, const std::string& con
     host.git_revision = GitRevision(std::filesystem::absolute(config_path).parent_path());
     host.command = command;
     return host;
-}
-
-runner::ImageError MeasureWithReportMetrics(const runner::ImageRgba8& reference,
-                                            const runner::ImageRgba8& candidate) {
-    const report::RgbaImage a{reference.width, reference.height, reference.pixels};
-    const report::RgbaImage b{candidate.width, candidate.height, candidate.pixels};
-    runner::ImageError error;
-    error.psnr_db = report::Psnr(a, b);
-    error.ssim = report::Ssim(a, b);
-    error.share_visible = report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold);
-    return error;
 }
 
 std::string FormatDuration(double seconds) {

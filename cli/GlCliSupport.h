@@ -9,7 +9,6 @@
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
 
 namespace tidepool::cli {
 
@@ -49,11 +48,6 @@ bool CheckTimingFlags(const TimingFlags& flags);
 /// are both among `run->configurations`.
 void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
                       runner::RunOptions* run);
-
-/// The planner's image error with the report's metrics (PSNR, SSIM, share of visibly different
-/// pixels), so `plan` and `run` measure alike. Never fails (NaN metrics for unequal sizes).
-runner::ImageError MeasureWithReportMetrics(const runner::ImageRgba8& reference,
-                                            const runner::ImageRgba8& candidate);
 
 /// "42s" or "3m05s". Never fails.
 std::string FormatDuration(double seconds);

@@ -6,11 +6,10 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/AtomicFile.h"
 #include "tidepool/base/FolderPublisher.h"
-#include "tidepool/report/ImageMetrics.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -180,8 +179,7 @@ int RunPlan(const PlanCommandOptions& options) {
     std::vector<ScenePlan> plans;
     int failed = 0;
     for (const SceneDescription& scene : scenes) {
-        plans.push_back(
-                PlanScene(*context.context, config, scene, plan_options, MeasureWithReportMetrics));
+        plans.push_back(PlanScene(*context.context, config, scene, plan_options));
         if (!options.json) {
             PrintPlan(plans.back());
         }

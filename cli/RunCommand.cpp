@@ -25,14 +25,13 @@
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
-#include "tidepool/report/ImageMetrics.h"
 #include "tidepool/report/ReportModel.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/runner/ScenePlanner.h"
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/ScenePlanner.h"
+#include "tidepool/lab/StabilityReport.h"
 
 namespace tidepool::cli {
 namespace {
@@ -172,8 +171,7 @@ public:
         if (!scene.scene) {
             return;  // a bad scene file cannot meet its target: Finish counts it
         }
-        plans_[i] = runner::PlanScene(context, config_, *scene.scene, options_,
-                                      MeasureWithReportMetrics);
+        plans_[i] = runner::PlanScene(context, config_, *scene.scene, options_);
         PrintDiagnostics(plans_[i]->diagnostics);
     }
 

@@ -16,7 +16,7 @@
 #include "tidepool/VariantExpander.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/StabilityReport.h"
 
 namespace tidepool::cli {
 namespace {

@@ -3,7 +3,6 @@
 #include "tidepool/VariantConfig.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <future>
 #include <iterator>
@@ -14,8 +13,20 @@
 
 #include <fmt/format.h>
 
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/ParallelFor.h"
+
 namespace tidepool::report {
 namespace {
+
+using base::DifferenceHeatMap;
+using base::kHeatMapFullScale;
+using base::kVisibleDifferenceThreshold;
+using base::Psnr;
+using base::RgbaImage;
+using base::ShareAboveThreshold;
+using base::Ssim;
+using base::SsimReference;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -82,7 +93,7 @@ using ImageCache = std::map<std::string, ReferenceImage>;
 
 // Reads `path`, or returns the error naming it.
 std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::string* error) {
-    ImageResult read = ReadPng(path);
+    base::ImageResult read = base::ReadPng(path);
     if (!read.image) {
         *error = read.error.empty() ? path.string() + ": cannot read image" : read.error;
         return std::nullopt;
@@ -785,24 +796,13 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
 
     // Accuracy: every configuration's error against the reference, on the cores we have.
     std::vector<ViewErrors> errors(inputs.configurations.size());
-    {
-        const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-        std::vector<std::future<void>> workers;
-        std::atomic<std::size_t> next{0};
-        for (unsigned w = 0; w < cores; ++w) {
-            workers.push_back(std::async(std::launch::async, [&] {
-                for (std::size_t i = next++; i < inputs.configurations.size(); i = next++) {
-                    if (inputs.configurations[i].ok) {
-                        errors[i] = CompareWithReference(inputs.configurations[i],
-                                                         reference_images);
-                    }
-                }
-            }));
-        }
-        for (auto& w : workers) {
-            w.get();
-        }
-    }
+    base::ParallelFor(inputs.configurations.size(),
+                      static_cast<int>(std::thread::hardware_concurrency()), [&](std::size_t i) {
+                          if (inputs.configurations[i].ok) {
+                              errors[i] = CompareWithReference(inputs.configurations[i],
+                                                               reference_images);
+                          }
+                      });
     std::vector<double> times;
     std::vector<double> losses;
     for (std::size_t i = 0; i < inputs.configurations.size(); ++i) {

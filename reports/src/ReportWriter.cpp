@@ -14,10 +14,15 @@
 
 #include "tidepool/base/AtomicFile.h"
 #include "tidepool/base/FolderPublisher.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/Manifest.h"
 
 namespace tidepool::report {
 namespace {
+
+using base::kVisibleDifferenceThreshold;
+using base::RgbaImage;
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
@@ -1969,7 +1974,7 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
                                            ? "images/reference-" + p.view + ".png"
                                            : "images/planar-" + p.reference_preset + "-" +
                                                      p.view + ".png";
-            if (std::string e = WritePngAtomically(staging / reference_files[key], p.reference);
+            if (std::string e = base::WritePngAtomically(staging / reference_files[key], p.reference);
                 !e.empty()) {
                 return fail(e);
             }
@@ -1978,7 +1983,7 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
         files[i].reference = reference_files[key];
         for (const auto& [relative, image] :
              {std::pair{files[i].image, &p.image}, std::pair{files[i].heat, &p.heat_map}}) {
-            if (std::string e = WritePngAtomically(staging / relative, *image); !e.empty()) {
+            if (std::string e = base::WritePngAtomically(staging / relative, *image); !e.empty()) {
                 return fail(e);
             }
             written.files.emplace_back(relative);
@@ -2007,7 +2012,7 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
                     if (factor == 1) {
                         bytes = ReadBytes(staging / *full_size[k]);  // already encoded above
                     } else if (std::string e =
-                                       EncodePng(Downscale(*images[k], factor), &bytes);
+                                       base::EncodePng(Downscale(*images[k], factor), &bytes);
                                !e.empty()) {
                         return e;
                     }

@@ -41,11 +41,11 @@ std::uint8_t ToByte(float value) {
     return static_cast<std::uint8_t>(std::lround(std::clamp(value, 0.0F, 1.0F) * 255.0F));
 }
 
-ImageRgba8 MakeImage(int width, int height) {
+base::RgbaImage MakeImage(int width, int height) {
     return {width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width * height) * 4)};
 }
 
-void StoreTexel(ImageRgba8& image, int column, int row, const glm::vec3& rgb) {
+void StoreTexel(base::RgbaImage& image, int column, int row, const glm::vec3& rgb) {
     const auto offset = static_cast<std::size_t>(row * image.width + column) * 4;
     image.pixels[offset + 0] = ToByte(rgb.r);
     image.pixels[offset + 1] = ToByte(rgb.g);
@@ -79,7 +79,7 @@ CubeMapImage BuildCubeMap(int size, ColourOfDirection colour_of) {
     }
     CubeMapImage cube_map{size, {}};
     for (int face = 0; face < 6; ++face) {
-        ImageRgba8& image = cube_map.faces[static_cast<std::size_t>(face)];
+        base::RgbaImage& image = cube_map.faces[static_cast<std::size_t>(face)];
         image = MakeImage(size, size);
         for (int row = 0; row < size; ++row) {
             for (int column = 0; column < size; ++column) {
@@ -519,7 +519,7 @@ glm::u8vec4 SampleCubeMapNearest(const CubeMapImage& cube_map, const glm::vec3& 
         return std::clamp(static_cast<int>(std::floor(st * static_cast<float>(cube_map.size))), 0,
                           cube_map.size - 1);
     };
-    const ImageRgba8& image = cube_map.faces[static_cast<std::size_t>(face)];
+    const base::RgbaImage& image = cube_map.faces[static_cast<std::size_t>(face)];
     const auto offset = static_cast<std::size_t>(texel(tc) * image.width + texel(sc)) * 4;
     return {image.pixels[offset], image.pixels[offset + 1], image.pixels[offset + 2],
             image.pixels[offset + 3]};
@@ -535,11 +535,11 @@ CubeMapImage BuildNormalisationCubeMap(int size) {
     return BuildCubeMap(size, [](const glm::vec3& d) { return d * 0.5F + 0.5F; });
 }
 
-ImageRgba8 BuildWaterNormalMap(int size) {
+base::RgbaImage BuildWaterNormalMap(int size) {
     if (size < 1) {
         return {};
     }
-    ImageRgba8 image = MakeImage(size, size);
+    base::RgbaImage image = MakeImage(size, size);
     for (int row = 0; row < size; ++row) {
         for (int column = 0; column < size; ++column) {
             // Texel centres, as the sampler sees them.

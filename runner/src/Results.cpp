@@ -22,7 +22,7 @@
 #include "tidepool/base/SampleStatistics.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/VariantExpander.h"
-#include "tidepool/runner/ImageIo.h"
+#include "tidepool/base/RgbaImage.h"
 
 namespace tidepool::runner {
 namespace {
@@ -354,7 +354,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                 const std::string name = fmt::format(
                     "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
                 const std::string write_error =
-                    WritePng(options.out_dir / name, w.renderer->ReadImage());
+                    base::WritePngAtomically(options.out_dir / name, w.renderer->ReadImage());
                 if (write_error.empty()) {
                     view_result.image_path = name;
                 } else {

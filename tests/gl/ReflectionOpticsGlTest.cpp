@@ -15,8 +15,9 @@
 
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ImageIo.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
@@ -73,7 +74,7 @@ std::unique_ptr<WaterRenderer> MakeRenderer(const Scene* scene) {
     return renderer;
 }
 
-ImageRgba8 Render(WaterRenderer& renderer, const RenderConfiguration& c,
+base::RgbaImage Render(WaterRenderer& renderer, const RenderConfiguration& c,
                   const CameraView& view) {
     const DriverVerdict verdict = renderer.Prepare(c);
     EXPECT_TRUE(verdict.valid) << c.id << "\n" << verdict.vertex_log << verdict.fragment_log
@@ -81,32 +82,16 @@ ImageRgba8 Render(WaterRenderer& renderer, const RenderConfiguration& c,
     const FrameReport report = renderer.RenderFrame(c, view);
     EXPECT_EQ(report.gl_error, "") << c.id;
     renderer.Finish();
-    ImageRgba8 image = renderer.ReadImage();
+    base::RgbaImage image = renderer.ReadImage();
     if (const char* dump = std::getenv("TIDEPOOL_TEST_IMAGES")) {
-        WritePng(std::filesystem::path(dump) /
-                     (SanitiseFileName(c.id) + "-" + view.name + ".png"),
-                 image);
+        base::WritePngAtomically(
+                std::filesystem::path(dump) / (SanitiseFileName(c.id) + "-" + view.name + ".png"),
+                image);
     }
     return image;
 }
 
-// PSNR (dB) of two same-sized RGBA8 images over their RGB channels; +Inf when equal.
-double Psnr(const ImageRgba8& a, const ImageRgba8& b) {
-    double sum = 0;
-    std::size_t count = 0;
-    for (std::size_t i = 0; i < a.pixels.size(); ++i) {
-        if (i % 4 == 3) {
-            continue;
-        }
-        const double d = (static_cast<double>(a.pixels[i]) - b.pixels[i]) / 255.0;
-        sum += d * d;
-        ++count;
-    }
-    const double mse = sum / static_cast<double>(count);
-    return mse == 0 ? INFINITY : 10.0 * std::log10(1.0 / mse);
-}
-
-glm::vec3 Pixel(const ImageRgba8& image, int x, int y) {
+glm::vec3 Pixel(const base::RgbaImage& image, int x, int y) {
     const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
                     static_cast<std::size_t>(x)) * 4;
     return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
@@ -129,10 +114,10 @@ TEST_F(ReflectionOpticsGlTest, CubeMapReflectionMatchesPlanarWhenOnlySkyIsAbove)
     ASSERT_NE(renderer, nullptr);
     for (const CameraView& view : {LookingAt({0, 30, 80}, {0, 0, 0}),
                                    LookingAt({40, 8, 60}, {-20, 0, -40})}) {
-        const ImageRgba8 planar = Render(*renderer, Configuration({}), view);
-        const ImageRgba8 cubemap =
+        const base::RgbaImage planar = Render(*renderer, Configuration({}), view);
+        const base::RgbaImage cubemap =
             Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view);
-        EXPECT_GE(Psnr(planar, cubemap), 35.0) << "eye " << view.eye.x << "," << view.eye.y;
+        EXPECT_GE(base::Psnr(planar, cubemap), 35.0) << "eye " << view.eye.x << "," << view.eye.y;
     }
 }
 
@@ -142,9 +127,9 @@ TEST_F(ReflectionOpticsGlTest, CubeMapReflectionMissesTheLocalObjectsPlanarShows
     std::unique_ptr<WaterRenderer> renderer = MakeRenderer(nullptr);
     ASSERT_NE(renderer, nullptr);
     const CameraView view = *FindView(DefaultViews(), "shore");
-    const ImageRgba8 planar = Render(*renderer, Configuration({}), view);
-    const ImageRgba8 cubemap = Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view);
-    EXPECT_LT(Psnr(planar, cubemap), 30.0);
+    const base::RgbaImage planar = Render(*renderer, Configuration({}), view);
+    const base::RgbaImage cubemap = Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view);
+    EXPECT_LT(base::Psnr(planar, cubemap), 30.0);
 }
 
 TEST_F(ReflectionOpticsGlTest, FourierReflectionIsCloserToPlanarThanTheCubeMapWhereTerrainIs) {
@@ -154,18 +139,18 @@ TEST_F(ReflectionOpticsGlTest, FourierReflectionIsCloserToPlanarThanTheCubeMapWh
     ASSERT_NE(renderer, nullptr);
     const auto images = [&](const char* name) {
         const CameraView view = *FindView(DefaultViews(), name);
-        return std::array<ImageRgba8, 3>{
+        return std::array<base::RgbaImage, 3>{
             Render(*renderer, Configuration({}), view),
             Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view),
             Render(*renderer, Configuration({"REFLECTION_FOURIER"}), view)};
     };
     // three_quarter looks at the island across the water.
     const auto island = images("three_quarter");
-    EXPECT_GT(Psnr(island[0], island[2]), Psnr(island[0], island[1]) + 0.5);
+    EXPECT_GT(base::Psnr(island[0], island[2]), base::Psnr(island[0], island[1]) + 0.5);
     // shore looks out to sea with the island behind: no terrain to reflect, so the Fourier
     // reflection is the cube map's sky, and both miss the boat and pillars alike.
     const auto sea = images("shore");
-    EXPECT_NEAR(Psnr(sea[0], sea[2]), Psnr(sea[0], sea[1]), 0.5);
+    EXPECT_NEAR(base::Psnr(sea[0], sea[2]), base::Psnr(sea[0], sea[1]), 0.5);
 }
 
 TEST_F(ReflectionOpticsGlTest, NoReflectionPassForCubeMapOrFourier) {
@@ -206,9 +191,9 @@ TEST_F(ReflectionOpticsGlTest, ExtinctionMatchesItsFormulaAtSampledDepths) {
         std::unique_ptr<WaterRenderer> renderer = MakeRenderer(&scene);
         ASSERT_NE(renderer, nullptr);
         const RenderSettings& settings = renderer->Settings();
-        const ImageRgba8 plain =
+        const base::RgbaImage plain =
             Render(*renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
-        const ImageRgba8 extinct = Render(
+        const base::RgbaImage extinct = Render(
             *renderer,
             Configuration({"ENABLE_REFRACTION", "ENABLE_EXTINCTION", "TP_OUTPUT_REFRACTION"}),
             view);
@@ -243,11 +228,11 @@ TEST_F(ReflectionOpticsGlTest, SoftShoreShowsTheRefractionAtTheWaterline) {
     std::unique_ptr<WaterRenderer> renderer = MakeRenderer(&scene);
     ASSERT_NE(renderer, nullptr);
     const CameraView view = LookingAt({0, 25, 50}, {0, 0, 0});
-    const ImageRgba8 refraction =
+    const base::RgbaImage refraction =
         Render(*renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
-    const ImageRgba8 soft =
+    const base::RgbaImage soft =
         Render(*renderer, Configuration({"ENABLE_REFRACTION", "ENABLE_SOFT_SHORE"}), view);
-    const ImageRgba8 hard = Render(*renderer, Configuration({"ENABLE_REFRACTION"}), view);
+    const base::RgbaImage hard = Render(*renderer, Configuration({"ENABLE_REFRACTION"}), view);
     const glm::vec3 r = Pixel(refraction, kWidth / 2, kHeight / 2);
     const glm::vec3 s = Pixel(soft, kWidth / 2, kHeight / 2);
     const glm::vec3 h = Pixel(hard, kWidth / 2, kHeight / 2);

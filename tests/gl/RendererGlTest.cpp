@@ -16,7 +16,7 @@
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/FramePlan.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ImageIo.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
@@ -82,7 +82,7 @@ RenderConfiguration Configuration(std::vector<std::string> defines, PassOptions 
     return c;
 }
 
-ImageRgba8 Render(const RenderConfiguration& c, const std::string& view_name,
+base::RgbaImage Render(const RenderConfiguration& c, const std::string& view_name,
                   WaterRenderer* renderer = nullptr) {
     Shared& s = Get();
     WaterRenderer& r = renderer ? *renderer : *s.renderer;
@@ -96,15 +96,16 @@ ImageRgba8 Render(const RenderConfiguration& c, const std::string& view_name,
     const FrameReport report = r.RenderFrame(c, *view);
     EXPECT_EQ(report.gl_error, "") << c.id;
     r.Finish();
-    ImageRgba8 image = r.ReadImage();
+    base::RgbaImage image = r.ReadImage();
     if (const char* dump = std::getenv("TIDEPOOL_TEST_IMAGES")) {
-        WritePng(std::filesystem::path(dump) / (SanitiseFileName(c.id) + "-" + view_name + ".png"),
-                 image);
+        base::WritePngAtomically(
+                std::filesystem::path(dump) / (SanitiseFileName(c.id) + "-" + view_name + ".png"),
+                image);
     }
     return image;
 }
 
-glm::vec3 Pixel(const ImageRgba8& image, int x, int y) {
+glm::vec3 Pixel(const base::RgbaImage& image, int x, int y) {
     const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
                     static_cast<std::size_t>(x)) * 4;
     return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
@@ -139,7 +140,7 @@ std::pair<float, float> HueSaturation(const glm::vec3& c) {
 }
 
 // Counts pixels with a saturated hue in [low, high] degrees.
-int CountHue(const ImageRgba8& image, float low, float high) {
+int CountHue(const base::RgbaImage& image, float low, float high) {
     int count = 0;
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {
@@ -153,7 +154,7 @@ int CountHue(const ImageRgba8& image, float low, float high) {
 }
 
 // Whether a saturated pixel of hue [low, high] lies within `radius` pixels of `centre`.
-bool HueNear(const ImageRgba8& image, glm::ivec2 centre, int radius, float low, float high) {
+bool HueNear(const base::RgbaImage& image, glm::ivec2 centre, int radius, float low, float high) {
     for (int y = centre.y - radius; y <= centre.y + radius; ++y) {
         for (int x = centre.x - radius; x <= centre.x + radius; ++x) {
             if (x < 0 || y < 0 || x >= image.width || y >= image.height) {
@@ -195,7 +196,7 @@ TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
                                              0.6F), centre.z);
     const glm::vec3 mirrored(point.x, 2.0F * scene.water_height - point.y, point.z);
     const CameraView view = *FindView(DefaultViews(), "grazing");
-    const ImageRgba8 image = Render(Configuration({}), "grazing");
+    const base::RgbaImage image = Render(Configuration({}), "grazing");
     const glm::ivec2 direct = ScreenPixel(view, point);
     const glm::ivec2 reflected = ScreenPixel(view, mirrored);
     ASSERT_GT(reflected.y, direct.y) << "the mirrored point must project below the tower";
@@ -245,9 +246,9 @@ TEST_F(RendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
 TEST_F(RendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
     const RenderConfiguration full = Configuration(
         {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_FOG"});
-    const ImageRgba8 first = Render(full, "shore");
+    const base::RgbaImage first = Render(full, "shore");
     Render(Configuration({"ENABLE_WATER_COLOUR"}), "high");  // something else in between
-    const ImageRgba8 second = Render(full, "shore");
+    const base::RgbaImage second = Render(full, "shore");
     EXPECT_TRUE(first.pixels == second.pixels);
 }
 

@@ -4,9 +4,8 @@
 // between configurations a whole render pass apart, so timing noise cannot decide them.
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
-#include "tidepool/report/ImageMetrics.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include <gtest/gtest.h>
 
@@ -27,13 +26,6 @@ namespace {
 // for the island and objects to cover many pixels.
 constexpr int kWidth = 96;
 constexpr int kHeight = 72;
-
-ImageError Measure(const ImageRgba8& reference, const ImageRgba8& candidate) {
-    const report::RgbaImage a{reference.width, reference.height, reference.pixels};
-    const report::RgbaImage b{candidate.width, candidate.height, candidate.pixels};
-    return ImageError{report::Psnr(a, b), report::Ssim(a, b),
-                      report::ShareAboveThreshold(a, b, report::kVisibleDifferenceThreshold)};
-}
 
 PlanOptions SmallOptions() {
     PlanOptions options;
@@ -72,9 +64,8 @@ Shared& Get() {
         }
         s.context = environment.context.get();
         s.config = &*environment.config;
-        s.murky =
-                PlanScene(*s.context, *s.config, LoadScene("murky_pond"), SmallOptions(), Measure);
-        s.lake = PlanScene(*s.context, *s.config, LoadScene("clear_lake"), SmallOptions(), Measure);
+        s.murky = PlanScene(*s.context, *s.config, LoadScene("murky_pond"), SmallOptions());
+        s.lake = PlanScene(*s.context, *s.config, LoadScene("clear_lake"), SmallOptions());
         return s;
     }();
     return shared;
@@ -233,7 +224,7 @@ TEST(ScenePlannerGlTest, InvalidVariantIsNeverChosen) {
     ConfigResult loaded = LoadVariantConfig(dir.Path() / "variants.yaml");
     ASSERT_TRUE(loaded.config);
     const ScenePlan plan = PlanScene(*Get().context, *loaded.config, LoadScene("murky_pond"),
-                                     SmallOptions(), Measure);
+                                     SmallOptions());
     ASSERT_GE(plan.chosen, 0);
     int invalid = 0;
     for (const PlanCandidate& c : plan.candidates) {

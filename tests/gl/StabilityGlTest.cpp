@@ -12,9 +12,9 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/HardCases.h"
+#include "tidepool/lab/HardCases.h"
 #include "tidepool/runner/Renderer.h"
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/StabilityReport.h"
 #include "GlTestEnvironment.h"
 
 namespace tidepool::runner {

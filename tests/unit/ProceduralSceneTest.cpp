@@ -15,7 +15,7 @@ namespace {
 // the decoded length of three such components can be off by up to sqrt(3) steps.
 constexpr float kEncodedStep = 2.0F / 255.0F;
 
-glm::vec3 Texel(const ImageRgba8& image, int column, int row) {
+glm::vec3 Texel(const base::RgbaImage& image, int column, int row) {
     const auto offset = static_cast<std::size_t>(row * image.width + column) * 4;
     return {image.pixels[offset], image.pixels[offset + 1], image.pixels[offset + 2]};
 }
@@ -117,7 +117,7 @@ TEST(ProceduralSceneTest, SkyIsBlueAtZenithAndDarkBelowHorizon) {
 // ----- Water normal map -----------------------------------------------------------------------
 
 // Mean absolute channel difference between columns a and b (or rows, when `rows` is true).
-float MeanDifference(const ImageRgba8& image, int a, int b, bool rows) {
+float MeanDifference(const base::RgbaImage& image, int a, int b, bool rows) {
     float sum = 0.0F;
     for (int i = 0; i < image.width; ++i) {
         sum += glm::dot(glm::abs(rows ? Texel(image, i, a) - Texel(image, i, b)
@@ -129,7 +129,7 @@ float MeanDifference(const ImageRgba8& image, int a, int b, bool rows) {
 
 TEST(ProceduralSceneTest, WaterNormalMapTilesSeamlessly) {
     const int size = 64;
-    const ImageRgba8 map = BuildWaterNormalMap(size);
+    const base::RgbaImage map = BuildWaterNormalMap(size);
     for (const bool rows : {false, true}) {
         float largest_step = 0.0F;
         for (int i = 0; i + 1 < size; ++i) {
@@ -144,7 +144,7 @@ TEST(ProceduralSceneTest, WaterNormalMapTilesSeamlessly) {
 }
 
 TEST(ProceduralSceneTest, WaterNormalMapIsZMajorUnitNormals) {
-    const ImageRgba8 map = BuildWaterNormalMap(32);
+    const base::RgbaImage map = BuildWaterNormalMap(32);
     for (int row = 0; row < map.height; ++row) {
         for (int column = 0; column < map.width; ++column) {
             const glm::vec3 n = DecodeUnit(Texel(map, column, row));

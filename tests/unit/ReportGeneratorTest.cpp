@@ -18,7 +18,7 @@
 #include <nlohmann/json.hpp>
 
 #include "TempDir.h"
-#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/report/ReportModel.h"
 #include "tidepool/report/ReportWriter.h"
@@ -37,8 +37,8 @@ std::string ReadText(const std::filesystem::path& path) {
 }
 
 // A flat image of one colour, with a bright square when `mark` > 0 (a visible difference).
-RgbaImage Flat(std::uint8_t grey, int mark = 0) {
-    RgbaImage image;
+tidepool::base::RgbaImage Flat(std::uint8_t grey, int mark = 0) {
+    tidepool::base::RgbaImage image;
     image.width = 32;
     image.height = 24;
     image.pixels.assign(static_cast<std::size_t>(image.width * image.height * 4), grey);
@@ -109,7 +109,9 @@ FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& c
             for (const auto& [view, mark] : marks) {
                 const std::string image = "images/" + std::to_string(entries.size()) +
                                           (view == "three_quarter" ? "" : "-" + view) + ".png";
-                EXPECT_EQ(WritePngAtomically(dir.Path() / "render" / image, Flat(100, mark)), "");
+                EXPECT_EQ(tidepool::base::WritePngAtomically(dir.Path() / "render" / image,
+                                                             Flat(100, mark)),
+                          "");
                 views.push_back({{"view", view}, {"image", image}});
                 if (!c.pass_names.empty()) {
                     views.back()["pass_names"] = c.pass_names;

@@ -7,10 +7,10 @@
 #include <set>
 #include <string>
 
-#include "tidepool/runner/HardCases.h"
-#include "tidepool/runner/PrecisionStudy.h"
+#include "tidepool/lab/HardCases.h"
+#include "tidepool/lab/PrecisionStudy.h"
 #include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/StabilityReport.h"
 #include "tidepool/runner/WaterMath.h"
 
 namespace tidepool::runner {

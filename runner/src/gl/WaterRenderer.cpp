@@ -200,7 +200,7 @@ GLuint WaterRenderer::Impl::UploadCube(const CubeMapImage& image) {
     gl->glGenTextures(1, &texture);
     gl->glBindTexture(GL_TEXTURE_CUBE_MAP, texture);
     for (int face = 0; face < 6; ++face) {
-        const ImageRgba8& side = image.faces[static_cast<std::size_t>(face)];
+        const base::RgbaImage& side = image.faces[static_cast<std::size_t>(face)];
         gl->glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), 0, GL_RGBA,
                          side.width, side.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
                          side.pixels.data());
@@ -338,7 +338,7 @@ std::string WaterRenderer::Impl::Init() {
     gl->glActiveTexture(GL_TEXTURE0 + kUnitNormalisation);
     normalisation_cube = UploadCube(BuildNormalisationCubeMap(settings.normalisation_cube_size));
     gl->glActiveTexture(GL_TEXTURE0 + kUnitNormalMap);
-    const ImageRgba8 normals = BuildWaterNormalMap(settings.normal_map_size);
+    const base::RgbaImage normals = BuildWaterNormalMap(settings.normal_map_size);
     gl->glGenTextures(1, &normal_map);
     gl->glBindTexture(GL_TEXTURE_2D, normal_map);
     gl->glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, normals.width, normals.height, 0, GL_RGBA,
@@ -925,9 +925,9 @@ void WaterRenderer::UpdateFrameSettings(const RenderSettings& settings) {
 
 void WaterRenderer::Finish() { impl_->gl->glFinish(); }
 
-ImageRgba8 WaterRenderer::ReadImage() {
+base::RgbaImage WaterRenderer::ReadImage() {
     Impl& r = *impl_;
-    ImageRgba8 image;
+    base::RgbaImage image;
     image.width = r.settings.width;
     image.height = r.settings.height;
     const auto row_bytes = static_cast<std::size_t>(image.width) * 4;

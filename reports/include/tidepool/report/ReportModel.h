@@ -17,7 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "tidepool/base/PairedEstimate.h"
-#include "tidepool/report/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/report/Statistics.h"
 #include "tidepool/report/WhitepaperTable.h"
@@ -170,9 +170,9 @@ struct ImagePanel {
     std::string title;       // the preset(s), e.g. "full_no_fog (row 4)"
     const MeasuredConfiguration* configuration = nullptr;  // null when no configuration has it
     std::string view;
-    RgbaImage image;
-    RgbaImage reference;
-    RgbaImage heat_map;
+    base::RgbaImage image;
+    base::RgbaImage reference;
+    base::RgbaImage heat_map;
     // Whose image `reference` is: the reference preset, or (in the Reflection techniques
     // section) the planar counterpart the candidate is compared with.
     std::string reference_preset = std::string(kReferencePreset);

@@ -14,23 +14,16 @@
 #include <glm/glm.hpp>
 
 #include "tidepool/SceneDescription.h"
+#include "tidepool/base/RgbaImage.h"
 
 namespace tidepool::runner {
-
-/// An 8-bit RGBA image, rows top to bottom, 4 bytes per pixel. Uploaded as-is with glTexImage2D,
-/// row 0 is texture coordinate t = 0.
-struct ImageRgba8 {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> pixels;
-};
 
 /// A cube map with square faces in GL order +X, -X, +Y, -Y, +Z, -Z, laid out with the GL face
 /// conventions (GLES 2 spec, table 3.21), so that uploading face k as-is to
 /// GL_TEXTURE_CUBE_MAP_POSITIVE_X + k makes textureCube(dir) return the texel for direction dir.
 struct CubeMapImage {
     int size = 0;
-    std::array<ImageRgba8, 6> faces;
+    std::array<base::RgbaImage, 6> faces;
 };
 
 /// Returns the unit direction through the centre of texel (column, row) of cube face `face`
@@ -54,7 +47,7 @@ CubeMapImage BuildNormalisationCubeMap(int size);
 /// Builds a seamlessly tiling water normal map, z-major (rgb = n * 0.5 + 0.5, n.z up; n.x along
 /// texture s, n.y along t), from a sum of sine waves with integer frequencies and analytic
 /// normals. Fails (returns an empty image) when size < 1.
-ImageRgba8 BuildWaterNormalMap(int size);
+base::RgbaImage BuildWaterNormalMap(int size);
 
 /// A triangle mesh in object space with per-vertex albedo; triangles are counter-clockwise seen
 /// from outside (GL's default front face), and every mesh has fewer than 65536 vertices because

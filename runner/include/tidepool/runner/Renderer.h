@@ -145,7 +145,7 @@ public:
     void Finish();
 
     /// Reads the main target back as RGBA8 rows top to bottom (converted when it is float).
-    ImageRgba8 ReadImage();
+    base::RgbaImage ReadImage();
 
     /// Reads the main target back as RGBA floats, rows top to bottom; empty unless the settings
     /// asked for float_target.

@@ -1,13 +1,14 @@
 // The scene planner. Rules only propose: every candidate is rendered and timed, and the choice
 // is made on the measurements, so a rule that guesses wrong costs time, never quality.
-#include "tidepool/runner/ScenePlanner.h"
+#include "tidepool/lab/ScenePlanner.h"
 
 #include "tidepool/base/SampleStatistics.h"
 #include "tidepool/runner/FrameTimer.h"
 
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantExpander.h"
-#include "tidepool/runner/ImageIo.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 
 #include <algorithm>
 #include <chrono>
@@ -385,8 +386,17 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
     return choice;
 }
 
+ImageError MeasureImageError(const base::RgbaImage& reference, const base::RgbaImage& candidate) {
+    ImageError error;
+    error.psnr_db = base::Psnr(reference, candidate);
+    error.ssim = base::Ssim(reference, candidate);
+    error.share_visible =
+            base::ShareAboveThreshold(reference, candidate, base::kVisibleDifferenceThreshold);
+    return error;
+}
+
 ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
-                    const PlanOptions& options, const ImageErrorFunction& measure) {
+                    const PlanOptions& options) {
     ScenePlan plan;
     plan.scene = scene;
     if (FloorVisible(scene)) {
@@ -467,7 +477,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     };
 
     // The driver's verdict, one frame's counts and the image of every valid candidate.
-    std::vector<ImageRgba8> images(plan.candidates.size());
+    std::vector<base::RgbaImage> images(plan.candidates.size());
     auto render_image = [&](std::size_t i) {
         PlanCandidate& c = plan.candidates[i];
         if (!c.valid) {
@@ -494,7 +504,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         if (!options.out_dir.empty()) {
             const std::string name = fmt::format("images/{}-{}.png", scene.name,
                                                  SanitiseFileName(c.configuration.id));
-            const std::string write_error = WritePng(options.out_dir / name, images[i]);
+            const std::string write_error = base::WritePngAtomically(options.out_dir / name, images[i]);
             if (write_error.empty()) {
                 c.image_path = name;
             } else {
@@ -512,11 +522,11 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                                       plan.candidates.front().configuration.id)));
         return plan;
     }
-    const ImageRgba8 reference = images.front();
+    const base::RgbaImage reference = images.front();
     auto measure_candidate = [&](std::size_t i) {
         PlanCandidate& c = plan.candidates[i];
         if (c.valid) {
-            c.error = i == 0 ? ImageError{} : measure(reference, images[i]);
+            c.error = i == 0 ? ImageError{} : MeasureImageError(reference, images[i]);
             c.error.psnr_db = std::min(c.error.psnr_db, kIdenticalPsnrDb);
             c.meets_quality = MeetsQuality(scene.target, c.error);
         }

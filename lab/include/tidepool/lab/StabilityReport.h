@@ -9,8 +9,8 @@
 
 #include "tidepool/VariantConfig.h"
 #include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/HardCases.h"
-#include "tidepool/runner/PrecisionStudy.h"
+#include "tidepool/lab/HardCases.h"
+#include "tidepool/lab/PrecisionStudy.h"
 #include "tidepool/runner/RenderConfig.h"
 
 namespace tidepool::runner {

@@ -1,5 +1,5 @@
-// Image comparison for the report: PNG reading and atomic writing, PSNR, SSIM, the share of
-// visibly different pixels, and a difference heat map. A configuration's image at a view is
+// Image comparison for the report and the scene planner: PSNR, SSIM, the share of visibly
+// different pixels, and a difference heat map. A configuration's image at a view is
 // compared with the reference configuration's image at the same view, so the two images always
 // have the same size; a size mismatch is reported as a failure value, never thrown.
 //
@@ -8,13 +8,11 @@
 // code values (0..255).
 #pragma once
 
-#include <cstdint>
-#include <filesystem>
-#include <optional>
-#include <string>
 #include <vector>
 
-namespace tidepool::report {
+#include "tidepool/base/RgbaImage.h"
+
+namespace tidepool::base {
 
 /// Default `threshold` for ShareAboveThreshold, in 8-bit code values: 8 / 255, about 3% of full
 /// scale. sRGB encoding is roughly perceptually uniform, and for typical mid-tone content a step
@@ -31,47 +29,6 @@ inline constexpr double kHeatMapFullScale = 32.0;
 
 /// Side of the Gaussian window Ssim uses (sigma 1.5, 11 x 11, as Wang et al. 2004).
 inline constexpr int kSsimWindow = 11;
-
-/// Largest width or height ReadPng accepts: 16384 is the largest render target Mesa's llvmpipe
-/// offers (and above any view we render), so a larger header is a corrupt or foreign file and
-/// must not make us allocate gigabytes.
-inline constexpr int kMaxPngDimension = 16384;
-
-/// An 8-bit RGBA image, rows top to bottom, 4 bytes per pixel, no padding between rows.
-struct RgbaImage {
-    int width = 0;
-    int height = 0;
-    std::vector<std::uint8_t> pixels;  // width * height * 4 bytes
-};
-
-/// What ReadPng found: an image, or an error message naming the file.
-struct ImageResult {
-    std::optional<RgbaImage> image;  // set on success
-    std::string error;               // "" on success
-};
-
-/// Reads any PNG (palette, gray, gray+alpha, RGB, RGBA; 8 or 16 bits; 16-bit files without a
-/// gAMA or sRGB chunk are taken as sRGB-encoded, not linear) into RGBA8 with libpng's simplified
-/// API, which reports errors through its struct, so a truncated file is an error, not a crash.
-/// Fails (no image, `error` starting with the path) when the file is missing, unreadable, not a
-/// PNG, corrupt or truncated, or wider or taller than kMaxPngDimension.
-ImageResult ReadPng(const std::filesystem::path& path);
-
-/// How an encoder trades time for size: kSmall for bytes that count against a budget (images
-/// embedded in index.html), kFast for files on disk (libpng's fast setting: about a fifth of the
-/// time for files about a third larger).
-enum class PngEncoding { kSmall, kFast };
-
-/// Encodes `image` as an RGBA PNG into `encoded`. Returns "" or what went wrong (a malformed
-/// image, or libpng's message).
-std::string EncodePng(const RgbaImage& image, std::string* encoded,
-                      PngEncoding encoding = PngEncoding::kSmall);
-
-/// Writes `image` as an 8-bit RGBA PNG at `path` (encoded kFast), creating parent folders,
-/// through a temporary file in the same folder renamed over `path`, so a reader never sees half
-/// a file. Returns "" on success, otherwise a message naming the file; fails when the image is
-/// empty or its pixel count does not match its size, or the file cannot be written.
-std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImage& image);
 
 /// Peak signal-to-noise ratio in dB over R, G and B with peak 255: 10 log10(255^2 / MSE).
 /// Returns +infinity for identical colour channels. Fails (returns NaN) when the sizes differ or
@@ -121,4 +78,4 @@ double ShareAboveThreshold(const RgbaImage& a, const RgbaImage& b, double thresh
 /// differ, an image is empty or malformed, or full_scale is not finite and positive.
 RgbaImage DifferenceHeatMap(const RgbaImage& a, const RgbaImage& b, double full_scale);
 
-}  // namespace tidepool::report
+}  // namespace tidepool::base

@@ -1,53 +1,36 @@
-// PNG input/output through libpng's simplified API (png_image), which catches libpng's longjmp
-// errors internally and reports them through its struct, so no longjmp ever crosses our C++
-// frames; and the image metrics, all over 8-bit code values with alpha ignored.
-#include "tidepool/report/ImageMetrics.h"
-
-#include <png.h>
+// The image metrics, all over 8-bit code values with alpha ignored.
+#include "tidepool/base/ImageMetrics.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
 #include <limits>
-#include <new>
 
-#include <fmt/format.h>
-
-#include "tidepool/base/AtomicFile.h"
-
-namespace tidepool::report {
+namespace tidepool::base {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::size_t PixelCount(const RgbaImage& image) {
-    return static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height);
-}
-
-bool IsWellFormed(const RgbaImage& image) {
-    return image.width > 0 && image.height > 0 && image.pixels.size() == PixelCount(image) * 4;
-}
-
 // Two images the metrics can compare: both well formed and of the same size.
 bool AreComparable(const RgbaImage& a, const RgbaImage& b) {
-    return IsWellFormed(a) && IsWellFormed(b) && a.width == b.width && a.height == b.height;
+    return a.IsWellFormed() && b.IsWellFormed() && a.width == b.width && a.height == b.height;
 }
 
 // The largest absolute R, G or B difference of pixel `index` (alpha ignored).
 int MaxColourDifference(const RgbaImage& a, const RgbaImage& b, std::size_t index) {
-    const std::size_t base = index * 4;
+    const std::size_t first = index * 4;
     int largest = 0;
     for (std::size_t channel = 0; channel < 3; ++channel) {
-        largest = std::max(largest,
-                           std::abs(int{a.pixels[base + channel]} - int{b.pixels[base + channel]}));
+        largest = std::max(
+                largest, std::abs(int{a.pixels[first + channel]} - int{b.pixels[first + channel]}));
     }
     return largest;
 }
 
 // Rec. 601 luma of every pixel, on the encoded 0..255 values as SSIM is usually applied.
 std::vector<double> Luma(const RgbaImage& image) {
-    std::vector<double> luma(PixelCount(image));
+    std::vector<double> luma(image.PixelCount());
     for (std::size_t i = 0; i < luma.size(); ++i) {
         const std::uint8_t* pixel = &image.pixels[i * 4];
         luma[i] = 0.299 * pixel[0] + 0.587 * pixel[1] + 0.114 * pixel[2];
@@ -74,79 +57,6 @@ std::array<double, kSsimWindow> GaussianWindow() {
 
 }  // namespace
 
-ImageResult ReadPng(const std::filesystem::path& path) {
-    ImageResult result;
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    if (png_image_begin_read_from_file(&png, path.c_str()) == 0) {
-        result.error = fmt::format("{}: cannot read PNG: {}", path.string(), png.message);
-        png_image_free(&png);  // safe when libpng already freed it
-        return result;
-    }
-    if (png.width > static_cast<png_uint_32>(kMaxPngDimension) ||
-        png.height > static_cast<png_uint_32>(kMaxPngDimension)) {
-        result.error = fmt::format("{}: PNG is {}x{}, larger than the {}x{} this reader accepts",
-                                   path.string(), png.width, png.height, kMaxPngDimension,
-                                   kMaxPngDimension);
-        png_image_free(&png);
-        return result;
-    }
-    png.format = PNG_FORMAT_RGBA;
-    // Without this, libpng takes untagged 16-bit data as linear and re-encodes it to sRGB.
-    png.flags |= PNG_IMAGE_FLAG_16BIT_sRGB;
-    RgbaImage image;
-    image.width = static_cast<int>(png.width);
-    image.height = static_cast<int>(png.height);
-    try {
-        image.pixels.assign(PNG_IMAGE_SIZE(png), 0);
-    } catch (const std::bad_alloc&) {
-        result.error = fmt::format("{}: out of memory for a {}x{} image", path.string(), png.width,
-                                   png.height);
-        png_image_free(&png);
-        return result;
-    }
-    if (png_image_finish_read(&png, nullptr, image.pixels.data(), 0, nullptr) == 0) {
-        result.error = fmt::format("{}: corrupt or truncated PNG: {}", path.string(), png.message);
-        png_image_free(&png);
-        return result;
-    }
-    result.image = std::move(image);
-    return result;
-}
-
-std::string EncodePng(const RgbaImage& image, std::string* encoded, PngEncoding encoding) {
-    if (!IsWellFormed(image)) {
-        return fmt::format("cannot write PNG: a {}x{} image needs {} bytes of pixels, not {}",
-                           image.width, image.height,
-                           image.width > 0 && image.height > 0 ? PixelCount(image) * 4 : 0,
-                           image.pixels.size());
-    }
-    png_image png{};
-    png.version = PNG_IMAGE_VERSION;
-    png.width = static_cast<png_uint_32>(image.width);
-    png.height = static_cast<png_uint_32>(image.height);
-    png.format = PNG_FORMAT_RGBA;
-    png.flags = encoding == PngEncoding::kFast ? PNG_IMAGE_FLAG_FAST : 0;
-    // Encoded once into a buffer of libpng's own upper bound, not sized by a first encoding:
-    // the report encodes a hundred images, and that halves its time.
-    png_alloc_size_t size = PNG_IMAGE_PNG_SIZE_MAX(png);
-    encoded->assign(size, '\0');
-    if (png_image_write_to_memory(&png, encoded->data(), &size, 0, image.pixels.data(), 0,
-                                  nullptr) == 0) {
-        return fmt::format("cannot encode PNG: {}", png.message);
-    }
-    encoded->resize(size);
-    return "";
-}
-
-std::string WritePngAtomically(const std::filesystem::path& path, const RgbaImage& image) {
-    std::string encoded;
-    if (std::string error = EncodePng(image, &encoded, PngEncoding::kFast); !error.empty()) {
-        return path.string() + ": " + error;
-    }
-    return base::WriteFileAtomically(path, encoded);
-}
-
 double Psnr(const RgbaImage& a, const RgbaImage& b) {
     if (!AreComparable(a, b)) {
         return kNaN;
@@ -163,7 +73,7 @@ double Psnr(const RgbaImage& a, const RgbaImage& b) {
         return std::numeric_limits<double>::infinity();
     }
     const double mean_squared_error =
-            static_cast<double>(squared_error) / (3.0 * static_cast<double>(PixelCount(a)));
+            static_cast<double>(squared_error) / (3.0 * static_cast<double>(a.PixelCount()));
     return 10 * std::log10(255.0 * 255.0 / mean_squared_error);
 }
 
@@ -276,7 +186,7 @@ void FilterWindows(const std::vector<Moment>& moments, const std::vector<double>
 
 SsimReference::SsimReference(const RgbaImage& reference)
     : width_(reference.width), height_(reference.height) {
-    if (!IsWellFormed(reference) || width_ < kSsimWindow || height_ < kSsimWindow) {
+    if (!reference.IsWellFormed() || width_ < kSsimWindow || height_ < kSsimWindow) {
         return;
     }
     luma_ = Luma(reference);
@@ -297,7 +207,7 @@ SsimReference::SsimReference(const RgbaImage& reference)
 }
 
 double SsimReference::Compare(const RgbaImage& image) const {
-    if (!usable_ || !IsWellFormed(image) || image.width != width_ || image.height != height_) {
+    if (!usable_ || !image.IsWellFormed() || image.width != width_ || image.height != height_) {
         return kNaN;
     }
     const std::vector<double> x = Luma(image);
@@ -337,7 +247,7 @@ double ShareAboveThreshold(const RgbaImage& a, const RgbaImage& b, double thresh
     if (!AreComparable(a, b) || std::isnan(threshold)) {
         return kNaN;
     }
-    const std::size_t pixels = PixelCount(a);
+    const std::size_t pixels = a.PixelCount();
     std::size_t above = 0;
     for (std::size_t i = 0; i < pixels; ++i) {
         if (MaxColourDifference(a, b, i) > threshold) {
@@ -365,7 +275,7 @@ RgbaImage DifferenceHeatMap(const RgbaImage& a, const RgbaImage& b, double full_
     heat.width = a.width;
     heat.height = a.height;
     heat.pixels.resize(a.pixels.size());
-    for (std::size_t i = 0; i < PixelCount(a); ++i) {
+    for (std::size_t i = 0; i < a.PixelCount(); ++i) {
         const auto& colour = ramp[static_cast<std::size_t>(MaxColourDifference(a, b, i))];
         std::copy(colour.begin(), colour.end(),
                   heat.pixels.begin() + static_cast<std::ptrdiff_t>(i * 4));
@@ -374,4 +284,4 @@ RgbaImage DifferenceHeatMap(const RgbaImage& a, const RgbaImage& b, double full_
     return heat;
 }
 
-}  // namespace tidepool::report
+}  // namespace tidepool::base

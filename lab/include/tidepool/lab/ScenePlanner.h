@@ -15,7 +15,6 @@
 #include "tidepool/runner/Renderer.h"
 
 #include <filesystem>
-#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,10 +35,10 @@ struct ImageError {
     double share_visible = 0.0;  // share of pixels that differ visibly
 };
 
-/// Measures a candidate image against the reference; supplied by the caller (the CLI passes
-/// tidepool_report's metrics), so the runner library does not depend on the report library.
-using ImageErrorFunction =
-        std::function<ImageError(const ImageRgba8& reference, const ImageRgba8& candidate)>;
+/// A candidate image's error against the reference with the report's metrics (base/
+/// ImageMetrics.h: PSNR uncapped, SSIM, share of visibly different pixels), so plans and the
+/// report measure alike. Never fails (NaN metrics for unequal sizes).
+ImageError MeasureImageError(const base::RgbaImage& reference, const base::RgbaImage& candidate);
 
 /// How a plan renders and times.
 struct PlanOptions {
@@ -149,13 +148,13 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
                                              std::vector<Diagnostic>* diagnostics);
 
 /// Plans `scene`: validates the candidates with glslang (invalid ones are skipped, never
-/// chosen), renders the scene built from the description with each and measures its error with
-/// `measure`, adds one candidate that combines every drop that met the target alone (at most
+/// chosen), renders the scene built from the description with each and measures its error
+/// (MeasureImageError), adds one candidate that combines every drop that met the target alone (at most
 /// 12 in all), times them all in paired rounds, and picks the cheapest that meets the target.
 /// Fails through ScenePlan::diagnostics when the full configuration is invalid or the renderer
 /// cannot be created.
 ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
-                    const PlanOptions& options, const ImageErrorFunction& measure);
+                    const PlanOptions& options);
 
 /// The plans as JSON, schema "tidepool.plans" version 1 (docs/SCENES.md). Never fails.
 nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOptions& options);

@@ -1,4 +1,4 @@
-#include "tidepool/runner/PrecisionStudy.h"
+#include "tidepool/lab/PrecisionStudy.h"
 
 #include <algorithm>
 #include <array>

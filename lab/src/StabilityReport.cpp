@@ -1,4 +1,4 @@
-#include "tidepool/runner/StabilityReport.h"
+#include "tidepool/lab/StabilityReport.h"
 
 #include <fmt/format.h>
 

@@ -1,4 +1,4 @@
-#include "tidepool/runner/HardCases.h"
+#include "tidepool/lab/HardCases.h"
 
 #include <algorithm>
 #include <limits>

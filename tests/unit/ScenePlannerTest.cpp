@@ -1,0 +1,63 @@
+// The scene planner's parts that need no GL: its choice between measured candidates, on a tie
+// and at the margins (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate).
+#include <gtest/gtest.h>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "tidepool/lab/ScenePlanner.h"
+
+namespace tidepool::runner {
+namespace {
+
+CandidateMeasure Candidate(double change, double low, double high, double psnr) {
+    return {true, true, 10.0 * (1 + change / 100), low, high, change, psnr};
+}
+
+TEST(PlannerChoiceTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
+    // Candidate 1 is 20% faster, candidate 2 21% faster but less accurate; their intervals
+    // overlap, so the difference is inside the measurement's own uncertainty.
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(-20, -22, -18, 40), Candidate(-21, -23, -19, 30)};
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    EXPECT_EQ(choice.index, 1);
+    EXPECT_NE(choice.reason.find("differ by less than their 95% intervals"), std::string::npos)
+            << choice.reason;
+}
+
+TEST(PlannerChoiceTest, AClearlyFasterCandidateWins) {
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(-10, -11, -9, 40), Candidate(-30, -32, -28, 30)};
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 2);
+}
+
+TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
+    // "+34% slower" and "-2% within noise" are never preferred to the full effect.
+    const std::vector<CandidateMeasure> candidates = {
+            Candidate(0, 0, 0, 99), Candidate(34, 30, 38, 40), Candidate(-2, -5, 1, 35)};
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    EXPECT_EQ(choice.index, 0);
+    EXPECT_NE(choice.reason.find("full effect is kept"), std::string::npos) << choice.reason;
+}
+
+TEST(PlannerChoiceTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
+    // -2.5% [-3.5, -1.0]: faster beyond the interval, but not beyond the 1.5-point margin a
+    // shift under load can reach, so it is not a reason to drop an effect.
+    const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
+                                                      Candidate(-2.5, -3.5, -1.0, 40)};
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+    const std::vector<CandidateMeasure> clear = {Candidate(0, 0, 0, 99),
+                                                 Candidate(-3.5, -4.5, -2.0, 40)};
+    EXPECT_EQ(ChooseCandidate(clear, true, std::nullopt).index, 1);
+}
+
+TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
+    std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
+                                                Candidate(-40, -42, -38, 20)};
+    candidates[1].meets_quality = false;
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+}
+
+}  // namespace
+}  // namespace tidepool::runner
