@@ -49,6 +49,7 @@ struct PreparedStage {
     int default_version = 100;
     bool force_version = false;
     std::vector<Diagnostic> diagnostics;  // a desktop #version, found before glslang runs
+    KeywordRenaming renaming;             // applied to `text` and `preamble`
 };
 
 std::string Es300Preamble(Stage stage) {
@@ -93,6 +94,12 @@ PreparedStage Prepare(const GlslangStageInput& input) {
         prepared.default_version = version;
     }
     prepared.preamble += DefinePreamble(input.defines);
+    if (prepared.default_version == 100) {
+        // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
+        prepared.renaming = PlanEs100Renaming({prepared.text, prepared.preamble});
+        prepared.text = prepared.renaming.Apply(prepared.text);
+        prepared.preamble = prepared.renaming.Apply(prepared.preamble);
+    }
     return prepared;
 }
 
@@ -229,16 +236,20 @@ StageParse ParseStage(const GlslangStageInput& input) {
                                       prepared.force_version, false, messages);
         return std::make_pair(ok, std::move(shader));
     };
+    const KeywordRenaming& renaming = prepared.renaming;
+    result.renaming = renaming;
+    result.text = prepared.text;
     std::tie(result.ok, result.shader) = parse(kMessages);
-    result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
+    result.diagnostics = ParseGlslangLog(renaming.Restore(result.shader->getInfoLog()),
+                                         input.file, input.text);
     if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
         // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
         // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
         auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
         // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
         // first one, goes past the relaxable error to the real one.
-        result.diagnostics = RestoreDemotedErrors(
-                ParseGlslangLog(shader->getInfoLog(), input.file, input.text));
+        result.diagnostics = RestoreDemotedErrors(ParseGlslangLog(
+                renaming.Restore(shader->getInfoLog()), input.file, input.text));
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
@@ -255,10 +266,13 @@ StageParse ParseStage(const GlslangStageInput& input) {
         result.intermediate = result.shader->getIntermediate();
         std::vector<Diagnostic> broken = CheckStageRules(
                 *result.intermediate, *ResourcesFor(prepared.default_version), input.file,
-                input.text);
+                prepared.text);
         const std::vector<Diagnostic> conformance =
                 CheckStageConformance(*result.intermediate, input.file);
         broken.insert(broken.end(), conformance.begin(), conformance.end());
+        for (Diagnostic& d : broken) {
+            d.message = renaming.Restore(d.message);
+        }
         if (!broken.empty()) {
             result.ok = false;
             result.intermediate = nullptr;
@@ -288,6 +302,13 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         }
         program.addShader(parses.back().shader.get());
     }
+    // Both stages rename a word to the same stand-in, so each stage's renaming restores it.
+    auto restore = [&](std::string text) {
+        for (const StageParse& parse : parses) {
+            text = parse.renaming.Restore(text);
+        }
+        return text;
+    };
     if (inputs.size() == 2) {
         result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
                                             *parses[1].shader->getIntermediate(),
@@ -295,7 +316,10 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         if (!HasErrors(result.diagnostics)) {
             result.diagnostics = CheckLinkConformance(
                     *parses[0].shader->getIntermediate(), inputs[0]->file,
-                    *parses[1].shader->getIntermediate(), inputs[1]->file, inputs[1]->text);
+                    *parses[1].shader->getIntermediate(), inputs[1]->file, parses[1].text);
+        }
+        for (Diagnostic& d : result.diagnostics) {
+            d.message = restore(d.message);
         }
         if (HasErrors(result.diagnostics)) {
             return result;  // glslang's own link would only add confusion to these
@@ -303,7 +327,7 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
     }
     result.ok = program.link(kMessages);
     // Link messages carry no line; attach them to the stage they name, else the last file.
-    const std::string log = program.getInfoLog();
+    const std::string log = restore(program.getInfoLog());
     for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
         // glslang 12 merges the uniforms of all stages under no stage and then names that side of
         // a clash "unknown stage"; in a vertex + fragment program the unnamed side is the vertex.

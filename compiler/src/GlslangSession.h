@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "KeywordRenaming.h"
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/VariantConfig.h"
@@ -45,6 +46,10 @@ struct StageParse {
     std::vector<Diagnostic> diagnostics;
     std::unique_ptr<glslang::TShader> shader;
     const glslang::TIntermediate* intermediate = nullptr;
+    /// The words renamed for glslang (see KeywordRenaming.h), and the text glslang parsed (the
+    /// user's, line for line), where the names in `intermediate` are found.
+    KeywordRenaming renaming;
+    std::string text;
 };
 
 /// The outcome of a link.
