@@ -5,12 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include "TempDir.h"
+#include "ShaderPairValidation.h"
 
 namespace tidepool {
 namespace {
 
-using testing::TempDir;
+using testing::PairVerdict;
+using testing::ValidatePair;
 
 struct RuleCase {
     const char* why;
@@ -23,29 +24,13 @@ class ConformanceRuleTest : public ::testing::TestWithParam<RuleCase> {};
 
 TEST_P(ConformanceRuleTest, GivesTheExpectedVerdictAndFirstError) {
     const RuleCase& c = GetParam();
-    TempDir dir;
-    std::vector<ShaderFile> files;
-    if (c.vertex != nullptr) {
-        files.push_back({dir.Write("a.vsh", c.vertex).string(), Stage::kVertex});
-    }
-    if (c.fragment != nullptr) {
-        files.push_back({dir.Write("a.fsh", c.fragment).string(), Stage::kFragment});
-    }
-    const ValidationReport report = ValidateShaderFiles(files, {});
-    ASSERT_EQ(report.verdicts.size(), 1U) << c.why;
-    std::string first_error;
-    for (const Diagnostic& d : report.verdicts[0].diagnostics) {
-        if (d.severity == Severity::kError && first_error.empty()) {
-            first_error = FormatDiagnostic(d);
-        }
-    }
-    const std::string folder = dir.Path().string() + "/";
-    for (std::size_t at = first_error.find(folder); at != std::string::npos;
-         at = first_error.find(folder)) {
-        first_error.erase(at, folder.size());
-    }
-    EXPECT_EQ(report.verdicts[0].valid, std::string(c.expected).empty()) << c.why;
-    EXPECT_EQ(first_error, c.expected) << c.why;
+    auto text = [](const char* t) {
+        return t != nullptr ? std::optional<std::string>(t) : std::nullopt;
+    };
+    const PairVerdict verdict = ValidatePair(text(c.vertex), text(c.fragment));
+    ASSERT_EQ(verdict.verdicts, 1U) << c.why;
+    EXPECT_EQ(verdict.valid, std::string(c.expected).empty()) << c.why;
+    EXPECT_EQ(verdict.first_error, c.expected) << c.why;
 }
 
 // GLSL ES 1.00 §6.1, 3.00 §6.1: no recursion, even static; a compile error, not a link error.
