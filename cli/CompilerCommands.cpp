@@ -48,7 +48,33 @@ struct CompilerOptions {
     std::string format = "text";  // text, json (as --json) or sarif
     std::string output_file;      // where json or sarif goes instead of stdout
     CacheFlags cache;                // validate: --cache, --no-cache
+    std::string device_limits;       // validate: --limits FILE
+    std::string target;              // validate: --target webgl1|webgl2
 };
+
+// The device limits --limits names, read into `limits`; false (after printing the file's
+// errors) when they cannot be used. No --limits: true, and `limits` stays empty.
+bool LoadDeviceLimits(const CompilerOptions& options, std::optional<DeviceLimits>* limits) {
+    if (options.device_limits.empty()) {
+        return true;
+    }
+    DeviceLimitsRead read = ReadDeviceLimits(options.device_limits);
+    PrintDiagnostics(read.diagnostics);
+    if (!read.ok) {
+        return false;
+    }
+    *limits = std::move(read.limits);
+    return true;
+}
+
+// The target --target names, if any.
+std::optional<GlslTarget> TargetOption(const CompilerOptions& options) {
+    GlslTarget target = GlslTarget::kEs100;
+    if (options.target.empty() || !TargetFromName(options.target, &target)) {
+        return std::nullopt;
+    }
+    return target;
+}
 
 // Prints `text` (a JSON or SARIF report) on stdout, or writes it to --output-file atomically.
 int EmitReport(const CompilerOptions& options, const std::string& text) {
@@ -190,7 +216,14 @@ int RunValidateFiles(const CompilerOptions& options) {
         }
         files.push_back(file);
     }
-    const ValidationReport report = ValidateShaderFiles(files, options.defines);
+    std::optional<DeviceLimits> limits;
+    if (!LoadDeviceLimits(options, &limits)) {
+        return kExitUsage;
+    }
+    ShaderFileOptions file_options;
+    file_options.target = TargetOption(options);
+    file_options.limits = limits ? &*limits : nullptr;
+    const ValidationReport report = ValidateShaderFiles(files, options.defines, file_options);
     const std::string format = ReportFormat(options);
     int errors = 0;
     nlohmann::json json = nlohmann::json::array();
@@ -233,11 +266,7 @@ void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manife
     for (nlohmann::json& entry : (*manifest)["variants"]) {
         const Variant& variant = *by_id.at(entry["id"].get<std::string>());
         GlslTarget target = GlslTarget::kEs100;
-        for (GlslTarget candidate : {GlslTarget::kEs100, GlslTarget::kEs300}) {
-            if (entry["target"] == TargetName(candidate)) {
-                target = candidate;
-            }
-        }
+        TargetFromName(entry["target"].get<std::string>(), &target);
         entry["sources"] = {
                 {"vertex", VariantSourcePath(target, variant, Stage::kVertex).generic_string()},
                 {"fragment",
@@ -291,6 +320,13 @@ int RunValidate(const CompilerOptions& options) {
     if (!options.program.empty() && !KeepOnlyProgram(&loaded, options.program)) {
         return kExitUsage;
     }
+    std::optional<DeviceLimits> device_limits;
+    if (!LoadDeviceLimits(options, &device_limits)) {
+        return kExitUsage;
+    }
+    if (const std::optional<GlslTarget> target = TargetOption(options)) {
+        loaded.config->targets = {*target};  // instead of the file's `targets`
+    }
     const VariantConfig& config = *loaded.config;
     // Refused before the validation's work, not after it.
     if (!options.out.empty()) {
@@ -301,6 +337,7 @@ int RunValidate(const CompilerOptions& options) {
     ValidationOptions validation_options;
     validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
     validation_options.targets = config.targets;
+    validation_options.limits = device_limits ? &*device_limits : nullptr;
     const std::unique_ptr<base::ContentCache> cache = OpenCache(options.cache);
     validation_options.cache = cache.get();
     const ValidationReport report =
@@ -467,6 +504,13 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
                                                 "folder to write manifest.json into")
                                    ->transform(NormaliseOutPath));
     AddCacheFlags(validate, &validate_options.cache);
+    validate->add_option("--limits", validate_options.device_limits,
+                         "check against a device's resource limits: a file of 'Name value' "
+                         "lines, glslang's -c names (README: validator)");
+    validate->add_option("--target", validate_options.target,
+                         "add the WebGL rules: webgl1 (GLSL ES 1.00) or webgl2 (GLSL ES 3.00); "
+                         "with a configuration, instead of its targets")
+            ->check(CLI::IsMember({"webgl1", "webgl2"}));
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(

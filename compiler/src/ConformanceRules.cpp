@@ -439,13 +439,14 @@ std::vector<Diagnostic> CheckExtensionPlacement(std::string_view preprocessed,
     return errors;
 }
 
-bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version) {
+bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
+                                   bool webgl) {
     bool any = false;
     for (const Diagnostic& d : diagnostics) {
         if (d.severity != Severity::kError) {
             continue;
         }
-        const bool relaxable = Mentions(d, kDefinedFromMacro) ||
+        const bool relaxable = (!webgl && Mentions(d, kDefinedFromMacro)) ||
                                (version == 100 && Mentions(d, kReservedMacro100));
         if (!relaxable) {
             return false;

@@ -49,8 +49,10 @@ std::vector<Diagnostic> CheckExtensionPlacement(std::string_view preprocessed,
 /// so that parsing again with glslang's relaxed errors is worth trying: `defined` produced by a
 /// macro expansion inside `#if` (dEQP requires it to work; glslang refuses it for GLSL ES), and,
 /// in a `#version 100` shader, `#define`/`#undef` of a name containing `__` (GLSL ES 1.00 §3.4:
-/// reserved, "does not itself result in an error").
-bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version);
+/// reserved, "does not itself result in an error"). For a WebGL target (`webgl`), `defined`
+/// from a macro stays an error: WebGL 1.0 §6.34 makes it one.
+bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
+                                   bool webgl);
 
 /// The log of a parse with glslang's relaxed errors, with every warning except the relaxable
 /// reasons above made an error again: relaxed mode demotes other errors to warnings too (an

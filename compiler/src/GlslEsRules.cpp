@@ -12,22 +12,10 @@
 #include <glslang/Public/ShaderLang.h>
 
 namespace tidepool {
-namespace {
-
 // ---- Source text -----------------------------------------------------------------------------
 
-struct Token {
-    std::string_view text;
-    int line = 0;
-    int column = 0;
-    bool identifier = false;
-};
-
-// Splits text into preprocessing tokens, one vector per logical line (comments dropped, a
-// backslash-newline joins lines as GLSL ES 3.00 §3.2 allows). Precision does not matter here:
-// the tokens only feed an upper estimate of the expanded size.
-std::vector<std::vector<Token>> Lines(std::string_view text) {
-    std::vector<std::vector<Token>> lines(1);
+std::vector<std::vector<SourceToken>> SourceTokenLines(std::string_view text) {
+    std::vector<std::vector<SourceToken>> lines(1);
     int line = 1;
     int column = 1;
     std::size_t i = 0;
@@ -69,12 +57,14 @@ std::vector<std::vector<Token>> Lines(std::string_view text) {
                 }
             }
             const bool identifier = std::isalpha(static_cast<unsigned char>(c)) != 0 || c == '_';
-            lines.back().push_back(Token{text.substr(i, length), line, column, identifier});
+            lines.back().push_back(SourceToken{text.substr(i, length), line, column, identifier});
             advance(length);
         }
     }
     return lines;
 }
+
+namespace {
 
 // Adds and multiplies token counts, saturating at kMaxExpandedTokens + 1 so that nothing
 // overflows and a 1000-level bomb costs no more to estimate than a small one.
@@ -102,7 +92,7 @@ struct Expansion {
 // an upper estimate for the bombs that matter (repeated parameters and repeated names).
 class MacroTable {
 public:
-    void Define(const std::vector<Token>& directive) {
+    void Define(const std::vector<SourceToken>& directive) {
         // # define NAME [ ( params ) ] body
         if (directive.size() < 3 || !directive[2].identifier) {
             return;
@@ -127,7 +117,7 @@ public:
         macros_[std::string(directive[2].text)] = std::move(macro);
         expansions_.clear();
     }
-    void Undefine(const std::vector<Token>& directive) {
+    void Undefine(const std::vector<SourceToken>& directive) {
         if (directive.size() >= 3) {
             macros_.erase(std::string(directive[2].text));
             expansions_.clear();
@@ -255,15 +245,15 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
     MacroTable macros;
     long long total = 0;
     // Tokens of the lines since the last directive: a macro's arguments may span lines.
-    std::vector<Token> run;
+    std::vector<SourceToken> run;
     // Adds up one run; false (with the error added) once the shader is too large.
     auto measure = [&](bool in_file) {
         std::vector<std::string_view> texts;
-        for (const Token& token : run) {
+        for (const SourceToken& token : run) {
             texts.push_back(token.text);
         }
         for (std::size_t at = 0; at < run.size();) {
-            const Token& token = run[at];
+            const SourceToken& token = run[at];
             const long long size = macros.SizeAt(texts, &at);
             total = CappedSum(total, size);
             if (size > kMaxExpandedTokens || total > kMaxExpandedTokens) {
@@ -286,7 +276,7 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
     };
     for (const std::string_view part : {preamble, text}) {
         const bool in_file = part.data() == text.data();
-        for (const std::vector<Token>& line : Lines(part)) {
+        for (const std::vector<SourceToken>& line : SourceTokenLines(part)) {
             if (line.empty() || line[0].text != "#") {
                 run.insert(run.end(), line.begin(), line.end());
                 continue;

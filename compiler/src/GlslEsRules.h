@@ -22,6 +22,21 @@ class TIntermSymbol;
 
 namespace tidepool {
 
+/// One preprocessing token of a source text: an identifier-character run (identifier: it starts
+/// with a letter or `_`) or a single other character, with its 1-based line and column.
+struct SourceToken {
+    std::string_view text;
+    int line = 0;
+    int column = 0;
+    bool identifier = false;
+};
+
+/// Splits text into SourceTokens, one vector per logical line (comments dropped, a
+/// backslash-newline joins lines as GLSL ES 3.00 §3.2 allows). Numbers come out in pieces
+/// (`1.5e3` is `1`, `.`, `5e3`): the macro-size estimate and the WebGL token checks need only
+/// the identifiers exact.
+std::vector<std::vector<SourceToken>> SourceTokenLines(std::string_view text);
+
 /// A shader may expand, through its macros, to at most this many tokens. glslang 12 needs about
 /// 1.5 KB and 9 µs per expanded token (2^20 tokens took 9 s and 1.5 GB), so this bound keeps one
 /// stage under about 0.2 s and 200 MB; the largest shipped shader expands to a few thousand.

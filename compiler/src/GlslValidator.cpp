@@ -275,6 +275,7 @@ struct StageJob {
     Stage stage = Stage::kVertex;
     GlslTarget target = GlslTarget::kEs100;
     std::vector<std::string> defines;
+    const DeviceLimits* limits = nullptr;  // the device's, when given
     const Variant* variant = nullptr;  // the variant this slot belongs to
     std::string variant_id;
     std::string key;     // dedupe key: file + stage + target + content hash
@@ -283,14 +284,17 @@ struct StageJob {
 };
 
 void HashStage(StageJob& job) {
-    const GlslangStageInput input{job.file, job.source->text, job.stage, job.target, job.defines};
+    const GlslangStageInput input{job.file,    job.source->text, job.stage,
+                                  job.target,  job.defines,      job.limits};
     const PreprocessResult pre = PreprocessStage(input);
     // A stage that does not even preprocess gets a hash of its raw input, so it stays distinct
     // per define set and the parse reports the error at its line.
     const std::string material =
             pre.ok ? pre.text : job.source->text + "\n//" + DefinePreamble(job.defines);
+    // The device's limits decide verdicts as much as the text does.
     const std::string text =
-            fmt::format("{}|{}|{}", StageName(job.stage), TargetName(job.target), material);
+            fmt::format("{}|{}|{}|{}", StageName(job.stage), TargetName(job.target),
+                        job.limits != nullptr ? job.limits->Text() : "", material);
     job.hash = Fnv1a64Hex(text);
     job.digest = base::Sha256Hex(text);
     job.key = job.file + "|" + job.hash;
@@ -320,8 +324,9 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
 
 // The part of a slot's identity that can change glslang's preprocessed output.
 std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
-    std::string key = fmt::format("{}|{}|{}|", job.file, StageName(job.stage),
-                                  TargetName(job.target));
+    std::string key = fmt::format("{}|{}|{}|{}|", job.file, StageName(job.stage),
+                                  TargetName(job.target),
+                                  job.limits != nullptr ? job.limits->Text() : "");
     for (const std::string& define : job.defines) {
         if (mentioned.count(define) != 0) {
             key += define + ",";
@@ -459,6 +464,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 job.stage = stage;
                 job.target = target;
                 job.defines = variant.defines;
+                job.limits = options.limits;
                 job.variant = &variant;
                 job.variant_id = variant.Id();
                 jobs.push_back(std::move(job));
@@ -653,7 +659,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     }
     auto input_of = [&](std::size_t index) {
         const StageJob& job = *representative[index];
-        return GlslangStageInput{job.file, job.source->text, job.stage, job.target, job.defines};
+        return GlslangStageInput{job.file,   job.source->text, job.stage,
+                                 job.target, job.defines,      job.limits};
     };
     auto link_runs = [&](std::size_t i) {
         // Skipped when the cache decided it, or when it can neither link nor decide a stage: a
@@ -764,7 +771,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
 }
 
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
-                                     const std::vector<std::string>& defines) {
+                                     const std::vector<std::string>& defines,
+                                     const ShaderFileOptions& options) {
     WarmUpGlslang({GlslTarget::kEs100});
     ValidationReport report;
     std::vector<FileText> texts(files.size());
@@ -781,6 +789,15 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                     fmt::format("cannot read shader file: {}; check the path", texts[i].error)));
         } else {
             program.hash = Fnv1a64Hex(texts[i].text);
+            if (options.target == GlslTarget::kWebGl2 &&
+                FindVersionLine(texts[i].text).rfind("#version 300", 0) != 0) {
+                // In config mode a 1.00 file is compiled as 3.00; a plain file is what it says.
+                texts[i].text_errors.push_back(MakeError(
+                        files[i].path, 1, 1,
+                        "the webgl2 target validates GLSL ES 3.00 shaders: start the file with "
+                        "'#version 300 es' (WebGL 2.0 §4.3 \"Supported GLSL Constructs\"), or "
+                        "validate a GLSL ES 1.00 shader with --target webgl1"));
+            }
             program.diagnostics = texts[i].text_errors;
         }
         report.stage_programs.push_back(std::move(program));
@@ -810,7 +827,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 std::vector<ItemStage> stages;
                 for (std::size_t i : groups[g]) {
                     stages.push_back({i, {files[i].path, texts[i].text, files[i].stage,
-                                          std::nullopt, defines}});
+                                          options.target, defines, options.limits}});
                 }
                 return ParseAndLink(stages, note, &reported);
             },

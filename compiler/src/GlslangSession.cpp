@@ -1,7 +1,9 @@
 #include "GlslangSession.h"
 
+#include "BuiltInResources.h"
 #include "ConformanceRules.h"
 #include "GlslEsRules.h"
+#include "WebGlRules.h"
 
 #include <algorithm>
 #include <mutex>
@@ -41,6 +43,10 @@ EShLanguage Language(Stage stage) {
     return stage == Stage::kVertex ? EShLangVertex : EShLangFragment;
 }
 
+bool IsTarget(const GlslangStageInput& input, GlslTarget target) {
+    return input.target.has_value() && *input.target == target;
+}
+
 // What glslang is given for one stage: the text (with the version line possibly rewritten in
 // place, which keeps the line count), the preamble and the default version.
 struct PreparedStage {
@@ -49,6 +55,7 @@ struct PreparedStage {
     int default_version = 100;
     bool force_version = false;
     std::vector<Diagnostic> diagnostics;  // a desktop #version, found before glslang runs
+    KeywordRenaming renaming;             // applied to `text` and `preamble`
 };
 
 std::string Es300Preamble(Stage stage) {
@@ -79,7 +86,15 @@ PreparedStage Prepare(const GlslangStageInput& input) {
                                 version_line)));
         }
     }
-    if (input.target == GlslTarget::kEs300 && version == 100) {
+    if (IsTarget(input, GlslTarget::kWebGl1) && es && version != 100) {
+        prepared.diagnostics.push_back(MakeError(
+                input.file, 1, 1,
+                fmt::format("'{}': WebGL 1 runs GLSL ES 1.00 shaders only (WebGL 1.0 §4.3 "
+                            "\"Supported GLSL Constructs\"); use '#version 100', or the webgl2 "
+                            "target for a GLSL ES 3.00 shader",
+                            version_line)));
+    }
+    if (input.target && TargetVersion(*input.target) == 300 && version == 100) {
         // Compile the 1.00 file as 3.00 without moving a line: rewrite its first line in place.
         if (!version_line.empty()) {
             const std::size_t end = prepared.text.find('\n');
@@ -93,6 +108,12 @@ PreparedStage Prepare(const GlslangStageInput& input) {
         prepared.default_version = version;
     }
     prepared.preamble += DefinePreamble(input.defines);
+    if (prepared.default_version == 100) {
+        // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
+        prepared.renaming = PlanEs100Renaming({prepared.text, prepared.preamble});
+        prepared.text = prepared.renaming.Apply(prepared.text);
+        prepared.preamble = prepared.renaming.Apply(prepared.preamble);
+    }
     return prepared;
 }
 
@@ -108,57 +129,8 @@ std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
 
 constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
 
-// GLSL ES 1.00 is checked against the built-in limits every ES 2.0 context has (the GLSL ES 1.00
-// section 7.4 minimums), not glslang's defaults, which are desktop-sized (32 draw buffers, 80
-// texture units): with those, gl_FragData[1] was accepted although an ES 2.0 driver without
-// GL_EXT_draw_buffers rejects it (dEQP-GLES2.functional.shaders.fragdata.invalid_assign_to_1).
-// `#version 300 es` likewise gets the minimums every ES 3.0 context has (GLSL ES 3.00 §7.3), not
-// glslang's defaults: gl_MaxDrawBuffers 4 instead of 32, gl_MaxVertexOutputVectors 16 instead of
-// 64, so a shader that only fits a large desktop GPU is not reported as portable.
-// The limits both versions name, as GLSL ES lists its built-in constants.
-struct EsMinimums {
-    int vertex_attribs;
-    int vertex_uniform_vectors;
-    int vertex_texture_image_units;
-    int combined_texture_image_units;
-    int texture_image_units;
-    int fragment_uniform_vectors;
-    int draw_buffers;
-};
-
-TBuiltInResource WithMinimums(const EsMinimums& minimums) {
-    TBuiltInResource resources = *GetDefaultResources();
-    resources.maxVertexAttribs = minimums.vertex_attribs;
-    resources.maxVertexUniformVectors = minimums.vertex_uniform_vectors;
-    resources.maxVertexTextureImageUnits = minimums.vertex_texture_image_units;
-    resources.maxCombinedTextureImageUnits = minimums.combined_texture_image_units;
-    resources.maxTextureImageUnits = minimums.texture_image_units;
-    resources.maxFragmentUniformVectors = minimums.fragment_uniform_vectors;
-    resources.maxDrawBuffers = minimums.draw_buffers;
-    return resources;
-}
-
-const TBuiltInResource* ResourcesFor(int version) {
-    if (version == 300) {
-        static const TBuiltInResource es300 = [] {
-            TBuiltInResource resources = WithMinimums({16, 256, 16, 32, 16, 224, 4});
-            resources.maxVertexOutputVectors = 16;
-            resources.maxFragmentInputVectors = 15;
-            resources.minProgramTexelOffset = -8;
-            resources.maxProgramTexelOffset = 7;
-            return resources;
-        }();
-        return &es300;
-    }
-    if (version != 100) {
-        return GetDefaultResources();
-    }
-    static const TBuiltInResource es100 = [] {
-        TBuiltInResource resources = WithMinimums({8, 128, 0, 8, 8, 16, 1});
-        resources.maxVaryingVectors = 8;
-        return resources;
-    }();
-    return &es100;
+TBuiltInResource ResourcesOf(const GlslangStageInput& input, int version) {
+    return ResourcesFor(version, input.limits, IsTarget(input, GlslTarget::kWebGl1));
 }
 
 }  // namespace
@@ -189,7 +161,8 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     auto shader = MakeShader(input, prepared, &text);
     PreprocessResult result;
     glslang::TShader::ForbidIncluder includer;
-    result.ok = shader->preprocess(ResourcesFor(prepared.default_version),
+    const TBuiltInResource resources = ResourcesOf(input, prepared.default_version);
+    result.ok = shader->preprocess(&resources,
                                    prepared.default_version, EEsProfile, prepared.force_version,
                                    false, kMessages, &result.text, includer);
     return result;
@@ -205,10 +178,24 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     const char* text = prepared.text.c_str();
     const int version = prepared.default_version;
+    const TBuiltInResource resources = ResourcesOf(input, version);
+    const bool webgl = input.target.has_value() && IsWebGlTarget(*input.target);
+    std::vector<Diagnostic> webgl_errors;
+    if (webgl) {
+        webgl_errors = CheckWebGlTokens(input.text, *input.target, input.file);
+        // A character glslang's preprocessor refuses still leaves the text up to it.
+        const PreprocessResult preprocessed = PreprocessStage(input);
+        {
+            const std::vector<Diagnostic> characters =
+                    CheckWebGlCharacters(preprocessed.text, input.text, input.file);
+            webgl_errors.insert(webgl_errors.end(), characters.begin(), characters.end());
+        }
+    }
     // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
     // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
     std::vector<Diagnostic> late_extensions;
-    if (MayHaveLateExtension(input.text)) {
+    // WebGL 1.0 §6.35: in a WebGL 1 shader, #extension may follow other tokens.
+    if (MayHaveLateExtension(input.text) && !IsTarget(input, GlslTarget::kWebGl1)) {
         // Only the user's defines go with the text: Es300Preamble declares an output, which
         // would count as a token before the user's own #extension lines.
         const std::string defines = DefinePreamble(input.defines);
@@ -217,7 +204,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
         shader->setPreamble(defines.c_str());
         std::string preprocessed;
         glslang::TShader::ForbidIncluder includer;
-        if (shader->preprocess(ResourcesFor(version), version, EEsProfile,
+        if (shader->preprocess(&resources, version, EEsProfile,
                                prepared.force_version, false, kMessages, &preprocessed,
                                includer)) {
             late_extensions = CheckExtensionPlacement(preprocessed, input.file);
@@ -225,20 +212,24 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     auto parse = [&](EShMessages messages) {
         auto shader = MakeShader(input, prepared, &text);
-        const bool ok = shader->parse(ResourcesFor(version), version, EEsProfile,
+        const bool ok = shader->parse(&resources, version, EEsProfile,
                                       prepared.force_version, false, messages);
         return std::make_pair(ok, std::move(shader));
     };
+    const KeywordRenaming& renaming = prepared.renaming;
+    result.renaming = renaming;
+    result.text = prepared.text;
     std::tie(result.ok, result.shader) = parse(kMessages);
-    result.diagnostics = ParseGlslangLog(result.shader->getInfoLog(), input.file, input.text);
-    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version)) {
+    result.diagnostics = ParseGlslangLog(renaming.Restore(result.shader->getInfoLog()),
+                                         input.file, input.text);
+    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version, webgl)) {
         // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
         // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
         auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
         // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
         // first one, goes past the relaxable error to the real one.
-        result.diagnostics = RestoreDemotedErrors(
-                ParseGlslangLog(shader->getInfoLog(), input.file, input.text));
+        result.diagnostics = RestoreDemotedErrors(ParseGlslangLog(
+                renaming.Restore(shader->getInfoLog()), input.file, input.text));
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
@@ -246,6 +237,12 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
     result.ok = result.ok && !HasErrors(result.diagnostics);
+    if (!webgl_errors.empty()) {
+        // Reported first: a browser refuses the shader before its driver parses it.
+        result.ok = false;
+        result.diagnostics.insert(result.diagnostics.begin(), webgl_errors.begin(),
+                                  webgl_errors.end());
+    }
     if (result.ok && !late_extensions.empty()) {
         result.ok = false;
         result.diagnostics.insert(result.diagnostics.end(), late_extensions.begin(),
@@ -253,12 +250,14 @@ StageParse ParseStage(const GlslangStageInput& input) {
     }
     if (result.ok) {
         result.intermediate = result.shader->getIntermediate();
-        std::vector<Diagnostic> broken = CheckStageRules(
-                *result.intermediate, *ResourcesFor(prepared.default_version), input.file,
-                input.text);
+        std::vector<Diagnostic> broken =
+                CheckStageRules(*result.intermediate, resources, input.file, prepared.text);
         const std::vector<Diagnostic> conformance =
                 CheckStageConformance(*result.intermediate, input.file);
         broken.insert(broken.end(), conformance.begin(), conformance.end());
+        for (Diagnostic& d : broken) {
+            d.message = renaming.Restore(d.message);
+        }
         if (!broken.empty()) {
             result.ok = false;
             result.intermediate = nullptr;
@@ -288,6 +287,13 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         }
         program.addShader(parses.back().shader.get());
     }
+    // Both stages rename a word to the same stand-in, so each stage's renaming restores it.
+    auto restore = [&](std::string text) {
+        for (const StageParse& parse : parses) {
+            text = parse.renaming.Restore(text);
+        }
+        return text;
+    };
     if (inputs.size() == 2) {
         result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
                                             *parses[1].shader->getIntermediate(),
@@ -295,7 +301,10 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
         if (!HasErrors(result.diagnostics)) {
             result.diagnostics = CheckLinkConformance(
                     *parses[0].shader->getIntermediate(), inputs[0]->file,
-                    *parses[1].shader->getIntermediate(), inputs[1]->file, inputs[1]->text);
+                    *parses[1].shader->getIntermediate(), inputs[1]->file, parses[1].text);
+        }
+        for (Diagnostic& d : result.diagnostics) {
+            d.message = restore(d.message);
         }
         if (HasErrors(result.diagnostics)) {
             return result;  // glslang's own link would only add confusion to these
@@ -303,7 +312,7 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
     }
     result.ok = program.link(kMessages);
     // Link messages carry no line; attach them to the stage they name, else the last file.
-    const std::string log = program.getInfoLog();
+    const std::string log = restore(program.getInfoLog());
     for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
         // glslang 12 merges the uniforms of all stages under no stage and then names that side of
         // a clash "unknown stage"; in a vertex + fragment program the unnamed side is the vertex.

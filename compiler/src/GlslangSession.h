@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "KeywordRenaming.h"
+#include "tidepool/DeviceLimits.h"
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/VariantConfig.h"
@@ -19,13 +21,15 @@ class TIntermediate;
 namespace tidepool {
 
 /// One stage as the user wrote it plus what to compile it with. With no target, the file's own
-/// `#version` decides (GLSL ES only); with a target, a `#version 100` file is compiled for it.
+/// `#version` decides (GLSL ES only); with a target, a `#version 100` file is compiled for it
+/// (a WebGL target also adds the WebGL rules). `limits`, when given, are the device's.
 struct GlslangStageInput {
     std::string file;
     const std::string& text;
     Stage stage;
     std::optional<GlslTarget> target;
     const std::vector<std::string>& defines;
+    const DeviceLimits* limits = nullptr;
 };
 
 /// The preprocessed text of a stage (defines applied, comments and inactive blocks gone).
@@ -45,6 +49,10 @@ struct StageParse {
     std::vector<Diagnostic> diagnostics;
     std::unique_ptr<glslang::TShader> shader;
     const glslang::TIntermediate* intermediate = nullptr;
+    /// The words renamed for glslang (see KeywordRenaming.h), and the text glslang parsed (the
+    /// user's, line for line), where the names in `intermediate` are found.
+    KeywordRenaming renaming;
+    std::string text;
 };
 
 /// The outcome of a link.

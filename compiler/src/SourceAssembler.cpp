@@ -70,7 +70,7 @@ std::string FindVersionLine(std::string_view user_source) {
 std::string AssembleDriverSource(std::string_view user_source, const std::vector<std::string>& defines,
                                  Stage stage, GlslTarget target) {
     std::string out = VersionDirective(target) + "\n";
-    if (target == GlslTarget::kEs300) {
+    if (TargetVersion(target) == 300) {
         out += Es300Compatibility(stage);
     }
     out += DefinePreamble(defines);

@@ -15,12 +15,45 @@
 
 namespace tidepool {
 
+int TargetVersion(GlslTarget target) {
+    return target == GlslTarget::kEs300 || target == GlslTarget::kWebGl2 ? 300 : 100;
+}
+
+bool IsWebGlTarget(GlslTarget target) {
+    return target == GlslTarget::kWebGl1 || target == GlslTarget::kWebGl2;
+}
+
 std::string VersionDirective(GlslTarget target) {
-    return target == GlslTarget::kEs300 ? "#version 300 es" : "#version 100";
+    return TargetVersion(target) == 300 ? "#version 300 es" : "#version 100";
 }
 
 std::string TargetName(GlslTarget target) {
-    return target == GlslTarget::kEs300 ? "300es" : "100";
+    switch (target) {
+        case GlslTarget::kEs100:
+            return "100";
+        case GlslTarget::kEs300:
+            return "300es";
+        case GlslTarget::kWebGl1:
+            return "webgl1";
+        case GlslTarget::kWebGl2:
+            return "webgl2";
+    }
+    return "100";
+}
+
+bool TargetFromName(std::string_view name, GlslTarget* target) {
+    if (name == "100") {
+        *target = GlslTarget::kEs100;
+    } else if (name == "300" || name == "300es" || name == "300 es") {
+        *target = GlslTarget::kEs300;
+    } else if (name == "webgl1") {
+        *target = GlslTarget::kWebGl1;
+    } else if (name == "webgl2") {
+        *target = GlslTarget::kWebGl2;
+    } else {
+        return false;
+    }
+    return true;
 }
 
 namespace {
@@ -206,12 +239,12 @@ int ConfigParser::ReadInt(const YAML::Node& node, std::string_view what, int fal
 
 void ConfigParser::ParseTargets(const YAML::Node& node, VariantConfig& config) {
     for (const std::string& name : NameList(node, "targets")) {
-        if (name == "100") {
-            config.targets.push_back(GlslTarget::kEs100);
-        } else if (name == "300" || name == "300es" || name == "300 es") {
-            config.targets.push_back(GlslTarget::kEs300);
+        GlslTarget target = GlslTarget::kEs100;
+        if (TargetFromName(name, &target)) {
+            config.targets.push_back(target);
         } else {
-            Error(node, fmt::format("unknown GLSL ES target '{}'; use 100 or 300", name));
+            Error(node, fmt::format("unknown GLSL ES target '{}'; use 100, 300, webgl1 or webgl2",
+                                    name));
         }
     }
     if (std::find(config.targets.begin(), config.targets.end(), GlslTarget::kEs100) ==

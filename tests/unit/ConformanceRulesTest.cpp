@@ -5,12 +5,13 @@
 
 #include <gtest/gtest.h>
 
-#include "TempDir.h"
+#include "ShaderPairValidation.h"
 
 namespace tidepool {
 namespace {
 
-using testing::TempDir;
+using testing::PairVerdict;
+using testing::ValidatePair;
 
 struct RuleCase {
     const char* why;
@@ -23,29 +24,13 @@ class ConformanceRuleTest : public ::testing::TestWithParam<RuleCase> {};
 
 TEST_P(ConformanceRuleTest, GivesTheExpectedVerdictAndFirstError) {
     const RuleCase& c = GetParam();
-    TempDir dir;
-    std::vector<ShaderFile> files;
-    if (c.vertex != nullptr) {
-        files.push_back({dir.Write("a.vsh", c.vertex).string(), Stage::kVertex});
-    }
-    if (c.fragment != nullptr) {
-        files.push_back({dir.Write("a.fsh", c.fragment).string(), Stage::kFragment});
-    }
-    const ValidationReport report = ValidateShaderFiles(files, {});
-    ASSERT_EQ(report.verdicts.size(), 1U) << c.why;
-    std::string first_error;
-    for (const Diagnostic& d : report.verdicts[0].diagnostics) {
-        if (d.severity == Severity::kError && first_error.empty()) {
-            first_error = FormatDiagnostic(d);
-        }
-    }
-    const std::string folder = dir.Path().string() + "/";
-    for (std::size_t at = first_error.find(folder); at != std::string::npos;
-         at = first_error.find(folder)) {
-        first_error.erase(at, folder.size());
-    }
-    EXPECT_EQ(report.verdicts[0].valid, std::string(c.expected).empty()) << c.why;
-    EXPECT_EQ(first_error, c.expected) << c.why;
+    auto text = [](const char* t) {
+        return t != nullptr ? std::optional<std::string>(t) : std::nullopt;
+    };
+    const PairVerdict verdict = ValidatePair(text(c.vertex), text(c.fragment));
+    ASSERT_EQ(verdict.verdicts, 1U) << c.why;
+    EXPECT_EQ(verdict.valid, std::string(c.expected).empty()) << c.why;
+    EXPECT_EQ(verdict.first_error, c.expected) << c.why;
 }
 
 // GLSL ES 1.00 §6.1, 3.00 §6.1: no recursion, even static; a compile error, not a link error.
@@ -283,6 +268,67 @@ INSTANTIATE_TEST_SUITE_P(
                          "float probe[17 - gl_MaxVertexOutputVectors];\n"
                          "void main() { gl_Position = position; }\n",
                          nullptr, ""}));
+
+// GLSL ES 1.00 §3.7: words that 1.00 neither uses nor reserves are identifiers there, although
+// glslang 12 refuses them; the words 1.00 does reserve stay errors, and so do all of them in 3.00.
+INSTANTIATE_TEST_SUITE_P(
+        Es100Identifiers, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"later versions' keywords as a varying, uniform, member and parameter",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "uniform float active;\n"
+                         "varying float filter;\n"
+                         "void main() { filter = active; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "varying float filter;\n"
+                         "struct Tile { float common; };\n"
+                         "float partition(float case) { return case * 0.5; }\n"
+                         "void main() {\n"
+                         "    Tile samplerCubeArray = Tile(filter);\n"
+                         "    gl_FragColor = vec4(partition(samplerCubeArray.common));\n"
+                         "}\n",
+                         ""},
+                RuleCase{"a word 1.00 reserves stays an error", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "float filter;\n"
+                         "float switch;\n"
+                         "void main() { gl_FragColor = vec4(filter); }\n",
+                         "a.fsh:4:7: error: 'switch' : Reserved word."},
+                RuleCase{"glslang's message names the word as written", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "float filter = 1.0;\n"
+                         "float filter = 2.0;\n"
+                         "void main() { gl_FragColor = vec4(filter); }\n",
+                         "a.fsh:4:7: error: 'filter' : redefinition"},
+                RuleCase{"the same word in a 3.00 shader is reserved", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float filter;\n"
+                         "void main() { colour = vec4(filter); }\n",
+                         "a.fsh:4:7: error: 'filter' : Reserved word."},
+                RuleCase{"a shader that also spells the stand-in keeps glslang's verdict", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "float tp_es100_filter;\n"
+                         "float filter;\n"
+                         "void main() { gl_FragColor = vec4(filter + tp_es100_filter); }\n",
+                         "a.fsh:4:7: error: 'filter' : Reserved word."},
+                RuleCase{"a varying renamed in both stages is still matched by type",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 filter;\n"
+                         "void main() { filter = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "varying float filter;\n"
+                         "void main() { gl_FragColor = vec4(filter); }\n",
+                         "a.fsh: error: Linking vertex and fragment stages: Types must match:; "
+                         "vertex stage: \" vec2 filter\"; fragment stage: \" float filter\""}));
 
 }  // namespace
 }  // namespace tidepool

@@ -159,6 +159,23 @@ TEST_F(VariantConfigTest, TargetsAcceptOptionalEs300) {
               (std::vector<GlslTarget>{GlslTarget::kEs100, GlslTarget::kEs300}));
 }
 
+TEST_F(VariantConfigTest, TargetsAcceptWebGl1AndWebGl2) {
+    const ConfigResult result =
+            Parse("targets: [100, webgl1, webgl2]\n" + std::string(kProgramHead));
+    ASSERT_TRUE(result.config.has_value());
+    EXPECT_EQ(result.config->targets,
+              (std::vector<GlslTarget>{GlslTarget::kEs100, GlslTarget::kWebGl1,
+                                       GlslTarget::kWebGl2}));
+    EXPECT_EQ(TargetName(GlslTarget::kWebGl1), "webgl1");
+    EXPECT_EQ(TargetVersion(GlslTarget::kWebGl1), 100);
+    EXPECT_EQ(VersionDirective(GlslTarget::kWebGl2), "#version 300 es");
+}
+
+TEST_F(VariantConfigTest, AWebGlTargetAloneStillNeedsTarget100) {
+    const ConfigResult result = Parse("targets: [webgl1]\n" + std::string(kProgramHead));
+    EXPECT_FALSE(result.config.has_value());
+}
+
 TEST(DefineNameTest, AcceptsIdentifiersAndRejectsReservedOrMalformedNames) {
     EXPECT_TRUE(IsValidDefineName("ENABLE_FOG"));
     EXPECT_TRUE(IsValidDefineName("_x1"));
@@ -309,7 +326,8 @@ INSTANTIATE_TEST_SUITE_P(
                              "v.yaml:9:3: error: preset 'bad' must choose exactly one value of "
                              "axis 'QUALITY' (it chose 0)\n"},
                 BadInputCase{"DesktopOnlyTargets", "targets: [330]\n" + std::string(kProgramHead),
-                             "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100 or 300\n"
+                             "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100, 300, webgl1 or "
+                             "webgl2\n"
                              "v.yaml:1:10: error: targets must include 100 (GLSL ES 1.00 is the "
                              "shaders' own language)\n"}),
         [](const ::testing::TestParamInfo<BadInputCase>& case_info) { return case_info.param.name; });

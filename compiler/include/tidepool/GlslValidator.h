@@ -3,10 +3,12 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "tidepool/DeviceLimits.h"
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/StaticCost.h"
@@ -25,6 +27,8 @@ struct ValidationOptions {
     /// file name, stage, target, glslang's version and resource limits and tidepool's
     /// validation code; none: no cache. Not owned; its Stats() say what it did.
     base::ContentCache* cache = nullptr;
+    /// A device's limits, checked instead of the GLSL ES minimums; none: the minimums. Not owned.
+    const DeviceLimits* limits = nullptr;
 };
 
 /// One distinct stage program: all variants whose preprocessed stage source is identical share it.
@@ -98,11 +102,21 @@ struct ShaderFile {
     Stage stage = Stage::kVertex;
 };
 
+/// How plain shader files are validated.
+struct ShaderFileOptions {
+    /// kWebGl1 or kWebGl2: the WebGL rules on top of GLSL ES, and the file's `#version` must be
+    /// the one that WebGL version runs (100 for webgl1, 300 es for webgl2); none: GLSL ES only.
+    std::optional<GlslTarget> target;
+    /// A device's limits, checked instead of the GLSL ES minimums; none: the minimums. Not owned.
+    const DeviceLimits* limits = nullptr;
+};
+
 /// Validates plain shader files: each is parsed (the GLSL ES version comes from its own `#version`
 /// line, 100 when it has none; a desktop version is an error) and, when a vertex and a fragment
 /// file are given, the two are linked. Each file is one "variant" named after the file.
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
-                                     const std::vector<std::string>& defines);
+                                     const std::vector<std::string>& defines,
+                                     const ShaderFileOptions& options = {});
 
 /// The stage a file's extension implies (.vert/.vsh → vertex, .frag/.fsh → fragment); false when
 /// the extension says nothing.

@@ -20,14 +20,25 @@ struct SourceLocation {
     int column = 0;
 };
 
-/// A GLSL ES language version a variant is validated and rendered for.
-enum class GlslTarget { kEs100, kEs300 };
+/// A GLSL ES language version a variant is validated and rendered for; the WebGL targets are
+/// GLSL ES 1.00 (WebGL 1) and 3.00 (WebGL 2) with the rules browsers add on top.
+enum class GlslTarget { kEs100, kEs300, kWebGl1, kWebGl2 };
+
+/// The GLSL ES version a target compiles as: 100 or 300.
+int TargetVersion(GlslTarget target);
+
+/// True for kWebGl1 and kWebGl2.
+bool IsWebGlTarget(GlslTarget target);
 
 /// The `#version` line text for a target, e.g. "#version 100".
 std::string VersionDirective(GlslTarget target);
 
-/// The short name used in ids and JSON, "100" or "300es".
+/// The short name used in ids and JSON: "100", "300es", "webgl1" or "webgl2".
 std::string TargetName(GlslTarget target);
+
+/// The target a name of `targets:` or `--target` stands for ("100"; "300", "300es" or
+/// "300 es"; "webgl1"; "webgl2"); false for any other name.
+bool TargetFromName(std::string_view name, GlslTarget* target);
 
 /// A boolean feature: either absent or `#define NAME 1`.
 struct Feature {

@@ -1,0 +1,154 @@
+#include "tidepool/DeviceLimits.h"
+
+#include "tidepool/TextFile.h"
+
+#include <algorithm>
+#include <charconv>
+#include <limits>
+#include <set>
+
+#include "BuiltInResources.h"
+#include <fmt/format.h>
+
+namespace tidepool {
+namespace {
+
+// Levenshtein distance, for "did you mean" on a misspelt limit name.
+std::size_t EditDistance(std::string_view a, std::string_view b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) {
+        row[j] = j;
+    }
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            const std::size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
+            row[j] = std::min({above + 1, row[j - 1] + 1, substitute});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+std::string ClosestName(std::string_view name) {
+    const std::vector<std::string>& names = ResourceLimitNames();
+    return *std::min_element(names.begin(), names.end(), [&](const auto& a, const auto& b) {
+        return EditDistance(name, a) < EditDistance(name, b);
+    });
+}
+
+struct Word {
+    std::string_view text;
+    int column = 0;
+};
+
+// The words of one line, comments (`#` or `//` to the end of the line) left out.
+std::vector<Word> WordsOf(std::string_view line) {
+    std::vector<Word> words;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        if (line[i] == '#' || line.compare(i, 2, "//") == 0) {
+            break;
+        }
+        if (line[i] == ' ' || line[i] == '\t' || line[i] == '\r') {
+            ++i;
+            continue;
+        }
+        const std::size_t start = i;
+        while (i < line.size() && line[i] != ' ' && line[i] != '\t' && line[i] != '\r' &&
+               line[i] != '#' && line.compare(i, 2, "//") != 0) {
+            ++i;
+        }
+        words.push_back(Word{line.substr(start, i - start), static_cast<int>(start) + 1});
+    }
+    return words;
+}
+
+}  // namespace
+
+std::string DeviceLimits::Text() const {
+    std::string text;
+    for (const auto& [name, value] : values) {
+        text += fmt::format("{} {}\n", name, value);
+    }
+    return text;
+}
+
+DeviceLimitsRead ParseDeviceLimits(std::string_view text, const std::string& path) {
+    DeviceLimitsRead read;
+    read.limits.path = path;
+    std::set<std::string> seen;
+    int line_number = 0;
+    std::size_t start = 0;
+    while (start <= text.size()) {
+        const std::size_t end = std::min(text.find('\n', start), text.size());
+        const std::string_view line = text.substr(start, end - start);
+        start = end + 1;
+        ++line_number;
+        const std::vector<Word> words = WordsOf(line);
+        if (words.empty()) {
+            continue;
+        }
+        auto error = [&](const Word& at, std::string message) {
+            read.diagnostics.push_back(MakeError(path, line_number, at.column, std::move(message)));
+        };
+        if (words.size() != 2) {
+            error(words.front(), fmt::format("expected one limit as 'Name value' (as in "
+                                             "'MaxVertexUniformVectors 256'), found {} words",
+                                             words.size()));
+            continue;
+        }
+        const std::string name(words[0].text);
+        const std::vector<std::string>& known = ResourceLimitNames();
+        if (std::find(known.begin(), known.end(), name) == known.end()) {
+            error(words[0], fmt::format("unknown limit '{}'; did you mean '{}'? (the names are "
+                                        "glslang's: `glslangValidator -c` prints them all)",
+                                        name, ClosestName(name)));
+            continue;
+        }
+        if (!seen.insert(name).second) {
+            error(words[0], fmt::format("limit '{}' is given twice; keep one line", name));
+            continue;
+        }
+        int value = 0;
+        const std::string_view digits = words[1].text;
+        const auto [end_of_number, status] =
+                std::from_chars(digits.data(), digits.data() + digits.size(), value);
+        if (status != std::errc() || end_of_number != digits.data() + digits.size()) {
+            error(words[1], fmt::format("the value of '{}' must be a whole number from {} to {}, "
+                                        "not '{}'",
+                                        name, std::numeric_limits<int>::min(),
+                                        std::numeric_limits<int>::max(), digits));
+            continue;
+        }
+        if (IsResourceSwitch(name) && value != 0 && value != 1) {
+            error(words[1],
+                  fmt::format("'{}' is a switch: its value must be 0 or 1, not {}", name, value));
+            continue;
+        }
+        if (value < 0 && name.rfind("Min", 0) != 0) {
+            error(words[1], fmt::format("'{}' cannot be negative ({}); only the Min... limits "
+                                        "can",
+                                        name, value));
+            continue;
+        }
+        read.limits.values.emplace_back(name, value);
+    }
+    read.ok = !HasErrors(read.diagnostics);
+    return read;
+}
+
+DeviceLimitsRead ReadDeviceLimits(const std::string& path) {
+    const TextFileRead file = ReadTextFile(path);
+    if (!file.ok) {
+        DeviceLimitsRead read;
+        read.diagnostics.push_back(
+                MakeError(path, 0, 0, fmt::format("cannot read the limits file: {}", file.error)));
+        return read;
+    }
+    return ParseDeviceLimits(file.text, path);
+}
+
+}  // namespace tidepool

@@ -1,0 +1,39 @@
+// Words that glslang 12 refuses in a `#version 100` shader although GLSL ES 1.00 allows them as
+// identifiers, and the stand-in names glslang is given instead. Private to the compiler library.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace tidepool {
+
+/// The words GLSL ES 1.00 (rev 17) §3.7 neither uses as keywords nor reserves, but glslang 12
+/// rejects in a `#version 100` shader: it treats `case` as a keyword in every version, reserves
+/// `active`, `common`, `filter` and `partition` (GLSL 1.30 and ES 3.00 reserve them, ES 1.00
+/// does not) and reserves the cube-map-array sampler types (keywords of ES 3.20 only). Found by
+/// declaring each of glslang 12's keywords and reserved words as a global `float` in a
+/// `#version 100` shader and comparing the errors with the two lists of §3.7.
+const std::vector<std::string>& Es100IdentifiersGlslangRejects();
+
+/// Each word of Es100IdentifiersGlslangRejects() that a shader uses, renamed for glslang.
+struct KeywordRenaming {
+    /// {stand-in, word as the user wrote it}, in the order of Es100IdentifiersGlslangRejects().
+    std::vector<std::pair<std::string, std::string>> names;
+
+    /// `text` with every whole-word use of a renamed word replaced by its stand-in.
+    std::string Apply(std::string_view text) const;
+    /// `text` (a glslang message) with every stand-in replaced by the user's word again.
+    std::string Restore(std::string_view text) const;
+};
+
+/// Plans the renaming of a `#version 100` stage whose text (file and preamble) is `texts`: each
+/// word of Es100IdentifiersGlslangRejects() that appears as a whole token gets the stand-in
+/// `tp_es100_<word>`, which is the same in every stage so that a varying or uniform named `filter`
+/// still links. A word whose stand-in the user's text already spells is not renamed, so that two
+/// of the user's names never become one: glslang then reports the word, which is stricter than
+/// the specification, never more lenient. Never fails.
+KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts);
+
+}  // namespace tidepool

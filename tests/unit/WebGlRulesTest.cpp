@@ -1,0 +1,219 @@
+// The WebGL rules (compiler/src/WebGlRules.h and the WebGL targets of GlslangSession), each shown
+// from both sides: a shader written for the rule that breaks it, with the exact first error, and
+// one that keeps it. Run through ValidateShaderFiles with a target, as
+// `tidepool validate --target webgl1|webgl2 VERT FRAG` does.
+#include "tidepool/GlslValidator.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "ShaderPairValidation.h"
+
+namespace tidepool {
+namespace {
+
+using testing::PairVerdict;
+using testing::ValidatePair;
+
+struct WebGlCase {
+    const char* why;
+    GlslTarget target;
+    std::string vertex;    // "": no vertex file
+    std::string fragment;  // "": no fragment file
+    const char* expected;  // the first error, folder left out; "" when the pair is valid
+};
+
+void PrintTo(const WebGlCase& c, std::ostream* out) {
+    *out << c.why;
+}
+
+class WebGlRuleTest : public ::testing::TestWithParam<WebGlCase> {};
+
+TEST_P(WebGlRuleTest, GivesTheExpectedVerdictAndFirstError) {
+    const WebGlCase& c = GetParam();
+    auto text = [](const std::string& t) {
+        return t.empty() ? std::nullopt : std::optional<std::string>(t);
+    };
+    ShaderFileOptions options;
+    options.target = c.target;
+    const PairVerdict verdict = ValidatePair(text(c.vertex), text(c.fragment), options);
+    ASSERT_EQ(verdict.verdicts, 1U) << c.why;
+    EXPECT_EQ(verdict.valid, std::string(c.expected).empty()) << c.why;
+    EXPECT_EQ(verdict.first_error, c.expected) << c.why;
+}
+
+const std::string kVertex100 =
+        "#version 100\n"
+        "attribute vec4 position;\n"
+        "varying vec2 uv;\n"
+        "void main() { uv = position.xy; gl_Position = position; }\n";
+
+// A 1.00 fragment shader with `body` as the body of main, after `globals`.
+std::string Fragment100(const std::string& globals, const std::string& body) {
+    return "#version 100\n"
+           "precision mediump float;\n"
+           "varying vec2 uv;\n" +
+           globals + "void main() {\n" + body + "}\n";
+}
+
+const std::string kVertex300 =
+        "#version 300 es\n"
+        "in vec4 position;\n"
+        "out vec2 uv;\n"
+        "void main() { uv = position.xy; gl_Position = position; }\n";
+
+std::string Fragment300(const std::string& globals, const std::string& body) {
+    return "#version 300 es\n"
+           "precision mediump float;\n"
+           "in vec2 uv;\n"
+           "out vec4 colour;\n" +
+           globals + "void main() {\n" + body + "}\n";
+}
+
+// WebGL 1.0 §6.20 and WebGL 2.0 (GLSL ES 3.00 §3.8): the longest token.
+INSTANTIATE_TEST_SUITE_P(
+        TokenLength, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"an identifier of 256 characters in WebGL 1", GlslTarget::kWebGl1,
+                          kVertex100,
+                          Fragment100("float " + std::string(256, 'w') + " = 1.0;\n",
+                                      "    gl_FragColor = vec4(" + std::string(256, 'w') + ");\n"),
+                          ""},
+                WebGlCase{"an identifier of 257 characters in WebGL 1", GlslTarget::kWebGl1,
+                          kVertex100,
+                          Fragment100("float " + std::string(257, 'w') + " = 1.0;\n",
+                                      "    gl_FragColor = vec4(1.0);\n"),
+                          "a.fsh:4:7: error: a token of 257 characters ('wwwwwwwwwwwwwwww...'); "
+                          "webgl1 accepts at most 256 (WebGL 1.0 §6.20 \"Maximum GLSL Token "
+                          "Size\")"},
+                WebGlCase{"an identifier of 1024 characters in WebGL 2", GlslTarget::kWebGl2,
+                          kVertex300,
+                          Fragment300("float " + std::string(1024, 'w') + " = 1.0;\n",
+                                      "    colour = vec4(" + std::string(1024, 'w') + ");\n"),
+                          ""},
+                WebGlCase{"an identifier of 1025 characters in WebGL 2", GlslTarget::kWebGl2,
+                          kVertex300,
+                          Fragment300("float " + std::string(1025, 'w') + " = 1.0;\n",
+                                      "    colour = vec4(1.0);\n"),
+                          "a.fsh:5:7: error: a token of 1025 characters ('wwwwwwwwwwwwwwww...'); "
+                          "webgl2 accepts at most 1024 (WebGL 1.0 §6.20 \"Maximum GLSL Token "
+                          "Size\"; GLSL ES 3.00 §3.8)"}));
+
+// WebGL 1.0 §6.17: `webgl_` and `_webgl_` names are WebGL's.
+INSTANTIATE_TEST_SUITE_P(
+        ReservedPrefixes, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"webgl inside a name is fine", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float my_webgl_tint = 0.5;\n",
+                                      "    gl_FragColor = vec4(my_webgl_tint);\n"),
+                          ""},
+                WebGlCase{"a uniform named webgl_...", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform float webgl_tint;\n",
+                                      "    gl_FragColor = vec4(webgl_tint);\n"),
+                          "a.fsh:4:15: error: 'webgl_tint': identifiers starting with 'webgl_' "
+                          "or '_webgl_' are reserved for use by WebGL (WebGL 1.0 §6.17 \"GLSL "
+                          "Constructs\"); rename it"},
+                WebGlCase{"a function named _webgl_... in WebGL 2", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("float _webgl_half(float x) { return x * 0.5; }\n",
+                                      "    colour = vec4(_webgl_half(uv.x));\n"),
+                          "a.fsh:5:7: error: '_webgl_half': identifiers starting with 'webgl_' "
+                          "or '_webgl_' are reserved for use by WebGL (WebGL 1.0 §6.17 \"GLSL "
+                          "Constructs\"); rename it"}));
+
+// WebGL 1.0 §6.21: outside comments and inactive blocks, only the GLSL ES character set.
+INSTANTIATE_TEST_SUITE_P(
+        CharacterSet, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"non-ASCII text in comments and a quote in an inactive block",
+                          GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("// Wasserfarbe, “gemischt” — ok\n"
+                                      "#ifdef __cplusplus\n"
+                                      "#line 42 \"water.glsl\"\n"
+                                      "#endif\n",
+                                      "    gl_FragColor = vec4(uv, 0.0, 1.0); /* ü */\n"),
+                          ""},
+                WebGlCase{"a dollar sign in code", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float $tint = 0.5;\n",
+                                      "    gl_FragColor = vec4(uv, 0.0, 1.0);\n"),
+                          // glslang's preprocessor refuses it first and drops it from its
+                          // output; the verdict is the same.
+                          "a.fsh:4:7: error: '$' : unexpected token"}));
+
+// GLSL ES 1.00 Appendix A §4 and §5, which WebGL 1 requires (WebGL 1.0 §4.3); plain GLSL ES and
+// WebGL 2 accept these shaders.
+INSTANTIATE_TEST_SUITE_P(
+        AppendixA, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"a for loop with a constant bound, indexing by its index",
+                          GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec4 taps[4];\n",
+                                      "    vec4 sum = vec4(0.0);\n"
+                                      "    for (int i = 0; i < 4; i++) { sum += taps[i]; }\n"
+                                      "    gl_FragColor = sum;\n"),
+                          ""},
+                WebGlCase{"a while loop", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("",
+                                      "    float depth = uv.x;\n"
+                                      "    while (depth > 1.0) { depth *= 0.5; }\n"
+                                      "    gl_FragColor = vec4(depth);\n"),
+                          "a.fsh:6: error: 'limitation' : while loops not available"},
+                WebGlCase{"a loop bound by a uniform", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform int count;\n",
+                                      "    float sum = 0.0;\n"
+                                      "    for (int i = 0; i < count; i++) { sum += 0.1; }\n"
+                                      "    gl_FragColor = vec4(sum);\n"),
+                          "a.fsh:7: error: 'limitations' : inductive-loop condition requires "
+                          "the form \"loop-index <comparison-op> constant-expression\""},
+                WebGlCase{"a fragment uniform array indexed by a uniform", GlslTarget::kWebGl1,
+                          kVertex100,
+                          Fragment100("uniform vec4 taps[4];\nuniform int pick;\n",
+                                      "    gl_FragColor = taps[pick];\n"),
+                          "a.fsh:7: error: 'limitations' : Non-constant-index-expression"},
+                WebGlCase{"a vertex uniform array indexed by an attribute is allowed",
+                          GlslTarget::kWebGl1,
+                          "#version 100\n"
+                          "attribute vec4 position;\n"
+                          "attribute float bone;\n"
+                          "uniform vec4 offsets[8];\n"
+                          "void main() { gl_Position = position + offsets[int(bone)]; }\n",
+                          Fragment100("", "    gl_FragColor = vec4(1.0);\n"), ""},
+                WebGlCase{"the same while loop in WebGL 2", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("",
+                                      "    float depth = uv.x;\n"
+                                      "    while (depth > 1.0) { depth *= 0.5; }\n"
+                                      "    colour = vec4(depth);\n"),
+                          ""}));
+
+// The version each WebGL runs, and the preprocessor rules WebGL settles (§6.34, §6.35).
+INSTANTIATE_TEST_SUITE_P(
+        VersionsAndDirectives, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"a 3.00 shader for WebGL 1", GlslTarget::kWebGl1, kVertex300,
+                          Fragment300("", "    colour = vec4(1.0);\n"),
+                          "a.vsh:1:1: error: '#version 300 es': WebGL 1 runs GLSL ES 1.00 "
+                          "shaders only (WebGL 1.0 §4.3 \"Supported GLSL Constructs\"); use "
+                          "'#version 100', or the webgl2 target for a GLSL ES 3.00 shader"},
+                WebGlCase{"a 1.00 shader for WebGL 2", GlslTarget::kWebGl2, kVertex100,
+                          Fragment100("", "    gl_FragColor = vec4(1.0);\n"),
+                          "a.vsh:1:1: error: the webgl2 target validates GLSL ES 3.00 shaders: "
+                          "start the file with '#version 300 es' (WebGL 2.0 §4.3 \"Supported "
+                          "GLSL Constructs\"), or validate a GLSL ES 1.00 shader with --target "
+                          "webgl1"},
+                WebGlCase{"#extension after a declaration is allowed in WebGL 1",
+                          GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("#extension GL_OES_standard_derivatives : enable\n",
+                                      "    gl_FragColor = vec4(dFdx(uv.x));\n"),
+                          ""},
+                WebGlCase{"defined produced by a macro in #if", GlslTarget::kWebGl1, kVertex100,
+                          "#version 100\n"
+                          "precision mediump float;\n"
+                          "#define HAS(x) defined(x)\n"
+                          "#if HAS(GL_ES)\n"
+                          "#endif\n"
+                          "void main() { gl_FragColor = vec4(1.0); }\n",
+                          "a.fsh:4: error: 'defined' : cannot use in preprocessor expression "
+                          "when expanded from macros"}));
+
+}  // namespace
+}  // namespace tidepool
