@@ -21,6 +21,7 @@
 #include "GlslangSession.h"
 #include "WorkerProcessPool.h"
 #include "tidepool/TextFile.h"
+#include "tidepool/base/CacheBundle.h"
 #include "tidepool/base/Sha256.h"
 #include "StaticCostAnalyzer.h"
 
@@ -361,6 +362,21 @@ std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
             .FinishHex();
 }
 
+// The name of a configuration's latest bundle of results: its file and the programs validated,
+// so that a run after an edit finds the results the edit did not change.
+std::string LineageKey(const VariantConfig& config, const std::vector<Variant>& variants) {
+    std::set<std::string> programs;
+    for (const Variant& variant : variants) {
+        programs.insert(variant.program);
+    }
+    std::error_code ec;
+    const std::filesystem::path file = std::filesystem::absolute(config.path, ec);
+    return base::Sha256()
+            .Update(CacheKeyPrefix())
+            .Update(fmt::format("lineage\n{}\n{}\n", file.string(), fmt::join(programs, ",")))
+            .FinishHex();
+}
+
 // A stage program's outcome as the cache stores it, with the two hashes of its text.
 struct CachedStage {
     std::string hash;
@@ -418,6 +434,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     ValidationReport report;
     base::ContentCache* const cache = options.cache;
     const std::uint64_t stored_before = cache != nullptr ? cache->Stats().stored : 0;
+    // The run's results are read and written as one cache entry (CacheBundle.h).
+    std::optional<base::CacheBundle> bundle;
     // Before the first workers fork, so none builds the tables again; not at all when the cache
     // answers everything.
     bool warm = false;
@@ -494,11 +512,19 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         for (const auto& [path, text] : files) {
             file_digest[path] = base::Sha256Hex(text.text);
         }
+        base::Sha256 run_digest;
+        run_digest.Update(CacheKeyPrefix()).Update("bundle\n");
         for (std::size_t g = 0; g < group_list.size(); ++g) {
             const StageJob& first = jobs[group_list[g]->front()];
             if (!blocked(first)) {
                 group_cache_key[g] = StageCacheKey(*group_keys[g], file_digest[first.file]);
-                if (std::optional<std::string> payload = cache->Load(group_cache_key[g])) {
+                run_digest.Update(group_cache_key[g]).Update("\n");
+            }
+        }
+        bundle.emplace(*cache, run_digest.FinishHex(), LineageKey(config, variants));
+        for (std::size_t g = 0; g < group_list.size(); ++g) {
+            if (!group_cache_key[g].empty()) {
+                if (std::optional<std::string> payload = bundle->Load(group_cache_key[g])) {
                     group_cached[g] = DecodeCachedStage(*payload);
                 }
             }
@@ -639,7 +665,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 !report.stage_programs[link.fragment].valid) {
                 continue;
             }
-            if (std::optional<std::string> payload = cache->Load(link.cache_key)) {
+            if (std::optional<std::string> payload = bundle->Load(link.cache_key)) {
                 try {
                     const LinkResult outcome = DecodeLink(*payload);
                     link.linked = outcome.ok;
@@ -715,7 +741,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 link.diagnostics = outcome.diagnostics;
                 if (cache != nullptr && !link.cache_key.empty() &&
                     result.failure == WorkerFailure::kNone && !result.payload.empty()) {
-                    cache->Store(link.cache_key, result.payload);
+                    bundle->Store(link.cache_key, result.payload);
                 }
             });
     if (cache != nullptr) {
@@ -723,10 +749,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             const StageJob& first = jobs[group_list[g]->front()];
             const std::size_t index = program_index[first.key];
             if (!group_cache_key[g].empty() && !group_cached[g] && keepable[index]) {
-                cache->Store(group_cache_key[g],
-                             EncodeCachedStage(report.stage_programs[index], first.digest));
+                bundle->Store(group_cache_key[g],
+                              EncodeCachedStage(report.stage_programs[index], first.digest));
             }
         }
+        bundle->Save();
         if (cache->Stats().stored > stored_before) {
             cache->Trim();
         }
