@@ -297,15 +297,24 @@ void HashStage(StageJob& job) {
     job.key = job.file + "|" + job.hash;
 }
 
-// Every identifier-like token of a file (comments included: over-counting only costs a
-// preprocessor run). GLSL ES has no token pasting (glslang rejects `##` for ES), so a define can
-// only change the preprocessed text if its name is spelled out somewhere in the file.
+// Every identifier-like token of a file outside its comments. GLSL ES has no token pasting
+// (glslang rejects `##` for ES) and the preprocessor drops comments before it expands anything,
+// so a define can only change the preprocessed text if its name is spelled out in the file's
+// code; the shaders' header comments name every define they understand, which made every slot
+// its own preprocessing group. A `\` line continuation (ES 3.00) can only turn more of the file
+// into a comment, so reading it as code over-counts, which only costs a preprocessor run.
 std::set<std::string> MentionedIdentifiers(const std::string& text) {
     std::set<std::string> names;
     std::size_t i = 0;
     while (i < text.size()) {
         const auto c = static_cast<unsigned char>(text[i]);
-        if (std::isalpha(c) != 0 || c == '_') {
+        if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            i = text.find('\n', i);
+            i = i == std::string::npos ? text.size() : i;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            i = text.find("*/", i + 2);
+            i = i == std::string::npos ? text.size() : i + 2;
+        } else if (std::isalpha(c) != 0 || c == '_') {
             const std::size_t start = i;
             while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) != 0 ||
                                        text[i] == '_')) {
