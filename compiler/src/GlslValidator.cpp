@@ -21,6 +21,7 @@
 #include "GlslangSession.h"
 #include "WorkerProcessPool.h"
 #include "tidepool/TextFile.h"
+#include "tidepool/base/CacheBundle.h"
 #include "tidepool/base/Sha256.h"
 #include "StaticCostAnalyzer.h"
 
@@ -300,15 +301,24 @@ void HashStage(StageJob& job) {
     job.key = job.file + "|" + job.hash;
 }
 
-// Every identifier-like token of a file (comments included: over-counting only costs a
-// preprocessor run). GLSL ES has no token pasting (glslang rejects `##` for ES), so a define can
-// only change the preprocessed text if its name is spelled out somewhere in the file.
+// Every identifier-like token of a file outside its comments. GLSL ES has no token pasting
+// (glslang rejects `##` for ES) and the preprocessor drops comments before it expands anything,
+// so a define can only change the preprocessed text if its name is spelled out in the file's
+// code; the shaders' header comments name every define they understand, which made every slot
+// its own preprocessing group. A `\` line continuation (ES 3.00) can only turn more of the file
+// into a comment, so reading it as code over-counts, which only costs a preprocessor run.
 std::set<std::string> MentionedIdentifiers(const std::string& text) {
     std::set<std::string> names;
     std::size_t i = 0;
     while (i < text.size()) {
         const auto c = static_cast<unsigned char>(text[i]);
-        if (std::isalpha(c) != 0 || c == '_') {
+        if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            i = text.find('\n', i);
+            i = i == std::string::npos ? text.size() : i;
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            i = text.find("*/", i + 2);
+            i = i == std::string::npos ? text.size() : i + 2;
+        } else if (std::isalpha(c) != 0 || c == '_') {
             const std::size_t start = i;
             while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) != 0 ||
                                        text[i] == '_')) {
@@ -363,6 +373,21 @@ std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
             .Update(CacheKeyPrefix())
             .Update(fmt::format("link\n{}\n{}\n{}\n{}\n", vertex.file, vertex.digest,
                                 fragment.file, fragment.digest))
+            .FinishHex();
+}
+
+// The name of a configuration's latest bundle of results: its file and the programs validated,
+// so that a run after an edit finds the results the edit did not change.
+std::string LineageKey(const VariantConfig& config, const std::vector<Variant>& variants) {
+    std::set<std::string> programs;
+    for (const Variant& variant : variants) {
+        programs.insert(variant.program);
+    }
+    std::error_code ec;
+    const std::filesystem::path file = std::filesystem::absolute(config.path, ec);
+    return base::Sha256()
+            .Update(CacheKeyPrefix())
+            .Update(fmt::format("lineage\n{}\n{}\n", file.string(), fmt::join(programs, ",")))
             .FinishHex();
 }
 
@@ -423,6 +448,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     ValidationReport report;
     base::ContentCache* const cache = options.cache;
     const std::uint64_t stored_before = cache != nullptr ? cache->Stats().stored : 0;
+    // The run's results are read and written as one cache entry (CacheBundle.h).
+    std::optional<base::CacheBundle> bundle;
     // Before the first workers fork, so none builds the tables again; not at all when the cache
     // answers everything.
     bool warm = false;
@@ -500,11 +527,19 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         for (const auto& [path, text] : files) {
             file_digest[path] = base::Sha256Hex(text.text);
         }
+        base::Sha256 run_digest;
+        run_digest.Update(CacheKeyPrefix()).Update("bundle\n");
         for (std::size_t g = 0; g < group_list.size(); ++g) {
             const StageJob& first = jobs[group_list[g]->front()];
             if (!blocked(first)) {
                 group_cache_key[g] = StageCacheKey(*group_keys[g], file_digest[first.file]);
-                if (std::optional<std::string> payload = cache->Load(group_cache_key[g])) {
+                run_digest.Update(group_cache_key[g]).Update("\n");
+            }
+        }
+        bundle.emplace(*cache, run_digest.FinishHex(), LineageKey(config, variants));
+        for (std::size_t g = 0; g < group_list.size(); ++g) {
+            if (!group_cache_key[g].empty()) {
+                if (std::optional<std::string> payload = bundle->Load(group_cache_key[g])) {
                     group_cached[g] = DecodeCachedStage(*payload);
                 }
             }
@@ -645,7 +680,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 !report.stage_programs[link.fragment].valid) {
                 continue;
             }
-            if (std::optional<std::string> payload = cache->Load(link.cache_key)) {
+            if (std::optional<std::string> payload = bundle->Load(link.cache_key)) {
                 try {
                     const LinkResult outcome = DecodeLink(*payload);
                     link.linked = outcome.ok;
@@ -722,7 +757,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 link.diagnostics = outcome.diagnostics;
                 if (cache != nullptr && !link.cache_key.empty() &&
                     result.failure == WorkerFailure::kNone && !result.payload.empty()) {
-                    cache->Store(link.cache_key, result.payload);
+                    bundle->Store(link.cache_key, result.payload);
                 }
             });
     if (cache != nullptr) {
@@ -730,10 +765,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             const StageJob& first = jobs[group_list[g]->front()];
             const std::size_t index = program_index[first.key];
             if (!group_cache_key[g].empty() && !group_cached[g] && keepable[index]) {
-                cache->Store(group_cache_key[g],
-                             EncodeCachedStage(report.stage_programs[index], first.digest));
+                bundle->Store(group_cache_key[g],
+                              EncodeCachedStage(report.stage_programs[index], first.digest));
             }
         }
+        bundle->Save();
         if (cache->Stats().stored > stored_before) {
             cache->Trim();
         }

@@ -1,11 +1,13 @@
 #include "tidepool/GlslValidator.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
 #include "tidepool/Manifest.h"
+#include "tidepool/base/CacheBundle.h"
 
 #include "TempDir.h"
 
@@ -213,6 +215,41 @@ TEST(GlslValidatorTest, CorruptCacheEntryIsIgnoredAndRewritten) {
     EXPECT_EQ(again.Stats().corrupt, 0U);
     EXPECT_EQ(again.Stats().misses, 0U);
     EXPECT_EQ(Described(rewritten), Described(cold));
+}
+
+// The results a run kept: every entry of the bundle the cache folder holds.
+std::size_t BundledResults(const std::filesystem::path& folder) {
+    base::ContentCache cache(folder);
+    std::size_t most = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+        if (entry.is_regular_file()) {
+            if (const auto payload = cache.Load(entry.path().filename().string())) {
+                if (const auto bundle = base::CacheBundle::Decode(*payload)) {
+                    most = std::max(most, bundle->size());
+                }
+            }
+        }
+    }
+    return most;
+}
+
+TEST(GlslValidatorTest, DefineNamedOnlyInACommentDoesNotSplitPreprocessingButCodeAfterOneDoes) {
+    TempDir dir;
+    // FOO appears in the vertex stage only in comments; in the fragment stage BAR is used on
+    // the line a block comment ends on and FOO after a line comment's line.
+    dir.Write("c.vsh", "#version 100\n// FOO: nothing here\n/* FOO\n FOO */\nattribute vec4 p;\n"
+                       "void main() { gl_Position = p; }\n");
+    dir.Write("c.fsh", "#version 100\nprecision mediump float; // FOO\n/* FOO */ float f() {\n"
+                       "#ifdef FOO\n  return oops;\n#endif\n  return 1.0;\n}\n"
+                       "void main() { gl_FragColor = vec4(f()); }\n");
+    const VariantConfig config = ConfigIn(dir, "c.vsh", "c.fsh", {"FOO"});
+    base::ContentCache cache(dir.Path() / "cache");
+    const ValidationReport report = ValidateAll(config, 1, &cache);
+    EXPECT_EQ(Described(report), Described(ValidateAll(config)));
+    EXPECT_EQ(report.InvalidCount(), 1) << "FOO in the fragment stage's code was missed";
+    // One vertex group (FOO only in its comments), two fragment groups and the one link of the
+    // variant whose stages are valid; a vertex group per variant would make it five.
+    EXPECT_EQ(BundledResults(dir.Path() / "cache"), 4U);
 }
 
 TEST(GlslValidatorTest, EditedShaderMissesTheCacheAndIsValidatedAgain) {
