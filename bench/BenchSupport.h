@@ -4,24 +4,23 @@
 // is base::ParallelFor.)
 #pragma once
 
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <chrono>
 #include <cstddef>
+#include <cstdio>
+#include <cstdlib>
 #include <ctime>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include <fmt/format.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 extern "C" char** environ;
 
@@ -96,8 +95,8 @@ inline std::string DescribeEnvironment() {
 #else
     const std::string compiler = "unknown compiler";
 #endif
-    return fmt::format("{} hardware threads, load average {}; build: {}, {}, {}",
-                       HardwareThreads(), LoadAverage(), optimised, asserts, compiler);
+    return fmt::format("{} hardware threads, load average {}; build: {}, {}, {}", HardwareThreads(),
+                       LoadAverage(), optimised, asserts, compiler);
 }
 
 /// One whole process as a user runs it: wall time from spawn to reap, its own peak resident set,

@@ -24,6 +24,10 @@
 // Exit codes: 0 (figures printed; below a baseline only with --baseline), 1 a strict figure below
 // the baseline, 2 usage errors (bad arguments, a named corpus folder that does not exist, a
 // malformed manifest or baseline), 77 no corpus with --baseline (ctest's "skipped").
+#include "tidepool/Diagnostic.h"
+#include "tidepool/GlslValidator.h"
+#include "tidepool/base/ParallelFor.h"
+
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -34,16 +38,11 @@
 #include <string>
 #include <vector>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
+#include "BenchSupport.h"
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-
-#include "BenchSupport.h"
-#include "tidepool/Diagnostic.h"
-#include "tidepool/GlslValidator.h"
-#include "tidepool/base/ParallelFor.h"
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -76,8 +75,8 @@ const std::vector<RequirementProbe>& RequirementProbes() {
              "    int i = 0;\n    while (i < n) { x += 1.0; ++i; }\n"
              "    gl_FragColor = vec4(x);\n}\n",
              true, "the whole GLSL ES 1.00 language, beyond the Appendix A minimum (while loops)"},
-            {"only_glsl_es_100_support",
-             "void main() {\n    gl_FragData[1] = vec4(1.0);\n}\n", false,
+            {"only_glsl_es_100_support", "void main() {\n    gl_FragData[1] = vec4(1.0);\n}\n",
+             false,
              "an ES 2.0-only context: 1.00 shaders see ES 2.0 limits (gl_MaxDrawBuffers = 1)"},
             {"exactly_one_draw_buffer", "void main() {\n    gl_FragData[1] = vec4(1.0);\n}\n",
              false, "gl_MaxDrawBuffers == 1, so gl_FragData[1] must not compile"},
@@ -132,8 +131,8 @@ std::vector<std::string> SplitTabs(const std::string& line) {
     std::size_t begin = 0;
     for (;;) {
         const std::size_t tab = line.find('\t', begin);
-        fields.push_back(line.substr(begin, tab == std::string::npos ? std::string::npos
-                                                                     : tab - begin));
+        fields.push_back(
+                line.substr(begin, tab == std::string::npos ? std::string::npos : tab - begin));
         if (tab == std::string::npos) {
             return fields;
         }
@@ -169,9 +168,9 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
     for (std::size_t i = 0; i < header.size(); ++i) {
         column[header[i]] = i;
     }
-    for (const char* needed : {"id", "expect", "test_stage", "vertex_file", "fragment_file",
-                               "requires", "in_mustpass", "mustpass_issue_list", "test_file",
-                               "line"}) {
+    for (const char* needed :
+         {"id", "expect", "test_stage", "vertex_file", "fragment_file", "requires", "in_mustpass",
+          "mustpass_issue_list", "test_file", "line"}) {
         if (column.count(needed) == 0) {
             *error = fmt::format("{}:1: the header has no '{}' column", path.string(), needed);
             return false;
@@ -185,8 +184,8 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         }
         const std::vector<std::string> fields = SplitTabs(line);
         if (fields.size() != header.size()) {
-            *error = fmt::format("{}:{}: {} fields, the header has {}", path.string(),
-                                 line_number, fields.size(), header.size());
+            *error = fmt::format("{}:{}: {} fields, the header has {}", path.string(), line_number,
+                                 fields.size(), header.size());
             return false;
         }
         auto field = [&](const char* name) { return fields[column[name]]; };
@@ -209,8 +208,8 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         c.origin = fmt::format("{}:{}", field("test_file"), field("line"));
         if (corpus_name->empty() && column.count("suite") != 0 &&
             column.count("glsl_version") != 0) {
-            *corpus_name = fmt::format("dEQP {}, GLSL ES {}", field("suite"),
-                                       field("glsl_version"));
+            *corpus_name =
+                    fmt::format("dEQP {}, GLSL ES {}", field("suite"), field("glsl_version"));
         }
         cases->push_back(std::move(c));
     }
@@ -287,11 +286,10 @@ Outcome ValidateWithGlslang(const fs::path& corpus, const Case& c) {
     outcome.ran = true;
     const double start = NowSeconds();
     std::string output;
-    const int status =
-            RunCommand(fmt::format("glslangValidator -l {} {} 2>&1",
-                                   Quoted((corpus / c.vertex_file).string()),
-                                   Quoted((corpus / c.fragment_file).string())),
-                       &output);
+    const int status = RunCommand(
+            fmt::format("glslangValidator -l {} {} 2>&1", Quoted((corpus / c.vertex_file).string()),
+                        Quoted((corpus / c.fragment_file).string())),
+            &output);
     outcome.seconds = NowSeconds() - start;
     outcome.vertex_ok = outcome.fragment_ok = status == 0 || status == 3;
     outcome.accepted = status == 0;
@@ -304,8 +302,8 @@ Outcome ValidateWithGlslang(const fs::path& corpus, const Case& c) {
             }
         }
         if (status != 2 && status != 3) {
-            outcome.first_error = fmt::format("glslangValidator exited with {}: {}", status,
-                                              outcome.first_error);
+            outcome.first_error =
+                    fmt::format("glslangValidator exited with {}: {}", status, outcome.first_error);
         }
     }
     return outcome;
@@ -316,19 +314,18 @@ Outcome ValidateWithGlslang(const fs::path& corpus, const Case& c) {
 bool ValidateWithCli(const std::string& binary, const fs::path& corpus, const Case& c,
                      std::string* error) {
     std::string output;
-    const int status = RunCommand(
-            fmt::format("{} validate {} {} --json 2>/dev/null", Quoted(binary),
-                        Quoted((corpus / c.vertex_file).string()),
-                        Quoted((corpus / c.fragment_file).string())),
-            &output);
+    const int status =
+            RunCommand(fmt::format("{} validate {} {} --json 2>/dev/null", Quoted(binary),
+                                   Quoted((corpus / c.vertex_file).string()),
+                                   Quoted((corpus / c.fragment_file).string())),
+                       &output);
     const nlohmann::json json = nlohmann::json::parse(output, nullptr, false);
     if (!json.is_array() || json.empty()) {
         *error = fmt::format("exit {}, output not JSON: {}", status, output.substr(0, 200));
         return false;
     }
-    return std::all_of(json.begin(), json.end(), [](const nlohmann::json& verdict) {
-        return verdict.value("valid", false);
-    });
+    return std::all_of(json.begin(), json.end(),
+                       [](const nlohmann::json& verdict) { return verdict.value("valid", false); });
 }
 
 // Where a validator rejected a case, in words: "vertex compile", "fragment compile", "both
@@ -371,8 +368,9 @@ std::string DisagreementKind(const Case& c, const Outcome& o, bool stages_known)
 }
 
 std::string Percent(std::size_t part, std::size_t whole) {
-    return whole == 0 ? "n/a" : fmt::format("{:.2f}%", 100.0 * static_cast<double>(part) /
-                                                               static_cast<double>(whole));
+    return whole == 0 ? "n/a"
+                      : fmt::format("{:.2f}%",
+                                    100.0 * static_cast<double>(part) / static_cast<double>(whole));
 }
 
 // Matched / run over a set of cases, for one validator and one rule.
@@ -396,8 +394,12 @@ Figure Count(const std::vector<Case>& cases, const std::vector<Outcome>& outcome
     return figure;
 }
 
-bool AllCases(const Case&) { return true; }
-bool MustPass(const Case& c) { return c.in_mustpass; }
+bool AllCases(const Case&) {
+    return true;
+}
+bool MustPass(const Case& c) {
+    return c.in_mustpass;
+}
 
 // The recorded figures a run must not fall below: "key matched/ran" lines, '#' comments.
 struct Baseline {
@@ -459,9 +461,9 @@ int main(int argc, char** argv) {
         }
     }
     const bool named = !corpus_arg.empty();
-    const fs::path corpus = named ? fs::path(corpus_arg)
-                                  : fs::path(TIDEPOOL_SOURCE_ROOT) / ".." / "shared" / "corpus" /
-                                            "deqp-gles2";
+    const fs::path corpus =
+            named ? fs::path(corpus_arg)
+                  : fs::path(TIDEPOOL_SOURCE_ROOT) / ".." / "shared" / "corpus" / "deqp-gles2";
     fmt::print("deqp_conformance: tidepool validate over a dEQP shader-case corpus\n");
     fmt::print("environment: {}\n", tidepool::bench::DescribeEnvironment());
     if (!fs::is_directory(corpus)) {
@@ -563,20 +565,21 @@ int main(int argc, char** argv) {
         case_seconds += outcomes[i].seconds;
     }
 
-    fmt::print("\nmethod: each case's vertex_file and fragment_file validated together (both "
-               "parsed, then linked); in process one case at a time, commands over {} threads;\n"
-               "  tidepool: {};\n"
-               "  glslangValidator: {}.\n",
-               jobs,
-               ci ? "in process (ValidateShaderFiles, what `tidepool validate VERT FRAG` calls); "
-                    "--ci, so the binary was not run"
-                  : "`tidepool validate VERT FRAG --json` per case (its `valid` is counted), "
-                    "and in process to tell a stage's rejection from the link's",
-               have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases "
-                              "(exit 2 = a compile failed, 3 = the link failed)"
-                            : (ci ? "not run (--ci)" : "not installed, not run"));
-    fmt::print("time: {:.2f} s wall in process for {} cases ({:.2f} ms per case)",
-               wall, ran, ran == 0 ? 0.0 : 1000.0 * case_seconds / static_cast<double>(ran));
+    fmt::print(
+            "\nmethod: each case's vertex_file and fragment_file validated together (both "
+            "parsed, then linked); in process one case at a time, commands over {} threads;\n"
+            "  tidepool: {};\n"
+            "  glslangValidator: {}.\n",
+            jobs,
+            ci ? "in process (ValidateShaderFiles, what `tidepool validate VERT FRAG` calls); "
+                 "--ci, so the binary was not run"
+               : "`tidepool validate VERT FRAG --json` per case (its `valid` is counted), "
+                 "and in process to tell a stage's rejection from the link's",
+            have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases "
+                           "(exit 2 = a compile failed, 3 = the link failed)"
+                         : (ci ? "not run (--ci)" : "not installed, not run"));
+    fmt::print("time: {:.2f} s wall in process for {} cases ({:.2f} ms per case)", wall, ran,
+               ran == 0 ? 0.0 : 1000.0 * case_seconds / static_cast<double>(ran));
     if (!ci) {
         fmt::print("; {:.2f} s for the binary", cli_wall);
     }
@@ -585,8 +588,9 @@ int main(int argc, char** argv) {
     }
     fmt::print("\n");
 
-    fmt::print("\nrequirements (probed: a small 1.00 fragment shader that compiles, or is "
-               "rejected, only when the validator provides it):\n");
+    fmt::print(
+            "\nrequirements (probed: a small 1.00 fragment shader that compiles, or is "
+            "rejected, only when the validator provides it):\n");
     for (const RequirementProbe& probe : RequirementProbes()) {
         std::size_t count = 0;
         for (const Case& c : cases) {
@@ -609,10 +613,11 @@ int main(int argc, char** argv) {
 
     const Figure strict_all = Count(cases, outcomes, Rule::kStrict, AllCases);
     const Figure strict_mustpass = Count(cases, outcomes, Rule::kStrict, MustPass);
-    fmt::print("\nagreement, matched / cases run (strict = dEQP's own rule; lenient = a "
-               "compile_fail case may be rejected at link):\n");
-    fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", "", "tidepool strict",
-               "tidepool lenient", "glslangValidator strict", "glslangValidator lenient");
+    fmt::print(
+            "\nagreement, matched / cases run (strict = dEQP's own rule; lenient = a "
+            "compile_fail case may be rejected at link):\n");
+    fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", "", "tidepool strict", "tidepool lenient",
+               "glslangValidator strict", "glslangValidator lenient");
     for (const auto& [label, selected] :
          {std::pair<const char*, bool (*)(const Case&)>{"all cases", AllCases},
           {"in_mustpass", MustPass}}) {
@@ -654,12 +659,14 @@ int main(int argc, char** argv) {
                 ++count;
             }
         }
-        fmt::print("\n{} misses under the strict rule: {} (each with its cause: the first error, "
-                   "or where the case stands)\n",
-                   who, count);
+        fmt::print(
+                "\n{} misses under the strict rule: {} (each with its cause: the first error, "
+                "or where the case stands)\n",
+                who, count);
         for (const auto& [kind, indices] : misses) {
-            const auto mustpass = std::count_if(indices.begin(), indices.end(),
-                                                [&](std::size_t i) { return cases[i].in_mustpass; });
+            const auto mustpass = std::count_if(indices.begin(), indices.end(), [&](std::size_t i) {
+                return cases[i].in_mustpass;
+            });
             fmt::print("  {}: {} case(s), {} in_mustpass\n", kind, indices.size(), mustpass);
             for (std::size_t i : indices) {
                 const Case& c = cases[i];
@@ -689,9 +696,8 @@ int main(int argc, char** argv) {
     if (!baseline_path.empty()) {
         bool below = false;
         fmt::print("\nbaseline {}:\n", baseline_path);
-        for (const auto& [key, figure] :
-             {std::pair<std::string, Figure>{"strict_all", strict_all},
-              {"strict_mustpass", strict_mustpass}}) {
+        for (const auto& [key, figure] : {std::pair<std::string, Figure>{"strict_all", strict_all},
+                                          {"strict_mustpass", strict_mustpass}}) {
             const auto recorded = baseline.figures.find(key);
             if (recorded == baseline.figures.end()) {
                 continue;
@@ -703,8 +709,9 @@ int main(int argc, char** argv) {
             below = below || !ok;
             fmt::print("  {}: {} now, {} recorded: {}\n", key, figure.Text(),
                        recorded->second.Text(),
-                       ok ? "ok" : (same_cases ? "BELOW the recorded figure"
-                                               : "a different number of cases; record again"));
+                       ok ? "ok"
+                          : (same_cases ? "BELOW the recorded figure"
+                                        : "a different number of cases; record again"));
         }
         return below ? kExitBelowBaseline : 0;
     }

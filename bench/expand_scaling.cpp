@@ -23,8 +23,6 @@
 //
 // Exit codes: 0 (figures printed), 1 when the binary cannot run or a case gives a wrong count,
 // 2 on a bad argument.
-#include <unistd.h>
-
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -32,15 +30,15 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "BenchSupport.h"
+#include <fmt/format.h>
+#include <unistd.h>
 
 namespace {
 
 struct Case {
     std::string name;
-    std::vector<std::string> args;  // after the binary
+    std::vector<std::string> args;   // after the binary
     std::string expected_last_line;  // prefix the run's last output line must start with
     std::string combinations;
     std::string target;
@@ -53,8 +51,7 @@ void WriteFile(const std::filesystem::path& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
 }
 
-constexpr const char* kProgramHead =
-        "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n";
+constexpr const char* kProgramHead = "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n";
 
 std::string ChainConfig(int k) {
     std::string yaml = kProgramHead;
@@ -77,8 +74,8 @@ std::string AxesConfig() {
     }
     yaml += "    rules:\n";
     for (int g = 0; g + 1 < 10; ++g) {
-        for (const auto& [x, y] : {std::pair{"A", "B"}, std::pair{"A", "C"}, std::pair{"B", "A"},
-                                   std::pair{"C", "A"}}) {
+        for (const auto& [x, y] :
+             {std::pair{"A", "B"}, std::pair{"A", "C"}, std::pair{"B", "A"}, std::pair{"C", "A"}}) {
             yaml += fmt::format("      - {{ exclude: [G{}_{}, G{}_{}] }}\n", g, x, g + 1, y);
         }
     }
@@ -100,8 +97,9 @@ int main(int argc, char** argv) {
         return 1;
     }
     WriteFile(dir / "s.vsh", "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n");
-    WriteFile(dir / "s.fsh", "#version 100\nprecision mediump float;\nvoid main() { "
-                             "gl_FragColor = vec4(1.0); }\n");
+    WriteFile(dir / "s.fsh",
+              "#version 100\nprecision mediump float;\nvoid main() { "
+              "gl_FragColor = vec4(1.0); }\n");
 
     std::vector<Case> cases;
     cases.push_back({"--version (start-up only)", {"--version"}, "tidepool", "-", "-", {}, {}});
@@ -164,8 +162,7 @@ int main(int argc, char** argv) {
                         : c.expected_last_line.substr(0, c.expected_last_line.find(' '));
         if (c.wrong) {
             std::printf("%-26s %8s %7s %10s %9s %12s   %s\n", c.name.c_str(),
-                        c.combinations.c_str(), valid.c_str(), "WRONG", "-", "-",
-                        c.target.c_str());
+                        c.combinations.c_str(), valid.c_str(), "WRONG", "-", "-", c.target.c_str());
             continue;
         }
         std::printf("%-26s %8s %7s %10.1f %9.1f %12.1f   %s\n", c.name.c_str(),
@@ -173,10 +170,11 @@ int main(int argc, char** argv) {
                     tidepool::bench::Min(c.wall_ms), tidepool::bench::Median(c.rss_mb),
                     c.target.c_str());
     }
-    std::printf("\nload average after: %s\n"
-                "Wall time is the whole process, start-up included; compare with the --version "
-                "row, which is start-up alone.\n",
-                tidepool::bench::LoadAverage().c_str());
+    std::printf(
+            "\nload average after: %s\n"
+            "Wall time is the whole process, start-up included; compare with the --version "
+            "row, which is start-up alone.\n",
+            tidepool::bench::LoadAverage().c_str());
     std::error_code ec;
     std::filesystem::remove_all(dir, ec);
     return all_right ? 0 : 1;

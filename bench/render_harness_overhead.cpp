@@ -1,7 +1,12 @@
 // Benchmark (a): the share of each frame the harness spends outside GL (planning the frame on
 // the CPU: matrices, the infinite water polygon, oblique projections, per-pass culling), next to
 // the whole frame (submission + glFinish). Target: under 3%. Prints figures; never fails a build.
-#include <fmt/format.h>
+#include "tidepool/VariantConfig.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/Statistics.h"
 
 #include <algorithm>
 #include <chrono>
@@ -9,12 +14,7 @@
 #include <filesystem>
 #include <set>
 
-#include "tidepool/VariantConfig.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/RenderConfig.h"
-#include "tidepool/runner/Renderer.h"
-#include "tidepool/runner/Statistics.h"
+#include <fmt/format.h>
 
 using namespace tidepool;
 using namespace tidepool::runner;
@@ -27,14 +27,14 @@ int main() {
         return 3;
     }
     ConfigResult loaded =
-        LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
     if (!loaded.config) {
         fmt::print(stderr, "variants.yaml does not load\n");
         return 2;
     }
     std::string error;
     std::unique_ptr<WaterRenderer> renderer =
-        WaterRenderer::Create(*context.context, *loaded.config, RenderSettings{}, &error);
+            WaterRenderer::Create(*context.context, *loaded.config, RenderSettings{}, &error);
     if (!renderer) {
         fmt::print(stderr, "{}\n", error);
         return 3;
@@ -67,7 +67,7 @@ int main() {
             const Clock::time_point done = Clock::now();
             frame_ms.push_back(std::chrono::duration<double, std::milli>(done - start).count());
             submit_ms.push_back(
-                std::chrono::duration<double, std::milli>(submitted - start).count());
+                    std::chrono::duration<double, std::milli>(submitted - start).count());
             plan_ms.push_back(report.plan_seconds * 1000.0);
         }
         // A benchmark checks what it rendered: a wrong (e.g. empty) image must not post a time.
@@ -93,7 +93,8 @@ int main() {
     fmt::print("\nworst harness share of a frame: {:.3f}% (target < 3%) on {} via {}\n",
                worst_share, context.context->Environment().renderer,
                context.context->Environment().backend);
-    fmt::print("plan = CPU-only frame planning in the harness; submit = RenderFrame returning "
-               "(plan + GL calls the driver queues); frame = submit + glFinish.\n");
+    fmt::print(
+            "plan = CPU-only frame planning in the harness; submit = RenderFrame returning "
+            "(plan + GL calls the driver queues); frame = submit + glFinish.\n");
     return 0;
 }

@@ -29,9 +29,8 @@
 #include <utility>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "BenchSupport.h"
+#include <fmt/format.h>
 
 namespace {
 
@@ -97,10 +96,11 @@ int main(int argc, char** argv) {
         all_right = false;
         return false;
     };
-    std::printf("%s\nbinary: %s\nmatrix: %s, %zu expanded variant pairs\n"
-                "%d interleaved rounds per case\n\n",
-                tidepool::bench::DescribeEnvironment().c_str(), tidepool.c_str(), config.c_str(),
-                pairs.size(), rounds);
+    std::printf(
+            "%s\nbinary: %s\nmatrix: %s, %zu expanded variant pairs\n"
+            "%d interleaved rounds per case\n\n",
+            tidepool::bench::DescribeEnvironment().c_str(), tidepool.c_str(), config.c_str(),
+            pairs.size(), rounds);
     for (int round = 0; round < rounds && all_right; ++round) {
         std::error_code ec;
         std::filesystem::remove_all(cache, ec);
@@ -139,8 +139,9 @@ int main(int argc, char** argv) {
         const double cold = tidepool::bench::Median(cold_ms);
         const double warm = tidepool::bench::Median(warm_ms);
         const double loop = tidepool::bench::Median(loop_ms);
-        std::printf("\ncold: %.1f ms, %.1fx faster than the loop; target <= 125 ms and >= 20x: %s\n",
-                    cold, loop / cold, tidepool::bench::Verdict(cold <= 125 && loop / cold >= 20));
+        std::printf(
+                "\ncold: %.1f ms, %.1fx faster than the loop; target <= 125 ms and >= 20x: %s\n",
+                cold, loop / cold, tidepool::bench::Verdict(cold <= 125 && loop / cold >= 20));
         std::printf("warm: %.1f ms, %.1fx faster than the loop; target <= 15 ms and >= 150x: %s\n",
                     warm, loop / warm, tidepool::bench::Verdict(warm <= 15 && loop / warm >= 150));
     }

@@ -26,9 +26,8 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "BenchSupport.h"
+#include <fmt/format.h>
 
 namespace {
 
@@ -64,15 +63,21 @@ int main(int argc, char** argv) {
     const std::string frag = (dir / "w.frag").string();
 
     std::vector<Case> cases = {
-            {"tidepool validate pair", tidepool, {"validate", vert, frag}, "2 file(s): valid",
-             {}, {}, false},
+            {"tidepool validate pair",
+             tidepool,
+             {"validate", vert, frag},
+             "2 file(s): valid",
+             {},
+             {},
+             false},
             {"glslangValidator -l pair", glslang, {"-l", vert, frag}, "", {}, {}, false},
             {"tidepool --version", tidepool, {"--version"}, "tidepool", {}, {}, false},
             {"glslangValidator --version", glslang, {"--version"}, "", {}, {}, false},
     };
-    std::printf("%s\nbinary: %s\nfiles: shaders/water.vsh + water.fsh as .vert/.frag\n"
-                "%d interleaved rounds per case\n\n",
-                tidepool::bench::DescribeEnvironment().c_str(), tidepool.c_str(), rounds);
+    std::printf(
+            "%s\nbinary: %s\nfiles: shaders/water.vsh + water.fsh as .vert/.frag\n"
+            "%d interleaved rounds per case\n\n",
+            tidepool::bench::DescribeEnvironment().c_str(), tidepool.c_str(), rounds);
     bool all_right = true;
     for (int round = 0; round < rounds; ++round) {
         for (Case& c : cases) {
@@ -101,11 +106,12 @@ int main(int argc, char** argv) {
                     tidepool::bench::Median(c.rss_mb));
     }
     if (!cases[0].wrong && !cases[1].wrong) {
-        const double ratio =
-                tidepool::bench::Median(cases[0].wall_ms) / tidepool::bench::Median(cases[1].wall_ms);
-        std::printf("\ntidepool validate FILE / glslangValidator (medians): %.2fx; target <= 1.5x: "
-                    "%s\n",
-                    ratio, tidepool::bench::Verdict(ratio <= 1.5));
+        const double ratio = tidepool::bench::Median(cases[0].wall_ms) /
+                             tidepool::bench::Median(cases[1].wall_ms);
+        std::printf(
+                "\ntidepool validate FILE / glslangValidator (medians): %.2fx; target <= 1.5x: "
+                "%s\n",
+                ratio, tidepool::bench::Verdict(ratio <= 1.5));
     }
     std::printf("load average after: %s\n", tidepool::bench::LoadAverage().c_str());
     std::error_code ec;

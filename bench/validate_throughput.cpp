@@ -19,11 +19,11 @@
 //
 // Exit codes: 0 (also when glslangValidator is missing: that part is skipped), 1 when
 // variants.yaml does not load or expand, 2 on a bad argument.
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include "tidepool/Diagnostic.h"
+#include "tidepool/GlslValidator.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -35,14 +35,13 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "BenchSupport.h"
-#include "tidepool/Diagnostic.h"
-#include "tidepool/GlslValidator.h"
-#include "tidepool/SourceAssembler.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
+#include <fcntl.h>
+#include <fmt/format.h>
+#include <spawn.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 extern char** environ;
 
@@ -210,7 +209,9 @@ LoopRun TimeLoop(const std::string& validator, const std::vector<StageFile>& fil
     return run;
 }
 
-std::string Ms(double seconds) { return fmt::format("{:.1f} ms", seconds * 1000.0); }
+std::string Ms(double seconds) {
+    return fmt::format("{:.1f} ms", seconds * 1000.0);
+}
 
 double PerSecond(std::size_t count, double seconds) {
     return seconds > 0.0 ? static_cast<double>(count) / seconds : 0.0;
@@ -223,10 +224,11 @@ void PrintTidepool(const char* label, const TidepoolRun& run, std::size_t varian
     const std::size_t programs = run.last.stage_programs.size();
     fmt::print("  {}: warm-up {}; {} runs: median {}, min {} wall, median CPU {}\n", label,
                Ms(run.warmup_wall), repeats, Ms(median), Ms(min), Ms(Median(run.timings.cpu)));
-    fmt::print("    {:.0f} variants/s (median), {:.0f} (best); {:.0f} distinct stage programs/s "
-               "(median), {:.0f} (best)\n",
-               PerSecond(variant_count, median), PerSecond(variant_count, min),
-               PerSecond(programs, median), PerSecond(programs, min));
+    fmt::print(
+            "    {:.0f} variants/s (median), {:.0f} (best); {:.0f} distinct stage programs/s "
+            "(median), {:.0f} (best)\n",
+            PerSecond(variant_count, median), PerSecond(variant_count, min),
+            PerSecond(programs, median), PerSecond(programs, min));
 }
 
 }  // namespace
@@ -238,8 +240,9 @@ int main(int argc, char** argv) {
                      kDefaultRepeats);
         return kExitUsage;
     }
-    fmt::print("validate_throughput: the default variant matrix, tidepool vs a glslangValidator "
-               "loop\n");
+    fmt::print(
+            "validate_throughput: the default variant matrix, tidepool vs a glslangValidator "
+            "loop\n");
     fmt::print("environment: {}\n", tidepool::bench::DescribeEnvironment());
 
     const fs::path yaml = fs::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml";
@@ -280,34 +283,39 @@ int main(int argc, char** argv) {
     const TidepoolRun parallel = TimeTidepool(config, variants, cores, repeats);
     const TidepoolRun serial = TimeTidepool(config, variants, 1, repeats);
     const tidepool::ValidationReport& report = parallel.last;
-    fmt::print("\ntidepool ValidateVariants (wall clock around the call; CPU = this process, all "
-               "threads):\n");
-    fmt::print("  work per run: {} stage slots ({} variants x {} target(s) x 2 stages), {} "
-               "distinct stage programs parsed, {} programs linked, {} verdicts invalid\n",
-               report.stage_slots, variants.size(), config.targets.size(),
-               report.stage_programs.size(), report.links, report.InvalidCount());
+    fmt::print(
+            "\ntidepool ValidateVariants (wall clock around the call; CPU = this process, all "
+            "threads):\n");
+    fmt::print(
+            "  work per run: {} stage slots ({} variants x {} target(s) x 2 stages), {} "
+            "distinct stage programs parsed, {} programs linked, {} verdicts invalid\n",
+            report.stage_slots, variants.size(), config.targets.size(),
+            report.stage_programs.size(), report.links, report.InvalidCount());
     PrintTidepool(fmt::format("jobs={}", cores).c_str(), parallel, variants.size(), repeats);
     PrintTidepool("jobs=1", serial, variants.size(), repeats);
     if (report.InvalidCount() > 0) {
         // A benchmark of a failing validation measures error paths, not the real workload.
-        fmt::print("  WARNING: {} variant(s) invalid, so these figures time a failing run; first "
-                   "error: {}\n",
-                   report.InvalidCount(),
-                   FormatDiagnostic(report.verdicts[0].diagnostics.empty()
-                                            ? tidepool::Diagnostic{}
-                                            : report.verdicts[0].diagnostics.front()));
+        fmt::print(
+                "  WARNING: {} variant(s) invalid, so these figures time a failing run; first "
+                "error: {}\n",
+                report.InvalidCount(),
+                FormatDiagnostic(report.verdicts[0].diagnostics.empty()
+                                         ? tidepool::Diagnostic{}
+                                         : report.verdicts[0].diagnostics.front()));
     }
 
     const std::string validator = FindOnPath("glslangValidator");
     if (validator.empty()) {
-        fmt::print("\nglslangValidator: not found on PATH (Debian package glslang-tools); the "
-                   "comparison is skipped\n");
+        fmt::print(
+                "\nglslangValidator: not found on PATH (Debian package glslang-tools); the "
+                "comparison is skipped\n");
         return 0;
     }
     char folder_template[] = "/tmp/tidepool-bench-XXXXXX";
     if (mkdtemp(folder_template) == nullptr) {
-        fmt::print("\nglslangValidator: cannot create a temporary folder; the comparison is "
-                   "skipped\n");
+        fmt::print(
+                "\nglslangValidator: cannot create a temporary folder; the comparison is "
+                "skipped\n");
         return 0;
     }
     const fs::path folder = folder_template;
@@ -338,12 +346,14 @@ int main(int argc, char** argv) {
 
     const double loop_median = Median(loop.timings.wall);
     const double tidepool_median = Median(parallel.timings.wall);
-    fmt::print("\nglslangValidator loop ({}, `glslangValidator FILE` once per stage file, "
-               "sequential, output to /dev/null; CPU = the children's):\n",
-               validator);
-    fmt::print("  work per loop: {} files ({} variants x 2 stages), no linking; {} nonzero "
-               "exit(s) over {} loops\n",
-               files.size(), variants.size(), loop.failures, repeats);
+    fmt::print(
+            "\nglslangValidator loop ({}, `glslangValidator FILE` once per stage file, "
+            "sequential, output to /dev/null; CPU = the children's):\n",
+            validator);
+    fmt::print(
+            "  work per loop: {} files ({} variants x 2 stages), no linking; {} nonzero "
+            "exit(s) over {} loops\n",
+            files.size(), variants.size(), loop.failures, repeats);
     fmt::print("  {} loops: median {}, min {} wall ({} per file), median CPU {}\n", repeats,
                Ms(loop_median), Ms(Min(loop.timings.wall)),
                Ms(loop_median / static_cast<double>(files.size())), Ms(Median(loop.timings.cpu)));
@@ -352,16 +362,18 @@ int main(int argc, char** argv) {
 
     fmt::print("\nratio (loop / tidepool, medians of this run):\n");
     const double speedup = loop_median / tidepool_median;
-    fmt::print("  wall, tidepool jobs={} vs the loop:               {:.1f}x (target >= {:.0f}x: "
-               "{})\n",
-               cores, speedup, kTargetSpeedup, speedup >= kTargetSpeedup ? "met" : "NOT met");
+    fmt::print(
+            "  wall, tidepool jobs={} vs the loop:               {:.1f}x (target >= {:.0f}x: "
+            "{})\n",
+            cores, speedup, kTargetSpeedup, speedup >= kTargetSpeedup ? "met" : "NOT met");
     fmt::print("  wall, tidepool jobs=1 vs the loop:                {:.1f}x\n",
                loop_median / Median(serial.timings.wall));
     fmt::print("  CPU, tidepool jobs={} vs the loop's children:     {:.1f}x\n", cores,
                Median(loop.timings.cpu) / Median(parallel.timings.cpu));
-    fmt::print("  wall, tidepool jobs={} vs distinct-only loop:     {:.1f}x (what deduplication "
-               "alone does not explain)\n",
-               cores, distinct_seconds / tidepool_median);
+    fmt::print(
+            "  wall, tidepool jobs={} vs distinct-only loop:     {:.1f}x (what deduplication "
+            "alone does not explain)\n",
+            cores, distinct_seconds / tidepool_median);
     // Both sides ran in turn on the same machine, so load from other work slows both, but not
     // necessarily equally: the load average at the end says how busy the cores were meanwhile.
     fmt::print("load average at the end: {}\n", tidepool::bench::LoadAverage());

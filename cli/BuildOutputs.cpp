@@ -1,5 +1,8 @@
 #include "BuildOutputs.h"
 
+#include "tidepool/TextFile.h"
+#include "tidepool/base/AtomicFile.h"
+
 #include <algorithm>
 #include <cctype>
 #include <cstdint>
@@ -8,11 +11,8 @@
 #include <iterator>
 #include <set>
 
-#include <fmt/format.h>
-
 #include "Commands.h"
-#include "tidepool/TextFile.h"
-#include "tidepool/base/AtomicFile.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 

@@ -3,6 +3,10 @@
 // keep their time stamp when unchanged, and a depfile naming every file the command read.
 #pragma once
 
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+
 #include <filesystem>
 #include <map>
 #include <string>
@@ -10,9 +14,6 @@
 #include <vector>
 
 #include "CliSupport.h"
-#include "tidepool/SourceAssembler.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
 
 namespace tidepool::cli {
 

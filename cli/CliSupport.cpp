@@ -1,5 +1,8 @@
 #include "CliSupport.h"
 
+#include "tidepool/Manifest.h"
+#include "tidepool/base/AtomicFile.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cstdio>
@@ -9,13 +12,10 @@
 #include <thread>
 #include <utility>
 
+#include "Commands.h"
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
-
-#include "Commands.h"
-#include "tidepool/Manifest.h"
-#include "tidepool/base/AtomicFile.h"
 
 namespace tidepool::cli {
 
@@ -45,12 +45,13 @@ int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& fil
         // is what says it is ours.
         std::ifstream in(path, std::ios::binary);
         const nlohmann::json existing = nlohmann::json::parse(in, nullptr, false);
-        const bool ours = existing.is_object() && existing.contains("schema") &&
-                          existing["schema"] == schema;
+        const bool ours =
+                existing.is_object() && existing.contains("schema") && existing["schema"] == schema;
         if (!ours) {
-            std::fprintf(stderr, "error: %s: exists and is not a tidepool %s (no \"schema\": "
-                                 "\"%s\"); nothing was changed. Choose another --out folder, or "
-                                 "move the file yourself.\n",
+            std::fprintf(stderr,
+                         "error: %s: exists and is not a tidepool %s (no \"schema\": "
+                         "\"%s\"); nothing was changed. Choose another --out folder, or "
+                         "move the file yourself.\n",
                          path.c_str(), what.c_str(), schema.c_str());
             return kExitUsage;
         }
@@ -105,7 +106,7 @@ std::string CpuModel() {
 
 std::string GitRevision(const std::filesystem::path& folder) {
     const std::string command =
-        fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
+            fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
     FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) {
         return "unknown";
@@ -158,9 +159,8 @@ bool ParseCountOption(std::string_view flag, const std::string& text, std::uint6
     // Digits only: CLI11 and strtoull would wrap "-1" into 2^64-1 and accept "1e3" as 1.
     std::uint64_t parsed = 0;
     const char* end = text.data() + text.size();
-    const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
-        return c >= '0' && c <= '9';
-    });
+    const bool digits = !text.empty() && std::all_of(text.begin(), text.end(),
+                                                     [](char c) { return c >= '0' && c <= '9'; });
     if (digits && std::from_chars(text.data(), end, parsed).ec == std::errc() && parsed >= min &&
         parsed <= max) {
         *value = parsed;
@@ -297,8 +297,9 @@ void WarnAboutCache(const base::ContentCache* cache) {
     }
     const base::ContentCacheStats stats = cache->Stats();
     if (!stats.error.empty()) {
-        std::fprintf(stderr, "warning: validation cache %s: %s (results were not kept; use "
-                             "--cache DIR or --no-cache)\n",
+        std::fprintf(stderr,
+                     "warning: validation cache %s: %s (results were not kept; use "
+                     "--cache DIR or --no-cache)\n",
                      cache->Folder().c_str(), stats.error.c_str());
     }
 }

@@ -2,6 +2,12 @@
 // Nothing here needs GL: the GL commands' own pieces are in GlCliSupport.h.
 #pragma once
 
+#include "tidepool/Diagnostic.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/base/ContentCache.h"
+#include "tidepool/base/FolderPublisher.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <memory>
@@ -9,12 +15,6 @@
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/Diagnostic.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/base/ContentCache.h"
-#include "tidepool/base/FolderPublisher.h"
 
 namespace CLI {
 class App;
@@ -93,8 +93,8 @@ bool ParseCountOption(std::string_view flag, const std::string& text, std::uint6
 /// How many valid variants a command may expand, and how many pruned combinations it lists.
 struct MatrixLimits {
     std::optional<std::string> max_variants;  // --max-variants as typed; none: the file's
-    bool allow_large_matrix = false;  // --allow-large-matrix: limits above kVariantCeiling
-    std::uint64_t pruned_limit = 0;   // pruned combinations to list (expand --pruned)
+    bool allow_large_matrix = false;          // --allow-large-matrix: limits above kVariantCeiling
+    std::uint64_t pruned_limit = 0;           // pruned combinations to list (expand --pruned)
 };
 
 /// Adds --max-variants and --allow-large-matrix to `command`, writing into `limits`.

@@ -12,10 +12,10 @@ namespace tidepool::cli {
 
 /// The process exit codes every command shares (README.md, "Exit codes").
 enum ExitCode : int {
-    kExitOk = 0,           // everything valid / rendered
-    kExitShaderErrors = 1, // at least one shader or variant has errors
-    kExitUsage = 2,        // bad command line or configuration
-    kExitEnvironment = 3,  // no EGL/OSMesa, no GL context
+    kExitOk = 0,            // everything valid / rendered
+    kExitShaderErrors = 1,  // at least one shader or variant has errors
+    kExitUsage = 2,         // bad command line or configuration
+    kExitEnvironment = 3,   // no EGL/OSMesa, no GL context
 };
 
 /// `tidepool expand`, `tidepool validate`, `tidepool stats` (the compiler side).
@@ -45,19 +45,24 @@ struct GlCommand {
 
 /// Every GL command, in the order --help lists them.
 inline constexpr GlCommand kGlCommands[] = {
-        {"render", "render every configuration headless through Mesa: images at every view, the "
-                   "driver's verdict and a short timing"},
-        {"bench", "time configurations through Mesa: each configuration's median on the run's "
-                  "clock, and every compared pair of presets timed pair by pair to a stated "
-                  "resolution"},
-        {"run", "validate, render, run the stability catalogue and the scene plans, and report "
-                "in one go: <out>/manifest/, <out>/render/ (results.json, stability.json, "
-                "plans.json) and the report in <out>/<name>/"},
-        {"stability", "Run the numerical hard cases (CPU sweeps, every water variant rendered "
-                      "into a float target), the mediump precision study and the shader-guard "
-                      "comparison; write DIR/stability.json"},
-        {"plan", "pick the cheapest water configuration that meets a scene's quality target, by "
-                 "rendering and timing a short candidate list (scenes/NAME.yaml)"},
+        {"render",
+         "render every configuration headless through Mesa: images at every view, the "
+         "driver's verdict and a short timing"},
+        {"bench",
+         "time configurations through Mesa: each configuration's median on the run's "
+         "clock, and every compared pair of presets timed pair by pair to a stated "
+         "resolution"},
+        {"run",
+         "validate, render, run the stability catalogue and the scene plans, and report "
+         "in one go: <out>/manifest/, <out>/render/ (results.json, stability.json, "
+         "plans.json) and the report in <out>/<name>/"},
+        {"stability",
+         "Run the numerical hard cases (CPU sweeps, every water variant rendered "
+         "into a float target), the mediump precision study and the shader-guard "
+         "comparison; write DIR/stability.json"},
+        {"plan",
+         "pick the cheapest water configuration that meets a scene's quality target, by "
+         "rendering and timing a short candidate list (scenes/NAME.yaml)"},
 };
 
 /// The one-line help of GL command `name` (one of kGlCommands).

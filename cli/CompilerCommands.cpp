@@ -1,23 +1,4 @@
 // `tidepool expand`, `validate` and `stats`: flags → options → library calls → print → exit code.
-#include <unistd.h>
-
-#include <cctype>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <filesystem>
-#include <map>
-#include <memory>
-#include <optional>
-#include <thread>
-
-#include <fmt/format.h>
-
-#include "BuildOutputs.h"
-#include "CliSupport.h"
-#include "Commands.h"
-#include "tidepool/base/AtomicFile.h"
-#include "tidepool/base/FolderPublisher.h"
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SarifLog.h"
@@ -25,6 +6,24 @@
 #include "tidepool/TextFile.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
+
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <thread>
+
+#include "BuildOutputs.h"
+#include "CliSupport.h"
+#include "Commands.h"
+#include <fmt/format.h>
+#include <unistd.h>
 
 namespace tidepool::cli {
 namespace {
@@ -34,11 +33,11 @@ struct CompilerOptions {
     bool json = false;
     std::string out;
     MatrixLimits limits;
-    bool pruned = false;                       // expand: list pruned combinations
-    std::string pruned_limit = "1000";         // expand: at most this many
-    int jobs = 0;                    // 0: one per core
-    std::vector<std::string> files;  // validate: plain shader files
-    std::string stage;               // validate: force the stage of plain files
+    bool pruned = false;                // expand: list pruned combinations
+    std::string pruned_limit = "1000";  // expand: at most this many
+    int jobs = 0;                       // 0: one per core
+    std::vector<std::string> files;     // validate: plain shader files
+    std::string stage;                  // validate: force the stage of plain files
     std::vector<std::string> defines;
     // For build systems and CI (BuildOutputs.h): one program's slice, a depfile beside --out,
     // validate's driver-ready sources, and validate's report format and file.
@@ -47,9 +46,9 @@ struct CompilerOptions {
     bool sources = false;
     std::string format = "text";  // text, json (as --json) or sarif
     std::string output_file;      // where json or sarif goes instead of stdout
-    CacheFlags cache;                // validate: --cache, --no-cache
-    std::string device_limits;       // validate: --limits FILE
-    std::string target;              // validate: --target webgl1|webgl2
+    CacheFlags cache;             // validate: --cache, --no-cache
+    std::string device_limits;    // validate: --limits FILE
+    std::string target;           // validate: --target webgl1|webgl2
 };
 
 // The device limits --limits names, read into `limits`; false (after printing the file's
@@ -298,8 +297,9 @@ void AddValidateOutputFlags(CLI::App* validate, CompilerOptions& options, CLI::O
 
 int RunValidate(const CompilerOptions& options) {
     if (!options.output_file.empty() && ReportFormat(options) == "text") {
-        std::fprintf(stderr, "error: --output-file takes the json or sarif report; add --format "
-                             "json or --format sarif\n");
+        std::fprintf(stderr,
+                     "error: --output-file takes the json or sarif report; add --format "
+                     "json or --format sarif\n");
         return kExitUsage;
     }
     if (!CheckDefineOptions(options.defines)) {
@@ -309,8 +309,9 @@ int RunValidate(const CompilerOptions& options) {
         return RunValidateFiles(options);
     }
     if (!options.defines.empty()) {
-        std::fprintf(stderr, "error: -D applies to the shader FILEs given, and none was given; "
-                             "the variants of a configuration get their defines from it\n");
+        std::fprintf(stderr,
+                     "error: -D applies to the shader FILEs given, and none was given; "
+                     "the variants of a configuration get their defines from it\n");
         return kExitUsage;
     }
     LoadedMatrix loaded = LoadAndExpand(options.config, options.limits);
@@ -360,7 +361,8 @@ int RunValidate(const CompilerOptions& options) {
             }
             AddSourcePaths(loaded.expansion.variants, &manifest);
         }
-        if (const int code = WriteManifestInto(options.out, JsonText(manifest, 2) + "\n"); code != 0) {
+        if (const int code = WriteManifestInto(options.out, JsonText(manifest, 2) + "\n");
+            code != 0) {
             return code;
         }
         if (const int code = WriteDepfileIfAsked(options, config); code != kExitOk) {
@@ -380,13 +382,14 @@ int RunValidate(const CompilerOptions& options) {
             return code;
         }
     } else {
-        std::printf("%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
-                    "%zu distinct stage programs (%d shared), %d links; %s\n",
-                    loaded.expansion.variants.size(),
-                    static_cast<unsigned long long>(loaded.expansion.pruned_total),
-                    config.targets.size(), report.stage_slots, report.stage_programs.size(),
-                    report.SharedStageSlots(), report.links,
-                    invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid).c_str());
+        std::printf(
+                "%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
+                "%zu distinct stage programs (%d shared), %d links; %s\n",
+                loaded.expansion.variants.size(),
+                static_cast<unsigned long long>(loaded.expansion.pruned_total),
+                config.targets.size(), report.stage_slots, report.stage_programs.size(),
+                report.SharedStageSlots(), report.links,
+                invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid).c_str());
     }
     return invalid == 0 && !HasErrors(report.diagnostics) ? kExitOk : kExitShaderErrors;
 }
@@ -408,8 +411,8 @@ int RunStats(const CompilerOptions& options) {
     }
     nlohmann::json json = nlohmann::json::array();
     if (!options.json) {
-        std::printf("%-62s %6s %6s %5s %4s %4s %5s %9s\n", "variant", "vs.ops", "fs.ops",
-                    "tex", "pow", "norm", "brnch", "fs.paths");
+        std::printf("%-62s %6s %6s %5s %4s %4s %5s %9s\n", "variant", "vs.ops", "fs.ops", "tex",
+                    "pow", "norm", "brnch", "fs.paths");
     }
     int invalid = 0;
     for (const VariantVerdict& verdict : report.verdicts) {
@@ -427,15 +430,14 @@ int RunStats(const CompilerOptions& options) {
         };
         const StageCost& v = vs->cost;
         const StageCost& f = fs->cost;
-        json.push_back({{"id", verdict.variant.Id()},
-                        {"vertex", ToJson(v)},
-                        {"fragment", ToJson(f)}});
+        json.push_back(
+                {{"id", verdict.variant.Id()}, {"vertex", ToJson(v)}, {"fragment", ToJson(f)}});
         if (!options.json) {
             std::printf("%-62s %6d %6d %5d %4d %4d %5d %4d-%-4d\n", verdict.variant.Id().c_str(),
                         v.TotalOps(), f.TotalOps(), v.texture_samples + f.texture_samples,
                         builtin(v, "pow") + builtin(f, "pow"),
-                        builtin(v, "normalize") + builtin(f, "normalize"),
-                        v.branches + f.branches, f.shortest_path_ops, f.longest_path_ops);
+                        builtin(v, "normalize") + builtin(f, "normalize"), v.branches + f.branches,
+                        f.shortest_path_ops, f.longest_path_ops);
         }
     }
     if (options.json) {
@@ -445,8 +447,7 @@ int RunStats(const CompilerOptions& options) {
 }
 
 void AddCommonFlags(CLI::App* command, CompilerOptions& options) {
-    command->add_option("--config", options.config, "variant matrix file")
-            ->capture_default_str();
+    command->add_option("--config", options.config, "variant matrix file")->capture_default_str();
     command->add_flag("--json", options.json, "print JSON instead of text");
     AddMatrixLimitOptions(command, &options.limits);
 }
@@ -460,16 +461,17 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
     static CompilerOptions stats_options;
 
     CLI::App* expand = app.add_subcommand(
-            "expand", "List every variant and how many combinations each rule pruned (with "
-                      "--pruned, the combinations too); with --out, write each variant's "
-                      "driver-ready sources");
+            "expand",
+            "List every variant and how many combinations each rule pruned (with "
+            "--pruned, the combinations too); with --out, write each variant's "
+            "driver-ready sources");
     AddCommonFlags(expand, expand_options);
-    CLI::Option* pruned = expand->add_flag(
-            "--pruned", expand_options.pruned,
-            "also list pruned combinations, each with the first rule it breaks");
-    expand->add_option("--pruned-limit", expand_options.pruned_limit,
-                       fmt::format("list at most this many pruned combinations, 1..{}",
-                                   kVariantCeiling))
+    CLI::Option* pruned =
+            expand->add_flag("--pruned", expand_options.pruned,
+                             "also list pruned combinations, each with the first rule it breaks");
+    expand->add_option(
+                  "--pruned-limit", expand_options.pruned_limit,
+                  fmt::format("list at most this many pruned combinations, 1..{}", kVariantCeiling))
             ->capture_default_str()
             ->needs(pruned);
     CLI::Option* expand_out =
@@ -486,8 +488,9 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
     expand->callback([&exit_code] { exit_code = RunExpand(expand_options); });
 
     CLI::App* validate = app.add_subcommand(
-            "validate", "Validate every variant with glslang (stages and linked programs), or "
-                        "the shader FILEs given");
+            "validate",
+            "Validate every variant with glslang (stages and linked programs), or "
+            "the shader FILEs given");
     AddCommonFlags(validate, validate_options);
     validate->add_option("files", validate_options.files,
                          "plain shader files (.vert/.vsh, .frag/.fsh); a vertex and a fragment "
@@ -514,8 +517,9 @@ void RegisterCompilerCommands(CLI::App& app, int& exit_code) {
     validate->callback([&exit_code] { exit_code = RunValidate(validate_options); });
 
     CLI::App* stats = app.add_subcommand(
-            "stats", "Static cost of every variant from glslang's tree: ops, texture samples, "
-                     "pow/normalize calls, branches, shortest and longest fragment path");
+            "stats",
+            "Static cost of every variant from glslang's tree: ops, texture samples, "
+            "pow/normalize calls, branches, shortest and longest fragment path");
     AddCommonFlags(stats, stats_options);
     stats->add_option("-j,--jobs", stats_options.jobs, "worker threads (default: cores)");
     stats->callback([&exit_code] { exit_code = RunStats(stats_options); });

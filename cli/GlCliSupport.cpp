@@ -1,6 +1,6 @@
 #include "GlCliSupport.h"
 
-#include <unistd.h>
+#include "tidepool/report/ReportModel.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -10,8 +10,7 @@
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-
-#include "tidepool/report/ReportModel.h"
+#include <unistd.h>
 
 namespace tidepool::cli {
 
@@ -19,21 +18,19 @@ bool ParseBackendOption(const std::string& text, runner::BackendKind* backend) {
     if (runner::ParseBackendKind(text, backend)) {
         return true;
     }
-    std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n",
-                 text.c_str());
+    std::fprintf(stderr, "error: --backend must be auto, egl or osmesa, not '%s'\n", text.c_str());
     return false;
 }
 
 void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings) {
-    command
-        ->add_option("--fourier-coefficients", settings->coefficients,
-                     "REFLECTION_FOURIER: Fourier terms kept per water vertex, 1..8 "
-                     "(a0, a1, b1, a2, b2, a3, b3, a4)")
-        ->capture_default_str();
-    command
-        ->add_option("--fourier-directions", settings->directions,
-                     "REFLECTION_FOURIER: directions the terrain is marched in per vertex (>= 3)")
-        ->capture_default_str();
+    command->add_option("--fourier-coefficients", settings->coefficients,
+                        "REFLECTION_FOURIER: Fourier terms kept per water vertex, 1..8 "
+                        "(a0, a1, b1, a2, b2, a3, b3, a4)")
+            ->capture_default_str();
+    command->add_option(
+                   "--fourier-directions", settings->directions,
+                   "REFLECTION_FOURIER: directions the terrain is marched in per vertex (>= 3)")
+            ->capture_default_str();
 }
 
 bool CheckFourierOptions(const runner::FourierSettings& settings) {
@@ -51,46 +48,49 @@ void AddTimingFlags(CLI::App* command, TimingFlags* flags) {
     command->add_option("--resolution", flags->resolution,
                         "stop timing a comparison when its 95% interval is this narrow "
                         "(half-width, percent points of frame rate)")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--min-pairs", flags->min_pairs, "pairs of frames per comparison, at least")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--max-pairs", flags->max_pairs,
                         "pairs of frames per comparison, at most (the resolution reached is "
                         "reported)")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--coarse-frames", flags->coarse_frames,
                         "timed frames of each configuration on its own (the accuracy chart)")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--warmup", flags->warmup,
                         "untimed frames before a compared configuration is timed, per thread")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--workers", flags->workers,
                         "rendering threads, each with its own GL context (0: one per core)")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--threads", flags->threads,
                         "llvmpipe threads (LP_NUM_THREADS; 0 renders on each worker's thread, "
                         "timed on that thread's CPU clock)")
-        ->capture_default_str();
+            ->capture_default_str();
 }
 
 bool CheckTimingFlags(const TimingFlags& flags) {
     if (!(flags.resolution > 0 && flags.resolution <= 50)) {
-        std::fprintf(stderr, "error: --resolution must be above 0 and at most 50 percent points, "
-                             "not %g\n",
+        std::fprintf(stderr,
+                     "error: --resolution must be above 0 and at most 50 percent points, "
+                     "not %g\n",
                      flags.resolution);
         return false;
     }
     if (flags.min_pairs < base::kMinimumPairs || flags.max_pairs < flags.min_pairs ||
         flags.max_pairs > 100000) {
-        std::fprintf(stderr, "error: --min-pairs must be at least %d and --max-pairs between "
-                             "--min-pairs and 100000, not %d and %d\n",
+        std::fprintf(stderr,
+                     "error: --min-pairs must be at least %d and --max-pairs between "
+                     "--min-pairs and 100000, not %d and %d\n",
                      base::kMinimumPairs, flags.min_pairs, flags.max_pairs);
         return false;
     }
     if (flags.coarse_frames < 1 || flags.warmup < 0 || flags.workers < 0 || flags.workers > 64 ||
         flags.threads < 0 || flags.threads > 64) {
-        std::fprintf(stderr, "error: --coarse-frames must be at least 1, --warmup at least 0, "
-                             "--workers and --threads between 0 and 64\n");
+        std::fprintf(stderr,
+                     "error: --coarse-frames must be at least 1, --warmup at least 0, "
+                     "--workers and --threads between 0 and 64\n");
         return false;
     }
     return true;

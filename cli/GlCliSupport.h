@@ -3,12 +3,13 @@
 // `tidepool` front end never links the runner.
 #pragma once
 
-#include <string>
-
-#include "CliSupport.h"
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
+
+#include <string>
+
+#include "CliSupport.h"
 
 namespace tidepool::cli {
 

@@ -6,10 +6,10 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/AtomicFile.h"
 #include "tidepool/base/FolderPublisher.h"
+#include "tidepool/lab/ScenePlanner.h"
 #include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
-#include "tidepool/lab/ScenePlanner.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -20,8 +20,8 @@
 #include <vector>
 
 #include "CliSupport.h"
-#include "GlCliSupport.h"
 #include "Commands.h"
+#include "GlCliSupport.h"
 #include <fmt/format.h>
 
 namespace tidepool::cli {
@@ -94,8 +94,9 @@ int RunPlan(const PlanCommandOptions& options) {
     }
     if (!(options.resolution > 0 && options.resolution <= 50) || options.threads < 0 ||
         options.threads > 64) {
-        std::fprintf(stderr, "error: --resolution must be above 0 and at most 50 percent points, "
-                             "--threads between 0 and 64\n");
+        std::fprintf(stderr,
+                     "error: --resolution must be above 0 and at most 50 percent points, "
+                     "--threads between 0 and 64\n");
         return kExitUsage;
     }
     if (options.all == !options.scenes.empty()) {

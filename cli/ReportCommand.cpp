@@ -1,5 +1,9 @@
 // `tidepool report`: build the report from a saved manifest and results: flags → options →
 // library calls → print → exit code. Needs no GL, so it lives in the `tidepool` front end.
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/report/ReportModel.h"
+#include "tidepool/report/ReportWriter.h"
+
 #include <chrono>
 #include <cstdio>
 #include <ctime>
@@ -7,13 +11,9 @@
 #include <memory>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "CliSupport.h"
 #include "Commands.h"
-#include "tidepool/report/ReportInputs.h"
-#include "tidepool/report/ReportModel.h"
-#include "tidepool/report/ReportWriter.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
@@ -72,16 +72,17 @@ int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesy
     std::printf("%s", WhitepaperTableText(*model.model).c_str());
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("report: %zu configurations (%d failed), %zu on the Pareto frontier, static-cost "
-                "Spearman rho %.3f; written in %.1f s to %s/ (index.html %.1f MB%s, report.md, "
-                "data.json, %zu files; reading and comparing images %.1f s)\n",
-                model.model->accuracy.size(), model.model->failed_configurations,
-                model.model->frontier.size(), model.model->static_cost.spearman_rho, seconds,
-                written.folder.c_str(), static_cast<double>(written.html_bytes) / 1e6,
-                written.image_downscale > 1
-                        ? fmt::format(", images downscaled {}x", written.image_downscale).c_str()
-                        : "",
-                written.files.size(), model_seconds);
+    std::printf(
+            "report: %zu configurations (%d failed), %zu on the Pareto frontier, static-cost "
+            "Spearman rho %.3f; written in %.1f s to %s/ (index.html %.1f MB%s, report.md, "
+            "data.json, %zu files; reading and comparing images %.1f s)\n",
+            model.model->accuracy.size(), model.model->failed_configurations,
+            model.model->frontier.size(), model.model->static_cost.spearman_rho, seconds,
+            written.folder.c_str(), static_cast<double>(written.html_bytes) / 1e6,
+            written.image_downscale > 1
+                    ? fmt::format(", images downscaled {}x", written.image_downscale).c_str()
+                    : "",
+            written.files.size(), model_seconds);
     return model.model->failed_configurations > 0 ? kExitShaderErrors : kExitOk;
 }
 
@@ -95,9 +96,10 @@ int RunReport(const ReportCommandOptions& options) {
 
 void RegisterReportCommand(CLI::App& app, int& exit_code) {
     auto report_options = std::make_shared<ReportCommandOptions>();
-    CLI::App* report = app.add_subcommand(
-            "report", "build the report (whitepaper table, accuracy vs time, static cost, "
-                      "validation, images, method) from a saved manifest and results");
+    CLI::App* report =
+            app.add_subcommand("report",
+                               "build the report (whitepaper table, accuracy vs time, static cost, "
+                               "validation, images, method) from a saved manifest and results");
     report->add_option("--manifest", report_options->manifest,
                        "manifest.json written by `tidepool validate --out DIR`")
             ->capture_default_str();
@@ -110,7 +112,6 @@ void RegisterReportCommand(CLI::App& app, int& exit_code) {
             ->transform(NormaliseOutPath)
             ->capture_default_str();
     report->callback([report_options, &exit_code] { exit_code = RunReport(*report_options); });
-
 }
 
 }  // namespace tidepool::cli

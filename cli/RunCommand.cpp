@@ -1,5 +1,19 @@
 // `tidepool run` (validate, render, stability catalogue, scene plans and report in one go):
 // flags → options → library calls → print → exit code. Built into `tidepool-gl`.
+#include "tidepool/GlslValidator.h"
+#include "tidepool/Manifest.h"
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/lab/ScenePlanner.h"
+#include "tidepool/lab/StabilityReport.h"
+#include "tidepool/report/ReportModel.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Results.h"
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -14,24 +28,10 @@
 #include <string>
 #include <vector>
 
-#include <fmt/format.h>
-
 #include "CliSupport.h"
-#include "GlCliSupport.h"
 #include "Commands.h"
-#include "tidepool/base/AtomicFile.h"
-#include "tidepool/GlslValidator.h"
-#include "tidepool/Manifest.h"
-#include "tidepool/SceneDescription.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/report/ReportModel.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/RenderConfig.h"
-#include "tidepool/runner/Results.h"
-#include "tidepool/lab/ScenePlanner.h"
-#include "tidepool/lab/StabilityReport.h"
+#include "GlCliSupport.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
@@ -84,13 +84,11 @@ StageOutcome RunStabilityStage(runner::GlContext& context, const VariantConfig& 
     }
     report.precision = RunPrecisionStudy();
     const GlEnvironment& env = context.Environment();
-    report.environment = {{"backend", env.backend},
-                          {"renderer", env.renderer},
-                          {"version", env.version},
-                          {"mesa_version", env.mesa_version},
-                          {"lp_num_threads", threads},
-                          {"size", fmt::format("{}x{}", width, height)},
-                          {"config", config_path}};
+    report.environment = {
+            {"backend", env.backend},    {"renderer", env.renderer},
+            {"version", env.version},    {"mesa_version", env.mesa_version},
+            {"lp_num_threads", threads}, {"size", fmt::format("{}x{}", width, height)},
+            {"config", config_path}};
     GlStabilityOptions gl_options;
     gl_options.width = width;
     gl_options.height = height;
@@ -155,10 +153,9 @@ public:
         options_.settings.height = height;
         options_.rule = rule;
         const char* threads = std::getenv("LP_NUM_THREADS");
-        options_.clock =
-                runner::ChooseFrameClock(gl.renderer, threads != nullptr ? threads : "",
-                                         gl.timer_query)
-                        .clock;
+        options_.clock = runner::ChooseFrameClock(gl.renderer, threads != nullptr ? threads : "",
+                                                  gl.timer_query)
+                                 .clock;
         options_.out_dir = render_dir;
     }
 
@@ -201,13 +198,14 @@ public:
             outcome_.environment_error = true;
             return outcome_;
         }
-        std::fprintf(stderr, "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d "
-                             "not met, done after %.0f s; %s in the render folder\n",
-                     plans.size(), options_.settings.width, options_.settings.height,
-                     options_.rule.resolution_points, outcome_.failures,
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
-                             .count(),
-                     std::string(report::kPlansFileName).c_str());
+        std::fprintf(
+                stderr,
+                "plans: %zu scenes at %dx%d, candidates timed to +/-%.1f points, %d "
+                "not met, done after %.0f s; %s in the render folder\n",
+                plans.size(), options_.settings.width, options_.settings.height,
+                options_.rule.resolution_points, outcome_.failures,
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(),
+                std::string(report::kPlansFileName).c_str());
         return outcome_;
     }
 
@@ -236,8 +234,9 @@ int RunAll(const RunCommandOptions& options) {
         return kExitUsage;
     }
     if (!(options.plan_resolution > 0 && options.plan_resolution <= 50)) {
-        std::fprintf(stderr, "error: --plan-resolution must be above 0 and at most 50 percent "
-                             "points, not %g\n",
+        std::fprintf(stderr,
+                     "error: --plan-resolution must be above 0 and at most 50 percent "
+                     "points, not %g\n",
                      options.plan_resolution);
         return kExitUsage;
     }
@@ -258,8 +257,9 @@ int RunAll(const RunCommandOptions& options) {
     }
     if (options.name.empty() || options.name.find('/') != std::string::npos ||
         options.name == "manifest" || options.name == "render" || options.name[0] == '.') {
-        std::fprintf(stderr, "error: --name must be a plain folder name other than 'manifest' "
-                             "and 'render', not '%s'\n",
+        std::fprintf(stderr,
+                     "error: --name must be a plain folder name other than 'manifest' "
+                     "and 'render', not '%s'\n",
                      options.name.c_str());
         return kExitUsage;
     }
@@ -301,14 +301,14 @@ int RunAll(const RunCommandOptions& options) {
         PrintDiagnostics(verdict.diagnostics);
     }
     const nlohmann::json manifest = BuildManifest(config, expansion, &validation);
-    if (const int code = WriteManifestInto(manifest_path.parent_path(), JsonText(manifest, 2) + "\n");
+    if (const int code =
+                WriteManifestInto(manifest_path.parent_path(), JsonText(manifest, 2) + "\n");
         code != 0) {
         return code;
     }
     std::fprintf(stderr, "validate: %zu variants, %llu pruned, %d invalid; manifest in %s\n",
-                 expansion.variants.size(),
-                 static_cast<unsigned long long>(expansion.pruned_total), validation.InvalidCount(),
-                 manifest_path.c_str());
+                 expansion.variants.size(), static_cast<unsigned long long>(expansion.pruned_total),
+                 validation.InvalidCount(), manifest_path.c_str());
 
     // 2. Render: images at every view and interleaved timing rounds.
     const ConfigurationSet configurations = BuildDefaultConfigurations(config, expansion.variants);
@@ -333,11 +333,11 @@ int RunAll(const RunCommandOptions& options) {
         return kExitEnvironment;
     }
     const GlEnvironment& gl = context.context->Environment();
-    std::fprintf(stderr, "render: %zu configurations x %zu views at %dx%d on %s, "
-                         "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
+    std::fprintf(stderr,
+                 "render: %zu configurations x %zu views at %dx%d on %s, "
+                 "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
                  run.configurations.size(), run.views.size(), width, height, gl.renderer.c_str(),
-                 threads.c_str(), run.workers, run.comparisons.size(),
-                 run.rule.resolution_points);
+                 threads.c_str(), run.workers, run.comparisons.size(), run.rule.resolution_points);
     const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
     FinishProgress();
     PrintDiagnostics(results.diagnostics);
@@ -358,8 +358,7 @@ int RunAll(const RunCommandOptions& options) {
         failed += r.Ok() ? 0 : 1;
     }
     std::fprintf(stderr, "render: %zu configurations, %d failed, %.0f s; results in %s\n",
-                 results.configurations.size(), failed, results.wall_seconds,
-                 results_path.c_str());
+                 results.configurations.size(), failed, results.wall_seconds, results_path.c_str());
 
     // 3. Numerical stability and 4. scene plans, beside results.json where the report looks.
     // They share the render's threads: the catalogue is one job and each scene another, and
@@ -392,8 +391,7 @@ int RunAll(const RunCommandOptions& options) {
     const StageOutcome plans = plan_stage ? plan_stage->Finish() : StageOutcome{};
     if (!jobs.empty()) {
         std::fprintf(stderr, "stability and plans: %.0f s on %d threads\n",
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                                   after_render)
+                     std::chrono::duration<double>(std::chrono::steady_clock::now() - after_render)
                              .count(),
                      job_threads);
     }
@@ -429,7 +427,8 @@ void RegisterRunCommand(CLI::App& app, int& exit_code) {
     run->add_option("--name", run_options->name, "report folder name under --out")
             ->capture_default_str();
     run->add_option("--out", run_options->out, "output folder")
-            ->transform(NormaliseOutPath)->capture_default_str();
+            ->transform(NormaliseOutPath)
+            ->capture_default_str();
     run->add_option("--size", run_options->size, "render size WxH")->capture_default_str();
     AddTimingFlags(run, &run_options->timing);
     run->add_option("--backend", run_options->backend, "auto (EGL, then OSMesa), egl or osmesa")

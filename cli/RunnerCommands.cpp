@@ -1,18 +1,4 @@
 // `tidepool render` and `tidepool bench`: flags → run options → RunRender → print → exit code.
-#include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
-#include <memory>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include <fmt/format.h>
-
-#include "CliSupport.h"
-#include "GlCliSupport.h"
-#include "Commands.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
@@ -22,6 +8,20 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Results.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "CliSupport.h"
+#include "Commands.h"
+#include "GlCliSupport.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
@@ -64,7 +64,7 @@ int RunRunner(const RunnerOptions& options) {
     const ExpansionResult& expansion = loaded.expansion;
     const ConfigurationSet all = BuildDefaultConfigurations(config, expansion.variants);
     const ConfigurationSet selected =
-        FilterConfigurations(all, ConfigurationFilter{options.filters, options.presets});
+            FilterConfigurations(all, ConfigurationFilter{options.filters, options.presets});
     PrintDiagnostics(selected.diagnostics);
     if (HasErrors(selected.diagnostics)) {
         return kExitUsage;
@@ -119,20 +119,20 @@ int RunRunner(const RunnerOptions& options) {
     }
 
     const GlEnvironment& gl = context.context->Environment();
-    std::fprintf(stderr, "%s: %zu configurations x %zu views at %dx%d on %s (%s, %s), "
-                         "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
+    std::fprintf(stderr,
+                 "%s: %zu configurations x %zu views at %dx%d on %s (%s, %s), "
+                 "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
                  options.command.c_str(), run.configurations.size(), run.views.size(), width,
                  height, gl.renderer.c_str(), gl.backend.c_str(), gl.version.c_str(),
-                 threads.c_str(), run.workers, run.comparisons.size(),
-                 run.rule.resolution_points);
+                 threads.c_str(), run.workers, run.comparisons.size(), run.rule.resolution_points);
     const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
     FinishProgress();
     PrintDiagnostics(results.diagnostics);
 
     const nlohmann::json json = ResultsToJson(results);
     const std::filesystem::path results_path = publisher->Target() / "results.json";
-    std::string write_error =
-            base::WriteFileAtomically(publisher->Staging() / "results.json", JsonText(json, 2) + "\n");
+    std::string write_error = base::WriteFileAtomically(publisher->Staging() / "results.json",
+                                                        JsonText(json, 2) + "\n");
     int publish_code = kExitOk;
     if (write_error.empty() && results.write_errors.empty()) {
         if (const base::PublishError e = publisher->Publish(); e.Failed()) {
@@ -173,8 +173,8 @@ int RunRunner(const RunnerOptions& options) {
             std::printf("%-40s no estimate: %s\n", c.comparison.label.c_str(), c.error.c_str());
         } else {
             std::printf("%-40s %+6.1f%% [%+.1f, %+.1f] frame rate, %d pairs (%s)\n",
-                        c.comparison.label.c_str(), e.change_percent, e.change_low,
-                        e.change_high, e.pairs, base::StopDecisionName(c.timing.decision));
+                        c.comparison.label.c_str(), e.change_percent, e.change_low, e.change_high,
+                        e.pairs, base::StopDecisionName(c.timing.decision));
         }
     }
     for (const VerdictDisagreement& d : results.disagreements) {
@@ -182,8 +182,9 @@ int RunRunner(const RunnerOptions& options) {
                      d.glslang_valid ? "valid" : "invalid", d.mesa_valid ? "valid" : "invalid",
                      d.variant.c_str());
     }
-    std::fprintf(stderr, "%s: %zu configurations, %d failed, %zu glslang/Mesa disagreements, "
-                         "%s wall; results in %s\n",
+    std::fprintf(stderr,
+                 "%s: %zu configurations, %d failed, %zu glslang/Mesa disagreements, "
+                 "%s wall; results in %s\n",
                  options.command.c_str(), results.configurations.size(), failed,
                  results.disagreements.size(), FormatDuration(results.wall_seconds).c_str(),
                  results_path.c_str());
@@ -198,7 +199,7 @@ int RunRunner(const RunnerOptions& options) {
 
 void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
     command->add_option("--config", options->config, "variants.yaml to read")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--filter", options->filters,
                         "keep configurations whose id matches this glob (repeatable), e.g. "
                         "'water:*ENABLE_FOG*'");
@@ -208,12 +209,12 @@ void AddRunnerFlags(CLI::App* command, RunnerOptions* options) {
     command->add_option("--size", options->size, "render size WxH")->capture_default_str();
     AddTimingFlags(command, &options->timing);
     command->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
-        ->capture_default_str();
+            ->capture_default_str();
     command->add_option("--out", options->out,
                         "folder for results.json and images/, replaced whole when the render "
                         "succeeds; an existing folder must be tidepool's own output")
-        ->transform(NormaliseOutPath)
-        ->capture_default_str();
+            ->transform(NormaliseOutPath)
+            ->capture_default_str();
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");
     AddFourierOptions(command, &options->fourier);

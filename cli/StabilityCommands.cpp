@@ -1,22 +1,22 @@
 // `tidepool stability`: flags → catalogue run → stability.json → summary → exit code.
 #include "StabilityCommands.h"
 
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/lab/StabilityReport.h"
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/runner/GlBackend.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <string>
 
-#include <fmt/format.h>
-
 #include "CliSupport.h"
-#include "GlCliSupport.h"
 #include "Commands.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/report/ReportInputs.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/lab/StabilityReport.h"
+#include "GlCliSupport.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
@@ -86,18 +86,14 @@ int RunStability(const StabilityOptions& options) {
         return kExitEnvironment;
     }
     const GlEnvironment& env = context.context->Environment();
-    report.environment = {{"backend", env.backend},
-                          {"renderer", env.renderer},
-                          {"version", env.version},
-                          {"mesa_version", env.mesa_version},
-                          {"lp_num_threads", threads},
-                          {"size", options.size},
+    report.environment = {{"backend", env.backend},    {"renderer", env.renderer},
+                          {"version", env.version},    {"mesa_version", env.mesa_version},
+                          {"lp_num_threads", threads}, {"size", options.size},
                           {"config", options.config}};
     std::string error;
-    const std::vector<RenderConfiguration> configs =
-            WaterVariantConfigurations(expansion.variants);
-    std::vector<StabilityCaseResult> gl_cases =
-            RunGlHardCases(*context.context, *loaded.config, configs, catalogue, gl_options, &error);
+    const std::vector<RenderConfiguration> configs = WaterVariantConfigurations(expansion.variants);
+    std::vector<StabilityCaseResult> gl_cases = RunGlHardCases(
+            *context.context, *loaded.config, configs, catalogue, gl_options, &error);
     if (!error.empty()) {
         std::fprintf(stderr, "error: %s\n", error.c_str());
         return kExitEnvironment;
@@ -123,14 +119,12 @@ int RunStability(const StabilityOptions& options) {
         std::fputs(json.c_str(), stdout);
     } else {
         for (const StabilityCaseResult& r : report.cases) {
-            std::printf("%-4s %-34s %s  max_error %.3g (bound %.3g)\n",
-                        r.passed ? "ok" : "FAIL", r.name.c_str(), HardCaseKindName(r.kind),
-                        r.max_error, r.bound);
+            std::printf("%-4s %-34s %s  max_error %.3g (bound %.3g)\n", r.passed ? "ok" : "FAIL",
+                        r.name.c_str(), HardCaseKindName(r.kind), r.max_error, r.bound);
         }
         for (const PrecisionRow& p : report.precision) {
-            std::printf("%-9s %s (fp16 rel %.3g)\n",
-                        p.loses_precision ? "mediump!" : "mediump", p.expression.c_str(),
-                        p.max_rel_error_fp16);
+            std::printf("%-9s %s (fp16 rel %.3g)\n", p.loses_precision ? "mediump!" : "mediump",
+                        p.expression.c_str(), p.max_rel_error_fp16);
         }
         for (const GuardResult& g : report.guards) {
             std::printf("guard %s: %.3g (tolerance %.3g)\n", g.guard.c_str(),
@@ -150,7 +144,8 @@ void RegisterStabilityCommands(CLI::App& app, int& exit_code) {
     command->add_option("--config", options->config, "variants.yaml to read")
             ->capture_default_str();
     command->add_option("--out", options->out, "folder for stability.json")
-            ->transform(NormaliseOutPath)->capture_default_str();
+            ->transform(NormaliseOutPath)
+            ->capture_default_str();
     command->add_option("--backend", options->backend, "auto, egl or osmesa")
             ->capture_default_str();
     command->add_option("--size", options->size, "render size WxH of the GL cases")

@@ -4,8 +4,6 @@
 // (kGlCommands) to `tidepool-gl`, next to it, with the same arguments: loading Mesa, LLVM, z3
 // and ICU costs about 40 MB and 20 shared libraries at start-up, which `validate` and `expand`
 // should not pay.
-#include <unistd.h>
-
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -16,6 +14,7 @@
 
 #include "CliSupport.h"
 #include "Commands.h"
+#include <unistd.h>
 
 namespace {
 
@@ -41,8 +40,8 @@ bool NamesGlCommand(int argc, char** argv) {
 int ExecGlCommands(char** argv) {
     std::error_code ec;
     const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
-    const std::filesystem::path gl = (ec ? std::filesystem::path(argv[0]) : self)
-                                             .parent_path() / "tidepool-gl";
+    const std::filesystem::path gl =
+            (ec ? std::filesystem::path(argv[0]) : self).parent_path() / "tidepool-gl";
     // argv[0] stays as the user typed it, so help and errors still name `tidepool`.
     ::execv(gl.c_str(), argv);
     std::fprintf(stderr,

@@ -17,6 +17,7 @@ packages=(
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri libosmesa6-dev   # Mesa: EGL surfaceless + OSMesa
   chromium                           # headless browser: the report page test opens index.html
   clang libclang-rt-14-dev           # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
+  clang-format                       # the format check (scripts/check-format.sh)
 )
 
 missing=()

@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
-# The test command (README.md): installs dependencies, builds, runs every test (unit, gl, cli),
-# then runs the unit tests again under AddressSanitizer + UndefinedBehaviorSanitizer, then fuzzes
-# each YAML loader for a minute (FUZZ_SECONDS).
+# The test command (README.md): installs dependencies, checks the format (.clang-format), builds,
+# runs every test (unit, gl, cli), then runs the unit tests again under AddressSanitizer +
+# UndefinedBehaviorSanitizer, then fuzzes each YAML loader for a minute (FUZZ_SECONDS).
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 "$root/scripts/install-deps.sh"
+
+echo "== format check (.clang-format)"
+"$root/scripts/check-format.sh"
 
 echo "== release build"
 "$root/scripts/build.sh" release

@@ -1,8 +1,7 @@
 #include "tidepool/base/ContentCache.h"
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/Sha256.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -11,8 +10,9 @@
 #include <utility>
 #include <vector>
 
-#include "tidepool/base/AtomicFile.h"
-#include "tidepool/base/Sha256.h"
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace tidepool::base {
 namespace {
@@ -77,7 +77,8 @@ std::optional<std::string> ParseEntry(std::string_view text, std::string_view ke
         return std::nullopt;
     }
     std::size_t size = 0;
-    const auto parsed = std::from_chars(size_text.data(), size_text.data() + size_text.size(), size);
+    const auto parsed =
+            std::from_chars(size_text.data(), size_text.data() + size_text.size(), size);
     if (parsed.ec != std::errc() || parsed.ptr != size_text.data() + size_text.size() ||
         text.size() != size || Sha256Hex(text) != digest) {
         return std::nullopt;

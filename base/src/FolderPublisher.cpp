@@ -1,5 +1,7 @@
 #include "tidepool/base/FolderPublisher.h"
 
+#include "tidepool/base/AtomicFile.h"
+
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -11,8 +13,6 @@
 #include <fcntl.h>
 #include <unistd.h>
 
-#include "tidepool/base/AtomicFile.h"
-
 namespace tidepool::base {
 namespace {
 
@@ -22,7 +22,9 @@ std::string SystemError(int error) {
     return std::error_code(error, std::generic_category()).message();
 }
 
-PublishError Io(std::string message) { return {PublishFailure::kIo, std::move(message)}; }
+PublishError Io(std::string message) {
+    return {PublishFailure::kIo, std::move(message)};
+}
 
 // "out/" and "out" name one folder; the staging name is built from the last component.
 fs::path Normalised(const fs::path& target) {
@@ -45,8 +47,12 @@ std::string Prefix(const fs::path& target, const char* kind) {
     prefix += kind;
     return prefix;
 }
-std::string StagingPrefix(const fs::path& target) { return Prefix(target, ".staging."); }
-std::string OldPrefix(const fs::path& target) { return Prefix(target, ".old."); }
+std::string StagingPrefix(const fs::path& target) {
+    return Prefix(target, ".staging.");
+}
+std::string OldPrefix(const fs::path& target) {
+    return Prefix(target, ".old.");
+}
 
 void SyncFolder(const fs::path& folder) {
     const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
@@ -77,7 +83,9 @@ pid_t OwnerOf(const std::string& name, const std::string& prefix) {
     return pid;
 }
 
-bool ProcessAlive(pid_t pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
+bool ProcessAlive(pid_t pid) {
+    return ::kill(pid, 0) == 0 || errno == EPERM;
+}
 
 fs::path MakeUniqueFolder(const fs::path& parent, const std::string& prefix, int* error) {
     std::string name = (parent / (prefix + std::to_string(::getpid()) + ".XXXXXX")).string();
@@ -107,16 +115,18 @@ PublishError CheckReplaceable(const fs::path& folder) {
     }
     if (!fs::is_directory(status)) {
         return {PublishFailure::kRefused,
-                folder.string() + ": exists and is not a folder; nothing was changed. Choose "
-                                  "another --out folder."};
+                folder.string() +
+                        ": exists and is not a folder; nothing was changed. Choose "
+                        "another --out folder."};
     }
     if (IsTidepoolOutput(folder) || fs::is_empty(folder, ec)) {
         return {};
     }
     return {PublishFailure::kRefused,
             folder.string() + ": exists and was not written by tidepool (it has no " +
-                    kOutputMarkerFile + " marker); nothing was changed. Choose another --out "
-                                        "folder, or move or delete this one yourself."};
+                    kOutputMarkerFile +
+                    " marker); nothing was changed. Choose another --out "
+                    "folder, or move or delete this one yourself."};
 }
 
 std::string WriteOutputMarker(const fs::path& folder, const std::string& writer) {
@@ -179,8 +189,8 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
     int system_error = 0;
     fs::path staging = MakeUniqueFolder(parent, StagingPrefix(target), &system_error);
     if (staging.empty()) {
-        *error = Io(target.string() + ": cannot create a staging folder beside it: " +
-                    SystemError(system_error));
+        *error = Io(target.string() +
+                    ": cannot create a staging folder beside it: " + SystemError(system_error));
         return nullptr;
     }
     std::unique_ptr<FolderPublisher> publisher(new FolderPublisher(target, staging, writer));
@@ -188,7 +198,9 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
     return publisher;
 }
 
-FolderPublisher::~FolderPublisher() { Abandon(); }
+FolderPublisher::~FolderPublisher() {
+    Abandon();
+}
 
 void FolderPublisher::Abandon() {
     if (!done_) {
@@ -197,7 +209,7 @@ void FolderPublisher::Abandon() {
         done_ = true;
         // Innermost first; fs::remove leaves a folder that something else has meanwhile filled.
         if (!created_.empty()) {
-            for (fs::path p = ParentOf(target_); ; p = p.parent_path()) {
+            for (fs::path p = ParentOf(target_);; p = p.parent_path()) {
                 if (!fs::remove(p, ec) || p == created_ || p == p.parent_path()) {
                     break;
                 }
@@ -223,8 +235,8 @@ PublishError FolderPublisher::Publish() {
             Abandon();
             return check;
         }
-        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(),
-                        RENAME_NOREPLACE) == 0) {
+        if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) ==
+            0) {
             done_ = true;
             SyncFolder(parent);
             return {};

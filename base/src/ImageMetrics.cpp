@@ -108,22 +108,27 @@ void FilterRow(Moment moment, const double* x, const double* y, std::size_t out_
         const double* xs = x + k;
         const double* ys = y + k;
         switch (moment) {
-        case Moment::kX:
-            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * xs[c];
-            break;
-        case Moment::kY:
-            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * ys[c];
-            break;
-        case Moment::kXX:
-            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * xs[c]);
-            break;
-        case Moment::kYY:
-            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (ys[c] * ys[c]);
-            break;
-        case Moment::kXY:
-            // w * (x * y), not (w * x) * y: keeps Ssim(a, b) == Ssim(b, a) bit for bit.
-            for (std::size_t c = 0; c < out_width; ++c) out[c] += w * (xs[c] * ys[c]);
-            break;
+            case Moment::kX:
+                for (std::size_t c = 0; c < out_width; ++c)
+                    out[c] += w * xs[c];
+                break;
+            case Moment::kY:
+                for (std::size_t c = 0; c < out_width; ++c)
+                    out[c] += w * ys[c];
+                break;
+            case Moment::kXX:
+                for (std::size_t c = 0; c < out_width; ++c)
+                    out[c] += w * (xs[c] * xs[c]);
+                break;
+            case Moment::kYY:
+                for (std::size_t c = 0; c < out_width; ++c)
+                    out[c] += w * (ys[c] * ys[c]);
+                break;
+            case Moment::kXY:
+                // w * (x * y), not (w * x) * y: keeps Ssim(a, b) == Ssim(b, a) bit for bit.
+                for (std::size_t c = 0; c < out_width; ++c)
+                    out[c] += w * (xs[c] * ys[c]);
+                break;
         }
     }
 }
@@ -197,11 +202,11 @@ SsimReference::SsimReference(const RgbaImage& reference)
     mean_square_.resize(mean_.size());
     FilterWindows({Moment::kY, Moment::kYY}, luma_, luma_, width, height,
                   [&](std::size_t top, const double* filtered) {
-                      std::copy(filtered, filtered + out_width, mean_.begin() +
-                                static_cast<std::ptrdiff_t>(top * out_width));
-                      std::copy(filtered + out_width, filtered + 2 * out_width,
-                                mean_square_.begin() +
-                                        static_cast<std::ptrdiff_t>(top * out_width));
+                      std::copy(filtered, filtered + out_width,
+                                mean_.begin() + static_cast<std::ptrdiff_t>(top * out_width));
+                      std::copy(
+                              filtered + out_width, filtered + 2 * out_width,
+                              mean_square_.begin() + static_cast<std::ptrdiff_t>(top * out_width));
                   });
     usable_ = true;
 }

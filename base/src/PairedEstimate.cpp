@@ -10,15 +10,12 @@ namespace {
 // The standard normal quantile by Acklam's rational approximation (relative error < 1.2e-9),
 // enough for the z of an interval's coverage.
 double NormalQuantile(double p) {
-    constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,
-                            -2.759285104469687e+02, 1.383577518672690e+02,
-                            -3.066479806614716e+01, 2.506628277459239e+00};
-    constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02,
-                            -1.556989798598866e+02, 6.680131188771972e+01,
-                            -1.328068155288572e+01};
-    constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01,
-                            -2.400758277161838e+00, -2.549732539343734e+00,
-                            4.374664141464968e+00,  2.938163982698783e+00};
+    constexpr double a[] = {-3.969683028665376e+01, 2.209460984245205e+02,  -2.759285104469687e+02,
+                            1.383577518672690e+02,  -3.066479806614716e+01, 2.506628277459239e+00};
+    constexpr double b[] = {-5.447609879822406e+01, 1.615858368580409e+02, -1.556989798598866e+02,
+                            6.680131188771972e+01, -1.328068155288572e+01};
+    constexpr double c[] = {-7.784894002430293e-03, -3.223964580411365e-01, -2.400758277161838e+00,
+                            -2.549732539343734e+00, 4.374664141464968e+00,  2.938163982698783e+00};
     constexpr double d[] = {7.784695709041462e-03, 3.224671290700398e-01, 2.445134137142996e+00,
                             3.754408661907416e+00};
     constexpr double low = 0.02425;
@@ -38,8 +35,7 @@ double NormalQuantile(double p) {
 
 // The k-th smallest (0-based) of `values`, reordering them.
 double KthSmallest(std::vector<double>& values, std::size_t k) {
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k),
-                     values.end());
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(k), values.end());
     return values[k];
 }
 
@@ -74,7 +70,8 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
         const double a = baseline_ms[i];
         const double b = candidate_ms[i];
         if (!std::isfinite(a) || !std::isfinite(b) || a <= 0 || b <= 0) {
-            out.error = "pair " + std::to_string(i) + " holds a time that is not finite and "
+            out.error = "pair " + std::to_string(i) +
+                        " holds a time that is not finite and "
                         "positive";
             return out;
         }
@@ -96,9 +93,8 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
         }
     }
     const std::size_t m = walsh.size();
-    const double hl = m % 2 == 1
-                              ? KthSmallest(walsh, m / 2)
-                              : (KthSmallest(walsh, m / 2 - 1) + KthSmallest(walsh, m / 2)) / 2;
+    const double hl = m % 2 == 1 ? KthSmallest(walsh, m / 2)
+                                 : (KthSmallest(walsh, m / 2 - 1) + KthSmallest(walsh, m / 2)) / 2;
     out.ratio = std::exp(hl);
     out.change_percent = PerformanceChangePercent(out.ratio);
     if (n < static_cast<std::size_t>(kMinimumPairs)) {
@@ -150,8 +146,8 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 }
 
 int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
-    const int target = pairs < rule.min_pairs ? rule.min_pairs
-                                              : pairs + std::max(rule.batch_pairs, pairs / 4);
+    const int target =
+            pairs < rule.min_pairs ? rule.min_pairs : pairs + std::max(rule.batch_pairs, pairs / 4);
     return std::max(0, std::min(target, rule.max_pairs) - pairs);
 }
 
@@ -180,12 +176,12 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
 
 const char* StopDecisionName(StopDecision decision) {
     switch (decision) {
-    case StopDecision::kContinue:
-        return "continue";
-    case StopDecision::kResolved:
-        return "resolved";
-    case StopDecision::kCapped:
-        return "capped";
+        case StopDecision::kContinue:
+            return "continue";
+        case StopDecision::kResolved:
+            return "resolved";
+        case StopDecision::kCapped:
+            return "capped";
     }
     return "continue";
 }

@@ -3,14 +3,13 @@
 // frames.
 #include "tidepool/base/RgbaImage.h"
 
-#include <png.h>
+#include "tidepool/base/AtomicFile.h"
 
 #include <new>
 #include <utility>
 
 #include <fmt/format.h>
-
-#include "tidepool/base/AtomicFile.h"
+#include <png.h>
 
 namespace tidepool::base {
 

@@ -1,5 +1,9 @@
 #include "GlslEsRules.h"
 
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
+#include <glslang/Public/ShaderLang.h>
+
 #include <algorithm>
 #include <cctype>
 #include <map>
@@ -7,9 +11,6 @@
 #include <unordered_map>
 
 #include <fmt/format.h>
-#include <glslang/Include/intermediate.h>
-#include <glslang/MachineIndependent/localintermediate.h>
-#include <glslang/Public/ShaderLang.h>
 
 namespace tidepool {
 // ---- Source text -----------------------------------------------------------------------------
@@ -193,8 +194,8 @@ private:
             const Expansion piece = ExpandAt(tokens, at, params);
             result.constant = CappedSum(result.constant, CappedProduct(copies, piece.constant));
             for (std::size_t p = 0; p < params.size(); ++p) {
-                result.per_param[p] = CappedSum(result.per_param[p],
-                                                CappedProduct(copies, piece.per_param[p]));
+                result.per_param[p] =
+                        CappedSum(result.per_param[p], CappedProduct(copies, piece.per_param[p]));
             }
         }
         return result;
@@ -259,13 +260,15 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
             if (size > kMaxExpandedTokens || total > kMaxExpandedTokens) {
                 const std::string message =
                         size > kMaxExpandedTokens
-                                ? fmt::format("macro '{}' expands to more than {} tokens (a "
-                                              "macro bomb); tidepool refuses shaders that large",
-                                              token.text, kMaxExpandedTokens)
-                                : fmt::format("the shader expands through its macros to more "
-                                              "than {} tokens; tidepool refuses shaders that "
-                                              "large",
-                                              kMaxExpandedTokens);
+                                ? fmt::format(
+                                          "macro '{}' expands to more than {} tokens (a "
+                                          "macro bomb); tidepool refuses shaders that large",
+                                          token.text, kMaxExpandedTokens)
+                                : fmt::format(
+                                          "the shader expands through its macros to more "
+                                          "than {} tokens; tidepool refuses shaders that "
+                                          "large",
+                                          kMaxExpandedTokens);
                 errors.push_back(MakeError(file, in_file ? token.line : 0,
                                            in_file ? token.column : 0, message));
                 return false;

@@ -3,27 +3,27 @@
 // file is string 0 and keeps its numbering), and nothing of it leaks through the public header.
 #include "tidepool/GlslValidator.h"
 
+#include "tidepool/TextFile.h"
+#include "tidepool/base/CacheBundle.h"
+#include "tidepool/base/Sha256.h"
+
 #include <algorithm>
-#include <functional>
 #include <cctype>
 #include <cstdlib>
-#include <set>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "CompilerSourceDigest.h"
 #include "GlslEsRules.h"
 #include "GlslangSession.h"
-#include "WorkerProcessPool.h"
-#include "tidepool/TextFile.h"
-#include "tidepool/base/CacheBundle.h"
-#include "tidepool/base/Sha256.h"
 #include "StaticCostAnalyzer.h"
+#include "WorkerProcessPool.h"
+#include <fmt/format.h>
 
 namespace tidepool {
 
@@ -93,16 +93,16 @@ std::string InternalCompilerError(const WorkerItemResult& result, std::string_vi
                                GlslangLimits().memory_bytes >> 20);
             break;
         case WorkerFailure::kTimedOut:
-            what = fmt::format("glslang took longer than {} s",
-                               GlslangLimits().seconds_per_item);
+            what = fmt::format("glslang took longer than {} s", GlslangLimits().seconds_per_item);
             break;
         default:
             what = fmt::format("glslang crashed ({})", result.detail);
             break;
     }
-    return fmt::format("internal compiler error: {} while {}; the shader may be valid or not, "
-                       "and the run went on without it",
-                       what, doing);
+    return fmt::format(
+            "internal compiler error: {} while {}; the shader may be valid or not, "
+            "and the run went on without it",
+            what, doing);
 }
 
 // Worker notes of a stage-and-link item: "P<i>" before parsing stage i, "S<i>" + CBOR with its
@@ -125,8 +125,11 @@ std::vector<Diagnostic> DiagnosticsFromJson(const nlohmann::json& list) {
     std::vector<Diagnostic> diagnostics;
     for (const nlohmann::json& d : list) {
         diagnostics.push_back(Diagnostic{static_cast<Severity>(d[0].get<int>()),
-                                         d[1].get<std::string>(), d[2].get<int>(),
-                                         d[3].get<int>(), d[4].get<std::string>(), {}});
+                                         d[1].get<std::string>(),
+                                         d[2].get<int>(),
+                                         d[3].get<int>(),
+                                         d[4].get<std::string>(),
+                                         {}});
     }
     return diagnostics;
 }
@@ -255,8 +258,8 @@ std::string Fnv1a64Hex(std::string_view text) {
 struct FileText {
     bool ok = false;
     std::string text;
-    std::string error;                     // why it could not be read
-    std::vector<Diagnostic> text_errors;   // CheckSourceText's findings: glslang never sees it
+    std::string error;                    // why it could not be read
+    std::vector<Diagnostic> text_errors;  // CheckSourceText's findings: glslang never sees it
 };
 
 FileText ReadFile(const std::filesystem::path& path, const std::string& name,
@@ -277,7 +280,7 @@ struct StageJob {
     GlslTarget target = GlslTarget::kEs100;
     std::vector<std::string> defines;
     const DeviceLimits* limits = nullptr;  // the device's, when given
-    const Variant* variant = nullptr;  // the variant this slot belongs to
+    const Variant* variant = nullptr;      // the variant this slot belongs to
     std::string variant_id;
     std::string key;     // dedupe key: file + stage + target + content hash
     std::string hash;    // content hash of the preprocessed text
@@ -285,8 +288,8 @@ struct StageJob {
 };
 
 void HashStage(StageJob& job) {
-    const GlslangStageInput input{job.file,    job.source->text, job.stage,
-                                  job.target,  job.defines,      job.limits};
+    const GlslangStageInput input{job.file,   job.source->text, job.stage,
+                                  job.target, job.defines,      job.limits};
     const PreprocessResult pre = PreprocessStage(input);
     // A stage that does not even preprocess gets a hash of its raw input, so it stays distinct
     // per define set and the parse reports the error at its line.
@@ -320,8 +323,8 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
             i = i == std::string::npos ? text.size() : i + 2;
         } else if (std::isalpha(c) != 0 || c == '_') {
             const std::size_t start = i;
-            while (i < text.size() && (std::isalnum(static_cast<unsigned char>(text[i])) != 0 ||
-                                       text[i] == '_')) {
+            while (i < text.size() &&
+                   (std::isalnum(static_cast<unsigned char>(text[i])) != 0 || text[i] == '_')) {
                 ++i;
             }
             names.insert(text.substr(start, i - start));
@@ -334,9 +337,9 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
 
 // The part of a slot's identity that can change glslang's preprocessed output.
 std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
-    std::string key = fmt::format("{}|{}|{}|{}|", job.file, StageName(job.stage),
-                                  TargetName(job.target),
-                                  job.limits != nullptr ? job.limits->Text() : "");
+    std::string key =
+            fmt::format("{}|{}|{}|{}|", job.file, StageName(job.stage), TargetName(job.target),
+                        job.limits != nullptr ? job.limits->Text() : "");
     for (const std::string& define : job.defines) {
         if (mentioned.count(define) != 0) {
             key += define + ",";
@@ -371,8 +374,8 @@ std::string StageCacheKey(const std::string& group_key, const std::string& file_
 std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
     return base::Sha256()
             .Update(CacheKeyPrefix())
-            .Update(fmt::format("link\n{}\n{}\n{}\n{}\n", vertex.file, vertex.digest,
-                                fragment.file, fragment.digest))
+            .Update(fmt::format("link\n{}\n{}\n{}\n{}\n", vertex.file, vertex.digest, fragment.file,
+                                fragment.digest))
             .FinishHex();
 }
 
@@ -862,14 +865,13 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
             [&](std::size_t g, const ProgressNote& note) {
                 std::vector<ItemStage> stages;
                 for (std::size_t i : groups[g]) {
-                    stages.push_back({i, {files[i].path, texts[i].text, files[i].stage,
-                                          options.target, defines, options.limits}});
+                    stages.push_back({i,
+                                      {files[i].path, texts[i].text, files[i].stage, options.target,
+                                       defines, options.limits}});
                 }
                 return ParseAndLink(stages, note, &reported);
             },
-            [&](std::size_t g) {
-                return std::all_of(groups[g].begin(), groups[g].end(), usable);
-            });
+            [&](std::size_t g) { return std::all_of(groups[g].begin(), groups[g].end(), usable); });
     for (std::size_t g = 0; g < groups.size(); ++g) {
         for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
             StageProgram& program = report.stage_programs[index];
@@ -877,12 +879,12 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
             program.diagnostics = std::move(outcome.diagnostics);
             program.cost = outcome.cost;
         }
-        const LinkResult link = LinkOutcome(
-                results[g], files[groups[g].back()].path,
-                [&](std::size_t index, const std::string& message) {
-                    report.stage_programs[index].diagnostics = {
-                            MakeError(files[index].path, 0, 0, message)};
-                });
+        const LinkResult link =
+                LinkOutcome(results[g], files[groups[g].back()].path,
+                            [&](std::size_t index, const std::string& message) {
+                                report.stage_programs[index].diagnostics = {
+                                        MakeError(files[index].path, 0, 0, message)};
+                            });
         VariantVerdict verdict;
         std::vector<std::string> names;
         bool stages_ok = true;
@@ -891,9 +893,8 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
             const StageProgram& program = report.stage_programs[i];
             stages_ok = stages_ok && program.valid;
             const bool is_vertex = files[i].stage == Stage::kVertex;
-            (is_vertex ? verdict.vertex : verdict.fragment) =
-                    StepVerdict{program.valid ? StepStatus::kValid : StepStatus::kInvalid,
-                                program.diagnostics};
+            (is_vertex ? verdict.vertex : verdict.fragment) = StepVerdict{
+                    program.valid ? StepStatus::kValid : StepStatus::kInvalid, program.diagnostics};
             (is_vertex ? verdict.vertex_hash : verdict.fragment_hash) = program.hash;
         }
         verdict.variant = Variant{fmt::format("{}", fmt::join(names, "+")), defines};

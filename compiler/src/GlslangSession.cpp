@@ -1,16 +1,15 @@
 #include "GlslangSession.h"
 
-#include "BuiltInResources.h"
-#include "ConformanceRules.h"
-#include "GlslEsRules.h"
-#include "WebGlRules.h"
-
 #include <algorithm>
 #include <mutex>
 #include <sstream>
 #include <tuple>
 #include <utility>
 
+#include "BuiltInResources.h"
+#include "ConformanceRules.h"
+#include "GlslEsRules.h"
+#include "WebGlRules.h"
 #include <fmt/format.h>
 
 #pragma GCC diagnostic push
@@ -19,8 +18,8 @@
 #pragma GCC diagnostic ignored "-Wshadow"
 #pragma GCC diagnostic ignored "-Wpedantic"
 #include <glslang/Public/ResourceLimits.h>
-#include <glslang/build_info.h>
 #include <glslang/Public/ShaderLang.h>
+#include <glslang/build_info.h>
 #pragma GCC diagnostic pop
 
 namespace tidepool {
@@ -79,11 +78,11 @@ PreparedStage Prepare(const GlslangStageInput& input) {
         words >> version >> profile;
         es = version == 100 || profile == "es";
         if (!es) {
-            prepared.diagnostics.push_back(MakeError(
-                    input.file, 1, 1,
-                    fmt::format("'{}' is desktop GLSL; tidepool validates GLSL ES: use "
-                                "'#version 100' or '#version 300 es'",
-                                version_line)));
+            prepared.diagnostics.push_back(
+                    MakeError(input.file, 1, 1,
+                              fmt::format("'{}' is desktop GLSL; tidepool validates GLSL ES: use "
+                                          "'#version 100' or '#version 300 es'",
+                                          version_line)));
         }
     }
     if (IsTarget(input, GlslTarget::kWebGl1) && es && version != 100) {
@@ -117,7 +116,6 @@ PreparedStage Prepare(const GlslangStageInput& input) {
     return prepared;
 }
 
-
 std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
                                              const PreparedStage& prepared,
                                              const char* const* text) {
@@ -149,8 +147,7 @@ void WarmUpGlslang(const std::vector<GlslTarget>& targets) {
     static const std::vector<std::string> kNoDefines;
     for (GlslTarget target : targets) {
         static_cast<void>(ParseStage({"warm-up", kVertex, Stage::kVertex, target, kNoDefines}));
-        static_cast<void>(
-                ParseStage({"warm-up", kFragment, Stage::kFragment, target, kNoDefines}));
+        static_cast<void>(ParseStage({"warm-up", kFragment, Stage::kFragment, target, kNoDefines}));
     }
 }
 
@@ -162,9 +159,9 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     PreprocessResult result;
     glslang::TShader::ForbidIncluder includer;
     const TBuiltInResource resources = ResourcesOf(input, prepared.default_version);
-    result.ok = shader->preprocess(&resources,
-                                   prepared.default_version, EEsProfile, prepared.force_version,
-                                   false, kMessages, &result.text, includer);
+    result.ok =
+            shader->preprocess(&resources, prepared.default_version, EEsProfile,
+                               prepared.force_version, false, kMessages, &result.text, includer);
     return result;
 }
 
@@ -204,32 +201,31 @@ StageParse ParseStage(const GlslangStageInput& input) {
         shader->setPreamble(defines.c_str());
         std::string preprocessed;
         glslang::TShader::ForbidIncluder includer;
-        if (shader->preprocess(&resources, version, EEsProfile,
-                               prepared.force_version, false, kMessages, &preprocessed,
-                               includer)) {
+        if (shader->preprocess(&resources, version, EEsProfile, prepared.force_version, false,
+                               kMessages, &preprocessed, includer)) {
             late_extensions = CheckExtensionPlacement(preprocessed, input.file);
         }
     }
     auto parse = [&](EShMessages messages) {
         auto shader = MakeShader(input, prepared, &text);
-        const bool ok = shader->parse(&resources, version, EEsProfile,
-                                      prepared.force_version, false, messages);
+        const bool ok = shader->parse(&resources, version, EEsProfile, prepared.force_version,
+                                      false, messages);
         return std::make_pair(ok, std::move(shader));
     };
     const KeywordRenaming& renaming = prepared.renaming;
     result.renaming = renaming;
     result.text = prepared.text;
     std::tie(result.ok, result.shader) = parse(kMessages);
-    result.diagnostics = ParseGlslangLog(renaming.Restore(result.shader->getInfoLog()),
-                                         input.file, input.text);
+    result.diagnostics =
+            ParseGlslangLog(renaming.Restore(result.shader->getInfoLog()), input.file, input.text);
     if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version, webgl)) {
         // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
         // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
         auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
         // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
         // first one, goes past the relaxable error to the real one.
-        result.diagnostics = RestoreDemotedErrors(ParseGlslangLog(
-                renaming.Restore(shader->getInfoLog()), input.file, input.text));
+        result.diagnostics = RestoreDemotedErrors(
+                ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text));
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
@@ -296,8 +292,7 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
     };
     if (inputs.size() == 2) {
         result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
-                                            *parses[1].shader->getIntermediate(),
-                                            inputs[1]->file);
+                                            *parses[1].shader->getIntermediate(), inputs[1]->file);
         if (!HasErrors(result.diagnostics)) {
             result.diagnostics = CheckLinkConformance(
                     *parses[0].shader->getIntermediate(), inputs[0]->file,
@@ -320,7 +315,8 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
              inputs.size() == 2 && at != std::string::npos; at = d.message.find("unknown stage")) {
             d.message.replace(at, std::string_view("unknown stage").size(), "vertex");
         }
-        if (d.line == 0 && inputs.size() == 2 && d.message.find("vertex stage") != std::string::npos &&
+        if (d.line == 0 && inputs.size() == 2 &&
+            d.message.find("vertex stage") != std::string::npos &&
             d.message.find("fragment") == std::string::npos) {
             d.file = inputs.front()->file;
         }
@@ -391,8 +387,8 @@ int ColumnOfToken(const std::string& message, const std::vector<std::string>& so
 std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::string& file,
                                         const std::string& source) {
     static const std::pair<std::string_view, Severity> kPrefixes[] = {
-            {"ERROR: ", Severity::kError},           {"INTERNAL ERROR: ", Severity::kError},
-            {"UNIMPLEMENTED: ", Severity::kError},   {"WARNING: ", Severity::kWarning},
+            {"ERROR: ", Severity::kError},         {"INTERNAL ERROR: ", Severity::kError},
+            {"UNIMPLEMENTED: ", Severity::kError}, {"WARNING: ", Severity::kWarning},
             {"NOTE: ", Severity::kNote},
     };
     const std::vector<std::string> source_lines = SplitLines(source);
@@ -402,8 +398,9 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
         if (line.empty()) {
             continue;
         }
-        const auto prefix = std::find_if(std::begin(kPrefixes), std::end(kPrefixes),
-                                         [&](const auto& p) { return line.rfind(p.first, 0) == 0; });
+        const auto prefix =
+                std::find_if(std::begin(kPrefixes), std::end(kPrefixes),
+                             [&](const auto& p) { return line.rfind(p.first, 0) == 0; });
         if (prefix == std::end(kPrefixes)) {
             // A continuation line (link logs list the clashing declarations below the message).
             if (!diagnostics.empty()) {
@@ -436,10 +433,10 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
                     second_colon == std::string_view::npos
                             ? std::string_view()
                             : rest.substr(first_colon + 1, second_colon - first_colon - 1);
-            const bool numeric = !string_part.empty() && !line_part.empty() &&
-                                 string_part.find_first_not_of("0123456789") ==
-                                         std::string_view::npos &&
-                                 line_part.find_first_not_of("0123456789") == std::string_view::npos;
+            const bool numeric =
+                    !string_part.empty() && !line_part.empty() &&
+                    string_part.find_first_not_of("0123456789") == std::string_view::npos &&
+                    line_part.find_first_not_of("0123456789") == std::string_view::npos;
             if (numeric) {
                 d.line = std::stoi(std::string(line_part));
                 rest = TrimView(rest.substr(second_colon + 1));

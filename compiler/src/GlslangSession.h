@@ -2,16 +2,17 @@
 // linking, with glslang's text log turned into Diagnostics. Private to the compiler library.
 #pragma once
 
+#include "tidepool/DeviceLimits.h"
+#include "tidepool/Diagnostic.h"
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "KeywordRenaming.h"
-#include "tidepool/DeviceLimits.h"
-#include "tidepool/Diagnostic.h"
-#include "tidepool/SourceAssembler.h"
-#include "tidepool/VariantConfig.h"
 
 namespace glslang {
 class TShader;

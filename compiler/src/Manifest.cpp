@@ -89,8 +89,9 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
     nlohmann::json variants = nlohmann::json::array();
     if (validation == nullptr) {
         for (const Variant& variant : expansion.variants) {
-            variants.push_back(
-                    {{"id", variant.Id()}, {"program", variant.program}, {"defines", variant.defines}});
+            variants.push_back({{"id", variant.Id()},
+                                {"program", variant.program},
+                                {"defines", variant.defines}});
         }
     } else {
         for (const VariantVerdict& verdict : validation->verdicts) {

@@ -91,19 +91,17 @@ nlohmann::json BuildSarifLog(const ValidationReport& report, const std::filesyst
     std::map<std::string, int> rule_index;
     for (const RuleText& rule : kRules) {
         rule_index[rule.id] = static_cast<int>(rules.size());
-        rules.push_back({{"id", rule.id},
-                         {"shortDescription", {{"text", rule.description}}}});
+        rules.push_back({{"id", rule.id}, {"shortDescription", {{"text", rule.description}}}});
     }
     nlohmann::json results = nlohmann::json::array();
     for (const ResultKey& key : order) {
         const Finding& finding = findings.at(key);
         const Diagnostic& d = *finding.diagnostic;
         const std::string& rule = std::get<0>(key);
-        nlohmann::json physical = {
-                {"artifactLocation",
-                 {{"uri", ArtifactUri(std::filesystem::path(d.file).is_absolute()
-                                              ? std::filesystem::path(d.file)
-                                              : base_dir / d.file)}}}};
+        nlohmann::json physical = {{"artifactLocation",
+                                    {{"uri", ArtifactUri(std::filesystem::path(d.file).is_absolute()
+                                                                 ? std::filesystem::path(d.file)
+                                                                 : base_dir / d.file)}}}};
         // SARIF lines and columns start at 1; an unknown one is left out, not written as 0.
         if (d.line > 0) {
             physical["region"] = {{"startLine", d.line}};
@@ -128,9 +126,7 @@ nlohmann::json BuildSarifLog(const ValidationReport& report, const std::filesyst
              nlohmann::json::array(
                      {{{"tool",
                         {{"driver",
-                          {{"name", "tidepool"},
-                           {"version", tool_version},
-                           {"rules", rules}}}}},
+                          {{"name", "tidepool"}, {"version", tool_version}, {"rules", rules}}}}},
                        {"results", results}}})}};
 }
 

@@ -2,13 +2,13 @@
 // leaves the library and every position becomes a 1-based file:line:col.
 #include "tidepool/SceneDescription.h"
 
+#include "tidepool/TextFile.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include <fmt/format.h>
-
 #include "YamlReader.h"
-#include "tidepool/TextFile.h"
+#include <fmt/format.h>
 
 namespace tidepool {
 namespace {
@@ -102,7 +102,6 @@ private:
     void ParseWater(const YAML::Node& node, SceneDescription& scene);
     void ParseCamera(const YAML::Node& node, SceneDescription& scene);
     void ParseTarget(const YAML::Node& key, const YAML::Node& node, SceneDescription& scene);
-
 };
 
 void SceneParser::ParseWater(const YAML::Node& node, SceneDescription& scene) {

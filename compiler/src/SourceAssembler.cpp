@@ -67,8 +67,9 @@ std::string FindVersionLine(std::string_view user_source) {
     return line.rfind("#version", 0) == 0 ? std::string(line) : std::string();
 }
 
-std::string AssembleDriverSource(std::string_view user_source, const std::vector<std::string>& defines,
-                                 Stage stage, GlslTarget target) {
+std::string AssembleDriverSource(std::string_view user_source,
+                                 const std::vector<std::string>& defines, Stage stage,
+                                 GlslTarget target) {
     std::string out = VersionDirective(target) + "\n";
     if (TargetVersion(target) == 300) {
         out += Es300Compatibility(stage);

@@ -2,16 +2,17 @@
 // leaves the library and every position becomes a 1-based file:line:col.
 #include "tidepool/VariantConfig.h"
 
+#include "tidepool/TextFile.h"
+
+#include <yaml-cpp/yaml.h>
+
 #include <algorithm>
 #include <cctype>
 #include <map>
 #include <set>
 
-#include <fmt/format.h>
-#include <yaml-cpp/yaml.h>
-
 #include "YamlReader.h"
-#include "tidepool/TextFile.h"
+#include <fmt/format.h>
 
 namespace tidepool {
 
@@ -79,9 +80,10 @@ const Axis* AxisDefaultingTo(const ProgramConfig& program, std::string_view defi
 
 // Rules and presets are written over define names, and a default has none to test or to set.
 std::string DefaultNamedMessage(const std::string& define, const Axis& axis) {
-    return fmt::format("'{}' is the default of axis '{}' and adds no define; leave it out (a "
-                       "preset) or write the rule over the other values",
-                       define, axis.name);
+    return fmt::format(
+            "'{}' is the default of axis '{}' and adds no define; leave it out (a "
+            "preset) or write the rule over the other values",
+            define, axis.name);
 }
 
 }  // namespace
@@ -243,8 +245,8 @@ void ConfigParser::ParseTargets(const YAML::Node& node, VariantConfig& config) {
         if (TargetFromName(name, &target)) {
             config.targets.push_back(target);
         } else {
-            Error(node, fmt::format("unknown GLSL ES target '{}'; use 100, 300, webgl1 or webgl2",
-                                    name));
+            Error(node,
+                  fmt::format("unknown GLSL ES target '{}'; use 100, 300, webgl1 or webgl2", name));
         }
     }
     if (std::find(config.targets.begin(), config.targets.end(), GlslTarget::kEs100) ==
@@ -259,8 +261,8 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
     program.name = name;
     program.where = At(key);
     if (!IsValidDefineName(name)) {
-        Error(key, fmt::format("program name '{}' must be an identifier (letters, digits, _)",
-                               name));
+        Error(key,
+              fmt::format("program name '{}' must be an identifier (letters, digits, _)", name));
     }
     const std::string what = fmt::format("program '{}'", name);
     if (!ExpectMap(node, what)) {
@@ -307,8 +309,8 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
                                      define));
         }
         if (!declared.insert(define).second) {
-            Error(where, fmt::format("feature '{}' is declared twice in {}; remove one", define,
-                                     what));
+            Error(where,
+                  fmt::format("feature '{}' is declared twice in {}; remove one", define, what));
         }
     };
     if (const YAML::Node features = node["features"]) {
@@ -327,14 +329,14 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         if (ExpectMap(axes, "axes")) {
             for (auto it = axes.begin(); it != axes.end(); ++it) {
                 Axis axis = ParseAxis(it->first, it->second);
-                const YAML::Node values_node =
-                        it->second.IsMap() && it->second["values"] ? it->second["values"]
-                                                                   : it->second;
+                const YAML::Node values_node = it->second.IsMap() && it->second["values"]
+                                                       ? it->second["values"]
+                                                       : it->second;
                 std::set<std::string> values;
                 for (const std::string& value : axis.values) {
                     if (!values.insert(value).second) {
-                        Error(values_node, fmt::format("axis '{}' lists value '{}' twice",
-                                                       axis.name, value));
+                        Error(values_node,
+                              fmt::format("axis '{}' lists value '{}' twice", axis.name, value));
                         continue;
                     }
                     // The default adds no define, so there is no name to declare or validate.
@@ -379,8 +381,7 @@ Axis ConfigParser::ParseAxis(const YAML::Node& key, const YAML::Node& node) {
         if (const YAML::Node default_node = node["default"]) {
             if (ExpectScalar(default_node, fmt::format("the default of {}", what))) {
                 const std::string value = default_node.Scalar();
-                if (std::find(axis.values.begin(), axis.values.end(), value) ==
-                    axis.values.end()) {
+                if (std::find(axis.values.begin(), axis.values.end(), value) == axis.values.end()) {
                     Error(default_node, fmt::format("the default '{}' of {} is not one of its "
                                                     "values: {}",
                                                     value, what, fmt::join(axis.values, ", ")));
@@ -416,8 +417,9 @@ void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
         rule.kind = RuleKind::kExcludeCombination;
         rule.others = NameList(node["exclude"], "exclude");
         if (rule.others.size() < 2) {
-            Error(node, "an `exclude:` combination needs at least two defines; to forbid one "
-                        "define, remove it from the features");
+            Error(node,
+                  "an `exclude:` combination needs at least two defines; to forbid one "
+                  "define, remove it from the features");
         }
     } else if (has_if && (has_requires != has_excludes) && !has_exclude) {
         if (ExpectScalar(node["if"], "if")) {
@@ -427,8 +429,9 @@ void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
         rule.others = NameList(has_requires ? node["requires"] : node["excludes"],
                                has_requires ? "requires" : "excludes");
     } else {
-        Error(node, "a rule is either `{if: A, requires: [B]}`, `{if: A, excludes: [B]}` or "
-                    "`{exclude: [A, B]}`");
+        Error(node,
+              "a rule is either `{if: A, requires: [B]}`, `{if: A, excludes: [B]}` or "
+              "`{exclude: [A, B]}`");
         return;
     }
     const std::vector<std::string> known = program.AllDefines();
@@ -485,8 +488,8 @@ PassOptions ConfigParser::ParsePasses(const YAML::Node& node) {
     if (node["clip"] && ExpectScalar(node["clip"], "clip")) {
         passes.clip = node["clip"].Scalar();
         if (passes.clip != "oblique" && passes.clip != "discard") {
-            Error(node["clip"], fmt::format("clip must be 'oblique' or 'discard', not '{}'",
-                                            passes.clip));
+            Error(node["clip"],
+                  fmt::format("clip must be 'oblique' or 'discard', not '{}'", passes.clip));
         }
     }
     return passes;
@@ -542,10 +545,10 @@ void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config
         if (const Axis* axis = AxisDefaultingTo(*program, define)) {
             Error(preset.where, DefaultNamedMessage(define, *axis));
         } else {
-            Error(preset.where, fmt::format("preset '{}' uses unknown define '{}' of program "
-                                            "'{}'; known: {}",
-                                            preset.name, define, program->name,
-                                            fmt::join(known, ", ")));
+            Error(preset.where,
+                  fmt::format("preset '{}' uses unknown define '{}' of program "
+                              "'{}'; known: {}",
+                              preset.name, define, program->name, fmt::join(known, ", ")));
         }
         all_known = false;
     }
@@ -583,12 +586,12 @@ void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config
         bool broken = false;
         switch (rule.kind) {
             case RuleKind::kRequires:
-                broken = has(rule.subject) && !std::all_of(rule.others.begin(),
-                                                           rule.others.end(), has);
+                broken = has(rule.subject) &&
+                         !std::all_of(rule.others.begin(), rule.others.end(), has);
                 break;
             case RuleKind::kExcludes:
-                broken = has(rule.subject) && std::any_of(rule.others.begin(),
-                                                          rule.others.end(), has);
+                broken = has(rule.subject) &&
+                         std::any_of(rule.others.begin(), rule.others.end(), has);
                 break;
             case RuleKind::kExcludeCombination:
                 broken = std::all_of(rule.others.begin(), rule.others.end(), has);
@@ -611,8 +614,9 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
     }
     const YAML::Node& root = *loaded;
     if (!root || root.IsNull()) {
-        Error(SourceLocation{file(), 1, 1}, "the file is empty; it needs at least `programs:` "
-                                           "(see the variants.yaml schema in README.md)");
+        Error(SourceLocation{file(), 1, 1},
+              "the file is empty; it needs at least `programs:` "
+              "(see the variants.yaml schema in README.md)");
         result.diagnostics = std::move(diagnostics_);
         return result;
     }
@@ -623,8 +627,8 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
     }
     // yaml-cpp throws on conversions and odd trees; nothing may escape the library.
     try {
-        CheckKeys(root, "the top level", {"version", "targets", "max_variants", "programs",
-                                          "presets", "description"});
+        CheckKeys(root, "the top level",
+                  {"version", "targets", "max_variants", "programs", "presets", "description"});
         VariantConfig config;
         config.path = file();
         config.base_dir = base_dir_;
@@ -660,8 +664,9 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
         }
         const YAML::Node programs = root["programs"];
         if (!programs) {
-            Error(SourceLocation{file(), 1, 1}, "no `programs:` section; declare at least one "
-                                               "program with its vertex and fragment files");
+            Error(SourceLocation{file(), 1, 1},
+                  "no `programs:` section; declare at least one "
+                  "program with its vertex and fragment files");
         } else if (ExpectMap(programs, "programs")) {
             for (auto it = programs.begin(); it != programs.end(); ++it) {
                 config.programs.push_back(ParseProgram(it->first.Scalar(), it->first, it->second));

@@ -1,8 +1,8 @@
 #include "tidepool/VariantExpander.h"
 
 #include <algorithm>
-#include <limits>
 #include <iterator>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -55,7 +55,8 @@ const Rule* FirstBrokenRule(const ProgramConfig& program, const std::vector<std:
     for (const Rule& rule : program.rules) {
         switch (rule.kind) {
             case RuleKind::kRequires:
-                if (has(rule.subject) && !std::all_of(rule.others.begin(), rule.others.end(), has)) {
+                if (has(rule.subject) &&
+                    !std::all_of(rule.others.begin(), rule.others.end(), has)) {
                     return &rule;
                 }
                 break;
@@ -342,8 +343,8 @@ private:
         if (depth == order_.size()) {
             Variant combination = CurrentVariant();
             const Rule* rule = FirstBrokenRule(program_, combination.defines);
-            listed_.push_back(PrunedCombination{std::move(combination), rule->Describe(),
-                                                rule->where});
+            listed_.push_back(
+                    PrunedCombination{std::move(combination), rule->Describe(), rule->where});
             return;
         }
         const std::size_t d = order_[depth];
@@ -368,10 +369,10 @@ private:
     const ProgramConfig& program_;
     std::uint64_t valid_budget_;
     std::uint64_t list_budget_;
-    std::vector<Decision> decisions_;   // features, then axes, as declared
-    std::vector<CompiledRule> rules_;   // as declared
-    std::vector<std::size_t> order_;    // the order decisions are made in
-    std::vector<std::size_t> chosen_;   // per decision: the choice, or kNone while undecided
+    std::vector<Decision> decisions_;  // features, then axes, as declared
+    std::vector<CompiledRule> rules_;  // as declared
+    std::vector<std::size_t> order_;   // the order decisions are made in
+    std::vector<std::size_t> chosen_;  // per decision: the choice, or kNone while undecided
     std::vector<Variant> variants_;
     std::vector<PrunedCombination> listed_;
     std::vector<std::uint64_t> counts_;  // per rule
@@ -385,10 +386,10 @@ std::string LimitError(const ExpansionOptions& options) {
                            kLargeVariantCeiling, options.max_variants);
     }
     if (options.max_variants > kVariantCeiling && !options.allow_large_matrix) {
-        return fmt::format("{} of {} is over the ceiling of {} valid variants; lower it, or pass "
-                           "--allow-large-matrix to allow up to {}",
-                           options.limit_origin, options.max_variants, kVariantCeiling,
-                           kLargeVariantCeiling);
+        return fmt::format(
+                "{} of {} is over the ceiling of {} valid variants; lower it, or pass "
+                "--allow-large-matrix to allow up to {}",
+                options.limit_origin, options.max_variants, kVariantCeiling, kLargeVariantCeiling);
     }
     return {};
 }
@@ -407,10 +408,10 @@ ExpansionResult ExpandVariants(const VariantConfig& config, const ExpansionOptio
     }
     for (const ProgramConfig& program : config.programs) {
         const std::uint64_t valid_budget = options.max_variants - result.variants.size();
-        ProgramExpansion expansion(program, valid_budget,
-                                   options.pruned_limit - std::min<std::uint64_t>(
-                                                                  options.pruned_limit,
-                                                                  result.pruned.size()));
+        ProgramExpansion expansion(
+                program, valid_budget,
+                options.pruned_limit -
+                        std::min<std::uint64_t>(options.pruned_limit, result.pruned.size()));
         expansion.Run();
         if (expansion.OverBudget()) {
             // Stop at once: the rest of the matrix would only make the refusal more expensive.

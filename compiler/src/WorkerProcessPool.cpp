@@ -64,8 +64,7 @@ void CountAllocation(const volatile void*, std::size_t size) {
 }
 
 void CountRelease(const volatile void* pointer) {
-    g_worker_bytes -= static_cast<long long>(
-            __sanitizer_get_allocated_size(pointer));
+    g_worker_bytes -= static_cast<long long>(__sanitizer_get_allocated_size(pointer));
 }
 
 void LimitMemory(std::uint64_t bytes) {

@@ -51,13 +51,14 @@ std::vector<HardCase> HardCaseCatalogue() {
     cases.push_back(Cpu("cpu_mirror_matrix",
                         "MirrorMatrix over 2000 planes (tilted, unnormalised, far from the origin) "
                         "and points: float against double, and mirroring twice is the identity."));
-    cases.push_back(Cpu("cpu_oblique_near_plane",
-                        "ObliqueNearPlane with the camera above, on, just beside and below the clip "
-                        "plane (the band where the oblique near plane meets the camera) and at "
-                        "every pitch: plane points map to clip z = -w, x/y/w rows stay, and a clip "
-                        "plane facing the camera falls back to the unmodified projection.",
-                        "none needed: the fallback (applied = false, the renderer clips with "
-                        "discard) already existed; the sweep now proves it and the band's bound"));
+    cases.push_back(
+            Cpu("cpu_oblique_near_plane",
+                "ObliqueNearPlane with the camera above, on, just beside and below the clip "
+                "plane (the band where the oblique near plane meets the camera) and at "
+                "every pitch: plane points map to clip z = -w, x/y/w rows stay, and a clip "
+                "plane facing the camera falls back to the unmodified projection.",
+                "none needed: the fallback (applied = false, the renderer clips with "
+                "discard) already existed; the sweep now proves it and the band's bound"));
     cases.push_back(Cpu("cpu_infinite_plane_polygon",
                         "InfinitePlanePolygon for cameras on, just above and below the water, "
                         "straight down, straight up, at the horizon and with far planes up to "
@@ -126,12 +127,14 @@ std::vector<HardCase> HardCaseCatalogue() {
     cases.push_back(Gl("straight_down", "Looking straight down at the water from 60 up.",
                        Camera("", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}),
                        "LookAtWithFallbackUp (the view matrix was NaN)"));
-    cases.push_back(Gl("straight_up", "Looking straight up from 5 above the water (no water "
-                                      "visible: the polygon is empty, only the main pass draws).",
+    cases.push_back(Gl("straight_up",
+                       "Looking straight up from 5 above the water (no water "
+                       "visible: the polygon is empty, only the main pass draws).",
                        Camera("", {20.0F, 5.0F, 20.0F}, {20.0F, 60.0F, 20.0F}),
                        "LookAtWithFallbackUp (the view matrix was NaN)"));
-    cases.push_back(Gl("horizon", "Looking exactly at the horizon from 10 up (the polygon's far "
-                                  "edge lies on the screen's centre line).",
+    cases.push_back(Gl("horizon",
+                       "Looking exactly at the horizon from 10 up (the polygon's far "
+                       "edge lies on the screen's centre line).",
                        Camera("", {80.0F, 10.0F, 60.0F}, {-20.0F, 10.0F, -20.0F})));
     cases.push_back(Gl("grazing_fresnel",
                        "Eye 0.05 above the water looking along it: cos(incidence) -> 0 over "
@@ -151,16 +154,18 @@ std::vector<HardCase> HardCaseCatalogue() {
     fog_zero.settings.rcp_max_fog_depth = std::numeric_limits<float>::infinity();
     fog_zero.settings.rcp_max_fog_distance = std::numeric_limits<float>::infinity();
     cases.push_back(fog_zero);
-    HardCase fog_huge = Gl("fog_depth_huge", "Maximum fog depth and distance 1e30 "
-                                             "(reciprocals 1e-30, below fp16's smallest).",
+    HardCase fog_huge = Gl("fog_depth_huge",
+                           "Maximum fog depth and distance 1e30 "
+                           "(reciprocals 1e-30, below fp16's smallest).",
                            DefaultViews().front());
     fog_huge.settings.rcp_max_fog_depth = 1e-30F;
     fog_huge.settings.rcp_max_fog_distance = 1e-30F;
     cases.push_back(fog_huge);
-    HardCase wrapped = Gl("long_run_wrapped", "Animation time 1e6 s, translation wrapped to "
-                                              "its fractional part (whitepaper 2.2).",
-                          DefaultViews().front(),
-                          "the translation is advanced in double before wrapping");
+    HardCase wrapped =
+            Gl("long_run_wrapped",
+               "Animation time 1e6 s, translation wrapped to "
+               "its fractional part (whitepaper 2.2).",
+               DefaultViews().front(), "the translation is advanced in double before wrapping");
     wrapped.settings.animation_time = 1e6F;
     cases.push_back(wrapped);
     HardCase unwrapped = Gl("long_run_unwrapped",
@@ -190,15 +195,17 @@ std::vector<HardCase> HardCaseCatalogue() {
     cases.push_back(deep);
     CameraView far_view = DefaultViews().front();
     far_view.far_plane = 1e6F;
-    cases.push_back(Gl("far_plane_1e6", "The default view with the far plane at 1e6 (the water "
-                                        "polygon reaches a million units; 24-bit depth).",
+    cases.push_back(Gl("far_plane_1e6",
+                       "The default view with the far plane at 1e6 (the water "
+                       "polygon reaches a million units; 24-bit depth).",
                        far_view));
-    HardCase tiny_reflection = Gl("reflection_1x1", "1x1 reflection and refraction textures.",
-                                  DefaultViews().front());
+    HardCase tiny_reflection =
+            Gl("reflection_1x1", "1x1 reflection and refraction textures.", DefaultViews().front());
     tiny_reflection.reflection_size = 1;
     cases.push_back(tiny_reflection);
-    HardCase odd = Gl("odd_window_61x37", "A 61x37 window (odd sizes, non-power-of-two, "
-                                          "aspect 1.65).",
+    HardCase odd = Gl("odd_window_61x37",
+                      "A 61x37 window (odd sizes, non-power-of-two, "
+                      "aspect 1.65).",
                       DefaultViews().front());
     odd.fixed_size = true;
     odd.settings.width = 61;

@@ -26,45 +26,89 @@ double RoundToHalf(double value) {
     return std::nearbyint(value / spacing) * spacing;  // ties to even in the default mode
 }
 
-Half operator+(Half a, Half b) { return Half(a.value + b.value); }
-Half operator-(Half a, Half b) { return Half(a.value - b.value); }
-Half operator-(Half a) { return Half(-a.value); }
-Half operator*(Half a, Half b) { return Half(a.value * b.value); }
-Half operator/(Half a, Half b) { return Half(a.value / b.value); }
-bool operator<(Half a, Half b) { return a.value < b.value; }
-bool operator>(Half a, Half b) { return a.value > b.value; }
+Half operator+(Half a, Half b) {
+    return Half(a.value + b.value);
+}
+Half operator-(Half a, Half b) {
+    return Half(a.value - b.value);
+}
+Half operator-(Half a) {
+    return Half(-a.value);
+}
+Half operator*(Half a, Half b) {
+    return Half(a.value * b.value);
+}
+Half operator/(Half a, Half b) {
+    return Half(a.value / b.value);
+}
+bool operator<(Half a, Half b) {
+    return a.value < b.value;
+}
+bool operator>(Half a, Half b) {
+    return a.value > b.value;
+}
 
 namespace {
 
-double ToDouble(float v) { return static_cast<double>(v); }
-double ToDouble(double v) { return v; }
-double ToDouble(Half v) { return v.value; }
+double ToDouble(float v) {
+    return static_cast<double>(v);
+}
+double ToDouble(double v) {
+    return v;
+}
+double ToDouble(Half v) {
+    return v.value;
+}
 
-float Sqrt(float v) { return std::sqrt(v); }
-double Sqrt(double v) { return std::sqrt(v); }
-Half Sqrt(Half v) { return Half(std::sqrt(v.value)); }
+float Sqrt(float v) {
+    return std::sqrt(v);
+}
+double Sqrt(double v) {
+    return std::sqrt(v);
+}
+Half Sqrt(Half v) {
+    return Half(std::sqrt(v.value));
+}
 // inversesqrt as one rounded operation, as GPUs implement it.
-float InverseSqrt(float v) { return 1.0F / std::sqrt(v); }
-double InverseSqrt(double v) { return 1.0 / std::sqrt(v); }
-Half InverseSqrt(Half v) { return Half(1.0 / std::sqrt(v.value)); }
+float InverseSqrt(float v) {
+    return 1.0F / std::sqrt(v);
+}
+double InverseSqrt(double v) {
+    return 1.0 / std::sqrt(v);
+}
+Half InverseSqrt(Half v) {
+    return Half(1.0 / std::sqrt(v.value));
+}
 
 template <typename S>
-S Max(S a, S b) { return a < b ? b : a; }
+S Max(S a, S b) {
+    return a < b ? b : a;
+}
 template <typename S>
-S Min(S a, S b) { return b < a ? b : a; }
+S Min(S a, S b) {
+    return b < a ? b : a;
+}
 template <typename S>
-S Abs(S a) { return a < S(0) ? -a : a; }
+S Abs(S a) {
+    return a < S(0) ? -a : a;
+}
 template <typename S>
-S Clamp(S v, S low, S high) { return Min(Max(v, low), high); }
+S Clamp(S v, S low, S high) {
+    return Min(Max(v, low), high);
+}
 
 template <typename S>
 struct V3 {
     S x, y, z;
 };
 template <typename S>
-S Dot(const V3<S>& a, const V3<S>& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+S Dot(const V3<S>& a, const V3<S>& b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 template <typename S>
-V3<S> Scale(const V3<S>& a, S s) { return {a.x * s, a.y * s, a.z * s}; }
+V3<S> Scale(const V3<S>& a, S s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
 
 using Inputs = std::vector<double>;
 using Outputs = std::vector<double>;
@@ -74,7 +118,9 @@ V3<S> In3(const Inputs& in, std::size_t first) {
     return {S(in[first]), S(in[first + 1]), S(in[first + 2])};
 }
 template <typename S>
-Outputs Out3(const V3<S>& v) { return {ToDouble(v.x), ToDouble(v.y), ToDouble(v.z)}; }
+Outputs Out3(const V3<S>& v) {
+    return {ToDouble(v.x), ToDouble(v.y), ToDouble(v.z)};
+}
 
 // ---- The expressions, as water.fsh writes them (S is the precision) -------------------------
 
@@ -87,7 +133,9 @@ constexpr double kBumpScale = 1.0 / 15.0;
 constexpr double kMinEyeDistance = 1e-3;
 
 template <typename S>
-S EyeLengthUnscaled(const V3<S>& e) { return Sqrt(Dot(e, e)); }
+S EyeLengthUnscaled(const V3<S>& e) {
+    return Sqrt(Dot(e, e));
+}
 
 template <typename S>
 std::pair<S, V3<S>> EyeScaled(const V3<S>& e) {
@@ -286,7 +334,7 @@ PrecisionRow Evaluate(const Expression& e) {
                                                ? e.relative_floor
                                                : std::max(std::abs(reference[k]), e.relative_floor);
             row.max_abs_error_float =
-                std::max(row.max_abs_error_float, std::abs(single[k] - reference[k]));
+                    std::max(row.max_abs_error_float, std::abs(single[k] - reference[k]));
             if (!std::isfinite(half[k])) {
                 ++row.non_finite_fp16;
                 continue;
@@ -371,8 +419,9 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
                 using S = typename decltype(tag)::type;
                 return Out3(NormaliseBump(In3<S>(in, 0)));
             },
-            1.0, kBound, "summed bump normals of length 0..2 (not unit, as the whitepaper "
-                         "assumes); error relative to unit length"));
+            1.0, kBound,
+            "summed bump normals of length 0..2 (not unit, as the whitepaper "
+            "assumes); error relative to unit length"));
     expressions.push_back(Make(
             "Fresnel chain: Schlick(clamp(dot(normalised bump, eye direction), 0, 1))", bumps,
             [](auto tag, const Inputs& in) -> Outputs {
@@ -408,7 +457,8 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
                 return {ToDouble(S(in[0]) * S(kBumpScale) + S(in[1]))};
             },
             1.0 / 256.0, 0.5,
-            "in texels of the 256 normal map, bound half a texel of the 256 normal map: fp16 spacing reaches 0.0625 (16 "
+            "in texels of the 256 normal map, bound half a texel of the 256 normal map: fp16 "
+            "spacing reaches 0.0625 (16 "
             "texels) at 2000 units, so the varyings are highp where the fragment stage has it "
             "(HIGHP_OR_MEDIUMP); the mediump fallback blurs only far water, which the mip chain "
             "blurs anyway",
@@ -424,7 +474,8 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
                 return {ToDouble(S(in[0]) * S(kBumpScale) + S(in[1]))};
             },
             1.0 / 256.0, 0.5,
-            "in texels, bound half a texel: fp16 spacing at 13000 is 8 texture units: the ripples freeze or jump; this is why "
+            "in texels, bound half a texel: fp16 spacing at 13000 is 8 texture units: the ripples "
+            "freeze or jump; this is why "
             "the renderer wraps the translation (whitepaper 2.2) and BumpTranslation can stay "
             "mediump",
             true));
@@ -451,8 +502,8 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
     std::vector<Inputs> glare;
     for (int i = 0; i <= 2400; ++i) {
         const double angle = 0.21 * i / 2400.0;
-        glare.push_back({std::sin(angle) * 0.6, std::cos(angle), std::sin(angle) * 0.8,
-                         0.0, 1.0, 0.0});
+        glare.push_back(
+                {std::sin(angle) * 0.6, std::cos(angle), std::sin(angle) * 0.8, 0.0, 1.0, 0.0});
     }
     expressions.push_back(Make(
             "pow(dot(m, s) * 0.5 + 0.5, 512)", glare,

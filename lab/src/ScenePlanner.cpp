@@ -2,13 +2,12 @@
 // is made on the measurements, so a rule that guesses wrong costs time, never quality.
 #include "tidepool/lab/ScenePlanner.h"
 
-#include "tidepool/base/SampleStatistics.h"
-#include "tidepool/runner/FrameTimer.h"
-
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
+#include "tidepool/base/SampleStatistics.h"
+#include "tidepool/runner/FrameTimer.h"
 
 #include <algorithm>
 #include <chrono>
@@ -19,7 +18,6 @@
 
 namespace tidepool::runner {
 namespace {
-
 
 // The longest candidate list: the budget for a short search, which keeps a plan at the
 // default size under a minute on two llvmpipe threads.
@@ -339,25 +337,26 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                 const CandidateMeasure& c = at(i);
                 const bool overlaps = c.time_change_low <= at(fastest).time_change_high &&
                                       at(fastest).time_change_low <= c.time_change_high;
-                if (i != fastest && c.valid && c.meets_quality && clearly_faster(c) &&
-                    overlaps && c.psnr_db > at(kept).psnr_db) {
+                if (i != fastest && c.valid && c.meets_quality && clearly_faster(c) && overlaps &&
+                    c.psnr_db > at(kept).psnr_db) {
                     kept = i;
                 }
             }
             choice.index = kept;
             choice.reason =
                     kept == fastest
-                            ? fmt::format("the fastest candidate that meets the target: "
-                                          "{:+.1f}% [{:+.1f}, {:+.1f}] frame time vs full",
-                                          at(kept).time_change_percent,
-                                          at(kept).time_change_low, at(kept).time_change_high)
-                            : fmt::format("the fastest qualifying candidate ({:+.1f}%) and this "
-                                          "one ({:+.1f}%) differ by less than their 95% "
-                                          "intervals, so the more accurate one is kept "
-                                          "({:.1f} dB against {:.1f} dB)",
-                                          at(fastest).time_change_percent,
-                                          at(kept).time_change_percent, at(kept).psnr_db,
-                                          at(fastest).psnr_db);
+                            ? fmt::format(
+                                      "the fastest candidate that meets the target: "
+                                      "{:+.1f}% [{:+.1f}, {:+.1f}] frame time vs full",
+                                      at(kept).time_change_percent, at(kept).time_change_low,
+                                      at(kept).time_change_high)
+                            : fmt::format(
+                                      "the fastest qualifying candidate ({:+.1f}%) and this "
+                                      "one ({:+.1f}%) differ by less than their 95% "
+                                      "intervals, so the more accurate one is kept "
+                                      "({:.1f} dB against {:.1f} dB)",
+                                      at(fastest).time_change_percent, at(kept).time_change_percent,
+                                      at(kept).psnr_db, at(fastest).psnr_db);
             if (!frame_budget_ms || at(kept).time_ms <= *frame_budget_ms) {
                 return choice;
             }
@@ -504,7 +503,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         if (!options.out_dir.empty()) {
             const std::string name = fmt::format("images/{}-{}.png", scene.name,
                                                  SanitiseFileName(c.configuration.id));
-            const std::string write_error = base::WritePngAtomically(options.out_dir / name, images[i]);
+            const std::string write_error =
+                    base::WritePngAtomically(options.out_dir / name, images[i]);
             if (write_error.empty()) {
                 c.image_path = name;
             } else {
@@ -621,7 +621,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         measures.push_back({c.valid, c.meets_quality, c.time_ms, c.time_change_low,
                             c.time_change_high, c.time_change_percent, c.error.psnr_db});
     }
-    const CandidateChoice choice = ChooseCandidate(measures, quality_bounds, target.frame_budget_ms);
+    const CandidateChoice choice =
+            ChooseCandidate(measures, quality_bounds, target.frame_budget_ms);
     const int best = choice.index;
     plan.choice_reason = choice.reason;
     plan.chosen = best;
@@ -715,7 +716,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         plan.dropped.push_back(std::move(d));
     }
     for (const PlanCandidate& c : plan.candidates) {
-        if (c.drops.empty() || !c.valid || c.meets_quality || !Keeps(cc, fc, c.drops, options.settings)) {
+        if (c.drops.empty() || !c.valid || c.meets_quality ||
+            !Keeps(cc, fc, c.drops, options.settings)) {
             continue;
         }
         DroppedEffect k;
@@ -746,18 +748,18 @@ nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOption
         for (long long p : c.frame.pass_pixels) {
             pixels += p;
         }
-        return nlohmann::json{{"id", c.configuration.id},
-                              {"variant", c.configuration.variant.Id()},
-                              {"passes", c.frame.pass_names},
-                              {"pass_draw_calls", c.frame.pass_draw_calls},
-                              {"pass_options",
-                               {{"reflection_size", ReflectionSize(c.configuration.passes,
-                                                                   options.settings.width,
-                                                                   options.settings.height)},
-                                {"low_res_water", c.configuration.passes.low_res_water}}},
-                              {"draw_calls", c.frame.draw_calls},
-                              {"image", c.image_path},
-                              {"pixels_shaded_estimate", pixels}};
+        return nlohmann::json{
+                {"id", c.configuration.id},
+                {"variant", c.configuration.variant.Id()},
+                {"passes", c.frame.pass_names},
+                {"pass_draw_calls", c.frame.pass_draw_calls},
+                {"pass_options",
+                 {{"reflection_size", ReflectionSize(c.configuration.passes, options.settings.width,
+                                                     options.settings.height)},
+                  {"low_res_water", c.configuration.passes.low_res_water}}},
+                {"draw_calls", c.frame.draw_calls},
+                {"image", c.image_path},
+                {"pixels_shaded_estimate", pixels}};
     };
     for (const ScenePlan& plan : plans) {
         nlohmann::json p;

@@ -1,19 +1,18 @@
 #include "tidepool/lab/StabilityReport.h"
 
-#include <fmt/format.h>
-
-#include <algorithm>
-#include <cmath>
-#include <memory>
-#include <nlohmann/json.hpp>
-#include <utility>
-
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "tidepool/Manifest.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/WaterMath.h"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+#include <nlohmann/json.hpp>
 
 namespace tidepool::runner {
 namespace {
@@ -81,8 +80,8 @@ glm::mat<4, 4, T> SweepViewProjection(const SweepCamera& c, glm::mat<4, 4, T>* v
     const V dir(std::cos(c.pitch) * std::cos(c.yaw), std::sin(c.pitch),
                 std::cos(c.pitch) * std::sin(c.yaw));
     const glm::mat<4, 4, T> v = LookAtWithFallbackUp(eye, eye + dir * T(10));
-    const glm::mat<4, 4, T> p = glm::perspective(T(0.872665), T(4.0 / 3.0), T(1),
-                                                 static_cast<T>(c.far_plane));
+    const glm::mat<4, 4, T> p =
+            glm::perspective(T(0.872665), T(4.0 / 3.0), T(1), static_cast<T>(c.far_plane));
     if (view != nullptr) {
         *view = v;
     }
@@ -124,8 +123,7 @@ StabilityCaseResult MirrorSweep() {
                 const dvec4 ref = md * dvec4(p, 1.0);
                 const glm::vec4 got = mf * glm::vec4(glm::vec3(p), 1.0F);
                 const double scale = std::max({1.0, glm::length(p), std::abs(d)});
-                r.max_error = std::max(r.max_error,
-                                       glm::length(dvec3(got) - dvec3(ref)) / scale);
+                r.max_error = std::max(r.max_error, glm::length(dvec3(got) - dvec3(ref)) / scale);
             }
         }
     }
@@ -186,8 +184,8 @@ StabilityCaseResult ObliqueSweep() {
         const dmat4 oblique_d(oblique.projection);
         for (const double forward : {2.0, 30.0, 500.0}) {
             for (const double side : {-20.0, 0.0, 20.0}) {
-                const dvec3 p(camera.eye.x + forward * std::cos(camera.yaw) + side,
-                              0.0, camera.eye.z + forward * std::sin(camera.yaw));
+                const dvec3 p(camera.eye.x + forward * std::cos(camera.yaw) + side, 0.0,
+                              camera.eye.z + forward * std::sin(camera.yaw));
                 const dvec4 eye_space = view_d * dvec4(p, 1.0);
                 if (eye_space.z > -1.0) {
                     continue;  // behind the camera or before the near plane
@@ -197,9 +195,10 @@ StabilityCaseResult ObliqueSweep() {
             }
         }
     }
-    r.note += fmt::format("max |z/w + 1| for clip-plane points (float matrix); {} applied, {} "
-                          "fell back (clip plane facing the camera or camera on it: {} expected)",
-                          applied, fallbacks, expected_fallbacks);
+    r.note += fmt::format(
+            "max |z/w + 1| for clip-plane points (float matrix); {} applied, {} "
+            "fell back (clip plane facing the camera or camera on it: {} expected)",
+            applied, fallbacks, expected_fallbacks);
     if (fallbacks < expected_fallbacks) {
         r.max_error = std::max(r.max_error, 1.0);
     }
@@ -271,10 +270,9 @@ StabilityCaseResult PolygonAndTexCoordSweep(bool tex_coords) {
             }
         }
     }
-    r.note = tex_coords
-                     ? "max |float - double| of [0,1] screen coordinates of polygon points"
-                     : "max float vertex distance from the plane / far plane (and 1e-2 x NDC "
-                       "overshoot outside the frustum)";
+    r.note = tex_coords ? "max |float - double| of [0,1] screen coordinates of polygon points"
+                        : "max float vertex distance from the plane / far plane (and 1e-2 x NDC "
+                          "overshoot outside the frustum)";
     r.note += fmt::format("; {} views see no water (empty polygon, as defined)", empty);
     return r;
 }
@@ -305,9 +303,10 @@ StabilityCaseResult VerticalViewSweep() {
             view_matrix_nan += std::isfinite(plain[0][0]) ? 0 : 1;
         }
     }
-    r.note = fmt::format("max |R Rᵀ - I|; the plain y-up ViewMatrix is NaN in {} of the 12 "
-                         "views (why the renderer uses LookAtWithFallbackUp)",
-                         view_matrix_nan);
+    r.note = fmt::format(
+            "max |R Rᵀ - I|; the plain y-up ViewMatrix is NaN in {} of the 12 "
+            "views (why the renderer uses LookAtWithFallbackUp)",
+            view_matrix_nan);
     return r;
 }
 
@@ -323,8 +322,8 @@ StabilityCaseResult BumpTranslationSweep() {
             const glm::vec2 renderer(ref);
             const glm::vec2 single = AdvanceBumpTranslation(glm::vec2(0.0F), glm::vec2(velocity),
                                                             static_cast<float>(time), true);
-            const glm::vec2 unwrapped = AdvanceBumpTranslation(
-                    glm::vec2(0.0F), glm::vec2(velocity), static_cast<float>(time), false);
+            const glm::vec2 unwrapped = AdvanceBumpTranslation(glm::vec2(0.0F), glm::vec2(velocity),
+                                                               static_cast<float>(time), false);
             CountNonFinite(Components(renderer), &r);
             CountNonFinite(Components(single), &r);
             CountNonFinite(Components(unwrapped), &r);
@@ -341,9 +340,10 @@ StabilityCaseResult BumpTranslationSweep() {
             }
         }
     }
-    r.note = fmt::format("max |renderer - double| of the wrapped translation up to 1e7 s; the "
-                         "all-float path is off by up to {:.3g} texture units",
-                         float_path_error);
+    r.note = fmt::format(
+            "max |renderer - double| of the wrapped translation up to 1e7 s; the "
+            "all-float path is off by up to {:.3g} texture units",
+            float_path_error);
     return r;
 }
 
@@ -382,9 +382,10 @@ StabilityCaseResult FresnelSweep() {
             }
         }
     }
-    r.note = fmt::format("max distance of the guarded reflectance outside [R(0), 1]; the "
-                         "whitepaper's unguarded 1 - dot(N, E) is negative at {} of {} samples",
-                         negative_base, samples);
+    r.note = fmt::format(
+            "max distance of the guarded reflectance outside [R(0), 1]; the "
+            "whitepaper's unguarded 1 - dot(N, E) is negative at {} of {} samples",
+            negative_base, samples);
     return r;
 }
 
@@ -396,7 +397,8 @@ StabilityCaseResult DistortionSweep() {
     constexpr float kMaxDistortion = 16.0F;
     r.bound = kMaxDistortion;
     for (int i = 0; i <= 200; ++i) {
-        const float distance = i == 0 ? 0.0F : std::pow(10.0F, -8.0F + 0.05F * static_cast<float>(i));
+        const float distance =
+                i == 0 ? 0.0F : std::pow(10.0F, -8.0F + 0.05F * static_cast<float>(i));
         const float eye_distance = std::max(distance, 1e-3F);
         const float offset = std::min(wave / eye_distance, kMaxDistortion);
         CountNonFinite(std::vector<float>{offset}, &r);
@@ -410,8 +412,8 @@ StabilityCaseResult FogSweep() {
     StabilityCaseResult r;
     r.bound = 0.0;  // the factor must lie in [0, 1] exactly (clamp)
     const float inf = std::numeric_limits<float>::infinity();
-    for (const float rcp : {0.0F, 1e-30F, 1e-3F, 1.0F, 1e30F, inf, -1.0F,
-                            std::numeric_limits<float>::quiet_NaN()}) {
+    for (const float rcp :
+         {0.0F, 1e-30F, 1e-3F, 1.0F, 1e30F, inf, -1.0F, std::numeric_limits<float>::quiet_NaN()}) {
         const float uploaded = MediumpFogReciprocal(rcp);
         CountNonFinite(std::vector<float>{uploaded}, &r);
         for (const float depth : {0.0F, 1e-3F, 1.0F, 2000.0F, 1e6F}) {
@@ -571,8 +573,8 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
             double excess = 0;
             for (const float v : pixels) {
                 if (std::isfinite(v)) {
-                    excess = std::max({excess, static_cast<double>(-v),
-                                       static_cast<double>(v) - 1.0});
+                    excess = std::max(
+                            {excess, static_cast<double>(-v), static_cast<double>(v) - 1.0});
                 }
             }
             if (r.nan_count + r.inf_count > nan_before || excess > kRangeTolerance) {
@@ -583,11 +585,11 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
             }
             r.max_error = std::max(r.max_error, excess);
         }
-        r.note += fmt::format("max channel distance outside [0, 1] over {} configurations at "
-                              "{}x{}; {} fell back to discard clipping",
-                              r.variants_checked, settings.width, settings.height, fallbacks);
-        r.passed = failures == 0 && r.nan_count == 0 && r.inf_count == 0 &&
-                   r.max_error <= r.bound;
+        r.note += fmt::format(
+                "max channel distance outside [0, 1] over {} configurations at "
+                "{}x{}; {} fell back to discard clipping",
+                r.variants_checked, settings.width, settings.height, fallbacks);
+        r.passed = failures == 0 && r.nan_count == 0 && r.inf_count == 0 && r.max_error <= r.bound;
         results.push_back(std::move(r));
     }
     return results;
@@ -626,10 +628,9 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
             {"clamp(dot(N, E), 0, 1) before the Fresnel power", "TP_NO_COS_CLAMP", 0.1},
             {"floored inversesqrt normalising the summed bump normal", "TP_NO_NORMAL_FLOOR",
              kOneStep},
-            {"eye distance floored at 1e-3 (distortion divide, fog)", "TP_NO_EYE_FLOOR",
+            {"eye distance floored at 1e-3 (distortion divide, fog)", "TP_NO_EYE_FLOOR", kOneStep},
+            {"eye vector divided by its largest component before squaring", "TP_NO_EYE_SCALING",
              kOneStep},
-            {"eye vector divided by its largest component before squaring",
-             "TP_NO_EYE_SCALING", kOneStep},
     };
     // The variants every guard is live in: the full effect with Schlick and with exact Fresnel.
     const std::vector<std::vector<std::string>> variants = {

@@ -1,13 +1,13 @@
 #include "tidepool/report/ReportInputs.h"
 
+#include "tidepool/report/Statistics.h"
+
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
 
 #include <fmt/format.h>
-
-#include "tidepool/report/Statistics.h"
 
 namespace tidepool::report {
 namespace {
@@ -89,8 +89,7 @@ std::string ParseRounds(const nlohmann::json& entry, const char* key, const std:
         std::vector<double> frames;
         for (const nlohmann::json& sample : round) {
             if (!sample.is_number()) {
-                return fmt::format("configuration '{}': a sample of {} is not a number", id,
-                                   key);
+                return fmt::format("configuration '{}': a sample of {} is not a number", id, key);
             }
             frames.push_back(sample.get<double>());
         }
@@ -154,9 +153,8 @@ void ChooseClock(ReportInputs* inputs) {
 // Reads an optional JSON file beside the results: absent leaves both outputs untouched; present
 // but unreadable, not JSON or not of `schema` (version `version`, when `version` > 0) sets
 // `error` naming the file.
-void LoadOptionalSibling(const std::filesystem::path& path, std::string_view schema,
-                         int version, std::optional<nlohmann::json>* content,
-                         std::string* error) {
+void LoadOptionalSibling(const std::filesystem::path& path, std::string_view schema, int version,
+                         std::optional<nlohmann::json>* content, std::string* error) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
         return;
@@ -228,9 +226,9 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
         c.refraction_size =
                 static_cast<int>(NumberOr(*passes, "refraction_size", c.reflection_size));
         c.clip = StringOr(*passes, "clip", "oblique");
-        for (const auto& [key, field] : {std::pair{"low_res_water", &c.low_res_water},
-                                         std::pair{"culling", &c.culling},
-                                         std::pair{"depth_fog", &c.depth_fog}}) {
+        for (const auto& [key, field] :
+             {std::pair{"low_res_water", &c.low_res_water}, std::pair{"culling", &c.culling},
+              std::pair{"depth_fog", &c.depth_fog}}) {
             if (std::string e = ReadBool(*passes, key, where + " passes", field); !e.empty()) {
                 return e;
             }
@@ -249,9 +247,9 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
         if (auto d = driver->find("diagnostics"); d != driver->end() && d->is_array()) {
             for (const nlohmann::json& diagnostic : *d) {
                 c.driver_messages.push_back(
-                        diagnostic.is_object() ? StringOr(diagnostic, "text",
-                                                          StringOr(diagnostic, "message"))
-                                               : diagnostic.dump());
+                        diagnostic.is_object()
+                                ? StringOr(diagnostic, "text", StringOr(diagnostic, "message"))
+                                : diagnostic.dump());
             }
         }
     }
@@ -274,9 +272,10 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
                     escapes = escapes || part == "..";
                 }
                 if (escapes) {
-                    return fmt::format("configuration '{}', view '{}': 'image' must be a path "
-                                       "inside the results folder, not '{}'",
-                                       c.id, image.view, relative);
+                    return fmt::format(
+                            "configuration '{}', view '{}': 'image' must be a path "
+                            "inside the results folder, not '{}'",
+                            c.id, image.view, relative);
                 }
                 image.image = folder / relative;
             }
@@ -295,8 +294,7 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
         return problem;
     }
     ParseStatistics(entry, "statistics", &c.median_ms, &c.ci_low_ms, &c.ci_high_ms);
-    ParseStatistics(entry, "cpu_statistics", &c.cpu_median_ms, &c.cpu_ci_low_ms,
-                    &c.cpu_ci_high_ms);
+    ParseStatistics(entry, "cpu_statistics", &c.cpu_median_ms, &c.cpu_ci_low_ms, &c.cpu_ci_high_ms);
     if (std::isnan(c.cpu_median_ms) && !c.cpu_samples_ms.empty()) {
         // Older writers of cpu samples without statistics: the median of every frame, as the
         // runner's statistics define it.
@@ -327,8 +325,7 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
 }
 
 // Reads one `comparisons` entry; returns "" or what is wrong with it, naming the field.
-std::string ParseComparison(const nlohmann::json& entry, std::size_t index,
-                            MeasuredComparison* c) {
+std::string ParseComparison(const nlohmann::json& entry, std::size_t index, MeasuredComparison* c) {
     if (!entry.is_object()) {
         return fmt::format("comparisons[{}] is not an object", index);
     }
@@ -401,13 +398,12 @@ std::string MeasuredConfiguration::PassLabel() const {
     return label;
 }
 
-const std::vector<std::vector<double>>& MeasuredConfiguration::SamplesOn(
-        TimingClock clock) const {
+const std::vector<std::vector<double>>& MeasuredConfiguration::SamplesOn(TimingClock clock) const {
     return clock == TimingClock::kCpu ? cpu_samples_ms : samples_ms;
 }
 
 const MeasuredComparison* ReportInputs::FindComparison(std::string_view baseline,
-                                                      std::string_view candidate) const {
+                                                       std::string_view candidate) const {
     for (const MeasuredComparison& c : comparisons) {
         if (c.baseline == baseline && c.candidate == candidate) {
             return &c;
@@ -460,8 +456,7 @@ const MeasuredConfiguration* ReportInputs::FindById(std::string_view id) const {
     return nullptr;
 }
 
-std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path,
-                                           std::string* error) {
+std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error) {
     std::error_code ec;
     if (!std::filesystem::is_regular_file(path, ec)) {
         *error = fmt::format("{}: no such file", path.string());
@@ -523,17 +518,18 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (!manifest) {
         return out;
     }
-    if (std::string problem = CheckSchema(*manifest, kManifestSchemaName, "version",
-                                          kManifestVersion);
+    if (std::string problem =
+                CheckSchema(*manifest, kManifestSchemaName, "version", kManifestVersion);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", manifest_path.string(), problem);
         return out;
     }
     if (!manifest->contains("variants") || !(*manifest)["variants"].is_array() ||
         !manifest->contains("counts") || !(*manifest)["counts"].is_object()) {
-        out.error = fmt::format("{}: lacks 'variants' or 'counts' (write it with `tidepool "
-                                "validate --out DIR`)",
-                                manifest_path.string());
+        out.error = fmt::format(
+                "{}: lacks 'variants' or 'counts' (write it with `tidepool "
+                "validate --out DIR`)",
+                manifest_path.string());
         return out;
     }
     if (std::string problem = CheckManifestVariants((*manifest)["variants"]); !problem.empty()) {
@@ -546,8 +542,8 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (!results) {
         return out;
     }
-    if (std::string problem = CheckSchema(*results, kResultsSchemaName, "schema_version",
-                                          kResultsVersion);
+    if (std::string problem =
+                CheckSchema(*results, kResultsSchemaName, "schema_version", kResultsVersion);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", results_path.string(), problem);
         return out;
@@ -572,15 +568,16 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
             return out;
         }
         if (!ids.insert(c.id).second) {
-            out.error = fmt::format("{}: configuration id '{}' appears more than once in "
-                                    "'configurations'",
-                                    results_path.string(), c.id);
+            out.error = fmt::format(
+                    "{}: configuration id '{}' appears more than once in "
+                    "'configurations'",
+                    results_path.string(), c.id);
             return out;
         }
         inputs.configurations.push_back(std::move(c));
     }
-    if (auto settings = results->find("settings"); settings != results->end() &&
-                                                     settings->is_object()) {
+    if (auto settings = results->find("settings");
+        settings != results->end() && settings->is_object()) {
         inputs.timing_view = StringOr(*settings, "timing_view");
         inputs.width = static_cast<int>(NumberOr(*settings, "width", inputs.width));
         inputs.height = static_cast<int>(NumberOr(*settings, "height", inputs.height));
@@ -607,8 +604,7 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         }
         for (std::size_t i = 0; i < comparisons->size(); ++i) {
             MeasuredComparison c;
-            if (std::string problem = ParseComparison((*comparisons)[i], i, &c);
-                !problem.empty()) {
+            if (std::string problem = ParseComparison((*comparisons)[i], i, &c); !problem.empty()) {
                 out.error = fmt::format("{}: {}", results_path.string(), problem);
                 return out;
             }
@@ -623,9 +619,10 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         inputs.clock_name = StringOr(*timing, "clock");
         inputs.resolution_points = NumberOr(*timing, "resolution_points", inputs.resolution_points);
         if (!inputs.clock_name.empty() && inputs.clock == TimingClock::kCpu) {
-            inputs.clock_reason = fmt::format("{} ({}): {}", inputs.clock_name == "thread_cpu"
-                                                                 ? "the rendering thread's CPU time"
-                                                                 : "the run's clock",
+            inputs.clock_reason = fmt::format("{} ({}): {}",
+                                              inputs.clock_name == "thread_cpu"
+                                                      ? "the rendering thread's CPU time"
+                                                      : "the run's clock",
                                               inputs.clock_name, StringOr(*timing, "clock_reason"));
         }
     }

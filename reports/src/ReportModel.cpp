@@ -1,6 +1,8 @@
 #include "tidepool/report/ReportModel.h"
 
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/ParallelFor.h"
 
 #include <algorithm>
 #include <cmath>
@@ -12,9 +14,6 @@
 #include <thread>
 
 #include <fmt/format.h>
-
-#include "tidepool/base/ImageMetrics.h"
-#include "tidepool/base/ParallelFor.h"
 
 namespace tidepool::report {
 namespace {
@@ -118,9 +117,9 @@ ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache
         }
         const RgbaImage& r = ref->second.image;
         if (image->width != r.width || image->height != r.height) {
-            errors.error = fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}",
-                                       v.image.string(), image->width, image->height, whose,
-                                       v.view, r.width, r.height);
+            errors.error =
+                    fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}", v.image.string(),
+                                image->width, image->height, whose, v.view, r.width, r.height);
             return errors;
         }
         const ViewError view{v.view, Psnr(*image, r), ref->second.ssim->Compare(*image),
@@ -209,8 +208,8 @@ PairsOfFrames PairsFor(const ReportInputs& inputs, const MeasuredConfiguration& 
         pairs.source = "pairs of frames rendered back to back";
         return pairs;
     }
-    pairs.error = PairsFromRounds(base.SamplesOn(clock), cand.SamplesOn(clock),
-                                  &pairs.baseline_ms, &pairs.candidate_ms);
+    pairs.error = PairsFromRounds(base.SamplesOn(clock), cand.SamplesOn(clock), &pairs.baseline_ms,
+                                  &pairs.candidate_ms);
     pairs.source = "one pair per timing round (results without recorded pairs)";
     return pairs;
 }
@@ -269,10 +268,10 @@ std::string MeasuredWhy(const MeasuredConfiguration& base, const MeasuredConfigu
     // The share of the frame the changed pass takes on the side where it is larger.
     const MeasuredConfiguration& side = largest_change > 0 ? cand : base;
     const double share = 100.0 * at(side, largest) / std::max(total(side), 1e-9);
-    return fmt::format("measured per pass: {}. The {} pass changes most ({:+.1f} ms); it is "
-                       "{:.0f}% of the {}'s frame",
-                       list, largest, largest_change, share,
-                       largest_change > 0 ? "candidate" : "baseline");
+    return fmt::format(
+            "measured per pass: {}. The {} pass changes most ({:+.1f} ms); it is "
+            "{:.0f}% of the {}'s frame",
+            list, largest, largest_change, share, largest_change > 0 ? "candidate" : "baseline");
 }
 
 // One technique's preset pair and what it is known to miss.
@@ -304,15 +303,16 @@ constexpr TechniquePresets kOpticsPresets[] = {
 // What each technique is known to miss (seeds/001, seeds/004) or to change (seeds/003).
 std::string KnownLimitation(TechniqueKind kind) {
     switch (kind) {
-    case TechniqueKind::kCubemapReflection:
-        return "Local objects and terrain are missing from the reflection: only the sky cube map "
-               "is reflected.";
-    case TechniqueKind::kFourierReflection:
-        return "Only the static terrain heightfield is captured: objects (anything that moves) "
-               "are missing, and the terrain reflects as one flat colour without detail.";
-    case TechniqueKind::kDepthOptics:
-        return "An addition, not a replacement: the error is how much extinction, shore foam, "
-               "soft shore and sun specular change the full effect's image.";
+        case TechniqueKind::kCubemapReflection:
+            return "Local objects and terrain are missing from the reflection: only the sky cube "
+                   "map "
+                   "is reflected.";
+        case TechniqueKind::kFourierReflection:
+            return "Only the static terrain heightfield is captured: objects (anything that moves) "
+                   "are missing, and the terrain reflects as one flat colour without detail.";
+        case TechniqueKind::kDepthOptics:
+            return "An addition, not a replacement: the error is how much extinction, shore foam, "
+                   "soft shore and sun specular change the full effect's image.";
     }
     return {};
 }
@@ -323,8 +323,7 @@ std::string PsnrText(double psnr_db) {
 
 // Pass names, draw calls and median of one side at the timing view.
 void FillSide(const MeasuredConfiguration* c, const std::string& timing_view, TimingClock clock,
-              std::vector<std::string>* passes, std::optional<int>* draw_calls,
-              double* median_ms) {
+              std::vector<std::string>* passes, std::optional<int>* draw_calls, double* median_ms) {
     if (c == nullptr || !c->ok) {
         return;
     }
@@ -367,8 +366,8 @@ TechniqueComparison CompareTechnique(const TechniquePresets& presets, const Repo
             problem = fmt::format("no configuration in the results carries preset '{}'",
                                   side->preset);
         } else if (!side->configuration->ok) {
-            problem = fmt::format("configuration {} (preset '{}') FAILED",
-                                  side->configuration->id, side->preset);
+            problem = fmt::format("configuration {} (preset '{}') FAILED", side->configuration->id,
+                                  side->preset);
         }
         if (!problem.empty()) {
             t.note += (t.note.empty() ? "" : "; ") + problem;
@@ -385,8 +384,7 @@ TechniqueComparison CompareTechnique(const TechniquePresets& presets, const Repo
         ChangeFromRatio(t.ratio, &t.change_percent, &t.change_ci);
         if (std::isfinite(t.change_ci.low) && t.change_ci.low > kDirectionMarginPoints) {
             t.direction = +1;
-        } else if (std::isfinite(t.change_ci.high) &&
-                   t.change_ci.high < -kDirectionMarginPoints) {
+        } else if (std::isfinite(t.change_ci.high) && t.change_ci.high < -kDirectionMarginPoints) {
             t.direction = -1;
         }
     }
@@ -426,10 +424,10 @@ void FinishError(const ViewErrors& errors, TechniqueComparison* t) {
     if (worst != nullptr) {
         t->worst_view = worst->view;
         t->worst_psnr_db = worst->psnr_db;
-        t->reading += fmt::format(" {}: {} ({} against {} over all views).",
-                                  t->kind == TechniqueKind::kDepthOptics ? "Most changed view"
-                                                                         : "Worst view",
-                                  worst->view, PsnrText(worst->psnr_db), PsnrText(t->psnr_db));
+        t->reading += fmt::format(
+                " {}: {} ({} against {} over all views).",
+                t->kind == TechniqueKind::kDepthOptics ? "Most changed view" : "Worst view",
+                worst->view, PsnrText(worst->psnr_db), PsnrText(t->psnr_db));
     }
 }
 
@@ -442,24 +440,25 @@ ImagePanel TechniquePanel(const TechniqueComparison& t, const std::string& view,
     panel.view = view;
     panel.reference_preset = t.baseline.preset;
     panel.reference_caption = fmt::format("planar reflection ({})", t.baseline.preset);
-    panel.title = fmt::format("{}: {} beside planar reflection ({}); the \"reference\" side is "
-                              "the planar image",
-                              t.technique, t.candidate.preset, t.baseline.preset);
+    panel.title = fmt::format(
+            "{}: {} beside planar reflection ({}); the \"reference\" side is "
+            "the planar image",
+            t.technique, t.candidate.preset, t.baseline.preset);
     const MeasuredConfiguration* cand = t.candidate.configuration;
     const MeasuredConfiguration* base = t.baseline.configuration;
-    auto baseline_image = baseline_images != nullptr ? baseline_images->find(view)
-                                                     : ImageCache::const_iterator{};
+    auto baseline_image =
+            baseline_images != nullptr ? baseline_images->find(view) : ImageCache::const_iterator{};
     if (cand == nullptr) {
-        panel.note = fmt::format("MISSING: no configuration carries preset '{}'",
-                                 t.candidate.preset);
+        panel.note =
+                fmt::format("MISSING: no configuration carries preset '{}'", t.candidate.preset);
     } else if (!cand->ok) {
         panel.note = "FAILED: no image (the configuration did not compile or render)";
     } else if (cand->ImageAt(view).empty()) {
         panel.note = "no image was written at this view";
     } else if (base == nullptr || !base->ok || baseline_images == nullptr ||
                baseline_image == baseline_images->end()) {
-        panel.note = fmt::format("no planar image ({}) at this view to compare with",
-                                 t.baseline.preset);
+        panel.note =
+                fmt::format("no planar image ({}) at this view to compare with", t.baseline.preset);
     } else {
         std::optional<RgbaImage> image = LoadImage(cand->ImageAt(view), error);
         if (!image) {
@@ -578,12 +577,11 @@ std::vector<PrunedRuleRow> PrunedRuleRows(const nlohmann::json& manifest) {
 std::vector<PresetPair> ComparedPresetPairs() {
     std::vector<PresetPair> pairs;
     for (const WhitepaperRow& row : WhitepaperRows()) {
-        pairs.push_back({fmt::format("row {}", row.number), row.baseline_preset,
-                         row.candidate_preset});
+        pairs.push_back(
+                {fmt::format("row {}", row.number), row.baseline_preset, row.candidate_preset});
     }
     auto add = [&](const TechniquePresets& t) {
-        pairs.push_back({fmt::format("{} ({})", t.technique, t.context), t.baseline,
-                         t.candidate});
+        pairs.push_back({fmt::format("{} ({})", t.technique, t.context), t.baseline, t.candidate});
     };
     std::for_each(std::begin(kReflectionPresets), std::end(kReflectionPresets), add);
     std::for_each(std::begin(kOpticsPresets), std::end(kOpticsPresets), add);
@@ -592,48 +590,48 @@ std::vector<PresetPair> ComparedPresetPairs() {
 
 std::string_view TechniqueKindName(TechniqueKind kind) {
     switch (kind) {
-    case TechniqueKind::kCubemapReflection:
-        return "cubemap";
-    case TechniqueKind::kFourierReflection:
-        return "fourier";
-    case TechniqueKind::kDepthOptics:
-        return "depth-optics";
+        case TechniqueKind::kCubemapReflection:
+            return "cubemap";
+        case TechniqueKind::kFourierReflection:
+            return "fourier";
+        case TechniqueKind::kDepthOptics:
+            return "depth-optics";
     }
     return "cubemap";
 }
 
 std::string_view VerdictName(Verdict verdict) {
     switch (verdict) {
-    case Verdict::kSameDirectionAndMagnitude:
-        return "same-direction-and-magnitude";
-    case Verdict::kSameDirectionDifferentMagnitude:
-        return "same-direction-different-magnitude";
-    case Verdict::kSameDirectionOnly:
-        return "same-direction-only";
-    case Verdict::kNegligibleAsClaimed:
-        return "negligible-as-claimed";
-    case Verdict::kOpposite:
-        return "opposite";
-    case Verdict::kBelowResolution:
-        return "below-resolution";
-    case Verdict::kFailed:
-        return "failed";
+        case Verdict::kSameDirectionAndMagnitude:
+            return "same-direction-and-magnitude";
+        case Verdict::kSameDirectionDifferentMagnitude:
+            return "same-direction-different-magnitude";
+        case Verdict::kSameDirectionOnly:
+            return "same-direction-only";
+        case Verdict::kNegligibleAsClaimed:
+            return "negligible-as-claimed";
+        case Verdict::kOpposite:
+            return "opposite";
+        case Verdict::kBelowResolution:
+            return "below-resolution";
+        case Verdict::kFailed:
+            return "failed";
     }
     return "failed";
 }
 
 bool IsFirmVerdict(Verdict verdict, FigureKind kind) {
     switch (verdict) {
-    case Verdict::kSameDirectionAndMagnitude:
-    case Verdict::kSameDirectionDifferentMagnitude:
-    case Verdict::kNegligibleAsClaimed:
-    case Verdict::kOpposite:
-        return true;
-    case Verdict::kSameDirectionOnly:
-        return kind == FigureKind::kDirection;  // never given to other rows
-    case Verdict::kBelowResolution:
-    case Verdict::kFailed:
-        return false;
+        case Verdict::kSameDirectionAndMagnitude:
+        case Verdict::kSameDirectionDifferentMagnitude:
+        case Verdict::kNegligibleAsClaimed:
+        case Verdict::kOpposite:
+            return true;
+        case Verdict::kSameDirectionOnly:
+            return kind == FigureKind::kDirection;  // never given to other rows
+        case Verdict::kBelowResolution:
+        case Verdict::kFailed:
+            return false;
     }
     return false;
 }
@@ -648,16 +646,17 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
     const double low = PerformanceChangePercent(measured.ci.high);
     const double high = PerformanceChangePercent(measured.ci.low);
     const double change = PerformanceChangePercent(measured.ratio);
-    const std::string interval = fmt::format("{:+.1f}% [{:+.1f}%, {:+.1f}%], {} pairs", change,
-                                             low, high, measured.pairs);
+    const std::string interval = fmt::format("{:+.1f}% [{:+.1f}%, {:+.1f}%], {} pairs", change, low,
+                                             high, measured.pairs);
     std::string halves;
     if (split != nullptr && std::isfinite(split->odd.ratio) && std::isfinite(split->even.ratio)) {
         const double odd = PerformanceChangePercent(split->odd.ratio);
         const double even = PerformanceChangePercent(split->even.ratio);
         if (odd * even < 0) {
-            halves = fmt::format("; the two halves of the pairs disagree in sign ({:+.1f}% with "
-                                 "the baseline first, {:+.1f}% with the candidate first)",
-                                 even, odd);
+            halves = fmt::format(
+                    "; the two halves of the pairs disagree in sign ({:+.1f}% with "
+                    "the baseline first, {:+.1f}% with the candidate first)",
+                    even, odd);
         }
     }
     const double bound = std::max(std::fabs(low), std::fabs(high));
@@ -665,15 +664,17 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
     if (row.kind == FigureKind::kNegligible) {
         const double band = 1.0 * kMagnitudeFactor;  // the whitepaper's "<1%", times the factor
         if (bound <= band) {
-            *reason = fmt::format("|change| < {:.1f}%, within {:.0f}% as the whitepaper's <1%: {}{}",
-                                  bound, band, interval, halves);
+            *reason =
+                    fmt::format("|change| < {:.1f}%, within {:.0f}% as the whitepaper's <1%: {}{}",
+                                bound, band, interval, halves);
             return Verdict::kNegligibleAsClaimed;
         }
     }
     if (near_no_change) {
-        *reason = fmt::format("below resolution: |change| < {:.1f}%; the interval reaches within "
-                              "{:.1f} points of no change, so no direction is claimed: {}{}",
-                              bound, kDirectionMarginPoints, interval, halves);
+        *reason = fmt::format(
+                "below resolution: |change| < {:.1f}%; the interval reaches within "
+                "{:.1f} points of no change, so no direction is claimed: {}{}",
+                bound, kDirectionMarginPoints, interval, halves);
         return Verdict::kBelowResolution;
     }
     const int direction = low > 0.0 ? +1 : -1;
@@ -684,31 +685,35 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
         return Verdict::kOpposite;
     }
     if (row.kind == FigureKind::kDirection) {
-        *reason = fmt::format("the whitepaper's figure is qualitative, so only the direction is "
-                              "compared: {}{}",
-                              interval, halves);
+        *reason = fmt::format(
+                "the whitepaper's figure is qualitative, so only the direction is "
+                "compared: {}{}",
+                interval, halves);
         return Verdict::kSameDirectionOnly;
     }
     // The interval's magnitudes against the band [f / factor, f x factor] (for "<1%": up to
     // 1% x factor, the direction already established above).
     const double magnitude_low = std::min(std::fabs(low), std::fabs(high));
     const double magnitude_high = bound;
-    const double figure = row.kind == FigureKind::kNegligible ? 0.0 : std::fabs(row.whitepaper_percent);
+    const double figure =
+            row.kind == FigureKind::kNegligible ? 0.0 : std::fabs(row.whitepaper_percent);
     const double band_low = figure / kMagnitudeFactor;
-    const double band_high = row.kind == FigureKind::kNegligible ? kMagnitudeFactor
-                                                                 : figure * kMagnitudeFactor;
+    const double band_high =
+            row.kind == FigureKind::kNegligible ? kMagnitudeFactor : figure * kMagnitudeFactor;
     const std::string band = row.kind == FigureKind::kNegligible
                                      ? fmt::format("|change| <= {:.0f}%", band_high)
                                      : fmt::format("{:.1f}% to {:.0f}%", band_low, band_high);
     if (magnitude_high >= band_low && magnitude_low <= band_high) {
-        *reason = fmt::format("the interval overlaps half to twice the whitepaper's figure ({}): "
-                              "{}{}",
-                              band, interval, halves);
+        *reason = fmt::format(
+                "the interval overlaps half to twice the whitepaper's figure ({}): "
+                "{}{}",
+                band, interval, halves);
         return Verdict::kSameDirectionAndMagnitude;
     }
-    *reason = fmt::format("the whole interval lies outside half to twice the whitepaper's "
-                          "figure ({}): {}{}",
-                          band, interval, halves);
+    *reason = fmt::format(
+            "the whole interval lies outside half to twice the whitepaper's "
+            "figure ({}): {}{}",
+            band, interval, halves);
     return Verdict::kSameDirectionDifferentMagnitude;
 }
 
@@ -759,9 +764,9 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
         return BuildReportModelUnchecked(inputs, options);
     } catch (const nlohmann::json::exception& e) {
         ReportModelResult out;
-        out.error = fmt::format("{} or {}: a field has an unexpected type: {}",
-                                inputs.results_path.string(), inputs.manifest_path.string(),
-                                e.what());
+        out.error =
+                fmt::format("{} or {}: a field has an unexpected type: {}",
+                            inputs.results_path.string(), inputs.manifest_path.string(), e.what());
         return out;
     }
 }
@@ -860,13 +865,13 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
         const MeasuredConfiguration* cand = comparison.candidate.configuration;
         if (base == nullptr || cand == nullptr) {
             comparison.verdict = Verdict::kFailed;
-            comparison.verdict_reason = fmt::format(
-                    "no configuration in the results carries preset '{}'",
-                    base == nullptr ? row.baseline_preset : row.candidate_preset);
+            comparison.verdict_reason =
+                    fmt::format("no configuration in the results carries preset '{}'",
+                                base == nullptr ? row.baseline_preset : row.candidate_preset);
         } else if (!base->ok || !cand->ok) {
             comparison.verdict = Verdict::kFailed;
-            comparison.verdict_reason = fmt::format("configuration {} failed",
-                                                    !base->ok ? base->id : cand->id);
+            comparison.verdict_reason =
+                    fmt::format("configuration {} failed", !base->ok ? base->id : cand->id);
         } else {
             const PairsOfFrames pairs = PairsFor(inputs, *base, *cand, model.clock);
             comparison.pairs_source = pairs.source;
@@ -876,22 +881,21 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             } else {
                 comparison.ratio.error = pairs.error;
             }
-            comparison.verdict = GradeRow(row, comparison.ratio, &comparison.split,
-                                          &comparison.verdict_reason);
+            comparison.verdict =
+                    GradeRow(row, comparison.ratio, &comparison.split, &comparison.verdict_reason);
             ChangeFromRatio(comparison.ratio, &comparison.change_percent, &comparison.change_ci);
-            comparison.resolution_points = (comparison.change_ci.high - comparison.change_ci.low) / 2;
+            comparison.resolution_points =
+                    (comparison.change_ci.high - comparison.change_ci.low) / 2;
             comparison.measured_why = MeasuredWhy(*base, *cand);
             comparison.odd_change_percent = PerformanceChangePercent(comparison.split.odd.ratio);
-            comparison.even_change_percent =
-                    PerformanceChangePercent(comparison.split.even.ratio);
+            comparison.even_change_percent = PerformanceChangePercent(comparison.split.even.ratio);
             const double d = comparison.split.disagreement_percent_points;
             if (std::isfinite(d) && (std::isnan(model.largest_split_half_disagreement) ||
                                      d > model.largest_split_half_disagreement)) {
                 model.largest_split_half_disagreement = d;
                 model.largest_split_half_row = row.number;
             }
-            comparison.time_change_ms =
-                    cand->MedianOn(model.clock) - base->MedianOn(model.clock);
+            comparison.time_change_ms = cand->MedianOn(model.clock) - base->MedianOn(model.clock);
             const AccuracyEntry* a = accuracy_of(base);
             const AccuracyEntry* b = accuracy_of(cand);
             if (a != nullptr && b != nullptr && a->measured && b->measured) {
@@ -910,8 +914,9 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
         row.decision = c.error.empty() ? c.decision : "failed: " + c.error;
         const PairedRatio ratio = ComparePairs(c.baseline_ms, c.candidate_ms);
         if (ratio.error.empty()) {
-            row.half_width_points =
-                    (PerformanceChangePercent(ratio.ci.low) - PerformanceChangePercent(ratio.ci.high)) / 2;
+            row.half_width_points = (PerformanceChangePercent(ratio.ci.low) -
+                                     PerformanceChangePercent(ratio.ci.high)) /
+                                    2;
         }
         row.pair_sd_clock_percent = 100 * LogRatioSd(c.baseline_ms, c.candidate_ms);
         row.pair_sd_wall_percent = 100 * LogRatioSd(c.baseline_wall_ms, c.candidate_wall_ms);
@@ -967,8 +972,7 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             validation.failed.push_back(&c);
         }
     }
-    if (auto d = inputs.results.find("disagreements");
-        d != inputs.results.end() && d->is_array()) {
+    if (auto d = inputs.results.find("disagreements"); d != inputs.results.end() && d->is_array()) {
         for (const nlohmann::json& item : *d) {
             if (item.is_object()) {
                 validation.disagreements.push_back({item.value("variant", std::string()),
@@ -977,8 +981,7 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             }
         }
     }
-    if (auto d = inputs.results.find("diagnostics");
-        d != inputs.results.end() && d->is_array()) {
+    if (auto d = inputs.results.find("diagnostics"); d != inputs.results.end() && d->is_array()) {
         for (const nlohmann::json& item : *d) {
             validation.run_diagnostics.push_back(
                     item.is_object() ? item.value("text", item.value("message", std::string()))
@@ -1025,8 +1028,8 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
                 panel.heat_map = DifferenceHeatMap(panel.image, panel.reference, kHeatMapFullScale);
                 panel.psnr_db = Psnr(panel.image, panel.reference);
                 panel.ssim = Ssim(panel.image, panel.reference);
-                panel.share_visible =
-                        ShareAboveThreshold(panel.image, panel.reference, kVisibleDifferenceThreshold);
+                panel.share_visible = ShareAboveThreshold(panel.image, panel.reference,
+                                                          kVisibleDifferenceThreshold);
             }
             model.panels.push_back(std::move(panel));
         }
@@ -1037,8 +1040,8 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
     out.error = BuildTechniques({std::begin(kReflectionPresets), std::end(kReflectionPresets)},
                                 inputs, model.clock, &baseline_images, &model.reflections);
     if (out.error.empty()) {
-        out.error = BuildTechniques({std::begin(kOpticsPresets), std::end(kOpticsPresets)},
-                                    inputs, model.clock, &baseline_images, &model.optics);
+        out.error = BuildTechniques({std::begin(kOpticsPresets), std::end(kOpticsPresets)}, inputs,
+                                    model.clock, &baseline_images, &model.optics);
     }
     if (!out.error.empty()) {
         return out;

@@ -1,22 +1,22 @@
 #include "tidepool/report/ReportWriter.h"
+
+#include "tidepool/Manifest.h"
+#include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/FolderPublisher.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
 #include "tidepool/report/WhitepaperTable.h"
 
 #include <algorithm>
-#include <future>
 #include <atomic>
 #include <cmath>
 #include <fstream>
+#include <future>
 #include <map>
 #include <memory>
 #include <sstream>
 
 #include <fmt/format.h>
-
-#include "tidepool/base/AtomicFile.h"
-#include "tidepool/base/FolderPublisher.h"
-#include "tidepool/base/ImageMetrics.h"
-#include "tidepool/base/RgbaImage.h"
-#include "tidepool/Manifest.h"
 
 namespace tidepool::report {
 namespace {
@@ -35,11 +35,20 @@ std::string Html(std::string_view text) {
     out.reserve(text.size());
     for (char c : text) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -95,13 +104,18 @@ std::string ClockName(TimingClock clock) {
     return clock == TimingClock::kCpu ? "CPU" : "wall";
 }
 
-std::string DirectionText(int sign) { return sign > 0 ? "faster" : "slower"; }
+std::string DirectionText(int sign) {
+    return sign > 0 ? "faster" : "slower";
+}
 
 std::string FigureKindName(FigureKind kind) {
     switch (kind) {
-    case FigureKind::kPercent: return "percent";
-    case FigureKind::kNegligible: return "negligible";
-    case FigureKind::kDirection: return "direction-only";
+        case FigureKind::kPercent:
+            return "percent";
+        case FigureKind::kNegligible:
+            return "negligible";
+        case FigureKind::kDirection:
+            return "direction-only";
     }
     return "percent";
 }
@@ -149,7 +163,8 @@ RgbaImage Downscale(const RgbaImage& image, int factor) {
     RgbaImage out;
     out.width = image.width / factor;
     out.height = image.height / factor;
-    out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) * 4);
+    out.pixels.resize(static_cast<std::size_t>(out.width) * static_cast<std::size_t>(out.height) *
+                      4);
     const int area = factor * factor;
     for (int y = 0; y < out.height; ++y) {
         for (int x = 0; x < out.width; ++x) {
@@ -159,13 +174,16 @@ RgbaImage Downscale(const RgbaImage& image, int factor) {
                     for (int dx = 0; dx < factor; ++dx) {
                         const auto index = (static_cast<std::size_t>(y * factor + dy) *
                                                     static_cast<std::size_t>(image.width) +
-                                            static_cast<std::size_t>(x * factor + dx)) * 4 +
+                                            static_cast<std::size_t>(x * factor + dx)) *
+                                                   4 +
                                            static_cast<std::size_t>(channel);
                         sum += image.pixels[index];
                     }
                 }
                 out.pixels[(static_cast<std::size_t>(y) * static_cast<std::size_t>(out.width) +
-                            static_cast<std::size_t>(x)) * 4 + static_cast<std::size_t>(channel)] =
+                            static_cast<std::size_t>(x)) *
+                                   4 +
+                           static_cast<std::size_t>(channel)] =
                         static_cast<std::uint8_t>((sum + area / 2) / area);
             }
         }
@@ -221,8 +239,12 @@ std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<
     }
     const Axis xa = NiceAxis(x_min, x_max);
     const Axis ya = NiceAxis(y_min, y_max);
-    auto sx = [&](double x) { return kLeft + (x - xa.low) / (xa.high - xa.low) * (kWidth - kLeft - kRight); };
-    auto sy = [&](double y) { return kHeight - kBottom - (y - ya.low) / (ya.high - ya.low) * (kHeight - kTop - kBottom); };
+    auto sx = [&](double x) {
+        return kLeft + (x - xa.low) / (xa.high - xa.low) * (kWidth - kLeft - kRight);
+    };
+    auto sy = [&](double y) {
+        return kHeight - kBottom - (y - ya.low) / (ya.high - ya.low) * (kHeight - kTop - kBottom);
+    };
     std::string svg = fmt::format(
             "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
             "height=\"{1}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">"
@@ -233,19 +255,22 @@ std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<
     for (int i = 0; i <= 5; ++i) {
         const double xv = xa.low + (xa.high - xa.low) * i / 5.0;
         const double yv = ya.low + (ya.high - ya.low) * i / 5.0;
-        svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-                           "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>",
-                           sx(xv), kTop, kHeight - kBottom, kHeight - kBottom + 15,
-                           TickLabel(xv, xa.high - xa.low));
-        svg += fmt::format("<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
-                           "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>",
-                           kLeft, sy(yv), kWidth - kRight, kLeft - 5, sy(yv) + 4,
-                           TickLabel(yv, ya.high - ya.low));
+        svg += fmt::format(
+                "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
+                "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>",
+                sx(xv), kTop, kHeight - kBottom, kHeight - kBottom + 15,
+                TickLabel(xv, xa.high - xa.low));
+        svg += fmt::format(
+                "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
+                "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>",
+                kLeft, sy(yv), kWidth - kRight, kLeft - 5, sy(yv) + 4,
+                TickLabel(yv, ya.high - ya.low));
     }
     svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
                        (kLeft + kWidth - kRight) / 2, kHeight - 12, Html(x_label));
-    svg += fmt::format("<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>",
-                       (kTop + kHeight - kBottom) / 2, Html(y_label));
+    svg += fmt::format(
+            "<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>",
+            (kTop + kHeight - kBottom) / 2, Html(y_label));
     // The frontier as a step line: from each point right along its error, then down to the next.
     std::string path;
     for (std::size_t k = 0; k < line.size(); ++k) {
@@ -263,21 +288,24 @@ std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<
         }
     }
     if (!path.empty()) {
-        svg += fmt::format("<path d=\"{}\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" "
-                           "stroke-dasharray=\"4 3\"/>",
-                           path);
+        svg += fmt::format(
+                "<path d=\"{}\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" "
+                "stroke-dasharray=\"4 3\"/>",
+                path);
     }
     for (const ChartPoint& p : points) {
         if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
             continue;
         }
-        svg += fmt::format("<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" "
-                           "fill-opacity=\"0.8\"><title>{}</title></circle>",
-                           sx(p.x), sy(p.y), p.highlight ? 5 : 3.5,
-                           p.highlight ? "#c0392b" : "#5d6d7e", Html(p.tooltip));
+        svg += fmt::format(
+                "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" "
+                "fill-opacity=\"0.8\"><title>{}</title></circle>",
+                sx(p.x), sy(p.y), p.highlight ? 5 : 3.5, p.highlight ? "#c0392b" : "#5d6d7e",
+                Html(p.tooltip));
         if (!p.label.empty()) {
-            svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"#333\">{}</text>",
-                               sx(p.x) + 6, sy(p.y) - 4, Html(p.label));
+            svg += fmt::format(
+                    "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"#333\">{}</text>",
+                    sx(p.x) + 6, sy(p.y) - 4, Html(p.label));
         }
     }
     svg += "</svg>";
@@ -296,8 +324,8 @@ std::string WhitepaperChartSvg(const ReportModel& model) {
     const double height = kTop + kRowHeight * static_cast<double>(model.rows.size()) + 40;
     double low = -10, high = 10;
     for (const RowComparison& r : model.rows) {
-        for (double v : {r.change_percent, r.change_ci.low, r.change_ci.high,
-                         r.row.whitepaper_percent}) {
+        for (double v :
+             {r.change_percent, r.change_ci.low, r.change_ci.high, r.row.whitepaper_percent}) {
             if (std::isfinite(v)) {
                 low = std::min(low, v);
                 high = std::max(high, v);
@@ -320,9 +348,10 @@ std::string WhitepaperChartSvg(const ReportModel& model) {
             "whitepaper</text>",
             kWidth, height);
     for (int t = static_cast<int>(std::ceil(low / 20.0)) * 20; t <= high; t += 20) {
-        svg += fmt::format("<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>"
-                           "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{5:+d}%</text>",
-                           sx(t), kTop - 8, height - 30, t == 0 ? "#333" : "#ddd", height - 15, t);
+        svg += fmt::format(
+                "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>"
+                "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{5:+d}%</text>",
+                sx(t), kTop - 8, height - 30, t == 0 ? "#333" : "#ddd", height - 15, t);
     }
     for (std::size_t i = 0; i < model.rows.size(); ++i) {
         const RowComparison& r = model.rows[i];
@@ -336,15 +365,16 @@ std::string WhitepaperChartSvg(const ReportModel& model) {
                                  : r.verdict == Verdict::kSameDirectionOnly       ? "#2e86c1"
                                  : r.verdict == Verdict::kOpposite                ? "#c0392b"
                                                                                   : "#95a5a6";
-            svg += fmt::format("<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"12\" "
-                               "fill=\"{}\"><title>row {}: {} ({})</title></rect>",
-                               std::min(x0, x1), y + 5, std::max(1.0, std::abs(x1 - x0)), colour,
-                               r.row.number, Signed(r.change_percent, 1, "%"),
-                               VerdictName(r.verdict));
+            svg += fmt::format(
+                    "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"12\" "
+                    "fill=\"{}\"><title>row {}: {} ({})</title></rect>",
+                    std::min(x0, x1), y + 5, std::max(1.0, std::abs(x1 - x0)), colour, r.row.number,
+                    Signed(r.change_percent, 1, "%"), VerdictName(r.verdict));
             if (std::isfinite(r.change_ci.low)) {
-                svg += fmt::format("<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
-                                   "stroke=\"#111\" stroke-width=\"1.5\"/>",
-                                   sx(r.change_ci.low), y + 11, sx(r.change_ci.high), y + 11);
+                svg += fmt::format(
+                        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
+                        "stroke=\"#111\" stroke-width=\"1.5\"/>",
+                        sx(r.change_ci.low), y + 11, sx(r.change_ci.high), y + 11);
             }
         } else {
             svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#c0392b\">{}</text>",
@@ -352,9 +382,10 @@ std::string WhitepaperChartSvg(const ReportModel& model) {
         }
         if (r.row.kind == FigureKind::kPercent && std::isfinite(r.row.whitepaper_percent)) {
             const double wx = sx(r.row.whitepaper_percent);
-            svg += fmt::format("<path d=\"M{0:.1f},{1:.1f} l5,6 l-5,6 l-5,-6 z\" fill=\"#f39c12\" "
-                               "stroke=\"#7e5109\"><title>whitepaper: {2}</title></path>",
-                               wx, y + 5, Html(r.row.whitepaper_text));
+            svg += fmt::format(
+                    "<path d=\"M{0:.1f},{1:.1f} l5,6 l-5,6 l-5,-6 z\" fill=\"#f39c12\" "
+                    "stroke=\"#7e5109\"><title>whitepaper: {2}</title></path>",
+                    wx, y + 5, Html(r.row.whitepaper_text));
         }
     }
     svg += "</svg>";
@@ -372,8 +403,7 @@ std::vector<ChartPoint> AccuracyPoints(const ReportModel& model) {
             p.label = e.configuration->presets.front();
         }
         p.tooltip = fmt::format("{}: {} ms, 1-SSIM {}, PSNR {} dB", e.configuration->id,
-                                Fixed(e.median_ms, 2), Fixed(e.SsimLoss(), 4),
-                                Fixed(e.psnr_db, 1));
+                                Fixed(e.median_ms, 2), Fixed(e.SsimLoss(), 4), Fixed(e.psnr_db, 1));
         points.push_back(std::move(p));
     }
     return points;
@@ -386,9 +416,9 @@ std::vector<ChartPoint> StaticPoints(const ReportModel& model) {
         ChartPoint p;
         p.x = e.total_ops;
         p.y = e.median_ms;
-        p.highlight = std::find(model.static_cost.misleading.begin(),
-                                model.static_cost.misleading.end(), i) !=
-                      model.static_cost.misleading.end();
+        p.highlight =
+                std::find(model.static_cost.misleading.begin(), model.static_cost.misleading.end(),
+                          i) != model.static_cost.misleading.end();
         if (p.highlight && !e.configuration->presets.empty()) {
             p.label = e.configuration->presets.front();
         }
@@ -483,7 +513,8 @@ std::string TimingMethodText(const ReportModel& model) {
             "resolution it reached. A comparison whose interval ends within 1.5 standard errors "
             "of a verdict's boundary (1.5 points either side of no change) keeps taking pairs "
             "until it clears it or reaches half the resolution: stopping there would give a "
-            "direction in one run and none in the next. Configurations that no comparison names get a few coarse "
+            "direction in one run and none in the next. Configurations that no comparison names "
+            "get a few coarse "
             "frames each, enough for the accuracy-versus-time chart. Why this method: on a "
             "shared 2-core machine about half of a frame's time variance is slow drift that "
             "adjacent frames share, which pairing milliseconds apart cancels and pairing seconds "
@@ -506,18 +537,20 @@ std::string TimingMethodText(const ReportModel& model) {
 std::vector<std::vector<std::string>> ClockNoiseTable(const ReportModel& model) {
     std::vector<std::vector<std::string>> rows;
     for (const ClockNoiseRow& r : model.clock_noise) {
-        rows.push_back({r.label, std::to_string(r.pairs), r.decision,
-                        Fixed(r.half_width_points, 1, " pt"),
-                        Fixed(r.pair_sd_clock_percent, 1, "%"),
-                        Fixed(r.pair_sd_wall_percent, 1, "%")});
+        rows.push_back(
+                {r.label, std::to_string(r.pairs), r.decision, Fixed(r.half_width_points, 1, " pt"),
+                 Fixed(r.pair_sd_clock_percent, 1, "%"), Fixed(r.pair_sd_wall_percent, 1, "%")});
     }
     return rows;
 }
 
 const std::vector<std::string>& ClockNoiseHeader() {
-    static const std::vector<std::string> header = {
-            "comparison", "pairs", "stopped", "half-width reached", "pair noise, compared clock",
-            "pair noise, wall clock"};
+    static const std::vector<std::string> header = {"comparison",
+                                                    "pairs",
+                                                    "stopped",
+                                                    "half-width reached",
+                                                    "pair noise, compared clock",
+                                                    "pair noise, wall clock"};
     return header;
 }
 
@@ -569,14 +602,14 @@ std::string JsonFixed(const nlohmann::json& object, const char* key, int digits,
                       std::string_view unit = "") {
     auto it = object.find(key);
     return it != object.end() && it->is_number() ? Fixed(it->get<double>(), digits, unit)
-                                                  : std::string("–");
+                                                 : std::string("–");
 }
 
 std::string JsonSigned(const nlohmann::json& object, const char* key, int digits,
                        std::string_view unit = "") {
     auto it = object.find(key);
     return it != object.end() && it->is_number() ? Signed(it->get<double>(), digits, unit)
-                                                  : std::string("–");
+                                                 : std::string("–");
 }
 
 std::string JsonText(const nlohmann::json& object, const char* key) {
@@ -597,10 +630,15 @@ struct SceneTables {
 };
 
 const std::vector<std::string>& SceneSummaryHeader() {
-    static const std::vector<std::string> header = {
-            "scene", "chosen configuration", "full-effect configuration",
-            "time chosen / full (ms)", "time change", "error vs full (PSNR, SSIM, visible)",
-            "target", "met", "passes / draws / pixels saved"};
+    static const std::vector<std::string> header = {"scene",
+                                                    "chosen configuration",
+                                                    "full-effect configuration",
+                                                    "time chosen / full (ms)",
+                                                    "time change",
+                                                    "error vs full (PSNR, SSIM, visible)",
+                                                    "target",
+                                                    "met",
+                                                    "passes / draws / pixels saved"};
     return header;
 }
 
@@ -615,12 +653,12 @@ SceneTables BuildSceneTables(const nlohmann::json& plans) {
     const nlohmann::json empty = nlohmann::json::object();
     for (const nlohmann::json& plan : plans.value("plans", nlohmann::json::array())) {
         const std::string scene = JsonText(plan, "scene");
-        const nlohmann::json& chosen = plan.contains("chosen") && plan["chosen"].is_object()
-                                               ? plan["chosen"] : empty;
-        const nlohmann::json& full = plan.contains("full") && plan["full"].is_object()
-                                             ? plan["full"] : empty;
-        const nlohmann::json& error = plan.contains("error") && plan["error"].is_object()
-                                              ? plan["error"] : empty;
+        const nlohmann::json& chosen =
+                plan.contains("chosen") && plan["chosen"].is_object() ? plan["chosen"] : empty;
+        const nlohmann::json& full =
+                plan.contains("full") && plan["full"].is_object() ? plan["full"] : empty;
+        const nlohmann::json& error =
+                plan.contains("error") && plan["error"].is_object() ? plan["error"] : empty;
         std::string target;
         if (auto it = plan.find("target"); it != plan.end() && it->is_object()) {
             for (const auto& [key, value] : it->items()) {
@@ -652,8 +690,8 @@ SceneTables BuildSceneTables(const nlohmann::json& plans) {
                          JsonText(plan, "pixels_saved")});
         t.summary_css.push_back(met ? "" : "bad");
         std::vector<std::vector<std::string>> effects;
-        for (const auto& [key, decision] : {std::pair<const char*, const char*>{"dropped", "dropped"},
-                                            {"kept", "kept"}}) {
+        for (const auto& [key, decision] :
+             {std::pair<const char*, const char*>{"dropped", "dropped"}, {"kept", "kept"}}) {
             for (const nlohmann::json& e : plan.value(key, nlohmann::json::array())) {
                 if (!e.is_object()) {
                     continue;
@@ -689,16 +727,22 @@ std::string ScenesIntro(const nlohmann::json& plans) {
             size, JsonText(plans, "rounds"), JsonText(plans, "frames_per_round"));
 }
 
-
 std::string VerdictCss(Verdict verdict) {
     switch (verdict) {
-    case Verdict::kSameDirectionAndMagnitude: return "good";
-    case Verdict::kNegligibleAsClaimed: return "good";
-    case Verdict::kSameDirectionDifferentMagnitude: return "fair";
-    case Verdict::kSameDirectionOnly: return "fair";
-    case Verdict::kOpposite: return "bad";
-    case Verdict::kBelowResolution: return "unknown";
-    case Verdict::kFailed: return "bad";
+        case Verdict::kSameDirectionAndMagnitude:
+            return "good";
+        case Verdict::kNegligibleAsClaimed:
+            return "good";
+        case Verdict::kSameDirectionDifferentMagnitude:
+            return "fair";
+        case Verdict::kSameDirectionOnly:
+            return "fair";
+        case Verdict::kOpposite:
+            return "bad";
+        case Verdict::kBelowResolution:
+            return "unknown";
+        case Verdict::kFailed:
+            return "bad";
     }
     return "unknown";
 }
@@ -746,7 +790,9 @@ std::string PanelId(const ImagePanel& panel) {
 
 // The Reflection techniques section's panels follow the image section's in every per-panel
 // list (files, data: URIs), so panel j of the section is at this offset plus j.
-std::size_t ReflectionPanelOffset(const ReportModel& model) { return model.panels.size(); }
+std::size_t ReflectionPanelOffset(const ReportModel& model) {
+    return model.panels.size();
+}
 
 // "reflection, refraction, main", or "–" when the results do not say.
 std::string PassesText(const std::vector<std::string>& passes) {
@@ -770,22 +816,22 @@ std::string TechniqueChangeCell(const TechniqueComparison& t) {
     if (!std::isfinite(t.change_percent)) {
         return "–";
     }
-    const std::string reading =
-            t.direction > 0 ? "faster"
-            : t.direction < 0
-                    ? "slower"
-                    : fmt::format("below resolution: |change| < {:.1f}%",
-                                  std::max(std::fabs(t.change_ci.low), std::fabs(t.change_ci.high)));
+    const std::string reading = t.direction > 0 ? "faster"
+                                : t.direction < 0
+                                        ? "slower"
+                                        : fmt::format("below resolution: |change| < {:.1f}%",
+                                                      std::max(std::fabs(t.change_ci.low),
+                                                               std::fabs(t.change_ci.high)));
     return Signed(t.change_percent, 1, "%") + ", " + reading;
 }
 
 std::string PerViewPsnrCell(const TechniqueComparison& t) {
     std::string out;
     for (const ViewError& v : t.per_view) {
-        out += fmt::format("{}{}: {}{}", out.empty() ? "" : "; ", v.view,
-                           std::isinf(v.psnr_db) ? std::string("identical")
-                                                 : Fixed(v.psnr_db, 1, " dB"),
-                           v.view == t.worst_view ? " (worst)" : "");
+        out += fmt::format(
+                "{}{}: {}{}", out.empty() ? "" : "; ", v.view,
+                std::isinf(v.psnr_db) ? std::string("identical") : Fixed(v.psnr_db, 1, " dB"),
+                v.view == t.worst_view ? " (worst)" : "");
     }
     return out.empty() ? std::string("–") : out;
 }
@@ -832,8 +878,8 @@ std::vector<std::string> TechniqueRow(const TechniqueComparison& t) {
 
 // The row class names the comparison so tools (and tests) can find each one.
 std::string TechniqueCss(const TechniqueComparison& t) {
-    return fmt::format("{}technique-{}-{}", t.note.empty() ? "" : "bad ",
-                       TechniqueKindName(t.kind), t.baseline.preset);
+    return fmt::format("{}technique-{}-{}", t.note.empty() ? "" : "bad ", TechniqueKindName(t.kind),
+                       t.baseline.preset);
 }
 
 std::string ReflectionsIntro(const ReportModel& model) {
@@ -855,9 +901,8 @@ std::string ReflectionsIntro(const ReportModel& model) {
 }
 
 std::string ReflectionPanelsIntro(const ReportModel& model) {
-    const std::string view = model.reflection_panels.empty()
-                                     ? std::string("–")
-                                     : model.reflection_panels.front().view;
+    const std::string view = model.reflection_panels.empty() ? std::string("–")
+                                                             : model.reflection_panels.front().view;
     return fmt::format(
             "The full-effect candidate of each technique at view {} beside planar reflection "
             "(preset `full`), which takes the place the reference has in the Images section, and "
@@ -883,7 +928,8 @@ struct Page {
 
 std::string GlossaryText() {
     return fmt::format(
-            "Performance change is in percent of frame rate as the whitepaper words it (+ = faster; "
+            "Performance change is in percent of frame rate as the whitepaper words it (+ = "
+            "faster; "
             "\"reduced by 60%\" = -60% = 2.5x the frame time), estimated from pairs of frames "
             "rendered back to back (Hodges-Lehmann estimate of the per-pair log ratios, {:.0f}% "
             "Wilcoxon signed-rank interval); each comparison took pairs until its interval's "
@@ -917,9 +963,8 @@ std::string VerdictRuleText(const ReportModel& /*model*/) {
 
 std::string WhitepaperTableText(const ReportModel& model) {
     std::string out = fmt::format("compared on {} time\n", ClockName(model.clock));
-    out += fmt::format("{:>2}  {:<26} {:<26} {:>20} {:>10} {:>20}  {}\n", "#",
-                                  "baseline", "candidate", "whitepaper", "measured", "95% CI",
-                                  "verdict");
+    out += fmt::format("{:>2}  {:<26} {:<26} {:>20} {:>10} {:>20}  {}\n", "#", "baseline",
+                       "candidate", "whitepaper", "measured", "95% CI", "verdict");
     for (const RowComparison& r : model.rows) {
         std::string figure = r.row.kind == FigureKind::kPercent
                                      ? Signed(r.row.whitepaper_percent, 1, "%")
@@ -940,29 +985,31 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     json["version"] = kReportSchemaVersion;
     json["name"] = model.options.name;
     json["generated_utc"] = model.options.generated_utc;
-    json["inputs"] = {{"manifest", model.inputs->manifest_path.string()},
-                      {"results", model.inputs->results_path.string()},
-                      {"stability", model.inputs->stability
-                                            ? nlohmann::json(model.inputs->stability_path.string())
-                                            : nlohmann::json(nullptr)},
-                      {"plans", model.inputs->plans
-                                        ? nlohmann::json(model.inputs->plans_path.string())
-                                        : nlohmann::json(nullptr)}};
-    json["method"] = {{"clock", TimingClockName(model.clock)},
-                      {"clock_reason", model.inputs->clock_reason},
-                      {"clock_name", model.inputs->clock_name},
-                      {"magnitude_factor", kMagnitudeFactor},
-                      {"resolution_points", Num(model.inputs->resolution_points)},
-                      {"confidence_level", kConfidenceLevel},
-                      {"estimator", "Hodges-Lehmann estimate of per-pair log frame-time ratios, "
-                                    "Wilcoxon signed-rank interval"},
-                      {"visible_difference_threshold", kVisibleDifferenceThreshold},
-                      {"reference_preset", kReferencePreset},
-                      {"largest_split_half_disagreement_percent_points",
-                       Num(model.largest_split_half_disagreement)},
-                      {"largest_split_half_row", model.largest_split_half_row},
-                      {"environment", model.inputs->results.value("environment", nlohmann::json::object())},
-                      {"settings", model.inputs->results.value("settings", nlohmann::json::object())}};
+    json["inputs"] = {
+            {"manifest", model.inputs->manifest_path.string()},
+            {"results", model.inputs->results_path.string()},
+            {"stability", model.inputs->stability
+                                  ? nlohmann::json(model.inputs->stability_path.string())
+                                  : nlohmann::json(nullptr)},
+            {"plans", model.inputs->plans ? nlohmann::json(model.inputs->plans_path.string())
+                                          : nlohmann::json(nullptr)}};
+    json["method"] = {
+            {"clock", TimingClockName(model.clock)},
+            {"clock_reason", model.inputs->clock_reason},
+            {"clock_name", model.inputs->clock_name},
+            {"magnitude_factor", kMagnitudeFactor},
+            {"resolution_points", Num(model.inputs->resolution_points)},
+            {"confidence_level", kConfidenceLevel},
+            {"estimator",
+             "Hodges-Lehmann estimate of per-pair log frame-time ratios, "
+             "Wilcoxon signed-rank interval"},
+            {"visible_difference_threshold", kVisibleDifferenceThreshold},
+            {"reference_preset", kReferencePreset},
+            {"largest_split_half_disagreement_percent_points",
+             Num(model.largest_split_half_disagreement)},
+            {"largest_split_half_row", model.largest_split_half_row},
+            {"environment", model.inputs->results.value("environment", nlohmann::json::object())},
+            {"settings", model.inputs->results.value("settings", nlohmann::json::object())}};
     nlohmann::json noise = nlohmann::json::array();
     for (const ClockNoiseRow& r : model.clock_noise) {
         noise.push_back({{"label", r.label},
@@ -993,35 +1040,36 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     };
     nlohmann::json rows = nlohmann::json::array();
     for (const RowComparison& r : model.rows) {
-        rows.push_back({{"number", r.row.number},
-                        {"change", r.row.change},
-                        {"whitepaper_figure", r.row.whitepaper_text},
-                        {"whitepaper_percent", Num(r.row.whitepaper_percent)},
-                        {"figure_kind", FigureKindName(r.row.kind)},
-                        {"expected_direction", DirectionText(r.row.expected_sign)},
-                        {"baseline", side(r.baseline)},
-                        {"candidate", side(r.candidate)},
-                        {"frame_time_ratio", Num(r.ratio.ratio)},
-                        {"frame_time_ratio_ci", {Num(r.ratio.ci.low), Num(r.ratio.ci.high)}},
-                        {"pairs", r.ratio.pairs},
-                        {"resolution_points", Num(r.resolution_points)},
-                        {"pairs_source", r.pairs_source},
-                        {"measured_why", r.measured_why},
-                        {"clock", TimingClockName(model.clock)},
-                        {"measured_percent", Num(r.change_percent)},
-                        {"measured_percent_ci", {Num(r.change_ci.low), Num(r.change_ci.high)}},
-                        {"verdict", VerdictName(r.verdict)},
-                        {"firm", IsFirmVerdict(r.verdict, r.row.kind)},
-                        {"verdict_reason", r.verdict_reason},
-                        {"llvmpipe_note", r.row.llvmpipe_note},
-                        {"split_half",
-                         {{"odd_rounds_percent", Num(r.odd_change_percent)},
-                          {"even_rounds_percent", Num(r.even_change_percent)},
-                          {"disagreement_percent_points", Num(r.split.disagreement_percent_points)}}},
-                        {"accuracy_cost",
-                         {{"time_change_ms", Num(r.time_change_ms)},
-                          {"ssim_loss_change", Num(r.ssim_loss_change)},
-                          {"psnr_change_db", Num(r.psnr_change_db)}}}});
+        rows.push_back(
+                {{"number", r.row.number},
+                 {"change", r.row.change},
+                 {"whitepaper_figure", r.row.whitepaper_text},
+                 {"whitepaper_percent", Num(r.row.whitepaper_percent)},
+                 {"figure_kind", FigureKindName(r.row.kind)},
+                 {"expected_direction", DirectionText(r.row.expected_sign)},
+                 {"baseline", side(r.baseline)},
+                 {"candidate", side(r.candidate)},
+                 {"frame_time_ratio", Num(r.ratio.ratio)},
+                 {"frame_time_ratio_ci", {Num(r.ratio.ci.low), Num(r.ratio.ci.high)}},
+                 {"pairs", r.ratio.pairs},
+                 {"resolution_points", Num(r.resolution_points)},
+                 {"pairs_source", r.pairs_source},
+                 {"measured_why", r.measured_why},
+                 {"clock", TimingClockName(model.clock)},
+                 {"measured_percent", Num(r.change_percent)},
+                 {"measured_percent_ci", {Num(r.change_ci.low), Num(r.change_ci.high)}},
+                 {"verdict", VerdictName(r.verdict)},
+                 {"firm", IsFirmVerdict(r.verdict, r.row.kind)},
+                 {"verdict_reason", r.verdict_reason},
+                 {"llvmpipe_note", r.row.llvmpipe_note},
+                 {"split_half",
+                  {{"odd_rounds_percent", Num(r.odd_change_percent)},
+                   {"even_rounds_percent", Num(r.even_change_percent)},
+                   {"disagreement_percent_points", Num(r.split.disagreement_percent_points)}}},
+                 {"accuracy_cost",
+                  {{"time_change_ms", Num(r.time_change_ms)},
+                   {"ssim_loss_change", Num(r.ssim_loss_change)},
+                   {"psnr_change_db", Num(r.psnr_change_db)}}}});
     }
     json["whitepaper_rows"] = rows;
     nlohmann::json accuracy = nlohmann::json::array();
@@ -1153,8 +1201,8 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                   {"share_visible", Num(t.share_visible)},
                   {"views_compared", t.views_compared},
                   {"per_view", per_view},
-                  {"worst_view", t.worst_view.empty() ? nlohmann::json(nullptr)
-                                                      : nlohmann::json(t.worst_view)},
+                  {"worst_view",
+                   t.worst_view.empty() ? nlohmann::json(nullptr) : nlohmann::json(t.worst_view)},
                   {"worst_psnr_db", Num(t.worst_psnr_db)}}},
                 {"reading", t.reading},
                 {"note", t.note}};
@@ -1165,16 +1213,16 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     }
     nlohmann::json reflection_images = nlohmann::json::array();
     for (const ImagePanel& p : model.reflection_panels) {
-        reflection_images.push_back({{"title", p.title},
-                                     {"configuration", p.configuration != nullptr
-                                                               ? nlohmann::json(p.configuration->id)
-                                                               : nlohmann::json(nullptr)},
-                                     {"compared_with", p.reference_preset},
-                                     {"view", p.view},
-                                     {"psnr_db", Num(p.psnr_db)},
-                                     {"ssim", Num(p.ssim)},
-                                     {"share_visible", Num(p.share_visible)},
-                                     {"note", p.note}});
+        reflection_images.push_back(
+                {{"title", p.title},
+                 {"configuration", p.configuration != nullptr ? nlohmann::json(p.configuration->id)
+                                                              : nlohmann::json(nullptr)},
+                 {"compared_with", p.reference_preset},
+                 {"view", p.view},
+                 {"psnr_db", Num(p.psnr_db)},
+                 {"ssim", Num(p.ssim)},
+                 {"share_visible", Num(p.share_visible)},
+                 {"note", p.note}});
     }
     json["reflection_techniques"] = {{"baseline", "planar reflection"},
                                      {"timing_view", model.inputs->timing_view},
@@ -1195,13 +1243,13 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     if (model.inputs->plans) {
         // The scenes as the section shows them; the full plans (candidates) stay in plans.json.
         nlohmann::json scenes = nlohmann::json::array();
-        for (const nlohmann::json& plan : model.inputs->plans->value("plans",
-                                                                    nlohmann::json::array())) {
+        for (const nlohmann::json& plan :
+             model.inputs->plans->value("plans", nlohmann::json::array())) {
             nlohmann::json scene = nlohmann::json::object();
-            for (const char* key : {"scene", "description", "target", "met", "chosen", "full",
-                                    "time_ms_chosen", "time_ms_full", "time_change_percent",
-                                    "error", "dropped", "kept", "passes_saved", "draws_saved",
-                                    "pixels_saved", "errors"}) {
+            for (const char* key :
+                 {"scene", "description", "target", "met", "chosen", "full", "time_ms_chosen",
+                  "time_ms_full", "time_change_percent", "error", "dropped", "kept", "passes_saved",
+                  "draws_saved", "pixels_saved", "errors"}) {
                 if (plan.contains(key)) {
                     scene[key] = plan[key];
                 }
@@ -1275,10 +1323,17 @@ std::string HtmlTable(const std::vector<std::string>& header,
 
 // The tables of the report, shared by both formats.
 struct Tables {
-    std::vector<std::string> whitepaper_header = {
-            "#", "change", "configurations compared (baseline → candidate)", "whitepaper's figure",
-            "measured here", "95% interval", "resolution reached", "verdict", "why",
-            "measured per pass", "context (fixed prose, not measured)"};
+    std::vector<std::string> whitepaper_header = {"#",
+                                                  "change",
+                                                  "configurations compared (baseline → candidate)",
+                                                  "whitepaper's figure",
+                                                  "measured here",
+                                                  "95% interval",
+                                                  "resolution reached",
+                                                  "verdict",
+                                                  "why",
+                                                  "measured per pass",
+                                                  "context (fixed prose, not measured)"};
     std::vector<std::vector<std::string>> whitepaper;
     std::vector<std::string> whitepaper_css;
     std::vector<std::string> accuracy_header;  // set by BuildTables (names the clocks)
@@ -1332,17 +1387,17 @@ std::vector<std::string> Concat(std::vector<std::string> a, const std::vector<st
 Tables BuildTables(const ReportModel& model) {
     Tables t;
     const std::vector<std::string> medians = MedianHeaders(model);
-    t.accuracy_header = Concat(Concat({"configuration", "presets", "passes"}, medians),
-                               {"PSNR dB", "SSIM", "1-SSIM", "pixels visibly different",
-                                "frontier"});
+    t.accuracy_header =
+            Concat(Concat({"configuration", "presets", "passes"}, medians),
+                   {"PSNR dB", "SSIM", "1-SSIM", "pixels visibly different", "frontier"});
     t.frontier_header = Concat(Concat({"configuration", "presets", "passes"}, medians),
                                {"1-SSIM", "PSNR dB", "visibly different"});
-    t.static_header = Concat(Concat({"configuration", "presets", "vertex ops", "fragment ops",
-                                     "total ops"},
-                                    medians),
-                             {"ops rank", "time rank"});
-    t.misleading_header = {"configuration", "total ops", medians.front(), "ops rank",
-                           "time rank", "reading"};
+    t.static_header =
+            Concat(Concat({"configuration", "presets", "vertex ops", "fragment ops", "total ops"},
+                          medians),
+                   {"ops rank", "time rank"});
+    t.misleading_header = {"configuration", "total ops", medians.front(),
+                           "ops rank",      "time rank", "reading"};
     for (const RowComparison& r : model.rows) {
         t.whitepaper.push_back(
                 {std::to_string(r.row.number), r.row.change,
@@ -1355,50 +1410,52 @@ Tables BuildTables(const ReportModel& model) {
                                        r.ratio.pairs)
                          : std::string("–"),
                  std::string(VerdictName(r.verdict)), r.verdict_reason,
-                 r.measured_why.empty() ? std::string("–") : r.measured_why,
-                 r.row.llvmpipe_note});
+                 r.measured_why.empty() ? std::string("–") : r.measured_why, r.row.llvmpipe_note});
         // The row class names the row so tools (and the browser test) can find each one.
-        t.whitepaper_css.push_back(VerdictCss(r.verdict) + " wp-row-" + std::to_string(r.row.number));
+        t.whitepaper_css.push_back(VerdictCss(r.verdict) + " wp-row-" +
+                                   std::to_string(r.row.number));
     }
     for (const AccuracyEntry& e : model.accuracy) {
         const MeasuredConfiguration& c = *e.configuration;
         if (!e.measured) {
-            t.accuracy.push_back(Concat(Concat({c.id, Presets(c), c.PassLabel()},
-                                               MedianCells(model, c)),
-                                        {"–", "–", "–", "–", e.note}));
+            t.accuracy.push_back(
+                    Concat(Concat({c.id, Presets(c), c.PassLabel()}, MedianCells(model, c)),
+                           {"–", "–", "–", "–", e.note}));
             t.accuracy_css.push_back(c.ok ? "" : "bad");
             continue;
         }
-        t.accuracy.push_back(Concat(
-                Concat({c.id, Presets(c), c.PassLabel()}, MedianCells(model, c)),
-                {std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1), Fixed(e.ssim, 4),
-                 Fixed(e.SsimLoss(), 4), Fixed(e.share_visible * 100, 2, "%"),
-                 e.is_reference ? "reference" : e.on_frontier ? "yes" : ""}));
+        t.accuracy.push_back(
+                Concat(Concat({c.id, Presets(c), c.PassLabel()}, MedianCells(model, c)),
+                       {std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1), Fixed(e.ssim, 4),
+                        Fixed(e.SsimLoss(), 4), Fixed(e.share_visible * 100, 2, "%"),
+                        e.is_reference  ? "reference"
+                        : e.on_frontier ? "yes"
+                                        : ""}));
         t.accuracy_css.push_back(e.on_frontier ? "frontier" : "");
     }
     for (std::size_t i : model.frontier) {
         const AccuracyEntry& e = model.accuracy[i];
-        t.frontier.push_back(Concat(Concat({e.configuration->id, Presets(*e.configuration),
-                                            e.configuration->PassLabel()},
-                                           MedianCells(model, *e.configuration)),
-                                    {Fixed(e.SsimLoss(), 4),
-                                     std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1),
-                                     Fixed(e.share_visible * 100, 2, "%")}));
+        t.frontier.push_back(Concat(
+                Concat({e.configuration->id, Presets(*e.configuration),
+                        e.configuration->PassLabel()},
+                       MedianCells(model, *e.configuration)),
+                {Fixed(e.SsimLoss(), 4), std::isinf(e.psnr_db) ? "identical" : Fixed(e.psnr_db, 1),
+                 Fixed(e.share_visible * 100, 2, "%")}));
     }
     for (const RowComparison& r : model.rows) {
         t.optimisation.push_back({std::to_string(r.row.number), r.row.change,
                                   r.baseline.preset + " → " + r.candidate.preset,
                                   Signed(r.time_change_ms, 2, " ms"),
-                                  Signed(r.change_percent, 1, "%"),
-                                  Signed(r.ssim_loss_change, 4), Signed(r.psnr_change_db, 1, " dB")});
+                                  Signed(r.change_percent, 1, "%"), Signed(r.ssim_loss_change, 4),
+                                  Signed(r.psnr_change_db, 1, " dB")});
     }
     for (const StaticCostEntry& e : model.static_cost.entries) {
-        t.static_rows.push_back(Concat(
-                Concat({e.configuration->id, Presets(*e.configuration),
-                        std::to_string(e.vertex_ops), std::to_string(e.fragment_ops),
-                        std::to_string(e.total_ops)},
-                       MedianCells(model, *e.configuration)),
-                {Fixed(e.ops_rank, 1), Fixed(e.time_rank, 1)}));
+        t.static_rows.push_back(
+                Concat(Concat({e.configuration->id, Presets(*e.configuration),
+                               std::to_string(e.vertex_ops), std::to_string(e.fragment_ops),
+                               std::to_string(e.total_ops)},
+                              MedianCells(model, *e.configuration)),
+                       {Fixed(e.ops_rank, 1), Fixed(e.time_rank, 1)}));
     }
     for (std::size_t i : model.static_cost.misleading) {
         const StaticCostEntry& e = model.static_cost.entries[i];
@@ -1509,23 +1566,27 @@ std::string PanelMarkdown(const ImagePanel& p, const PanelFiles& files) {
     md += fmt::format(" — PSNR {} dB, SSIM {}, {} of pixels visibly different\n\n",
                       std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
                       Fixed(p.share_visible * 100, 2, "%"));
-    md += fmt::format("| this configuration | {} | difference |\n|---|---|---|\n"
-                      "| ![]({}) | ![]({}) | ![]({}) |\n\n",
-                      Cell(p.reference_caption), files.image, files.reference, files.heat);
+    md += fmt::format(
+            "| this configuration | {} | difference |\n|---|---|---|\n"
+            "| ![]({}) | ![]({}) | ![]({}) |\n\n",
+            Cell(p.reference_caption), files.image, files.reference, files.heat);
     return md;
 }
 
-std::string Markdown(const ReportModel& model, const Tables& t, const std::vector<PanelFiles>& files) {
+std::string Markdown(const ReportModel& model, const Tables& t,
+                     const std::vector<PanelFiles>& files) {
     std::string md = fmt::format("# tidepool report: {}\n\n", model.options.name);
-    md += fmt::format("Generated {} from `{}` and `{}`. Figures labelled \"whitepaper\" are quoted "
-                      "from Imagination's \"Shader Based Water Effects\" (measured on a PowerVR "
-                      "SGX-class GPU); everything else was measured here on Mesa llvmpipe.\n\n",
-                      model.options.generated_utc, model.inputs->manifest_path.string(),
-                      model.inputs->results_path.string());
+    md += fmt::format(
+            "Generated {} from `{}` and `{}`. Figures labelled \"whitepaper\" are quoted "
+            "from Imagination's \"Shader Based Water Effects\" (measured on a PowerVR "
+            "SGX-class GPU); everything else was measured here on Mesa llvmpipe.\n\n",
+            model.options.generated_utc, model.inputs->manifest_path.string(),
+            model.inputs->results_path.string());
     if (model.failed_configurations > 0) {
-        md += fmt::format("**{} configuration(s) FAILED** to compile or render; they are shown as "
-                          "failed below.\n\n",
-                          model.failed_configurations);
+        md += fmt::format(
+                "**{} configuration(s) FAILED** to compile or render; they are shown as "
+                "failed below.\n\n",
+                model.failed_configurations);
     }
     md += AtAGlance(model) + "\n\n";
     md += "## 1. The whitepaper's cost table, measured\n\n" + GlossaryText() + "\n\n" +
@@ -1540,14 +1601,15 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
                         t.optimisation);
     md += "### Every configuration\n\n" + MarkdownTable(t.accuracy_header, t.accuracy);
     md += "## 3. Static cost versus measured time\n\n";
-    md += fmt::format("The compiler's static operation count (vertex + fragment `total_ops` of the "
-                      "water variant, from the manifest) beside the measured median frame time, "
-                      "for configurations with default pass options. Spearman rank correlation: "
-                      "**{}**{}. The count sees only the water shader, not the passes a feature "
-                      "adds (refraction renders the scene once more), nor that llvmpipe samples "
-                      "textures in software.\n\n![static cost vs time](charts/static_cost.svg)\n\n",
-                      Fixed(model.static_cost.spearman_rho, 3),
-                      model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")");
+    md += fmt::format(
+            "The compiler's static operation count (vertex + fragment `total_ops` of the "
+            "water variant, from the manifest) beside the measured median frame time, "
+            "for configurations with default pass options. Spearman rank correlation: "
+            "**{}**{}. The count sees only the water shader, not the passes a feature "
+            "adds (refraction renders the scene once more), nor that llvmpipe samples "
+            "textures in software.\n\n![static cost vs time](charts/static_cost.svg)\n\n",
+            Fixed(model.static_cost.spearman_rho, 3),
+            model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")");
     md += "### Where the static count misleads (largest rank disagreements)\n\n";
     md += MarkdownTable(t.misleading_header, t.misleading);
     md += "### All\n\n" + MarkdownTable(t.static_header, t.static_rows);
@@ -1555,7 +1617,8 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     if (!model.validation.failed.empty()) {
         std::vector<std::vector<std::string>> rows;
         for (const MeasuredConfiguration* c : model.validation.failed) {
-            std::string why = c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
+            std::string why =
+                    c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
             for (const std::string& m : c->driver_messages) {
                 why += "; " + m;
             }
@@ -1584,24 +1647,26 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     md += "## 6. Method and noise\n\n" + ClockText(model) + "\n\n" + TimingMethodText(model) +
           "\n\n" + MarkdownTable(ClockNoiseHeader(), ClockNoiseTable(model)) +
           MarkdownTable({"setting", "value"}, t.method);
-    md += fmt::format("Split-half reliability: every comparison computed again from the pairs "
-                      "where the baseline went first and from those where the candidate went "
-                      "first. Largest disagreement: **{}** (row {}).\n\n",
-                      Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
-                      model.largest_split_half_row);
+    md += fmt::format(
+            "Split-half reliability: every comparison computed again from the pairs "
+            "where the baseline went first and from those where the candidate went "
+            "first. Largest disagreement: **{}** (row {}).\n\n",
+            Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
+            model.largest_split_half_row);
     md += MarkdownTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
                          "disagreement", "pairs"},
                         t.split);
     md += RowDefinitionChanges() + "\n\n";
     md += "## 7. Numerical stability\n\n";
     if (!model.inputs->stability) {
-        md += (model.inputs->stability_error.empty() ? StabilityHowTo()
-                                                      : model.inputs->stability_error + ". " +
-                                                                StabilityHowTo()) +
+        md += (model.inputs->stability_error.empty()
+                       ? StabilityHowTo()
+                       : model.inputs->stability_error + ". " + StabilityHowTo()) +
               "\n";
     } else {
         for (const auto& [key, columns] : StabilityTables()) {
-            const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
+            const nlohmann::json& table =
+                    model.inputs->stability->value(key, nlohmann::json::array());
             md += "### " + key + "\n\n";
             std::vector<std::vector<std::string>> rows;
             if (table.is_array()) {
@@ -1620,9 +1685,9 @@ std::string Markdown(const ReportModel& model, const Tables& t, const std::vecto
     }
     md += "## 8. Scenes\n\n";
     if (!model.inputs->plans) {
-        md += (model.inputs->plans_error.empty() ? PlansHowTo()
-                                                  : model.inputs->plans_error + ". " +
-                                                            PlansHowTo()) +
+        md += (model.inputs->plans_error.empty()
+                       ? PlansHowTo()
+                       : model.inputs->plans_error + ". " + PlansHowTo()) +
               "\n\n";
     } else {
         const SceneTables scenes = BuildSceneTables(*model.inputs->plans);
@@ -1697,9 +1762,9 @@ std::string HtmlNote(std::string_view text) {
 // One image panel as HTML: heading, figures, and the three embedded images linking to the files.
 std::string PanelHtml(const ImagePanel& p, const PanelFiles& files,
                       const std::array<std::string, 3>& uri) {
-    std::string h = fmt::format(
-            "<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
-            Html(p.title), Html(p.view), Html(PanelId(p)));
+    std::string h =
+            fmt::format("<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
+                        Html(p.title), Html(p.view), Html(PanelId(p)));
     if (!p.note.empty()) {
         return h + "<p class=\"warn\">" + Html(p.note) + "</p></div>";
     }
@@ -1710,35 +1775,38 @@ std::string PanelHtml(const ImagePanel& p, const PanelFiles& files,
     const std::array<std::string, 3> captions = {"this configuration", p.reference_caption,
                                                  "difference"};
     for (std::size_t k = 0; k < 3; ++k) {
-        h += fmt::format("<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
-                         "<figcaption>{}</figcaption></figure>",
-                         Html(links[k]), uri[k], Html(p.title), Html(captions[k]),
-                         Html(captions[k]));
+        h += fmt::format(
+                "<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
+                "<figcaption>{}</figcaption></figure>",
+                Html(links[k]), uri[k], Html(p.title), Html(captions[k]), Html(captions[k]));
     }
     return h + "</div>";
 }
 
 std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page) {
-    std::string h = "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
-                    "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
+    std::string h =
+            "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
     h += fmt::format("<title>tidepool report: {}</title><style>{}</style>{}</head><body>",
                      Html(model.options.name), kCss, kImageCheckScript);
     h += fmt::format("<h1>tidepool report: {}</h1>", Html(model.options.name));
-    h += fmt::format("<p class=\"note\">Generated {} from <code>{}</code> and <code>{}</code>. "
-                     "Figures labelled <b>whitepaper</b> are quoted from Imagination's \"Shader "
-                     "Based Water Effects\" (measured on a PowerVR SGX-class GPU); everything "
-                     "else was measured here on Mesa llvmpipe.</p>",
-                     Html(model.options.generated_utc), Html(model.inputs->manifest_path.string()),
-                     Html(model.inputs->results_path.string()));
+    h += fmt::format(
+            "<p class=\"note\">Generated {} from <code>{}</code> and <code>{}</code>. "
+            "Figures labelled <b>whitepaper</b> are quoted from Imagination's \"Shader "
+            "Based Water Effects\" (measured on a PowerVR SGX-class GPU); everything "
+            "else was measured here on Mesa llvmpipe.</p>",
+            Html(model.options.generated_utc), Html(model.inputs->manifest_path.string()),
+            Html(model.inputs->results_path.string()));
     h += "<nav><a href=\"#whitepaper\">Whitepaper table</a><a href=\"#accuracy\">Accuracy vs "
          "time</a><a href=\"#static\">Static cost</a><a href=\"#validation\">Validation</a><a "
          "href=\"#images\">Images</a><a href=\"#method\">Method and noise</a><a "
          "href=\"#stability\">Numerical stability</a><a href=\"#scenes\">Scenes</a><a "
          "href=\"#reflections\">Reflection techniques</a></nav>";
     if (model.failed_configurations > 0) {
-        h += fmt::format("<p class=\"warn\"><b>{} configuration(s) FAILED</b> to compile or "
-                         "render; they are shown as failed below.</p>",
-                         model.failed_configurations);
+        h += fmt::format(
+                "<p class=\"warn\"><b>{} configuration(s) FAILED</b> to compile or "
+                "render; they are shown as failed below.</p>",
+                model.failed_configurations);
     }
     h += "<p><b>" + HtmlNote(AtAGlance(model)) + "</b></p>";
     h += "<h2 id=\"whitepaper\">1. The whitepaper's cost table, measured</h2>";
@@ -1752,8 +1820,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     h += ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),
                     "mean SSIM loss vs reference (1 - SSIM)",
                     "Accuracy versus time (red: Pareto frontier)");
-    h += "<h3>Pareto frontier</h3>" +
-         HtmlTable(t.frontier_header, t.frontier);
+    h += "<h3>Pareto frontier</h3>" + HtmlTable(t.frontier_header, t.frontier);
     h += "<h3>Each whitepaper optimisation: time saved, error added</h3>" +
          HtmlTable({"#", "change", "baseline → candidate", "Δ median frame time",
                     "performance change", "Δ(1-SSIM)", "Δ PSNR"},
@@ -1762,36 +1829,39 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
          HtmlTable(t.accuracy_header, t.accuracy, t.accuracy_css) + "</details>";
 
     h += "<h2 id=\"static\">3. Static cost versus measured time</h2>";
-    h += fmt::format("<p class=\"note\">The compiler's static operation count (vertex + fragment "
-                     "<code>total_ops</code> of the water variant, from the manifest) beside the "
-                     "measured median frame time, for configurations with default pass options. "
-                     "Spearman rank correlation: <b>{}</b>{}. Red points: the configurations "
-                     "where the count misleads most. The count sees only the water shader, not "
-                     "the passes a feature adds (refraction renders the scene once more), nor "
-                     "that llvmpipe samples textures in software.</p>",
-                     Fixed(model.static_cost.spearman_rho, 3),
-                     Html(model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")"));
+    h += fmt::format(
+            "<p class=\"note\">The compiler's static operation count (vertex + fragment "
+            "<code>total_ops</code> of the water variant, from the manifest) beside the "
+            "measured median frame time, for configurations with default pass options. "
+            "Spearman rank correlation: <b>{}</b>{}. Red points: the configurations "
+            "where the count misleads most. The count sees only the water shader, not "
+            "the passes a feature adds (refraction renders the scene once more), nor "
+            "that llvmpipe samples textures in software.</p>",
+            Fixed(model.static_cost.spearman_rho, 3),
+            Html(model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")"));
     h += ScatterSvg(StaticPoints(model), {}, "static operations (vertex + fragment total_ops)",
                     TimeAxisLabel(model), "Static cost versus measured time");
     h += "<h3>Where the static count misleads (largest rank disagreements)</h3>" +
          HtmlTable(t.misleading_header, t.misleading);
-    h += "<details><summary>All</summary>" +
-         HtmlTable(t.static_header, t.static_rows) +
+    h += "<details><summary>All</summary>" + HtmlTable(t.static_header, t.static_rows) +
          "</details>";
 
-    h += "<h2 id=\"validation\">4. Validation summary</h2><p>" + Html(ValidationLine(model)) + "</p>";
+    h += "<h2 id=\"validation\">4. Validation summary</h2><p>" + Html(ValidationLine(model)) +
+         "</p>";
     if (!model.validation.failed.empty()) {
         std::vector<std::vector<std::string>> rows;
         std::vector<std::string> css;
         for (const MeasuredConfiguration* c : model.validation.failed) {
-            std::string why = c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
+            std::string why =
+                    c->driver_valid ? "GL error " + c->gl_error : "Mesa compile/link failed";
             for (const std::string& m : c->driver_messages) {
                 why += "; " + m;
             }
             rows.push_back({c->id, "FAILED", why});
             css.push_back("bad");
         }
-        h += "<h3>Failed configurations</h3>" + HtmlTable({"configuration", "status", "why"}, rows, css);
+        h += "<h3>Failed configurations</h3>" +
+             HtmlTable({"configuration", "status", "why"}, rows, css);
     }
     if (!model.validation.disagreements.empty()) {
         std::vector<std::vector<std::string>> rows;
@@ -1799,7 +1869,8 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
             rows.push_back({d.variant, d.glslang_valid ? "valid" : "invalid",
                             d.mesa_valid ? "valid" : "invalid"});
         }
-        h += "<h3>glslang / Mesa disagreements</h3>" + HtmlTable({"variant", "glslang", "Mesa"}, rows);
+        h += "<h3>glslang / Mesa disagreements</h3>" +
+             HtmlTable({"variant", "glslang", "Mesa"}, rows);
     }
     if (!model.validation.pruned_by_rule.empty()) {
         h += "<h3>Pruned combinations per rule</h3><p class=\"note\">Counted by the first rule "
@@ -1815,16 +1886,17 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
         h += PanelHtml(model.panels[i], page.files[i], (*page.uris)[i]);
     }
 
-    h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" + HtmlNote(ClockText(model)) +
-         "</p><p>" + Html(TimingMethodText(model)) + "</p>" +
+    h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" +
+         HtmlNote(ClockText(model)) + "</p><p>" + Html(TimingMethodText(model)) + "</p>" +
          HtmlTable(ClockNoiseHeader(), ClockNoiseTable(model)) +
          HtmlTable({"setting", "value"}, t.method);
-    h += fmt::format("<p>Split-half reliability: every comparison computed again from the pairs "
-                     "where the baseline went first and from those where the candidate went "
-                     "first. Largest disagreement: <b>{}</b> (row {}). A verdict is only as firm "
-                     "as its interval; a finer --resolution narrows it.</p>",
-                     Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
-                     model.largest_split_half_row);
+    h += fmt::format(
+            "<p>Split-half reliability: every comparison computed again from the pairs "
+            "where the baseline went first and from those where the candidate went "
+            "first. Largest disagreement: <b>{}</b> (row {}). A verdict is only as firm "
+            "as its interval; a finer --resolution narrows it.</p>",
+            Fixed(model.largest_split_half_disagreement, 1, " percentage points"),
+            model.largest_split_half_row);
     h += HtmlTable({"#", "comparison", "all pairs", "candidate first", "baseline first",
                     "disagreement", "pairs"},
                    t.split);
@@ -1834,12 +1906,13 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     if (!model.inputs->stability) {
         h += "<p class=\"note\">" +
              HtmlNote(model.inputs->stability_error.empty()
-                          ? StabilityHowTo()
-                          : model.inputs->stability_error + ". " + StabilityHowTo()) +
+                              ? StabilityHowTo()
+                              : model.inputs->stability_error + ". " + StabilityHowTo()) +
              "</p>";
     } else {
         for (const auto& [key, columns] : StabilityTables()) {
-            const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
+            const nlohmann::json& table =
+                    model.inputs->stability->value(key, nlohmann::json::array());
             std::vector<std::vector<std::string>> rows;
             std::vector<std::string> css;
             if (table.is_array()) {
@@ -1850,7 +1923,8 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
                                               ? JsonCell(item[column])
                                               : "–");
                     }
-                    css.push_back(item.is_object() && item.value("passed", true) == false ? "bad" : "");
+                    css.push_back(item.is_object() && item.value("passed", true) == false ? "bad"
+                                                                                          : "");
                     rows.push_back(std::move(row));
                 }
             }
@@ -1883,7 +1957,8 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
          HtmlNote(ReflectionsIntro(model)) + "</p>";
     h += HtmlTable(t.reflections_header, t.reflections, t.reflections_css);
     h += "<h3>Where the reflection breaks: full effect beside planar reflection</h3>"
-         "<p class=\"note\">" + HtmlNote(ReflectionPanelsIntro(model)) + "</p>";
+         "<p class=\"note\">" +
+         HtmlNote(ReflectionPanelsIntro(model)) + "</p>";
     for (std::size_t j = 0; j < model.reflection_panels.size(); ++j) {
         const std::size_t i = ReflectionPanelOffset(model) + j;
         h += PanelHtml(model.reflection_panels[j], page.files[i], (*page.uris)[i]);
@@ -1970,11 +2045,12 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
         files[i].heat = "images/" + stem + "-diff.png";
         const std::string key = p.reference_preset + "/" + p.view;
         if (reference_files.count(key) == 0) {
-            reference_files[key] = p.reference_preset == kReferencePreset
-                                           ? "images/reference-" + p.view + ".png"
-                                           : "images/planar-" + p.reference_preset + "-" +
-                                                     p.view + ".png";
-            if (std::string e = base::WritePngAtomically(staging / reference_files[key], p.reference);
+            reference_files[key] =
+                    p.reference_preset == kReferencePreset
+                            ? "images/reference-" + p.view + ".png"
+                            : "images/planar-" + p.reference_preset + "-" + p.view + ".png";
+            if (std::string e =
+                        base::WritePngAtomically(staging / reference_files[key], p.reference);
                 !e.empty()) {
                 return fail(e);
             }

@@ -21,7 +21,8 @@ const std::vector<WhitepaperRow>& WhitepaperRows() {
             {3, "alpha-blend the water so objects below can be seen", "performance reduced by 11%",
              FigureKind::kPercent, -11.0, -1, "reflection_only", "reflection_alpha_blend",
              "Blending on llvmpipe is a software read-modify-write of each tile's colour, cheap "
-             "next to the passes; SGX paid for the lost hidden-surface removal, llvmpipe has none."},
+             "next to the passes; SGX paid for the lost hidden-surface removal, llvmpipe has "
+             "none."},
             {4, "disable the fog", "performance increased by 3.5%", FigureKind::kPercent, 3.5, +1,
              "full", "full_no_fog",
              "Only the underwater depth fog of section 2.4.1 goes: one multiply, clamp and mix "
@@ -60,9 +61,8 @@ const std::vector<WhitepaperRow>& WhitepaperRows() {
              "modern shader leaves the cube map nothing to save; the 2016 shader, which had no "
              "eye distance to share, did."},
             {9, "#define code paths instead of uniform bool branches",
-             "\"at least an extra cycle for each decision point\" saved",
-             FigureKind::kDirection, std::numeric_limits<double>::quiet_NaN(), +1,
-             "full_uniform_bools", "full",
+             "\"at least an extra cycle for each decision point\" saved", FigureKind::kDirection,
+             std::numeric_limits<double>::quiet_NaN(), +1, "full_uniform_bools", "full",
              "With #defines LLVM compiles one straight-line path and optimises across it; the "
              "uniform-bool program keeps every test and the masked SIMD control flow around it, "
              "which costs llvmpipe far more than SGX's cycle per decision."},

@@ -2,10 +2,10 @@
 // asks for. No GL here; runner/src/gl/WaterRenderer.cpp executes the plan.
 #include "tidepool/runner/FramePlan.h"
 
+#include "tidepool/runner/WaterMath.h"
+
 #include <algorithm>
 #include <cmath>
-
-#include "tidepool/runner/WaterMath.h"
 
 namespace tidepool::runner {
 namespace {
@@ -48,10 +48,14 @@ Variant ModelProgram(const RenderConfiguration& c, PassKind kind, bool discard) 
 
 const char* PassName(PassKind kind) {
     switch (kind) {
-        case PassKind::kReflection: return "reflection";
-        case PassKind::kRefraction: return "refraction";
-        case PassKind::kLowResWater: return "low_res_water";
-        case PassKind::kMain: return "main";
+        case PassKind::kReflection:
+            return "reflection";
+        case PassKind::kRefraction:
+            return "refraction";
+        case PassKind::kLowResWater:
+            return "low_res_water";
+        case PassKind::kMain:
+            return "main";
     }
     return "?";
 }
@@ -229,8 +233,8 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
         pass.width = pass.height = LowResWaterSize(settings);
         pass.view = view_matrix;
         pass.projection = projection;
-        pass.clear_colour = fog ? glm::vec4(settings.fog_colour, 1.0F)
-                                : glm::vec4(0.0F, 0.0F, 0.0F, 0.0F);
+        pass.clear_colour =
+                fog ? glm::vec4(settings.fog_colour, 1.0F) : glm::vec4(0.0F, 0.0F, 0.0F, 0.0F);
         pass.meshes.push_back(-1);
         pass.model_program = main_pass.model_program;
         pass.draw_water = true;

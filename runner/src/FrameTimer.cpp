@@ -32,14 +32,14 @@ bool Contains(std::string_view text, std::string_view word) {
 
 std::string_view FrameClockName(FrameClock clock) {
     switch (clock) {
-    case FrameClock::kThreadCpu:
-        return "thread_cpu";
-    case FrameClock::kProcessCpu:
-        return "process_cpu";
-    case FrameClock::kGpuTimer:
-        return "gpu_timer_query";
-    case FrameClock::kWall:
-        return "wall";
+        case FrameClock::kThreadCpu:
+            return "thread_cpu";
+        case FrameClock::kProcessCpu:
+            return "process_cpu";
+        case FrameClock::kGpuTimer:
+            return "gpu_timer_query";
+        case FrameClock::kWall:
+            return "wall";
     }
     return "wall";
 }
@@ -47,8 +47,7 @@ std::string_view FrameClockName(FrameClock clock) {
 FrameClockChoice ChooseFrameClock(std::string_view gl_renderer, std::string_view lp_num_threads,
                                   bool has_timer_query) {
     const bool software = Contains(gl_renderer, "llvmpipe") || Contains(gl_renderer, "softpipe") ||
-                          Contains(gl_renderer, "swrast") ||
-                          Contains(gl_renderer, "offscreen") ||
+                          Contains(gl_renderer, "swrast") || Contains(gl_renderer, "offscreen") ||
                           Contains(gl_renderer, "software rasterizer");
     if (software) {
         if (lp_num_threads == "0") {
@@ -75,13 +74,13 @@ FrameTimer::FrameTimer(WaterRenderer& renderer, FrameClock clock)
 
 double FrameTimer::ReadMs() const {
     switch (clock_) {
-    case FrameClock::kThreadCpu:
-        return ClockMs(CLOCK_THREAD_CPUTIME_ID);
-    case FrameClock::kProcessCpu:
-        return ClockMs(CLOCK_PROCESS_CPUTIME_ID);
-    case FrameClock::kGpuTimer:
-    case FrameClock::kWall:
-        return WallMs();
+        case FrameClock::kThreadCpu:
+            return ClockMs(CLOCK_THREAD_CPUTIME_ID);
+        case FrameClock::kProcessCpu:
+            return ClockMs(CLOCK_PROCESS_CPUTIME_ID);
+        case FrameClock::kGpuTimer:
+        case FrameClock::kWall:
+            return WallMs();
     }
     return WallMs();
 }
@@ -142,8 +141,8 @@ ComparisonTiming TimeComparison(
             s.candidate_wall_ms.push_back(candidate.wall_ms);
         }
         out.estimate = base::EstimatePaired(s.baseline_ms, s.candidate_ms);
-        out.decision = batch == 0 ? base::StopDecision::kCapped
-                                  : base::DecideStop(out.estimate, rule);
+        out.decision =
+                batch == 0 ? base::StopDecision::kCapped : base::DecideStop(out.estimate, rule);
         if (after_look) {
             after_look(out);
         }

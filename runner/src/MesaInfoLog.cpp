@@ -39,8 +39,7 @@ int MapMesaColumn(std::string_view line_text, int mesa_column) {
 }
 
 std::vector<Diagnostic> ParseMesaInfoLog(std::string_view log, const std::string& file,
-                                         const std::string& variant,
-                                         std::string_view user_source) {
+                                         const std::string& variant, std::string_view user_source) {
     // The user's lines, to map columns back (index 0 is line 1).
     std::vector<std::string_view> source_lines;
     for (std::size_t start = 0; !user_source.empty() && start <= user_source.size();) {

@@ -346,10 +346,14 @@ void AppendSeabedSkirt(Mesh& mesh, int segments) {
     const auto last = static_cast<std::size_t>(segments);
     auto at = [&](std::size_t row, std::size_t column) { return row * stride + column; };
     std::vector<std::size_t> border;  // walked once around, each corner once
-    for (std::size_t k = 0; k < last; ++k) border.push_back(at(0, k));
-    for (std::size_t k = 0; k < last; ++k) border.push_back(at(k, last));
-    for (std::size_t k = last; k > 0; --k) border.push_back(at(last, k));
-    for (std::size_t k = last; k > 0; --k) border.push_back(at(k, 0));
+    for (std::size_t k = 0; k < last; ++k)
+        border.push_back(at(0, k));
+    for (std::size_t k = 0; k < last; ++k)
+        border.push_back(at(k, last));
+    for (std::size_t k = last; k > 0; --k)
+        border.push_back(at(last, k));
+    for (std::size_t k = last; k > 0; --k)
+        border.push_back(at(k, 0));
     const std::size_t base = mesh.positions.size();
     for (std::size_t v : border) {
         const glm::vec3 inner = mesh.positions[v];
@@ -617,11 +621,10 @@ Scene BuildSceneFromDescription(const SceneDescription& description) {
             // Whole rocks move with the floor under them, their top kept under the water.
             const float centre = 0.5F * (object.world_bounds_min.y + object.world_bounds_max.y);
             float shift = reshape(centre) - centre;
-            shift = std::min(shift, scene.water_height - kSubmergedClearance -
-                                            object.world_bounds_max.y);
-            object.model_matrix =
-                    glm::translate(glm::mat4(1.0F), glm::vec3(0.0F, shift, 0.0F)) *
-                    object.model_matrix;
+            shift = std::min(shift,
+                             scene.water_height - kSubmergedClearance - object.world_bounds_max.y);
+            object.model_matrix = glm::translate(glm::mat4(1.0F), glm::vec3(0.0F, shift, 0.0F)) *
+                                  object.model_matrix;
         } else if (!above) {
             // Parts through the water stretch with the floor (model matrices are rigid).
             const glm::mat4 inverse = glm::inverse(object.model_matrix);

@@ -1,12 +1,12 @@
 // Render configurations from variants.yaml.
 #include "tidepool/runner/RenderConfig.h"
 
-#include <fnmatch.h>
-#include <fmt/format.h>
-
 #include <algorithm>
 #include <cctype>
 #include <set>
+
+#include <fmt/format.h>
+#include <fnmatch.h>
 
 namespace tidepool::runner {
 
@@ -91,11 +91,12 @@ ConfigurationSet BuildDefaultConfigurations(const VariantConfig& config,
     for (const Preset& preset : config.presets) {
         if (preset.program != kWaterProgram && preset.program != kWaterUniformProgram) {
             set.diagnostics.push_back(Diagnostic{
-                Severity::kError, preset.where.file, preset.where.line, preset.where.column,
-                fmt::format("preset '{}' uses program '{}'; the renderer draws only '{}' and '{}' "
+                    Severity::kError, preset.where.file, preset.where.line, preset.where.column,
+                    fmt::format(
+                            "preset '{}' uses program '{}'; the renderer draws only '{}' and '{}' "
                             "as the water",
                             preset.name, preset.program, kWaterProgram, kWaterUniformProgram),
-                ""});
+                    ""});
             continue;
         }
         RenderConfiguration configuration;
@@ -130,9 +131,10 @@ ConfigurationSet FilterConfigurations(const ConfigurationSet& all,
                                        });
         if (!known) {
             kept.diagnostics.push_back(
-                MakeError("", 0, 0, fmt::format("unknown preset '{}'; see the presets in "
-                                                "variants.yaml",
-                                                preset)));
+                    MakeError("", 0, 0,
+                              fmt::format("unknown preset '{}'; see the presets in "
+                                          "variants.yaml",
+                                          preset)));
         }
     }
     const bool keep_all = filter.id_globs.empty() && filter.presets.empty();

@@ -1,28 +1,28 @@
 // The render run: compile, images, warm-up, interleaved timing rounds, results.json.
 #include "tidepool/runner/Results.h"
 
-#include <fmt/format.h>
+#include "tidepool/GlslValidator.h"
+#include "tidepool/Manifest.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
 #include <array>
 #include <atomic>
-#include <cmath>
-#include <mutex>
-#include <random>
-#include <numeric>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <fstream>
 #include <map>
+#include <mutex>
+#include <numeric>
+#include <random>
 #include <set>
 #include <system_error>
 #include <thread>
 
-#include "tidepool/GlslValidator.h"
-#include "tidepool/base/SampleStatistics.h"
-#include "tidepool/Manifest.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/base/RgbaImage.h"
+#include <fmt/format.h>
 
 namespace tidepool::runner {
 namespace {
@@ -46,17 +46,27 @@ std::string UtcNow() {
 }
 
 nlohmann::json DiagnosticJson(const Diagnostic& d) {
-    return {{"severity", SeverityName(d.severity)}, {"file", d.file},
-            {"line", d.line},                       {"column", d.column},
-            {"message", d.message},                 {"variant", d.variant},
+    return {{"severity", SeverityName(d.severity)},
+            {"file", d.file},
+            {"line", d.line},
+            {"column", d.column},
+            {"message", d.message},
+            {"variant", d.variant},
             {"text", FormatDiagnostic(d)}};
 }
 
 nlohmann::json StatisticsJson(const SampleStatistics& s) {
-    return {{"count", s.count},     {"min_ms", s.min},         {"max_ms", s.max},
-            {"mean_ms", s.mean},    {"median_ms", s.median},   {"q1_ms", s.q1},
-            {"q3_ms", s.q3},        {"iqr_ms", s.iqr},         {"ci_low_ms", s.ci_low},
-            {"ci_high_ms", s.ci_high}, {"ci_coverage", s.ci_coverage},
+    return {{"count", s.count},
+            {"min_ms", s.min},
+            {"max_ms", s.max},
+            {"mean_ms", s.mean},
+            {"median_ms", s.median},
+            {"q1_ms", s.q1},
+            {"q3_ms", s.q3},
+            {"iqr_ms", s.iqr},
+            {"ci_low_ms", s.ci_low},
+            {"ci_high_ms", s.ci_high},
+            {"ci_coverage", s.ci_coverage},
             {"ci_method", "order statistics of the median, binomial(n, 0.5) coverage"}};
 }
 
@@ -97,9 +107,10 @@ public:
     }
 
     // Comparison `k` now expects `frames` in all (a running comparison's guess, from its
-    // interval), or took `frames` when `finished` (0: it failed before timing). The comparisons still waiting then expect
-    // what the finished ones took on average, the first guess counting as one of them: a run
-    // whose comparisons resolve at the minimum should not expect the guess of every later one.
+    // interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
+    // still waiting then expect what the finished ones took on average, the first guess counting as
+    // one of them: a run whose comparisons resolve at the minimum should not expect the guess of
+    // every later one.
     void ComparisonExpects(std::size_t k, long frames, bool finished) {
         std::lock_guard<std::mutex> lock(mutex_);
         comparison_frames_[k] = frames;
@@ -124,8 +135,8 @@ public:
     void Step(Kind kind, const std::string& what, long frames) {
         std::lock_guard<std::mutex> lock(mutex_);
         const Clock::time_point now = Clock::now();
-        Clock::time_point& last = last_step_.try_emplace(std::this_thread::get_id(), start_)
-                                          .first->second;
+        Clock::time_point& last =
+                last_step_.try_emplace(std::this_thread::get_id(), start_).first->second;
         KindState& k = kinds_[kind];
         k.busy_seconds += Seconds(now - last);
         last = now;
@@ -268,8 +279,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     }
 
     ProgressMeter meter(progress, start);
-    const long per_configuration =
-            static_cast<long>(options.views.size()) + options.coarse_frames;
+    const long per_configuration = static_cast<long>(options.views.size()) + options.coarse_frames;
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
     meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
@@ -352,9 +362,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             }
             if (options.write_images) {
                 const std::string name = fmt::format(
-                    "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
+                        "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
                 const std::string write_error =
-                    base::WritePngAtomically(options.out_dir / name, w.renderer->ReadImage());
+                        base::WritePngAtomically(options.out_dir / name, w.renderer->ReadImage());
                 if (write_error.empty()) {
                     view_result.image_path = name;
                 } else {
@@ -411,19 +421,20 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         const RenderConfiguration& candidate = options.configurations[c.candidate];
         long done = 0;
         out.timing = TimeComparison(
-            [&](bool is_candidate) {
-                return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
-            },
-            options.rule, [&](const ComparisonTiming& so_far) {
-                // Frames this look took, and a new guess of the pairs the interval needs.
-                const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
-                meter.Step(ProgressMeter::kComparison, c.label, frames - done);
-                done = frames;
-                const long needed = base::PairsExpectedAtStop(so_far.estimate, options.rule,
-                                                              kInitialPairGuess);
-                const bool finished = so_far.decision != base::StopDecision::kContinue;
-                meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
-            });
+                [&](bool is_candidate) {
+                    return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
+                },
+                options.rule,
+                [&](const ComparisonTiming& so_far) {
+                    // Frames this look took, and a new guess of the pairs the interval needs.
+                    const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
+                    meter.Step(ProgressMeter::kComparison, c.label, frames - done);
+                    done = frames;
+                    const long needed = base::PairsExpectedAtStop(so_far.estimate, options.rule,
+                                                                  kInitialPairGuess);
+                    const bool finished = so_far.decision != base::StopDecision::kContinue;
+                    meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
+                });
         time_passes(w, c.baseline);
         time_passes(w, c.candidate);
         meter.Step(ProgressMeter::kComparison, c.label, 0);  // the per-pass frames' time too
@@ -437,7 +448,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         if (!w.renderer) {
             std::lock_guard<std::mutex> lock(results_mutex);
             results.diagnostics.push_back(
-                MakeError("", 0, 0, "cannot set up the renderer: " + error));
+                    MakeError("", 0, 0, "cannot set up the renderer: " + error));
             return;
         }
         w.timer = std::make_unique<FrameTimer>(*w.renderer, results.clock.clock);
@@ -451,15 +462,15 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     };
 
     std::atomic<bool> rendered{false};
-    results.workers = RunOnRenderingThreads(
-            context, options.make_context, std::max(1, options.workers),
-            [&](GlContext& gl_context) {
-                RenderWorker w;
-                run_worker(w, gl_context);
-                if (w.renderer) {
-                    rendered = true;
-                }
-            });
+    results.workers =
+            RunOnRenderingThreads(context, options.make_context, std::max(1, options.workers),
+                                  [&](GlContext& gl_context) {
+                                      RenderWorker w;
+                                      run_worker(w, gl_context);
+                                      if (w.renderer) {
+                                          rendered = true;
+                                      }
+                                  });
     if (!rendered) {
         return results;  // the diagnostics say why
     }
@@ -483,17 +494,17 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             r.glslang_valid = found->second;
             // Only the variant's own program counts: a helper program's failure is not its fault.
             const bool mesa_valid = r.verdict.linked;
-            const bool listed = std::any_of(
-                results.disagreements.begin(), results.disagreements.end(),
-                [&](const VerdictDisagreement& d) { return d.variant == id; });
+            const bool listed =
+                    std::any_of(results.disagreements.begin(), results.disagreements.end(),
+                                [&](const VerdictDisagreement& d) { return d.variant == id; });
             if (found->second != mesa_valid && !listed) {
                 results.disagreements.push_back(VerdictDisagreement{id, found->second, mesa_valid});
             }
         }
         if (!r.gl_error.empty()) {
-            results.diagnostics.push_back(Diagnostic{
-                Severity::kError, "", 0, 0, "GL error while rendering: " + r.gl_error,
-                r.configuration.id});
+            results.diagnostics.push_back(Diagnostic{Severity::kError, "", 0, 0,
+                                                     "GL error while rendering: " + r.gl_error,
+                                                     r.configuration.id});
         }
     }
     results.wall_seconds = Seconds(Clock::now() - start);
@@ -509,19 +520,19 @@ nlohmann::json ResultsToJson(const RunResults& results) {
     json["started_utc"] = results.started_utc;
     json["wall_seconds"] = results.wall_seconds;
     json["environment"] = {
-        {"backend", results.gl.backend},
-        {"context_api", results.gl.context_api},
-        {"gl_renderer", results.gl.renderer},
-        {"gl_version", results.gl.version},
-        {"glsl_version", results.gl.shading_language},
-        {"mesa_version", results.gl.mesa_version},
-        {"float_render_target", results.gl.float_render_target},
-        {"timer_query", results.gl.timer_query},
-        {"cpu_model", results.host.cpu_model},
-        {"lp_num_threads", results.host.lp_num_threads},
-        {"build_type", results.host.build_type},
-        {"git_revision", results.host.git_revision},
-        {"command", results.host.command},
+            {"backend", results.gl.backend},
+            {"context_api", results.gl.context_api},
+            {"gl_renderer", results.gl.renderer},
+            {"gl_version", results.gl.version},
+            {"glsl_version", results.gl.shading_language},
+            {"mesa_version", results.gl.mesa_version},
+            {"float_render_target", results.gl.float_render_target},
+            {"timer_query", results.gl.timer_query},
+            {"cpu_model", results.host.cpu_model},
+            {"lp_num_threads", results.host.lp_num_threads},
+            {"build_type", results.host.build_type},
+            {"git_revision", results.host.git_revision},
+            {"command", results.host.command},
     };
     nlohmann::json views = nlohmann::json::array();
     for (const CameraView& v : o.views) {
@@ -533,57 +544,62 @@ nlohmann::json ResultsToJson(const RunResults& results) {
                          {"far", v.far_plane}});
     }
     json["settings"] = {
-        {"config", o.config_path},
-        {"width", s.width},
-        {"height", s.height},
-        {"views", views},
-        {"timing_view", o.timing_view.empty() && !o.views.empty() ? o.views.front().name
-                                                                   : o.timing_view},
-        {"warmup_frames", o.warmup_frames},
-        {"coarse_frames", o.coarse_frames},
-        {"pass_frames", o.pass_frames},
-        {"workers", results.workers},
-        {"timing_method",
-         "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
-         "it); each configuration gets coarse_frames frames on its own; each comparison is "
-         "timed in pairs of frames rendered back to back on one thread, the side going first "
-         "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as narrow "
-         "as timing.resolution_points or timing.max_pairs is reached"},
-        {"animation_time_s", s.animation_time},
-        {"clip_plane_offset", s.clip_plane_offset},
-        {"wave_distortion", s.wave_distortion},
-        {"bump_scale", {{s.bump_scale0.x, s.bump_scale0.y}, {s.bump_scale1.x, s.bump_scale1.y}}},
-        {"bump_velocity",
-         {{s.bump_velocity0.x, s.bump_velocity0.y}, {s.bump_velocity1.x, s.bump_velocity1.y}}},
-        {"fog_colour", {s.fog_colour.r, s.fog_colour.g, s.fog_colour.b}},
-        {"rcp_max_fog_distance", s.rcp_max_fog_distance},
-        {"underwater_colour",
-         {s.underwater_colour.r, s.underwater_colour.g, s.underwater_colour.b}},
-        {"rcp_max_fog_depth", s.rcp_max_fog_depth},
-        {"water_colour", {s.water_colour.r, s.water_colour.g, s.water_colour.b, s.water_colour.a}},
-        {"low_res_water_size", s.low_res_water_size},
-        {"sky_size", s.sky_size},
-        {"normal_map_size", s.normal_map_size},
-        {"normalisation_cube_size", s.normalisation_cube_size},
-        {"max_water_depth", s.max_water_depth},
-        {"extinction",
-         {{"extinction", {s.extinction.extinction.r, s.extinction.extinction.g,
-                          s.extinction.extinction.b}},
-          {"visibility", s.extinction.visibility},
-          {"surface_colour", {s.extinction.surface_colour.r, s.extinction.surface_colour.g,
-                              s.extinction.surface_colour.b}},
-          {"depth_colour", {s.extinction.depth_colour.r, s.extinction.depth_colour.g,
-                            s.extinction.depth_colour.b}}}},
-        {"foam_depth", {s.foam_depth.x, s.foam_depth.y}},
-        {"shore_hardness", s.shore_hardness},
-        {"shininess", s.shininess},
-        {"fourier",
-         {{"coefficients", s.fourier.coefficients},
-          {"directions", s.fourier.directions},
-          {"march_distance", s.fourier.march_distance},
-          {"integration_samples", s.fourier.integration_samples},
-          {"grid_spacing", s.fourier.grid_spacing},
-          {"grid_margin", s.fourier.grid_margin}}},
+            {"config", o.config_path},
+            {"width", s.width},
+            {"height", s.height},
+            {"views", views},
+            {"timing_view",
+             o.timing_view.empty() && !o.views.empty() ? o.views.front().name : o.timing_view},
+            {"warmup_frames", o.warmup_frames},
+            {"coarse_frames", o.coarse_frames},
+            {"pass_frames", o.pass_frames},
+            {"workers", results.workers},
+            {"timing_method",
+             "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
+             "it); each configuration gets coarse_frames frames on its own; each comparison is "
+             "timed in pairs of frames rendered back to back on one thread, the side going first "
+             "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as "
+             "narrow "
+             "as timing.resolution_points or timing.max_pairs is reached"},
+            {"animation_time_s", s.animation_time},
+            {"clip_plane_offset", s.clip_plane_offset},
+            {"wave_distortion", s.wave_distortion},
+            {"bump_scale",
+             {{s.bump_scale0.x, s.bump_scale0.y}, {s.bump_scale1.x, s.bump_scale1.y}}},
+            {"bump_velocity",
+             {{s.bump_velocity0.x, s.bump_velocity0.y}, {s.bump_velocity1.x, s.bump_velocity1.y}}},
+            {"fog_colour", {s.fog_colour.r, s.fog_colour.g, s.fog_colour.b}},
+            {"rcp_max_fog_distance", s.rcp_max_fog_distance},
+            {"underwater_colour",
+             {s.underwater_colour.r, s.underwater_colour.g, s.underwater_colour.b}},
+            {"rcp_max_fog_depth", s.rcp_max_fog_depth},
+            {"water_colour",
+             {s.water_colour.r, s.water_colour.g, s.water_colour.b, s.water_colour.a}},
+            {"low_res_water_size", s.low_res_water_size},
+            {"sky_size", s.sky_size},
+            {"normal_map_size", s.normal_map_size},
+            {"normalisation_cube_size", s.normalisation_cube_size},
+            {"max_water_depth", s.max_water_depth},
+            {"extinction",
+             {{"extinction",
+               {s.extinction.extinction.r, s.extinction.extinction.g, s.extinction.extinction.b}},
+              {"visibility", s.extinction.visibility},
+              {"surface_colour",
+               {s.extinction.surface_colour.r, s.extinction.surface_colour.g,
+                s.extinction.surface_colour.b}},
+              {"depth_colour",
+               {s.extinction.depth_colour.r, s.extinction.depth_colour.g,
+                s.extinction.depth_colour.b}}}},
+            {"foam_depth", {s.foam_depth.x, s.foam_depth.y}},
+            {"shore_hardness", s.shore_hardness},
+            {"shininess", s.shininess},
+            {"fourier",
+             {{"coefficients", s.fourier.coefficients},
+              {"directions", s.fourier.directions},
+              {"march_distance", s.fourier.march_distance},
+              {"integration_samples", s.fourier.integration_samples},
+              {"grid_spacing", s.fourier.grid_spacing},
+              {"grid_margin", s.fourier.grid_margin}}},
     };
     nlohmann::json configurations = nlohmann::json::array();
     for (const ConfigurationResult& r : results.configurations) {
@@ -603,43 +619,43 @@ nlohmann::json ResultsToJson(const RunResults& results) {
                                     {"gl_error", v.frame.gl_error}});
         }
         nlohmann::json entry = {
-            {"id", c.id},
-            {"variant", c.variant.Id()},
-            {"program", c.variant.program},
-            {"defines", c.variant.defines},
-            {"effects", c.effects},
-            {"uniform_bools", c.UsesUniformBools()},
-            {"presets", c.presets},
-            {"passes",
-             {{"reflection_size", ReflectionSize(c.passes, s.width, s.height)},
-              {"refraction_size", RefractionSize(c.passes, s.width, s.height)},
-              {"low_res_water", c.passes.low_res_water},
-              {"depth_fog", c.passes.depth_fog},
-              {"clip", c.passes.clip},
-              {"culling", c.passes.culling}}},
-            {"driver",
-             {{"valid", r.verdict.valid},
-              {"vertex_compiled", r.verdict.vertex_compiled},
-              {"fragment_compiled", r.verdict.fragment_compiled},
-              {"linked", r.verdict.linked},
-              {"vertex_log", r.verdict.vertex_log},
-              {"fragment_log", r.verdict.fragment_log},
-              {"link_log", r.verdict.link_log},
-              {"diagnostics", diagnostics}}},
-            {"glslang_valid", r.glslang_valid ? nlohmann::json(*r.glslang_valid)
-                                              : nlohmann::json(nullptr)},
-            {"views", view_results},
-            {"frame_passes", r.passes},
-            {"frame_draw_calls", r.draw_calls},
-            {"samples_ms", r.samples_ms},
-            {"statistics", StatisticsJson(r.statistics)},
-            {"cpu_samples_ms", r.cpu_samples_ms},
-            {"cpu_statistics", StatisticsJson(r.cpu_statistics)},
-            {"plan_ms_median", r.plan_ms_median},
-            {"pass_ms", r.pass_ms},
-            {"instrumented_frame_ms", r.instrumented_frame_ms},
-            {"gl_error", r.gl_error},
-            {"ok", r.Ok()},
+                {"id", c.id},
+                {"variant", c.variant.Id()},
+                {"program", c.variant.program},
+                {"defines", c.variant.defines},
+                {"effects", c.effects},
+                {"uniform_bools", c.UsesUniformBools()},
+                {"presets", c.presets},
+                {"passes",
+                 {{"reflection_size", ReflectionSize(c.passes, s.width, s.height)},
+                  {"refraction_size", RefractionSize(c.passes, s.width, s.height)},
+                  {"low_res_water", c.passes.low_res_water},
+                  {"depth_fog", c.passes.depth_fog},
+                  {"clip", c.passes.clip},
+                  {"culling", c.passes.culling}}},
+                {"driver",
+                 {{"valid", r.verdict.valid},
+                  {"vertex_compiled", r.verdict.vertex_compiled},
+                  {"fragment_compiled", r.verdict.fragment_compiled},
+                  {"linked", r.verdict.linked},
+                  {"vertex_log", r.verdict.vertex_log},
+                  {"fragment_log", r.verdict.fragment_log},
+                  {"link_log", r.verdict.link_log},
+                  {"diagnostics", diagnostics}}},
+                {"glslang_valid",
+                 r.glslang_valid ? nlohmann::json(*r.glslang_valid) : nlohmann::json(nullptr)},
+                {"views", view_results},
+                {"frame_passes", r.passes},
+                {"frame_draw_calls", r.draw_calls},
+                {"samples_ms", r.samples_ms},
+                {"statistics", StatisticsJson(r.statistics)},
+                {"cpu_samples_ms", r.cpu_samples_ms},
+                {"cpu_statistics", StatisticsJson(r.cpu_statistics)},
+                {"plan_ms_median", r.plan_ms_median},
+                {"pass_ms", r.pass_ms},
+                {"instrumented_frame_ms", r.instrumented_frame_ms},
+                {"gl_error", r.gl_error},
+                {"ok", r.Ok()},
         };
         configurations.push_back(std::move(entry));
     }
@@ -651,8 +667,9 @@ nlohmann::json ResultsToJson(const RunResults& results) {
                       {"max_pairs", o.rule.max_pairs},
                       {"batch_pairs", o.rule.batch_pairs},
                       {"confidence", base::kConfidenceLevel},
-                      {"estimator", "Hodges-Lehmann median of Walsh averages of per-pair log "
-                                    "ratios; Wilcoxon signed-rank interval"}};
+                      {"estimator",
+                       "Hodges-Lehmann median of Walsh averages of per-pair log "
+                       "ratios; Wilcoxon signed-rank interval"}};
     nlohmann::json comparisons = nlohmann::json::array();
     for (const ComparisonResult& c : results.comparisons) {
         const base::PairedEstimate& e = c.timing.estimate;
@@ -662,32 +679,34 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         const bool indices_ok = c.comparison.baseline < results.configurations.size() &&
                                 c.comparison.candidate < results.configurations.size();
         comparisons.push_back({
-            {"label", c.comparison.label},
-            {"baseline", indices_ok ? results.configurations[c.comparison.baseline].configuration.id
-                                    : std::string()},
-            {"candidate", indices_ok
-                                  ? results.configurations[c.comparison.candidate].configuration.id
-                                  : std::string()},
-            {"error", c.error},
-            {"pairs", e.pairs},
-            {"decision", base::StopDecisionName(c.timing.decision)},
-            {"ratio", number(e.ratio)},
-            {"ratio_low", number(e.ratio_low)},
-            {"ratio_high", number(e.ratio_high)},
-            {"change_percent", number(e.change_percent)},
-            {"change_low", number(e.change_low)},
-            {"change_high", number(e.change_high)},
-            {"baseline_ms", c.timing.samples.baseline_ms},
-            {"candidate_ms", c.timing.samples.candidate_ms},
-            {"baseline_wall_ms", c.timing.samples.baseline_wall_ms},
-            {"candidate_wall_ms", c.timing.samples.candidate_wall_ms},
+                {"label", c.comparison.label},
+                {"baseline",
+                 indices_ok ? results.configurations[c.comparison.baseline].configuration.id
+                            : std::string()},
+                {"candidate",
+                 indices_ok ? results.configurations[c.comparison.candidate].configuration.id
+                            : std::string()},
+                {"error", c.error},
+                {"pairs", e.pairs},
+                {"decision", base::StopDecisionName(c.timing.decision)},
+                {"ratio", number(e.ratio)},
+                {"ratio_low", number(e.ratio_low)},
+                {"ratio_high", number(e.ratio_high)},
+                {"change_percent", number(e.change_percent)},
+                {"change_low", number(e.change_low)},
+                {"change_high", number(e.change_high)},
+                {"baseline_ms", c.timing.samples.baseline_ms},
+                {"candidate_ms", c.timing.samples.candidate_ms},
+                {"baseline_wall_ms", c.timing.samples.baseline_wall_ms},
+                {"candidate_wall_ms", c.timing.samples.candidate_wall_ms},
         });
     }
     json["comparisons"] = std::move(comparisons);
     nlohmann::json disagreements = nlohmann::json::array();
     for (const VerdictDisagreement& d : results.disagreements) {
-        disagreements.push_back(
-            {{"variant", d.variant}, {"glslang_valid", d.glslang_valid}, {"mesa_valid", d.mesa_valid}});
+        disagreements.push_back({{"variant", d.variant},
+                                 {"glslang_valid", d.glslang_valid},
+                                 {"mesa_valid", d.mesa_valid}});
     }
     json["disagreements"] = std::move(disagreements);
     nlohmann::json diagnostics = nlohmann::json::array();

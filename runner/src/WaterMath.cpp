@@ -234,7 +234,7 @@ glm::vec3 ExtinctionColour(glm::vec3 refraction, float depth, float cos_view,
                            const ExtinctionModel& model) {
     const float path = depth / std::max(cos_view, kMinExtinctionViewCos);
     glm::vec3 colour =
-        glm::mix(refraction, model.surface_colour, SaturatedRatio(path, model.visibility));
+            glm::mix(refraction, model.surface_colour, SaturatedRatio(path, model.visibility));
     for (int channel = 0; channel < 3; ++channel) {
         colour[channel] = glm::mix(colour[channel], model.depth_colour[channel],
                                    SaturatedRatio(depth, model.extinction[channel]));

@@ -2,18 +2,18 @@
 // line, and the CMake module (cmake/TidepoolShaderVariants.cmake) driving examples/shader_variants
 // from a clean folder with Ninja and with Make: it builds, a build with nothing changed runs
 // nothing, and touching one shader reruns only the step of the program that reads it.
+#include <gtest/gtest.h>
+
 #include <chrono>
 #include <filesystem>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -54,8 +54,9 @@ protected:
 };
 
 TEST_F(DepfileCliTest, ValidateDepfileNamesTheManifestTheConfigAndEveryShaderRead) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: a b.vsh\n    fragment: s.fsh\n"
-                         "  q:\n    vertex: a b.vsh\n    fragment: t.fsh\n");
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: a b.vsh\n    fragment: s.fsh\n"
+               "  q:\n    vertex: a b.vsh\n    fragment: t.fsh\n");
     const SplitResult r =
             RunTidepoolSplit("validate --config v.yaml --out o --depfile o.d", dir_.Path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -64,8 +65,9 @@ TEST_F(DepfileCliTest, ValidateDepfileNamesTheManifestTheConfigAndEveryShaderRea
 }
 
 TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "    features: [A]\n  q:\n    vertex: s.vsh\n    fragment: t.fsh\n");
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "    features: [A]\n  q:\n    vertex: s.vsh\n    fragment: t.fsh\n");
     const SplitResult r = RunTidepoolSplit(
             "validate --config v.yaml --program q --out o --sources --depfile o.d", dir_.Path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -84,8 +86,7 @@ TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
     EXPECT_NE(unknown.err.find("error: --program r: v.yaml has no such program; it has p, q"),
               std::string::npos)
             << unknown.err;
-    EXPECT_EQ(RunTidepoolSplit("validate --config v.yaml --depfile o.d", dir_.Path()).exit_code,
-              2)
+    EXPECT_EQ(RunTidepoolSplit("validate --config v.yaml --depfile o.d", dir_.Path()).exit_code, 2)
             << "a depfile names the output it belongs to, so it needs --out";
 }
 

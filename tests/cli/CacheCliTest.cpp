@@ -1,19 +1,19 @@
 // `tidepool validate` with its validation cache, as a user runs it: --cache, --no-cache, the
 // default folder, concurrent processes.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
-#include <gtest/gtest.h>
-
-#include "TidepoolProcess.h"
 #include "TempDir.h"
+#include "TidepoolProcess.h"
 
 namespace {
 
-using tidepool::testing::RunShell;
 using tidepool::testing::CommandResult;
+using tidepool::testing::RunShell;
 using tidepool::testing::TempDir;
 
 std::string Quoted(const std::filesystem::path& path) {
@@ -52,8 +52,9 @@ protected:
         dir_.Write("s.fsh",
                    "#version 100\nprecision mediump float;\nvoid main() {\n#ifdef B\n"
                    "  gl_FragColor = vec4(oops);\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n");
-        dir_.Write("v.yaml",
-                   "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    features: [A, B]\n");
+        dir_.Write(
+                "v.yaml",
+                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    features: [A, B]\n");
     }
     TempDir dir_;
 };
@@ -76,8 +77,7 @@ TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
 
 TEST_F(CacheCliTest, NoCacheWritesNothing) {
     dir_.Write("xdg/keep", "");
-    const CommandResult r = Tidepool(
-            "validate --config v.yaml --no-cache", dir_.Path());
+    const CommandResult r = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
     EXPECT_EQ(r.exit_code, 1) << r.out;
     const CommandResult with_env = RunShell(
             "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
@@ -87,9 +87,9 @@ TEST_F(CacheCliTest, NoCacheWritesNothing) {
 }
 
 TEST_F(CacheCliTest, DefaultFolderIsTidepoolUnderXdgCacheHome) {
-    const CommandResult r = RunShell(
-            "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
-            " '" TIDEPOOL_BINARY "' validate --config v.yaml 2>&1");
+    const CommandResult r = RunShell("cd " + Quoted(dir_.Path()) +
+                                     " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
+                                     " '" TIDEPOOL_BINARY "' validate --config v.yaml 2>&1");
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_GT(EntryCount(dir_.Path() / "xdg" / "tidepool" / "v1"), 0U);
 }
@@ -102,9 +102,9 @@ TEST_F(CacheCliTest, CacheAndNoCacheTogetherAreAUsageError) {
 
 TEST_F(CacheCliTest, UnwritableCacheFolderWarnsAndStillValidates) {
     dir_.Write("file", "a file where the cache folder should be");
-    const CommandResult r = Tidepool(
-            "validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
-            dir_.Path());
+    const CommandResult r =
+            Tidepool("validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
+                     dir_.Path());
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_NE(r.out.find("warning: validation cache"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;

@@ -1,14 +1,14 @@
 // What `validate` tells a CI system: per-variant step verdicts in --json (which of vertex,
 // fragment and link failed) and a SARIF 2.1.0 log that code scanning can place on shader lines.
+#include <gtest/gtest.h>
+
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
 
 #include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -201,8 +201,8 @@ TEST_F(CiReportCliTest, SarifOfAValidMatrixHasNoResults) {
 TEST_F(CiReportCliTest, FormatAndOutputFileMisuseIsAUsageError) {
     EXPECT_EQ(RunTidepoolSplit("validate --json --format sarif", dir_.Path()).exit_code, 2);
     EXPECT_EQ(RunTidepoolSplit("validate --format xml", dir_.Path()).exit_code, 2);
-    const SplitResult text = RunTidepoolSplit(
-            "validate --config v.yaml --output-file log.txt", dir_.Path());
+    const SplitResult text =
+            RunTidepoolSplit("validate --config v.yaml --output-file log.txt", dir_.Path());
     EXPECT_EQ(text.exit_code, 2);
     EXPECT_NE(text.err.find("error: --output-file takes the json or sarif report"),
               std::string::npos)

@@ -4,13 +4,13 @@
 // (MESA_SHADER_CACHE_DIR), since it also follows $XDG_CACHE_HOME: a cold Mesa cache makes the
 // first render of a test several times slower than the next, which timing-based tests (killing
 // a render at random points within one run's time) rely on not happening.
-#include <unistd.h>
+#include <gtest/gtest.h>
 
 #include <cstdlib>
 #include <filesystem>
 #include <string>
 
-#include <gtest/gtest.h>
+#include <unistd.h>
 
 namespace {
 
@@ -21,7 +21,8 @@ public:
                 ("tidepool-cli-cache-" + std::to_string(::getpid()))) {
         const char* xdg = std::getenv("XDG_CACHE_HOME");
         const char* home = std::getenv("HOME");
-        if (std::getenv("MESA_SHADER_CACHE_DIR") == nullptr && (xdg != nullptr || home != nullptr)) {
+        if (std::getenv("MESA_SHADER_CACHE_DIR") == nullptr &&
+            (xdg != nullptr || home != nullptr)) {
             const std::filesystem::path mesa =
                     xdg != nullptr ? std::filesystem::path(xdg) / "mesa_shader_cache"
                                    : std::filesystem::path(home) / ".cache" / "mesa_shader_cache";

@@ -1,6 +1,5 @@
 // The `tidepool` command as a user runs it: exit codes, messages and outputs.
-#include <sys/stat.h>
-#include <sys/wait.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <chrono>
@@ -12,12 +11,12 @@
 #include <utility>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
+#include <nlohmann/json.hpp>
+#include <sys/stat.h>
+#include <sys/wait.h>
 
 namespace {
 
@@ -72,7 +71,8 @@ TEST_F(CliTest, ShaderErrorExitsOneWithGccStyleDiagnosticAndVariant) {
 }
 
 TEST_F(CliTest, ConfigurationErrorExitsTwoAndNamesFileLineColumn) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    colour: 1\n");
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    colour: 1\n");
     const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.out.find("v.yaml:5:5: error: unknown key 'colour' in program 'p'"),
@@ -115,9 +115,8 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
     WriteConfig("");
     for (const char* value : {"-1", "-5", "0", "65537", "18446744073709551616",
                               "100000000000000000000000", "1e3", "4x"}) {
-        const CommandResult r =
-                RunTidepool(std::string("expand --config v.yaml --max-variants=") + value,
-                            dir_.Path());
+        const CommandResult r = RunTidepool(
+                std::string("expand --config v.yaml --max-variants=") + value, dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << value << r.out;
         EXPECT_EQ(r.out, std::string("error: --max-variants must be a whole number from 1 to "
                                      "65536 (up to 16777216 with --allow-large-matrix), not '") +
@@ -139,35 +138,38 @@ TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
     const CommandResult r = RunTidepool(
             "expand --config v.yaml --max-variants 16777217 --allow-large-matrix", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.out, "error: --max-variants must be a whole number from 1 to 16777216, not "
-                     "'16777217'\n");
+    EXPECT_EQ(r.out,
+              "error: --max-variants must be a whole number from 1 to 16777216, not "
+              "'16777217'\n");
 }
 
 TEST_F(CliTest, FileLimitOutOfRangeOrAboveTheCeilingIsRefusedAtItsLine) {
     // 2147483647 loads nowhere; 100000 loads, but expansion needs --allow-large-matrix for it.
     for (const auto& [limit, expected] :
-         {std::pair{"100000", "v.yaml:1:15: error: max_variants of 100000 is over the ceiling of "
-                              "65536 valid variants; lower it, or pass --allow-large-matrix to "
-                              "allow up to 16777216\n"},
-          std::pair{"2147483647", "v.yaml:1:15: error: max_variants must be a whole number from "
-                                  "1 to 16777216 (valid variants; above 65536 only with "
-                                  "--allow-large-matrix), not '2147483647'\n"}}) {
+         {std::pair{"100000",
+                    "v.yaml:1:15: error: max_variants of 100000 is over the ceiling of "
+                    "65536 valid variants; lower it, or pass --allow-large-matrix to "
+                    "allow up to 16777216\n"},
+          std::pair{"2147483647",
+                    "v.yaml:1:15: error: max_variants must be a whole number from "
+                    "1 to 16777216 (valid variants; above 65536 only with "
+                    "--allow-large-matrix), not '2147483647'\n"}}) {
         WriteConfig(std::string("max_variants: ") + limit + "\n");
         const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << limit;
         EXPECT_EQ(r.out, expected);
     }
     WriteConfig("max_variants: 100000\n");
-    EXPECT_EQ(RunTidepool("expand --config v.yaml --allow-large-matrix", dir_.Path()).exit_code,
-              0);
+    EXPECT_EQ(RunTidepool("expand --config v.yaml --allow-large-matrix", dir_.Path()).exit_code, 0);
 }
 
 TEST_F(CliTest, ExpandCountsPrunedCombinationsPerRuleWithoutListingThem) {
     WriteConfig("", "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_EQ(r.out, "p:\np:A\np:A,C\n1 pruned by p: C requires A  (v.yaml:6)\n"
-                     "3 variants, 1 pruned combinations\n");
+    EXPECT_EQ(r.out,
+              "p:\np:A\np:A,C\n1 pruned by p: C requires A  (v.yaml:6)\n"
+              "3 variants, 1 pruned combinations\n");
 }
 
 TEST_F(CliTest, ExpandPrunedListsPrunedCombinationsWithTheirRule) {
@@ -179,8 +181,9 @@ TEST_F(CliTest, ExpandPrunedListsPrunedCombinationsWithTheirRule) {
 }
 
 TEST_F(CliTest, ExpandPrunedLimitListsThatManyAndSaysHowManyAreLeft) {
-    WriteConfig("", "    features: [A, B, C]\n"
-                    "    rules: [{ if: B, requires: A }, { if: C, requires: A }]\n");
+    WriteConfig("",
+                "    features: [A, B, C]\n"
+                "    rules: [{ if: B, requires: A }, { if: C, requires: A }]\n");
     const CommandResult r =
             RunTidepool("expand --config v.yaml --pruned --pruned-limit 1 --json", dir_.Path());
     EXPECT_EQ(r.exit_code, 0) << r.out;
@@ -218,8 +221,9 @@ TEST_F(CliTest, PrunedLimitOutOfRangeIsAUsageError) {
 }
 
 TEST_F(CliTest, ExpandOutWritesDriverReadySourcesAndManifest) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "    features: [A]\n");
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "    features: [A]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml --out gen", dir_.Path());
     ASSERT_EQ(r.exit_code, 0) << r.out;
     std::ifstream in(dir_.Path() / "gen/100/p/p.A.frag");
@@ -246,8 +250,7 @@ TEST_F(CliTest, ValidatePlainFilesLinksVertexWithFragment) {
     EXPECT_EQ(ok.exit_code, 0) << ok.out;
     const CommandResult bad = RunTidepool("validate s.vsh s.fsh -D B", dir_.Path());
     EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_NE(bad.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier"),
-              std::string::npos)
+    EXPECT_NE(bad.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier"), std::string::npos)
             << bad.out;
 }
 
@@ -295,14 +298,16 @@ TEST_F(CliTest, HelpExitsZeroAndUnknownFlagExitsTwo) {
 // ---- Hostile input (issue 15) ------------------------------------------------------------------
 
 TEST_F(CliTest, CyclicAliasInConfigExitsTwoWithItsPosition) {
-    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
-                         "    features: &loop [A, *loop]\n");
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "    features: &loop [A, *loop]\n");
     for (const char* command : {"validate", "expand", "stats"}) {
         const SplitResult r =
                 RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << command << r.err;
-        EXPECT_EQ(r.err, "v.yaml:5:25: error: alias '*loop' refers to the node that contains "
-                         "it, a cycle; an alias may only repeat a node that is complete\n")
+        EXPECT_EQ(r.err,
+                  "v.yaml:5:25: error: alias '*loop' refers to the node that contains "
+                  "it, a cycle; an alias may only repeat a node that is complete\n")
                 << command;
         EXPECT_EQ(r.out, "") << command;
     }
@@ -317,7 +322,8 @@ TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
             {"presets:\n  cafe:\n    program: p\n    description: caf\xE9\n", "v.yaml:8:21"}};
     for (const auto& [presets, place] : cases) {
         dir_.Write("v.yaml", program + presets);
-        for (const char* command : {"expand --json", "validate --json --out out", "run --out out"}) {
+        for (const char* command :
+             {"expand --json", "validate --json --out out", "run --out out"}) {
             const SplitResult r =
                     RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
             EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
@@ -343,8 +349,9 @@ TEST_F(CliTest, ConfigFileNameThatIsNotUtf8StillWritesJson) {
 }
 
 TEST_F(CliTest, ShaderDiagnosticQuotingANonUtf8ByteIsEscapedInJson) {
-    dir_.Write("bad.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
-                          "vec4(caf\xE9); }\n");
+    dir_.Write("bad.fsh",
+               "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+               "vec4(caf\xE9); }\n");
     const SplitResult plain = RunTidepoolSplit("validate --json bad.fsh", dir_.Path());
     EXPECT_EQ(plain.exit_code, 1) << plain.err;
     const nlohmann::json json = nlohmann::json::parse(plain.out);
@@ -371,8 +378,9 @@ TEST_F(CliTest, RunWithAShaderDiagnosticQuotingANonUtf8ByteEscapesIt) {
     }
     config += "  broken:\n    vertex: s.vsh\n    fragment: bad.fsh\n";
     dir_.Write("v.yaml", config);
-    dir_.Write("bad.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
-                          "vec4(caf\xE9); }\n");
+    dir_.Write("bad.fsh",
+               "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+               "vec4(caf\xE9); }\n");
     const SplitResult r = RunTidepoolSplit(
             "run --config v.yaml --out out --size 16x16 --coarse-frames 1 --warmup 0 "
             "--min-pairs 10 --max-pairs 10 --no-stability --no-plans",
@@ -392,8 +400,9 @@ TEST_F(CliTest, RunWithAShaderDiagnosticQuotingANonUtf8ByteEscapesIt) {
 
 TEST_F(CliTest, ShaderWithAByteOrderMarkIsValidAndKeepsItsLineNumbers) {
     dir_.Write("bom.vsh", std::string("\xEF\xBB\xBF") + kVertex);
-    dir_.Write("bom.fsh", "\xEF\xBB\xBF#version 100\nprecision mediump float;\nvoid main() { "
-                          "gl_FragColor = vec4(oops); }\n");
+    dir_.Write("bom.fsh",
+               "\xEF\xBB\xBF#version 100\nprecision mediump float;\nvoid main() { "
+               "gl_FragColor = vec4(oops); }\n");
     const SplitResult ok = RunTidepoolSplit("validate bom.vsh s.fsh", dir_.Path());
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
     const SplitResult bad = RunTidepoolSplit("validate bom.fsh", dir_.Path());
@@ -426,8 +435,9 @@ TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
     dir_.Write("bomb.vsh", bomb);
     const SplitResult r = RunTidepoolSplit("validate bomb.vsh", dir_.Path());
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err, "bomb.vsh:32:15: error: macro 'M0' expands to more than 131072 tokens (a "
-                     "macro bomb); tidepool refuses shaders that large\n");
+    EXPECT_EQ(r.err,
+              "bomb.vsh:32:15: error: macro 'M0' expands to more than 131072 tokens (a "
+              "macro bomb); tidepool refuses shaders that large\n");
 }
 
 // A shader that keeps glslang busy far beyond its time limit: an `#if` whose condition expands
@@ -439,19 +449,21 @@ TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
         fragment += "#define M" + std::to_string(level) + " M" + std::to_string(level + 1) +
                     " + M" + std::to_string(level + 1) + "\n";
     }
-    fragment += "#define M40 1\n#ifdef HANG\n#if M0\n#endif\n#endif\n"
-                "void main() { gl_FragColor = vec4(1.0); }\n";
+    fragment +=
+            "#define M40 1\n#ifdef HANG\n#if M0\n#endif\n#endif\n"
+            "void main() { gl_FragColor = vec4(1.0); }\n";
     dir_.Write("s.fsh", fragment);
     WriteConfig("", "    features: [HANG]\n");
     const auto start = std::chrono::steady_clock::now();
-    const SplitResult r = RunTidepoolSplit(
-            "validate --config v.yaml", dir_.Path(), "TIDEPOOL_TEST_GLSLANG_SECONDS=1");
+    const SplitResult r = RunTidepoolSplit("validate --config v.yaml", dir_.Path(),
+                                           "TIDEPOOL_TEST_GLSLANG_SECONDS=1");
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_EQ(r.err, "s.fsh: error: internal compiler error: glslang took longer than 1 s while "
-                     "preprocessing this stage; the shader may be valid or not, and the run went "
-                     "on without it [p:HANG]\n");
+    EXPECT_EQ(r.err,
+              "s.fsh: error: internal compiler error: glslang took longer than 1 s while "
+              "preprocessing this stage; the shader may be valid or not, and the run went "
+              "on without it [p:HANG]\n");
     // The variant without HANG was validated, and found valid.
     EXPECT_NE(r.out.find("2 variants"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("; 1 INVALID"), std::string::npos) << r.out;
@@ -472,8 +484,9 @@ TEST_F(CliTest, FunctionLikeMacroBombIsRefusedQuicklyWithItsPosition) {
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_EQ(r.err, "bomb.vsh:33:33: error: macro 'F29' expands to more than 131072 tokens (a "
-                     "macro bomb); tidepool refuses shaders that large\n");
+    EXPECT_EQ(r.err,
+              "bomb.vsh:33:33: error: macro 'F29' expands to more than 131072 tokens (a "
+              "macro bomb); tidepool refuses shaders that large\n");
     // Refused by the pre-check, not by the worker's 20 s limit.
     EXPECT_LT(seconds, 5.0);
 }
@@ -493,17 +506,20 @@ TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
         const char* error;
     };
     for (const Case& c : {
-                 Case{"-D GL_X s.vsh", "error: -D 'GL_X': 'GL_X' is not a valid define name: use "
-                                       "letters, digits and _, start with a letter, no 'GL_' "
-                                       "prefix and no '__'\n"},
-                 Case{"-D 'FOO BAR' s.vsh", "error: -D 'FOO BAR': 'FOO BAR' is not a valid "
-                                            "define name: use letters, digits and _, start with "
-                                            "a letter, no 'GL_' prefix and no '__'\n"},
+                 Case{"-D GL_X s.vsh",
+                      "error: -D 'GL_X': 'GL_X' is not a valid define name: use "
+                      "letters, digits and _, start with a letter, no 'GL_' "
+                      "prefix and no '__'\n"},
+                 Case{"-D 'FOO BAR' s.vsh",
+                      "error: -D 'FOO BAR': 'FOO BAR' is not a valid "
+                      "define name: use letters, digits and _, start with "
+                      "a letter, no 'GL_' prefix and no '__'\n"},
                  Case{"-D \"$(printf 'A=1\\n#error injected')\" s.vsh",
                       "error: -D 'A': the value must be a single line (a newline would add "
                       "preprocessor lines)\n"},
-                 Case{"-D A", "error: -D applies to the shader FILEs given, and none was given; "
-                              "the variants of a configuration get their defines from it\n"},
+                 Case{"-D A",
+                      "error: -D applies to the shader FILEs given, and none was given; "
+                      "the variants of a configuration get their defines from it\n"},
          }) {
         const SplitResult r = RunTidepoolSplit(std::string("validate ") + c.args, dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << c.args;
@@ -545,34 +561,38 @@ INSTANTIATE_TEST_SUITE_P(
                                 "source is text (GLSL ES §3.1) and glslang would stop reading "
                                 "here\n"},
                 RejectedShaders{"huge uniform array",
-                                {{"big.fsh", "#version 100\nprecision mediump float;\nuniform "
-                                             "float big[1000000000];\nvoid main() { "
-                                             "gl_FragColor = vec4(big[0]); }\n"}},
+                                {{"big.fsh",
+                                  "#version 100\nprecision mediump float;\nuniform "
+                                  "float big[1000000000];\nvoid main() { "
+                                  "gl_FragColor = vec4(big[0]); }\n"}},
                                 "big.fsh",
                                 "big.fsh:3:15: error: uniform 'big' needs 1000000000 uniform "
                                 "vectors, more than the 16 a fragment shader has "
                                 "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, GLSL "
                                 "ES 3.00 §4.3.5)\n"},
                 RejectedShaders{"huge local array",
-                                {{"local.fsh", "#version 100\nprecision mediump float;\nvoid "
-                                               "main() {\n  float big[1000000000];\n  "
-                                               "gl_FragColor = vec4(big[0]);\n}\n"}},
+                                {{"local.fsh",
+                                  "#version 100\nprecision mediump float;\nvoid "
+                                  "main() {\n  float big[1000000000];\n  "
+                                  "gl_FragColor = vec4(big[0]);\n}\n"}},
                                 "local.fsh",
                                 "local.fsh:4:9: error: 'big' holds 1000000000 array elements, "
                                 "more than the 65536 one declaration may hold; no GPU gives a "
                                 "shader invocation that much memory\n"},
                 RejectedShaders{"stages of different versions",
-                                {{"es3.fsh", "#version 300 es\nprecision mediump float;\nout "
-                                             "vec4 c;\nvoid main() { c = vec4(1.0); }\n"}},
+                                {{"es3.fsh",
+                                  "#version 300 es\nprecision mediump float;\nout "
+                                  "vec4 c;\nvoid main() { c = vec4(1.0); }\n"}},
                                 "s.vsh es3.fsh",
                                 "es3.fsh: error: cannot link a '#version 300 es' fragment shader "
                                 "with the '#version 100' vertex shader s.vsh; both stages of a "
                                 "program must use the same GLSL ES version (GLSL ES 3.00 "
                                 "§3.3)\n"},
                 RejectedShaders{"varying the vertex stage never declares",
-                                {{"uv.fsh", "#version 100\nprecision mediump float;\nvarying "
-                                            "vec2 uv;\nvarying vec2 unused;\nvoid main() { "
-                                            "gl_FragColor = vec4(uv, 0.0, 1.0); }\n"}},
+                                {{"uv.fsh",
+                                  "#version 100\nprecision mediump float;\nvarying "
+                                  "vec2 uv;\nvarying vec2 unused;\nvoid main() { "
+                                  "gl_FragColor = vec4(uv, 0.0, 1.0); }\n"}},
                                 "s.vsh uv.fsh",
                                 "uv.fsh:5:35: error: 'uv' is read by the fragment shader but the "
                                 "vertex shader s.vsh does not declare it; declare it there as a "
@@ -582,8 +602,9 @@ TEST_F(CliTest, ConfigPathThatIsAFolderSaysSo) {
     std::filesystem::create_directories(dir_.Path() / "folder.yaml");
     const SplitResult r = RunTidepoolSplit("validate --config folder.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.err, "folder.yaml: error: cannot read the configuration file: is a folder, not a "
-                     "file; check the path or pass --config PATH\n");
+    EXPECT_EQ(r.err,
+              "folder.yaml: error: cannot read the configuration file: is a folder, not a "
+              "file; check the path or pass --config PATH\n");
 }
 
 TEST_F(CliTest, ShaderPathThatIsAFolderOrAFifoSaysSoWithoutHanging) {
@@ -594,8 +615,9 @@ TEST_F(CliTest, ShaderPathThatIsAFolderOrAFifoSaysSoWithoutHanging) {
     EXPECT_EQ(folder.err, "dir.vsh: error: cannot read the shader file: is a folder, not a file\n");
     const SplitResult fifo = RunTidepoolSplit("validate pipe.fsh", dir_.Path());
     EXPECT_EQ(fifo.exit_code, 2);
-    EXPECT_EQ(fifo.err, "pipe.fsh: error: cannot read the shader file: is a FIFO (named pipe), "
-                        "not a regular file\n");
+    EXPECT_EQ(fifo.err,
+              "pipe.fsh: error: cannot read the shader file: is a FIFO (named pipe), "
+              "not a regular file\n");
 }
 
 TEST_F(CliTest, OutWithATrailingSlashWritesTheFolderAndReplacesItsOwnOutput) {

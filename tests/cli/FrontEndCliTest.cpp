@@ -1,23 +1,23 @@
 // The `tidepool` front end: the commands that need no GL run without loading GL, Mesa or LLVM,
 // and the ones that render are handed to tidepool-gl with the same arguments.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <string>
 
-#include <gtest/gtest.h>
-
-#include "TidepoolProcess.h"
 #include "TempDir.h"
+#include "TidepoolProcess.h"
 
 namespace {
 
-using tidepool::testing::RunShell;
 using tidepool::testing::CommandResult;
+using tidepool::testing::RunShell;
 using tidepool::testing::TempDir;
 
 // Libraries of the GL stack (Mesa's EGL, GLES and OSMesa, its drivers, and what llvmpipe
 // drags in: LLVM, z3, ICU, libdrm, gbm); none may be in the front end.
-constexpr const char* kGlLibraries[] = {"libEGL", "libGL", "libOSMesa", "libgallium", "libLLVM",
-                                        "libz3",  "libicu", "libgbm",   "libdrm",     "libglapi"};
+constexpr const char* kGlLibraries[] = {"libEGL", "libGL",  "libOSMesa", "libgallium", "libLLVM",
+                                        "libz3",  "libicu", "libgbm",    "libdrm",     "libglapi"};
 
 TEST(FrontEndCliTest, FrontEndLinksNoGlMesaOrLlvmLibrary) {
     const CommandResult ldd = RunShell("ldd '" TIDEPOOL_BINARY "' 2>&1");
@@ -32,9 +32,9 @@ TEST(FrontEndCliTest, ExpandAndValidateLoadNoGlLibraryAtRunTime) {
     // LD_DEBUG=libs names every library the dynamic loader maps, dlopen included.
     for (const char* command : {"expand", "validate --no-cache -j 1", "--version"}) {
         SCOPED_TRACE(command);
-        const CommandResult r = RunShell("cd '" TIDEPOOL_SOURCE_ROOT "' && LD_DEBUG=libs '" +
-                                              std::string(TIDEPOOL_BINARY) + "' " + command +
-                                              " 2>&1 >/dev/null");
+        const CommandResult r =
+                RunShell("cd '" TIDEPOOL_SOURCE_ROOT "' && LD_DEBUG=libs '" +
+                         std::string(TIDEPOOL_BINARY) + "' " + command + " 2>&1 >/dev/null");
         ASSERT_NE(r.out.find("libc.so"), std::string::npos) << r.out;
         for (const char* library : kGlLibraries) {
             EXPECT_EQ(r.out.find(library), std::string::npos) << library;
@@ -48,7 +48,8 @@ TEST(FrontEndCliTest, HelpListsEveryCommandTheGlOnesIncluded) {
     for (const char* command :
          {"expand", "validate", "stats", "render", "bench", "report", "run", "stability", "plan"}) {
         EXPECT_NE(r.out.find(std::string("  ") + command + " "), std::string::npos)
-                << command << " missing from\n" << r.out;
+                << command << " missing from\n"
+                << r.out;
     }
 }
 

@@ -1,10 +1,6 @@
 // Output folders as a user and a crash see them: tidepool replaces only its own folders, a failed
 // write is exit 3 with nothing half-written, and a killed run leaves the previous output intact.
-#include <fcntl.h>
-#include <signal.h>
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <chrono>
@@ -20,11 +16,14 @@
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "FileContents.h"
 #include "TempDir.h"
+#include <fcntl.h>
+#include <nlohmann/json.hpp>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -119,9 +118,10 @@ std::map<std::string, std::string> Snapshot(const fs::path& folder) {
 const std::string kConfig = std::string(TIDEPOOL_SOURCE_ROOT) + "/variants.yaml";
 
 std::vector<std::string> RenderArgs(const fs::path& out) {
-    return {"render", "--config", kConfig, "--preset", "full", "--size", "32x24", "--view",
-            "three_quarter", "--min-pairs", "10", "--max-pairs", "10", "--coarse-frames", "1",
-            "--warmup", "0", "--out", out.string()};
+    return {"render",   "--config",    kConfig,  "--preset",        "full",
+            "--size",   "32x24",       "--view", "three_quarter",   "--min-pairs",
+            "10",       "--max-pairs", "10",     "--coarse-frames", "1",
+            "--warmup", "0",           "--out",  out.string()};
 }
 
 // A render folder is whole when results.json parses and every image it names is a PNG there,
@@ -158,7 +158,8 @@ TEST(PublishCliTest, ExpandOutRefusesAFolderThatMerelyHoldsAManifest) {
     TempDir dir;
     dir.Write("D/manifest.json", "{\"name\": \"my web app\"}");
     dir.Write("D/index.html", "mine");
-    const Outcome r = RunBinary({"expand", "--config", kConfig, "--out", (dir.Path() / "D").string()});
+    const Outcome r =
+            RunBinary({"expand", "--config", kConfig, "--out", (dir.Path() / "D").string()});
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find((dir.Path() / "D").string() + ": exists and was not written by tidepool"),
               std::string::npos)
@@ -201,9 +202,11 @@ TEST(PublishCliTest, ValidateOutRefusesToOverwriteAUsersManifest) {
     ExpectUsersFileRefused("validate", "manifest.json", "manifest", dir);
     // Its own manifest it replaces.
     fs::remove(dir.Path() / "D/manifest.json");
-    ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()}).exit_code,
+    ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()})
+                      .exit_code,
               0);
-    EXPECT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()}).exit_code,
+    EXPECT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "D").string()})
+                      .exit_code,
               0);
 }
 
@@ -228,8 +231,8 @@ TEST(PublishCliTest, RenderOutRefusesAUsersResultsBeforeRendering) {
 
 // `plan` writes plans.json and its candidates' images: a folder, published whole.
 std::vector<std::string> PlanArgs(const fs::path& out) {
-    return {"plan", "--config", kConfig, "--scene", "clear_lake", "--size", "16x16",
-            "--resolution", "50", "--out", out.string()};
+    return {"plan",  "--config",     kConfig, "--scene", "clear_lake", "--size",
+            "16x16", "--resolution", "50",    "--out",   out.string()};
 }
 
 TEST(PublishCliTest, PlanOutRefusesAFolderTidepoolDidNotWriteBeforePlanning) {
@@ -286,12 +289,17 @@ TEST(PublishCliTest, RenderOnAFullDiskExitsThreeAndKeepsThePreviousOutput) {
 
 TEST(PublishCliTest, ReportRefusesAFolderHoldingDataJsonAndExitsThreeOnAFullDisk) {
     TempDir dir;
-    ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "m").string()}).exit_code,
+    ASSERT_EQ(RunBinary({"validate", "--config", kConfig, "--out", (dir.Path() / "m").string()})
+                      .exit_code,
               0);
     ASSERT_EQ(RunBinary(RenderArgs(dir.Path() / "r")).exit_code, 0);
-    const std::vector<std::string> report = {
-            "report", "--manifest", (dir.Path() / "m/manifest.json").string(), "--results",
-            (dir.Path() / "r/results.json").string(), "--out", (dir.Path() / "o").string()};
+    const std::vector<std::string> report = {"report",
+                                             "--manifest",
+                                             (dir.Path() / "m/manifest.json").string(),
+                                             "--results",
+                                             (dir.Path() / "r/results.json").string(),
+                                             "--out",
+                                             (dir.Path() / "o").string()};
     dir.Write("o/default/data.json", "{\"mine\": true}");
     const Outcome refused = RunBinary(report);
     EXPECT_EQ(refused.exit_code, 2) << refused.err;
@@ -339,8 +347,8 @@ void KillAtRandomPoints(const std::vector<std::string>& args, const fs::path& ou
     int killed = 0;
     for (int round = 0; round < rounds; ++round) {
         RunSettings settings;
-        settings.kill_after_us = static_cast<int>(
-                std::uniform_int_distribution<long>(0, took)(random));
+        settings.kill_after_us =
+                static_cast<int>(std::uniform_int_distribution<long>(0, took)(random));
         long micros = 0;
         const Outcome r = timed_run(settings, &micros);
         killed += r.killed ? 1 : 0;
@@ -364,13 +372,13 @@ void KillAtRandomPoints(const std::vector<std::string>& args, const fs::path& ou
 TEST(PublishCliTest, KilledExpandNeverDamagesThePreviousOutputNorLeaksStaging) {
     TempDir dir;
     const fs::path out = dir.Path() / "D";
-    KillAtRandomPoints({"expand", "--config", kConfig, "--out", out.string()}, out, 25,
-                       [](const std::map<std::string, std::string>& files) {
-                           auto manifest = files.find("manifest.json");
-                           return manifest != files.end() && files.count(".tidepool-output") &&
-                                  nlohmann::json::parse(manifest->second, nullptr, false)
-                                          .is_object();
-                       });
+    KillAtRandomPoints(
+            {"expand", "--config", kConfig, "--out", out.string()}, out, 25,
+            [](const std::map<std::string, std::string>& files) {
+                auto manifest = files.find("manifest.json");
+                return manifest != files.end() && files.count(".tidepool-output") &&
+                       nlohmann::json::parse(manifest->second, nullptr, false).is_object();
+            });
 }
 
 TEST(PublishCliTest, KilledRenderNeverDamagesThePreviousOutputNorLeaksStaging) {

@@ -1,7 +1,7 @@
 // `tidepool run` and `tidepool report` as a user runs them: a small run end to end, the page
 // opened in headless Chromium (renders, every image loads, every whitepaper row present), the
 // report rebuilt from saved files, and bad inputs rejected with exit 2 and the file named.
-#include <sys/wait.h>
+#include <gtest/gtest.h>
 
 #include <array>
 #include <cstdio>
@@ -13,11 +13,10 @@
 #include <sstream>
 #include <string>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "TempDir.h"
 #include "TidepoolProcess.h"
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
 
 namespace {
 
@@ -61,8 +60,8 @@ protected:
         }
         dir_ = new TempDir();
         out_ = new std::filesystem::path(dir_->Path());
-        *run_ = RunTidepool(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" +
-                            out_->string() + "'");
+        *run_ = RunTidepool(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" + out_->string() +
+                            "'");
     }
     static void TearDownTestSuite() {
         delete run_;
@@ -116,12 +115,12 @@ TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepa
         GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
     }
     TempDir profile;
-    const CommandResult dom = Shell(
-            "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
-            "--no-first-run --disable-background-networking --disable-component-update "
-            "--disable-sync --user-data-dir='" + profile.Path().string() +
-            "' --virtual-time-budget=5000 --dump-dom 'file://" +
-            (Out() / "default/index.html").string() + "' 2>/dev/null");
+    const CommandResult dom =
+            Shell("timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
+                  "--no-first-run --disable-background-networking --disable-component-update "
+                  "--disable-sync --user-data-dir='" +
+                  profile.Path().string() + "' --virtual-time-budget=5000 --dump-dom 'file://" +
+                  (Out() / "default/index.html").string() + "' 2>/dev/null");
     ASSERT_EQ(dom.exit_code, 0) << dom.out.substr(0, 2000);
     std::smatch loaded;
     ASSERT_TRUE(std::regex_search(dom.out, loaded,
@@ -147,10 +146,10 @@ TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepa
 
 TEST_F(ReportCliTest, ReportRebuildsFromSavedFilesWithoutRendering) {
     ASSERT_EQ(run_->exit_code, 0) << run_->out;
-    const CommandResult r = RunTidepool(
-            "report --manifest '" + (Out() / "manifest/manifest.json").string() +
-            "' --results '" + (Out() / "render/results.json").string() + "' --name again --out '" +
-            Out().string() + "'");
+    const CommandResult r =
+            RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
+                        "' --results '" + (Out() / "render/results.json").string() +
+                        "' --name again --out '" + Out().string() + "'");
     EXPECT_EQ(r.exit_code, 0) << r.out;
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "again/index.html"));
     EXPECT_EQ(r.out.find("render:"), std::string::npos) << "report must not render";
@@ -161,14 +160,15 @@ TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
     TempDir copy;
     std::filesystem::copy(Out() / "render", copy.Path() / "render",
                           std::filesystem::copy_options::recursive);
-    const nlohmann::json results = nlohmann::json::parse(ReadText(copy.Path() / "render/results.json"));
+    const nlohmann::json results =
+            nlohmann::json::parse(ReadText(copy.Path() / "render/results.json"));
     const std::string image = results["configurations"][0]["views"][0]["image"];
     const std::filesystem::path missing = copy.Path() / "render" / image;
     ASSERT_TRUE(std::filesystem::remove(missing));
-    const CommandResult r = RunTidepool(
-            "report --manifest '" + (Out() / "manifest/manifest.json").string() +
-            "' --results '" + (copy.Path() / "render/results.json").string() + "' --out '" +
-            (copy.Path() / "out").string() + "'");
+    const CommandResult r =
+            RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
+                        "' --results '" + (copy.Path() / "render/results.json").string() +
+                        "' --out '" + (copy.Path() / "out").string() + "'");
     EXPECT_EQ(r.exit_code, 2) << r.out;
     EXPECT_NE(r.out.find(missing.string()), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out" / "default"));
@@ -198,9 +198,9 @@ TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
 TEST_F(ReportCliTest, RunRejectsBadFlagsWithExitTwo) {
     EXPECT_EQ(RunTidepool("run --size 0x0 --out /tmp/never").exit_code, 2);
     EXPECT_EQ(RunTidepool("run --name render --out /tmp/never").exit_code, 2);
-    EXPECT_EQ(RunTidepool("run --no-stability --no-plans --plan-size 8x8 --out /tmp/never")
-                      .exit_code,
-              2);
+    EXPECT_EQ(
+            RunTidepool("run --no-stability --no-plans --plan-size 8x8 --out /tmp/never").exit_code,
+            2);
     EXPECT_FALSE(std::filesystem::exists("/tmp/never"));
 }
 

@@ -2,16 +2,14 @@
 // stdout and stderr captured apart.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "TempDir.h"
+#include <nlohmann/json.hpp>
+#include <sys/wait.h>
 
 namespace {
 
@@ -27,8 +25,8 @@ struct Output {
 Output RunSeparately(const std::string& args, const TempDir& dir) {
     const std::filesystem::path err = dir.Path() / "stderr.txt";
     const std::string command = "cd '" + std::string(TIDEPOOL_SOURCE_ROOT) + "' && '" +
-                                std::string(TIDEPOOL_BINARY) + "' " + args + " 2>'" +
-                                err.string() + "'";
+                                std::string(TIDEPOOL_BINARY) + "' " + args + " 2>'" + err.string() +
+                                "'";
     Output result;
     FILE* pipe = ::popen(command.c_str(), "r");
     if (pipe == nullptr) {
@@ -48,13 +46,15 @@ Output RunSeparately(const std::string& args, const TempDir& dir) {
 
 TEST(TimingCliTest, OutOfRangeTimingFlagsAreUsageErrorsNamingTheFlag) {
     TempDir dir;
-    const Output resolution = RunSeparately("render --resolution 0 --out " + (dir.Path() / "o").string(), dir);
+    const Output resolution =
+            RunSeparately("render --resolution 0 --out " + (dir.Path() / "o").string(), dir);
     EXPECT_EQ(resolution.exit_code, 2);
     EXPECT_NE(resolution.err.find("error: --resolution must be above 0 and at most 50 percent "
                                   "points, not 0"),
               std::string::npos)
             << resolution.err;
-    const Output pairs = RunSeparately("run --min-pairs 5 --out " + (dir.Path() / "o").string(), dir);
+    const Output pairs =
+            RunSeparately("run --min-pairs 5 --out " + (dir.Path() / "o").string(), dir);
     EXPECT_EQ(pairs.exit_code, 2);
     EXPECT_NE(pairs.err.find("error: --min-pairs must be at least 10 and --max-pairs between "
                              "--min-pairs and 100000, not 5 and 400"),
@@ -65,11 +65,12 @@ TEST(TimingCliTest, OutOfRangeTimingFlagsAreUsageErrorsNamingTheFlag) {
 
 TEST(TimingCliTest, RenderTimesEveryComparedPresetPairOnTheThreadClock) {
     TempDir dir;
-    const Output r = RunSeparately("render --preset full --preset full_no_fog --preset full_constant_mix "
-                         "--view three_quarter --size 64x48 --min-pairs 10 --max-pairs 10 "
-                         "--coarse-frames 2 --no-images --json --out " +
-                                 (dir.Path() / "render").string(),
-                         dir);
+    const Output r = RunSeparately(
+            "render --preset full --preset full_no_fog --preset full_constant_mix "
+            "--view three_quarter --size 64x48 --min-pairs 10 --max-pairs 10 "
+            "--coarse-frames 2 --no-images --json --out " +
+                    (dir.Path() / "render").string(),
+            dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json results = nlohmann::json::parse(r.out);
     EXPECT_EQ(results["timing"]["clock"], "thread_cpu");

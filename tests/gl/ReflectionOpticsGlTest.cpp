@@ -1,5 +1,15 @@
 // The seeds' alternatives through Mesa: cube-map and Fourier reflections against the planar
 // reflection pass, and the depth-based optics against their formulas.
+#include "tidepool/SceneDescription.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/WaterMath.h"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -11,18 +21,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/glm.hpp>
-
-#include "tidepool/SceneDescription.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/base/ImageMetrics.h"
-#include "tidepool/base/RgbaImage.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/RenderConfig.h"
-#include "tidepool/runner/Renderer.h"
-#include "tidepool/runner/WaterMath.h"
 #include "GlTestEnvironment.h"
+#include <glm/glm.hpp>
 
 namespace tidepool::runner {
 namespace {
@@ -32,7 +32,9 @@ constexpr int kHeight = 120;
 
 using test_support::GlTestEnvironment;
 
-GlTestEnvironment& Get() { return test_support::SharedGlEnvironment(); }
+GlTestEnvironment& Get() {
+    return test_support::SharedGlEnvironment();
+}
 
 class ReflectionOpticsGlTest : public ::testing::Test {
 protected:
@@ -75,10 +77,10 @@ std::unique_ptr<WaterRenderer> MakeRenderer(const Scene* scene) {
 }
 
 base::RgbaImage Render(WaterRenderer& renderer, const RenderConfiguration& c,
-                  const CameraView& view) {
+                       const CameraView& view) {
     const DriverVerdict verdict = renderer.Prepare(c);
-    EXPECT_TRUE(verdict.valid) << c.id << "\n" << verdict.vertex_log << verdict.fragment_log
-                               << verdict.link_log;
+    EXPECT_TRUE(verdict.valid) << c.id << "\n"
+                               << verdict.vertex_log << verdict.fragment_log << verdict.link_log;
     const FrameReport report = renderer.RenderFrame(c, view);
     EXPECT_EQ(report.gl_error, "") << c.id;
     renderer.Finish();
@@ -93,7 +95,8 @@ base::RgbaImage Render(WaterRenderer& renderer, const RenderConfiguration& c,
 
 glm::vec3 Pixel(const base::RgbaImage& image, int x, int y) {
     const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
-                    static_cast<std::size_t>(x)) * 4;
+                    static_cast<std::size_t>(x)) *
+                   4;
     return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
 }
 
@@ -112,11 +115,11 @@ TEST_F(ReflectionOpticsGlTest, CubeMapReflectionMatchesPlanarWhenOnlySkyIsAbove)
     const Scene scene = OnlySkyAbove(20.0F);
     std::unique_ptr<WaterRenderer> renderer = MakeRenderer(&scene);
     ASSERT_NE(renderer, nullptr);
-    for (const CameraView& view : {LookingAt({0, 30, 80}, {0, 0, 0}),
-                                   LookingAt({40, 8, 60}, {-20, 0, -40})}) {
+    for (const CameraView& view :
+         {LookingAt({0, 30, 80}, {0, 0, 0}), LookingAt({40, 8, 60}, {-20, 0, -40})}) {
         const base::RgbaImage planar = Render(*renderer, Configuration({}), view);
         const base::RgbaImage cubemap =
-            Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view);
+                Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view);
         EXPECT_GE(base::Psnr(planar, cubemap), 35.0) << "eye " << view.eye.x << "," << view.eye.y;
     }
 }
@@ -140,9 +143,9 @@ TEST_F(ReflectionOpticsGlTest, FourierReflectionIsCloserToPlanarThanTheCubeMapWh
     const auto images = [&](const char* name) {
         const CameraView view = *FindView(DefaultViews(), name);
         return std::array<base::RgbaImage, 3>{
-            Render(*renderer, Configuration({}), view),
-            Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view),
-            Render(*renderer, Configuration({"REFLECTION_FOURIER"}), view)};
+                Render(*renderer, Configuration({}), view),
+                Render(*renderer, Configuration({"REFLECTION_CUBEMAP"}), view),
+                Render(*renderer, Configuration({"REFLECTION_FOURIER"}), view)};
     };
     // three_quarter looks at the island across the water.
     const auto island = images("three_quarter");
@@ -177,7 +180,7 @@ TEST_F(ReflectionOpticsGlTest, ExtinctionMatchesItsFormulaAtSampledDepths) {
     const CameraView view = LookingAt(eye, {0.0F, 0.0F, 0.0F});
     // The cosine of the view angle where the ray through pixel (x, y) meets the water (y = 0).
     const glm::mat4 inverse = glm::inverse(
-        ProjectionMatrix(view, static_cast<float>(kWidth) / kHeight) * ViewMatrix(view));
+            ProjectionMatrix(view, static_cast<float>(kWidth) / kHeight) * ViewMatrix(view));
     const auto cos_view_at = [&](int x, int y) {
         const glm::vec4 ndc((static_cast<float>(x) + 0.5F) / kWidth * 2.0F - 1.0F,
                             1.0F - (static_cast<float>(y) + 0.5F) / kHeight * 2.0F, 1.0F, 1.0F);
@@ -191,26 +194,26 @@ TEST_F(ReflectionOpticsGlTest, ExtinctionMatchesItsFormulaAtSampledDepths) {
         std::unique_ptr<WaterRenderer> renderer = MakeRenderer(&scene);
         ASSERT_NE(renderer, nullptr);
         const RenderSettings& settings = renderer->Settings();
-        const base::RgbaImage plain =
-            Render(*renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
+        const base::RgbaImage plain = Render(
+                *renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
         const base::RgbaImage extinct = Render(
-            *renderer,
-            Configuration({"ENABLE_REFRACTION", "ENABLE_EXTINCTION", "TP_OUTPUT_REFRACTION"}),
-            view);
+                *renderer,
+                Configuration({"ENABLE_REFRACTION", "ENABLE_EXTINCTION", "TP_OUTPUT_REFRACTION"}),
+                view);
         // The refraction pass stores sqrt(depth / max) in 8 bits (shaders/model.fsh).
         const float stored =
-            std::round(std::sqrt(depth / settings.max_water_depth) * 255.0F) / 255.0F;
+                std::round(std::sqrt(depth / settings.max_water_depth) * 255.0F) / 255.0F;
         const float stored_depth = stored * stored * settings.max_water_depth;
-        for (const auto& [x, y] : {std::pair{kWidth / 2, kHeight / 2},
-                                   std::pair{kWidth / 2 - 10, kHeight / 2 + 8}}) {
+        for (const auto& [x, y] :
+             {std::pair{kWidth / 2, kHeight / 2}, std::pair{kWidth / 2 - 10, kHeight / 2 + 8}}) {
             const glm::vec3 expected = ExtinctionColour(Pixel(plain, x, y), stored_depth,
                                                         cos_view_at(x, y), settings.extinction);
             const glm::vec3 measured = Pixel(extinct, x, y);
             for (int channel = 0; channel < 3; ++channel) {
                 // Two 8-bit roundings: the refraction and the output.
                 EXPECT_NEAR(measured[channel], expected[channel], 3.0F / 255.0F)
-                    << "depth " << depth << ", channel " << channel << ", pixel " << x << ","
-                    << y;
+                        << "depth " << depth << ", channel " << channel << ", pixel " << x << ","
+                        << y;
             }
         }
         // The formula's point: red is gone by 4.5 units, blue lasts to 300.
@@ -229,9 +232,9 @@ TEST_F(ReflectionOpticsGlTest, SoftShoreShowsTheRefractionAtTheWaterline) {
     ASSERT_NE(renderer, nullptr);
     const CameraView view = LookingAt({0, 25, 50}, {0, 0, 0});
     const base::RgbaImage refraction =
-        Render(*renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
+            Render(*renderer, Configuration({"ENABLE_REFRACTION", "TP_OUTPUT_REFRACTION"}), view);
     const base::RgbaImage soft =
-        Render(*renderer, Configuration({"ENABLE_REFRACTION", "ENABLE_SOFT_SHORE"}), view);
+            Render(*renderer, Configuration({"ENABLE_REFRACTION", "ENABLE_SOFT_SHORE"}), view);
     const base::RgbaImage hard = Render(*renderer, Configuration({"ENABLE_REFRACTION"}), view);
     const glm::vec3 r = Pixel(refraction, kWidth / 2, kHeight / 2);
     const glm::vec3 s = Pixel(soft, kWidth / 2, kHeight / 2);

@@ -1,5 +1,18 @@
 // The embedded water renderer through Mesa: what the passes put on screen, determinism, GL
 // errors and NaN/Inf, on small images so the whole suite stays fast.
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/base/SampleStatistics.h"
+#include "tidepool/runner/FramePlan.h"
+#include "tidepool/runner/FrameTimer.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/Results.h"
+#include "tidepool/runner/WaterMath.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,21 +23,8 @@
 #include <memory>
 #include <optional>
 
-#include <glm/glm.hpp>
-
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/runner/FramePlan.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/base/RgbaImage.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/RenderConfig.h"
-#include "tidepool/runner/Renderer.h"
-#include "tidepool/base/SampleStatistics.h"
-#include "tidepool/runner/FrameTimer.h"
-#include "tidepool/runner/Results.h"
-#include "tidepool/runner/WaterMath.h"
 #include "GlTestEnvironment.h"
+#include <glm/glm.hpp>
 
 namespace tidepool::runner {
 namespace {
@@ -83,13 +83,13 @@ RenderConfiguration Configuration(std::vector<std::string> defines, PassOptions 
 }
 
 base::RgbaImage Render(const RenderConfiguration& c, const std::string& view_name,
-                  WaterRenderer* renderer = nullptr) {
+                       WaterRenderer* renderer = nullptr) {
     Shared& s = Get();
     WaterRenderer& r = renderer ? *renderer : *s.renderer;
     s.context->MakeCurrent();  // another test file's context may be current
     const DriverVerdict verdict = r.Prepare(c);
-    EXPECT_TRUE(verdict.valid) << c.id << "\n" << verdict.vertex_log << verdict.fragment_log
-                               << verdict.link_log;
+    EXPECT_TRUE(verdict.valid) << c.id << "\n"
+                               << verdict.vertex_log << verdict.fragment_log << verdict.link_log;
     const std::vector<CameraView> views = DefaultViews();
     const CameraView* view = FindView(views, view_name);
     EXPECT_NE(view, nullptr);
@@ -107,7 +107,8 @@ base::RgbaImage Render(const RenderConfiguration& c, const std::string& view_nam
 
 glm::vec3 Pixel(const base::RgbaImage& image, int x, int y) {
     const auto i = (static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
-                    static_cast<std::size_t>(x)) * 4;
+                    static_cast<std::size_t>(x)) *
+                   4;
     return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
 }
 
@@ -183,7 +184,7 @@ const Mesh& FindMesh(const Scene& scene, const std::string& name) {
 glm::ivec2 ScreenPixel(const CameraView& view, const glm::vec3& world) {
     const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
     const glm::vec2 uv =
-        ProjectiveTexCoord(ProjectionMatrix(view, aspect) * ViewMatrix(view), world);
+            ProjectiveTexCoord(ProjectionMatrix(view, aspect) * ViewMatrix(view), world);
     return glm::ivec2(static_cast<int>(uv.x * kWidth), static_cast<int>((1.0F - uv.y) * kHeight));
 }
 
@@ -192,8 +193,8 @@ TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
     const Mesh& tower = FindMesh(scene, "tower");
     const glm::vec3 centre = (tower.world_bounds_min + tower.world_bounds_max) * 0.5F;
     // A point on the tower well above the water, and its mirror image about y = water height.
-    const glm::vec3 point(centre.x, glm::mix(tower.world_bounds_min.y, tower.world_bounds_max.y,
-                                             0.6F), centre.z);
+    const glm::vec3 point(
+            centre.x, glm::mix(tower.world_bounds_min.y, tower.world_bounds_max.y, 0.6F), centre.z);
     const glm::vec3 mirrored(point.x, 2.0F * scene.water_height - point.y, point.z);
     const CameraView view = *FindView(DefaultViews(), "grazing");
     const base::RgbaImage image = Render(Configuration({}), "grazing");
@@ -202,10 +203,10 @@ TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
     ASSERT_GT(reflected.y, direct.y) << "the mirrored point must project below the tower";
     // The tower is orange (hue about 25 degrees); 2 pixels of slack for the 256x256 reflection
     // texture being magnified onto a 128x96 image and for linear filtering at its edges.
-    EXPECT_TRUE(HueNear(image, direct, 2, 10.0F, 45.0F)) << "tower not at " << direct.x << ","
-                                                         << direct.y;
+    EXPECT_TRUE(HueNear(image, direct, 2, 10.0F, 45.0F))
+            << "tower not at " << direct.x << "," << direct.y;
     EXPECT_TRUE(HueNear(image, reflected, 2, 10.0F, 45.0F))
-        << "no reflection at " << reflected.x << "," << reflected.y;
+            << "no reflection at " << reflected.x << "," << reflected.y;
 }
 
 TEST_F(RendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot) {
@@ -215,7 +216,7 @@ TEST_F(RendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot)
     int reflection_only = 0;
     for (const char* view : {"high", "three_quarter"}) {
         with_refraction +=
-            CountHue(Render(Configuration({"ENABLE_REFRACTION"}), view), 280.0F, 320.0F);
+                CountHue(Render(Configuration({"ENABLE_REFRACTION"}), view), 280.0F, 320.0F);
         reflection_only += CountHue(Render(Configuration({}), view), 280.0F, 320.0F);
     }
     // 4 pixels: each rock covers a few pixels at this size; none may show without refraction.
@@ -235,17 +236,17 @@ TEST_F(RendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
     const glm::vec3 fog = RenderSettings{}.fog_colour;
     const glm::vec3 clear = Pixel(Render(Configuration({}), "three_quarter"), pixel.x, pixel.y);
     const glm::vec3 fogged =
-        Pixel(Render(Configuration({"ENABLE_FOG"}), "three_quarter"), pixel.x, pixel.y);
+            Pixel(Render(Configuration({"ENABLE_FOG"}), "three_quarter"), pixel.x, pixel.y);
     // At 1500 of 2000 units the fog factor is 0.75, so the distance to the fog colour must
     // shrink to about a quarter; 0.5 leaves room for the sky's own horizon colour.
     EXPECT_LT(glm::length(fogged - fog), 0.5F * glm::length(clear - fog))
-        << "clear " << clear.r << "," << clear.g << "," << clear.b << " fogged " << fogged.r
-        << "," << fogged.g << "," << fogged.b;
+            << "clear " << clear.r << "," << clear.g << "," << clear.b << " fogged " << fogged.r
+            << "," << fogged.g << "," << fogged.b;
 }
 
 TEST_F(RendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
     const RenderConfiguration full = Configuration(
-        {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_FOG"});
+            {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_FOG"});
     const base::RgbaImage first = Render(full, "shore");
     Render(Configuration({"ENABLE_WATER_COLOUR"}), "high");  // something else in between
     const base::RgbaImage second = Render(full, "shore");
@@ -284,7 +285,7 @@ TEST_F(RendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
                               (pass.draw_water ? 1 : 0);
             EXPECT_EQ(report.pass_draw_calls[i], draws) << c.id << " " << report.pass_names[i];
             EXPECT_EQ(report.pass_pixels[i], static_cast<long long>(pass.width) * pass.height)
-                << c.id << " " << report.pass_names[i];
+                    << c.id << " " << report.pass_names[i];
         }
     }
 }
@@ -305,8 +306,8 @@ TEST_F(RendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
             ASSERT_EQ(pixels.size(), static_cast<std::size_t>(kWidth * kHeight * 4));
             const auto bad = std::find_if(pixels.begin(), pixels.end(),
                                           [](float v) { return !std::isfinite(v); });
-            EXPECT_EQ(bad, pixels.end()) << c.id << " at " << view.name << ", pixel "
-                                         << (bad - pixels.begin()) / 4;
+            EXPECT_EQ(bad, pixels.end())
+                    << c.id << " at " << view.name << ", pixel " << (bad - pixels.begin()) / 4;
         }
     }
 }
@@ -316,7 +317,7 @@ TEST_F(RendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
     PassOptions no_culling;
     no_culling.culling = false;
     const RenderConfiguration unculled =
-        Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"}, no_culling);
+            Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"}, no_culling);
     Shared& s = Get();
     const CameraView view = *FindView(DefaultViews(), "three_quarter");
     s.context->MakeCurrent();

@@ -4,8 +4,8 @@
 // between configurations a whole render pass apart, so timing noise cannot decide them.
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
-#include "tidepool/runner/GlBackend.h"
 #include "tidepool/lab/ScenePlanner.h"
+#include "tidepool/runner/GlBackend.h"
 
 #include <gtest/gtest.h>
 
@@ -223,8 +223,8 @@ TEST(ScenePlannerGlTest, InvalidVariantIsNeverChosen) {
     std::ofstream(fragment) << broken.str();
     ConfigResult loaded = LoadVariantConfig(dir.Path() / "variants.yaml");
     ASSERT_TRUE(loaded.config);
-    const ScenePlan plan = PlanScene(*Get().context, *loaded.config, LoadScene("murky_pond"),
-                                     SmallOptions());
+    const ScenePlan plan =
+            PlanScene(*Get().context, *loaded.config, LoadScene("murky_pond"), SmallOptions());
     ASSERT_GE(plan.chosen, 0);
     int invalid = 0;
     for (const PlanCandidate& c : plan.candidates) {

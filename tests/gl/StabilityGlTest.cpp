@@ -1,6 +1,13 @@
 // The GL side of the hard-case catalogue: every water variant rendered at every GL hard case
 // into an RGBA32F target has no NaN, no Inf and no channel outside [0, 1]; the shader guards
 // change the default views by less than an 8-bit step; the mediump fallback compiles.
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/lab/HardCases.h"
+#include "tidepool/lab/StabilityReport.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/Renderer.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,12 +16,6 @@
 #include <string>
 #include <vector>
 
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/lab/HardCases.h"
-#include "tidepool/runner/Renderer.h"
-#include "tidepool/lab/StabilityReport.h"
 #include "GlTestEnvironment.h"
 
 namespace tidepool::runner {

@@ -3,14 +3,14 @@
 // tests over small matrices only.
 #pragma once
 
+#include "tidepool/VariantExpander.h"
+
 #include <algorithm>
 #include <cstdint>
 #include <set>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include "tidepool/VariantExpander.h"
 
 namespace tidepool::testing {
 

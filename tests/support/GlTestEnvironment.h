@@ -2,21 +2,21 @@
 // costs more than most tests, and every test file needs both.
 #pragma once
 
+#include "tidepool/VariantConfig.h"
+#include "tidepool/runner/GlBackend.h"
+
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
 
-#include "tidepool/VariantConfig.h"
-#include "tidepool/runner/GlBackend.h"
-
 namespace tidepool::test_support {
 
 struct GlTestEnvironment {
     std::unique_ptr<runner::GlContext> context;  // null when no GL context can be made
-    std::optional<VariantConfig> config;  // the repository's variants.yaml
-    std::string error;                   // why context or config is missing (tests skip on it)
+    std::optional<VariantConfig> config;         // the repository's variants.yaml
+    std::string error;  // why context or config is missing (tests skip on it)
 };
 
 /// Made on first use (EGL surfaceless, else OSMesa) and kept for the binary's lifetime. Never
@@ -31,7 +31,7 @@ inline GlTestEnvironment& SharedGlEnvironment() {
         }
         e.context = std::move(created.context);
         ConfigResult loaded =
-            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
         if (!loaded.config) {
             e.error = "variants.yaml does not load";
             return e;

@@ -1,13 +1,13 @@
 // A scratch folder for one test, removed when the test ends.
 #pragma once
 
-#include <unistd.h>
-
 #include <atomic>
 #include <filesystem>
 #include <fstream>
 #include <string>
 #include <string_view>
+
+#include <unistd.h>
 
 namespace tidepool::testing {
 

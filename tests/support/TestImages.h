@@ -2,14 +2,14 @@
 // function, read back pixel by pixel, and a fixed pattern with structure at several scales.
 #pragma once
 
+#include "tidepool/base/RgbaImage.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
-
-#include "tidepool/base/RgbaImage.h"
 
 // In base's namespace, beside the type they make, so the image tests use them unqualified.
 namespace tidepool::base {
@@ -18,8 +18,7 @@ struct Rgba {
     int r, g, b, a;
 };
 
-inline RgbaImage MakeImage(int width, int height,
-                                 const std::function<Rgba(int, int)>& colour) {
+inline RgbaImage MakeImage(int width, int height, const std::function<Rgba(int, int)>& colour) {
     RgbaImage image;
     image.width = width;
     image.height = height;

@@ -1,14 +1,14 @@
 // Running the tidepool binary (or any shell command) from a CLI test, as a user would.
 #pragma once
 
-#include <sys/wait.h>
-
 #include <array>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
+
+#include <sys/wait.h>
 
 namespace tidepool::testing {
 
@@ -61,8 +61,8 @@ struct SplitResult {
 inline SplitResult RunTidepoolSplit(const std::string& args, const std::filesystem::path& cwd,
                                     const std::string& environment = "") {
     const std::filesystem::path err_file = cwd / ".tidepool-stderr";
-    const CommandResult r = RunShell(TidepoolCommand(args, cwd, environment) + " 2>'" +
-                                     err_file.string() + "'");
+    const CommandResult r =
+            RunShell(TidepoolCommand(args, cwd, environment) + " 2>'" + err_file.string() + "'");
     SplitResult split{r.exit_code, r.out, {}};
     std::ifstream in(err_file, std::ios::binary);
     std::ostringstream err;

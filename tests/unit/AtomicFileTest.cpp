@@ -1,9 +1,7 @@
 // The one atomic file writer: whole files or nothing, unique temp names, errors naming the path.
 #include "tidepool/base/AtomicFile.h"
 
-#include <sys/resource.h>
-#include <sys/wait.h>
-#include <unistd.h>
+#include <gtest/gtest.h>
 
 #include <csignal>
 #include <filesystem>
@@ -13,10 +11,11 @@
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "FileContents.h"
 #include "TempDir.h"
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -88,7 +87,8 @@ TEST(AtomicFileTest, ConcurrentWritersOfOnePathEachPublishAWholeFile) {
     std::vector<std::string> errors(8);
     for (int w = 0; w < 8; ++w) {
         writers.emplace_back([&, w] {
-            const std::string content(20000 + static_cast<std::size_t>(w), static_cast<char>('a' + w));
+            const std::string content(20000 + static_cast<std::size_t>(w),
+                                      static_cast<char>('a' + w));
             for (int i = 0; i < 20 && errors[static_cast<std::size_t>(w)].empty(); ++i) {
                 errors[static_cast<std::size_t>(w)] = WriteFileAtomically(path, content);
             }

@@ -1,12 +1,12 @@
 #include "tidepool/base/CacheBundle.h"
+#include "tidepool/base/Sha256.h"
+
+#include <gtest/gtest.h>
 
 #include <fstream>
 #include <string>
 
-#include <gtest/gtest.h>
-
 #include "TempDir.h"
-#include "tidepool/base/Sha256.h"
 
 namespace tidepool::base {
 namespace {
@@ -69,7 +69,8 @@ TEST(CacheBundleTest, CorruptBundleIsAMissOfEverythingAndIsRewritten) {
         first.Save();
     }
     {
-        std::fstream file(cache.EntryPath(Key("run")), std::ios::binary | std::ios::in | std::ios::out);
+        std::fstream file(cache.EntryPath(Key("run")),
+                          std::ios::binary | std::ios::in | std::ios::out);
         file.seekp(-1, std::ios::end);
         file.put('\x7f');
     }
@@ -91,9 +92,9 @@ TEST(CacheBundleTest, TextThatIsNotAWholeBundleDoesNotDecode) {
     const std::string good = CacheBundle::Encode({{"ab", "xyz"}, {"cd", ""}});
     ASSERT_TRUE(CacheBundle::Decode(good));
     EXPECT_EQ(CacheBundle::Decode(good)->at("ab"), "xyz");
-    for (const std::string& bad : {good.substr(0, good.size() - 1), std::string("ab 4\nxyz"),
-                                   std::string("ab x\nxyz"), std::string(" 3\nxyz"),
-                                   std::string("ab 3"), std::string("ab -1\n")}) {
+    for (const std::string& bad :
+         {good.substr(0, good.size() - 1), std::string("ab 4\nxyz"), std::string("ab x\nxyz"),
+          std::string(" 3\nxyz"), std::string("ab 3"), std::string("ab -1\n")}) {
         EXPECT_FALSE(CacheBundle::Decode(bad)) << bad;
     }
     EXPECT_TRUE(CacheBundle::Decode(""));

@@ -247,27 +247,26 @@ INSTANTIATE_TEST_SUITE_P(
 // desktop-sized defaults. An array sized from a limit shows the value the shader sees.
 INSTANTIATE_TEST_SUITE_P(
         Es300Limits, ConformanceRuleTest,
-        ::testing::Values(
-                RuleCase{"gl_MaxDrawBuffers is 4", nullptr,
-                         "#version 300 es\n"
-                         "precision mediump float;\n"
-                         "out vec4 colour;\n"
-                         "float probe[5 - gl_MaxDrawBuffers];\n"
-                         "void main() { colour = vec4(1.0); }\n",
-                         ""},
-                RuleCase{"gl_MaxDrawBuffers is not more than 4", nullptr,
-                         "#version 300 es\n"
-                         "precision mediump float;\n"
-                         "out vec4 colour;\n"
-                         "float probe[4 - gl_MaxDrawBuffers];\n"
-                         "void main() { colour = vec4(1.0); }\n",
-                         "a.fsh:4: error: '' : array size must be a positive integer"},
-                RuleCase{"gl_MaxVertexOutputVectors is 16",
-                         "#version 300 es\n"
-                         "in vec4 position;\n"
-                         "float probe[17 - gl_MaxVertexOutputVectors];\n"
-                         "void main() { gl_Position = position; }\n",
-                         nullptr, ""}));
+        ::testing::Values(RuleCase{"gl_MaxDrawBuffers is 4", nullptr,
+                                   "#version 300 es\n"
+                                   "precision mediump float;\n"
+                                   "out vec4 colour;\n"
+                                   "float probe[5 - gl_MaxDrawBuffers];\n"
+                                   "void main() { colour = vec4(1.0); }\n",
+                                   ""},
+                          RuleCase{"gl_MaxDrawBuffers is not more than 4", nullptr,
+                                   "#version 300 es\n"
+                                   "precision mediump float;\n"
+                                   "out vec4 colour;\n"
+                                   "float probe[4 - gl_MaxDrawBuffers];\n"
+                                   "void main() { colour = vec4(1.0); }\n",
+                                   "a.fsh:4: error: '' : array size must be a positive integer"},
+                          RuleCase{"gl_MaxVertexOutputVectors is 16",
+                                   "#version 300 es\n"
+                                   "in vec4 position;\n"
+                                   "float probe[17 - gl_MaxVertexOutputVectors];\n"
+                                   "void main() { gl_Position = position; }\n",
+                                   nullptr, ""}));
 
 // GLSL ES 1.00 §3.7: words that 1.00 neither uses nor reserves are identifiers there, although
 // glslang 12 refuses them; the words 1.00 does reserve stay errors, and so do all of them in 3.00.

@@ -1,4 +1,7 @@
 #include "tidepool/base/ContentCache.h"
+#include "tidepool/base/Sha256.h"
+
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <filesystem>
@@ -9,10 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "TempDir.h"
-#include "tidepool/base/Sha256.h"
 
 namespace tidepool::base {
 namespace {

@@ -1,5 +1,9 @@
 // The shipped variants.yaml as a matrix: the seeds' techniques are in it, and its rules refuse
 // the combinations that cannot work. Also the CPU reference of the extinction formula.
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/WaterMath.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,9 +13,6 @@
 #include <vector>
 
 #include "ExpandOneByOne.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/runner/WaterMath.h"
 
 namespace tidepool {
 namespace {
@@ -20,12 +21,13 @@ class DefaultMatrixTest : public ::testing::Test {
 protected:
     void SetUp() override {
         ConfigResult loaded =
-            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
         ASSERT_TRUE(loaded.config.has_value());
         config_ = std::move(*loaded.config);
         water_ = config_.FindProgram("water");
         ASSERT_NE(water_, nullptr);
-        for (const Variant& v : ExpandVariants(config_, ExpansionOptions{config_.max_variants}).variants) {
+        for (const Variant& v :
+             ExpandVariants(config_, ExpansionOptions{config_.max_variants}).variants) {
             if (v.program == "water") {
                 water_variants_.push_back(v);
             }
@@ -54,9 +56,8 @@ TEST_F(DefaultMatrixTest, EveryReflectionTechniqueAndOpticIsInTheMatrix) {
         EXPECT_FALSE(cubemap && fourier) << v.Id();
         planar += cubemap || fourier ? 0 : 1;
     }
-    for (const char* define :
-         {"REFLECTION_CUBEMAP", "REFLECTION_FOURIER", "ENABLE_EXTINCTION", "ENABLE_SHORE_FOAM",
-          "ENABLE_SOFT_SHORE", "ENABLE_SUN_SPECULAR"}) {
+    for (const char* define : {"REFLECTION_CUBEMAP", "REFLECTION_FOURIER", "ENABLE_EXTINCTION",
+                               "ENABLE_SHORE_FOAM", "ENABLE_SOFT_SHORE", "ENABLE_SUN_SPECULAR"}) {
         EXPECT_TRUE(seen.count(define)) << define;
     }
     // planar is the axis default: no define, so the whitepaper's 54 variants keep their ids.
@@ -72,7 +73,7 @@ TEST_F(DefaultMatrixTest, DepthOpticsWithoutTheRefractionDepthAreRefused) {
     for (const char* optic : {"ENABLE_EXTINCTION", "ENABLE_SHORE_FOAM", "ENABLE_SOFT_SHORE"}) {
         EXPECT_EQ(Refusal({optic, "ENABLE_DISTORTION", "ENABLE_FOG"}),
                   std::string(optic) + " requires ENABLE_REFRACTION")
-            << optic;
+                << optic;
     }
     EXPECT_EQ(Refusal({"ENABLE_SUN_SPECULAR", "ENABLE_REFRACTION"}),
               "ENABLE_SUN_SPECULAR requires ENABLE_FRESNEL");
@@ -93,9 +94,9 @@ TEST_F(DefaultMatrixTest, ReflectionAxisValuesNeverCombineAndPresetsNameThem) {
     }
     ASSERT_NE(reflection, nullptr);
     EXPECT_EQ(reflection->values, (std::vector<std::string>{"planar", "cubemap", "fourier"}));
-    for (const char* preset : {"cubemap_reflection", "fourier_reflection",
-                               "full_cubemap_reflection", "full_fourier_reflection",
-                               "full_depth_optics"}) {
+    for (const char* preset :
+         {"cubemap_reflection", "fourier_reflection", "full_cubemap_reflection",
+          "full_fourier_reflection", "full_depth_optics"}) {
         const Preset* p = config_.FindPreset(preset);
         ASSERT_NE(p, nullptr) << preset;
         const Variant v = MakeVariant(p->program, p->defines);
@@ -145,9 +146,9 @@ TEST(ExtinctionColourTest, MatchesTheFormulaAtSampledDepths) {
     const glm::vec3 grazing = runner::ExtinctionColour(floor, 2.0F, 0.0F, model);
     const glm::vec3 steep = runner::ExtinctionColour(floor, 2.0F, 1.0F, model);
     EXPECT_LT(glm::length(grazing - glm::mix(model.surface_colour, model.depth_colour,
-                                              glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))),
+                                             glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))),
               glm::length(steep - glm::mix(model.surface_colour, model.depth_colour,
-                                            glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))));
+                                           glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))));
 }
 
 }  // namespace

@@ -73,7 +73,9 @@ INSTANTIATE_TEST_SUITE_P(
                 BadLimitsCase{"SwitchNotBoolean", "whileLoops 2\n",
                               "phone.conf:1:12: error: 'whileLoops' is a switch: its value must "
                               "be 0 or 1, not 2\n"}),
-        [](const ::testing::TestParamInfo<BadLimitsCase>& case_info) { return case_info.param.name; });
+        [](const ::testing::TestParamInfo<BadLimitsCase>& case_info) {
+            return case_info.param.name;
+        });
 
 TEST(DeviceLimitsTest, AFileThatCannotBeReadIsOneErrorNamingIt) {
     TempDir dir;

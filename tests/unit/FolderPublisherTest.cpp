@@ -1,25 +1,24 @@
 // The one folder publisher: whole folders swapped in, only tidepool's own folders replaced,
 // staging names unique and cleaned up, concurrent publishers all succeeding.
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/base/FolderPublisher.h"
 
-#include <sys/wait.h>
-#include <unistd.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
-#include <memory>
-#include <mutex>
 #include <filesystem>
 #include <fstream>
+#include <memory>
+#include <mutex>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
-
 #include "FileContents.h"
 #include "TempDir.h"
-#include "tidepool/base/AtomicFile.h"
+#include <sys/wait.h>
+#include <unistd.h>
 
 namespace {
 
@@ -149,10 +148,10 @@ TEST(FolderPublisherTest, StaleStagingOfDeadProcessesIsRemovedAndOthersKept) {
     dir.Write(".out.staging.notapid/mine.txt", "a user's");
     dir.Write(".other.staging." + d + ".abcdef/x.txt", "another target's");
     EXPECT_EQ(tidepool::base::RemoveStaleStaging(dir.Path() / "out"), 2);
-    EXPECT_EQ(FolderEntries(dir.Path()),
-              (std::vector<std::string>{".other.staging." + d + ".abcdef",
-                                        ".out.staging." + live + ".mnopqr",
-                                        ".out.staging.notapid"}));
+    EXPECT_EQ(
+            FolderEntries(dir.Path()),
+            (std::vector<std::string>{".other.staging." + d + ".abcdef",
+                                      ".out.staging." + live + ".mnopqr", ".out.staging.notapid"}));
 }
 
 // Before, two `expand --out D` at once failed about 1 in 60 with "Directory not empty" and

@@ -2,6 +2,10 @@
 // (passes, targets, clips, clears, every draw and its program) differs only in the change the
 // whitepaper's sentence makes. Each test undoes the declared change on the candidate and expects
 // the baseline back, at every default view, so any other difference fails it.
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/runner/FramePlan.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,10 +14,6 @@
 #include <sstream>
 #include <string>
 #include <vector>
-
-#include "tidepool/VariantConfig.h"
-#include "tidepool/VariantExpander.h"
-#include "tidepool/runner/FramePlan.h"
 
 namespace tidepool::runner {
 namespace {
@@ -86,10 +86,9 @@ Frame Describe(const FramePlan& plan, const RenderConfiguration& c, const Scene&
             pass.draws.push_back({p.sky_program.program, p.sky_program.defines, "sky"});
         }
         for (int mesh : p.meshes) {
-            pass.draws.push_back(
-                {p.model_program.program, p.model_program.defines,
-                 mesh < 0 ? scene.terrain.name
-                          : scene.objects[static_cast<std::size_t>(mesh)].name});
+            pass.draws.push_back({p.model_program.program, p.model_program.defines,
+                                  mesh < 0 ? scene.terrain.name
+                                           : scene.objects[static_cast<std::size_t>(mesh)].name});
         }
         if (p.draw_water) {
             const bool uniform = p.water_program.program == kWaterUniformProgram;
@@ -122,11 +121,13 @@ void AddDefine(Frame* frame, const std::string& program, const std::string& defi
     for (Pass& pass : frame->passes) {
         for (Draw& draw : pass.draws) {
             if (pass.name == pass_name && draw.program == program) {
-                draw.defines = MakeVariant(program, [&] {
-                                   std::vector<std::string> d = draw.defines;
-                                   d.push_back(define);
-                                   return d;
-                               }()).defines;
+                draw.defines = MakeVariant(program,
+                                           [&] {
+                                               std::vector<std::string> d = draw.defines;
+                                               d.push_back(define);
+                                               return d;
+                                           }())
+                                       .defines;
             }
         }
     }
@@ -142,11 +143,11 @@ class FramePlanTest : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         ConfigResult loaded =
-            LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
         ASSERT_TRUE(loaded.config.has_value());
         config_ = new VariantConfig(std::move(*loaded.config));
         variants_ = new std::vector<Variant>(
-            ExpandVariants(*config_, ExpansionOptions{config_->max_variants}).variants);
+                ExpandVariants(*config_, ExpansionOptions{config_->max_variants}).variants);
         configurations_ = new ConfigurationSet(BuildDefaultConfigurations(*config_, *variants_));
         scene_ = new Scene(BuildDefaultScene());
     }
@@ -181,10 +182,10 @@ protected:
             Frame changed = Plan(Preset(candidate), view);
             EXPECT_FALSE(changed == base) << view.name << ": the arms plan the same frame";
             undo(&changed, base);
-            EXPECT_TRUE(changed == base) << view.name << "\nbaseline " << baseline << ":\n"
-                                         << base << "candidate " << candidate
-                                         << " with the change undone:\n"
-                                         << changed;
+            EXPECT_TRUE(changed == base)
+                    << view.name << "\nbaseline " << baseline << ":\n"
+                    << base << "candidate " << candidate << " with the change undone:\n"
+                    << changed;
         }
     }
 
@@ -224,9 +225,8 @@ TEST_F(FramePlanTest, Row4DropsOnlyTheModelsDepthFog) {
 }
 
 TEST_F(FramePlanTest, Row5AddsOnlyTheFresnelDefine) {
-    ExpectOnlyChange("full_constant_mix", "full", [](Frame* f, const Frame&) {
-        RemoveDefine(f, "water", "ENABLE_FRESNEL");
-    });
+    ExpectOnlyChange("full_constant_mix", "full",
+                     [](Frame* f, const Frame&) { RemoveDefine(f, "water", "ENABLE_FRESNEL"); });
 }
 
 TEST_F(FramePlanTest, Row6DividesByTheEyeDistanceWithTheSameOffsetAtTheTypicalDistance) {
@@ -241,7 +241,7 @@ TEST_F(FramePlanTest, Row6DividesByTheEyeDistanceWithTheSameOffsetAtTheTypicalDi
         const float unscaled = Plan(Preset("full_unscaled_distortion"), view).wave_distortion;
         EXPECT_FLOAT_EQ(unscaled * TypicalWaterDistance(view, scene_->water_height),
                         RenderSettings{}.wave_distortion)
-            << view.name;
+                << view.name;
     }
 }
 
@@ -267,9 +267,8 @@ TEST_F(FramePlanTest, Row7DoesTheSameWaterWorkAtTheDemoResolutionBehindTheGround
 
 TEST_F(FramePlanTest, Row8NormalisesThroughTheDemosCubeMapOnly) {
     EXPECT_EQ(RenderSettings{}.normalisation_cube_size, 8);
-    ExpectOnlyChange("full", "full_cubemap_normalise", [](Frame* f, const Frame&) {
-        RemoveDefine(f, "water", "NORMALISE_CUBEMAP");
-    });
+    ExpectOnlyChange("full", "full_cubemap_normalise",
+                     [](Frame* f, const Frame&) { RemoveDefine(f, "water", "NORMALISE_CUBEMAP"); });
 }
 
 TEST_F(FramePlanTest, Row9SwitchesTheSameEffectsByUniformBools) {
@@ -313,11 +312,11 @@ TEST_F(FramePlanTest, EveryProgramAFrameDrawsIsInTheValidatedMatrix) {
     for (const RenderConfiguration& c : configurations_->configurations) {
         for (const CameraView& view : DefaultViews()) {
             for (const PassPlan& pass : PlanFrame(c, settings_, *scene_, view).passes) {
-                for (const Variant* program : {&pass.sky_program, &pass.model_program,
-                                               &pass.water_program}) {
+                for (const Variant* program :
+                     {&pass.sky_program, &pass.model_program, &pass.water_program}) {
                     if (!program->program.empty()) {
                         EXPECT_TRUE(validated.count(program->Id()))
-                            << program->Id() << " in " << c.id << " at " << view.name;
+                                << program->Id() << " in " << c.id << " at " << view.name;
                     }
                 }
             }
@@ -354,7 +353,8 @@ TEST_F(FramePlanTest, ReflectionAndRefractionFollowTheWindowUnlessAPassOptionSet
         RenderSettings settings = settings_;
         settings.width = width;
         settings.height = height;
-        for (const PassPlan& pass : PlanFrame(c, settings, *scene_, DefaultViews().front()).passes) {
+        for (const PassPlan& pass :
+             PlanFrame(c, settings, *scene_, DefaultViews().front()).passes) {
             if (PassName(pass.kind) == std::string_view(name)) {
                 return pass.width;
             }

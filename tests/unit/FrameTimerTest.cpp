@@ -1,13 +1,13 @@
 // The timing engine's parts that need no GL: the clock chosen from a renderer string, the
 // pairing order of a comparison and its stopping (runner/include/tidepool/runner/FrameTimer.h).
+#include "tidepool/runner/FrameTimer.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include "tidepool/runner/FrameTimer.h"
 
 namespace tidepool::runner {
 namespace {
@@ -33,7 +33,8 @@ TEST(FrameClockTest, ClockFollowsTheRendererString) {
             {"PowerVR Rogue GE8320", "", false, FrameClock::kWall},
     };
     for (const ClockCase& c : cases) {
-        const FrameClockChoice choice = ChooseFrameClock(c.renderer, c.lp_num_threads, c.timer_query);
+        const FrameClockChoice choice =
+                ChooseFrameClock(c.renderer, c.lp_num_threads, c.timer_query);
         EXPECT_EQ(choice.clock, c.expected) << c.renderer << " LP_NUM_THREADS=" << c.lp_num_threads;
         EXPECT_FALSE(choice.reason.empty());
     }

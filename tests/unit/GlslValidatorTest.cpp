@@ -1,13 +1,12 @@
 #include "tidepool/GlslValidator.h"
+#include "tidepool/Manifest.h"
+#include "tidepool/base/CacheBundle.h"
+
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
-
-#include "tidepool/Manifest.h"
-#include "tidepool/base/CacheBundle.h"
 
 #include "TempDir.h"
 
@@ -143,8 +142,8 @@ std::vector<std::string> Described(const ValidationReport& report) {
         }
     }
     for (const StageProgram& program : report.stage_programs) {
-        lines.push_back(program.file + " " + program.hash + (program.valid ? " valid " : " invalid ") +
-                        ToJson(program.cost).dump());
+        lines.push_back(program.file + " " + program.hash +
+                        (program.valid ? " valid " : " invalid ") + ToJson(program.cost).dump());
     }
     return lines;
 }
@@ -237,11 +236,13 @@ TEST(GlslValidatorTest, DefineNamedOnlyInACommentDoesNotSplitPreprocessingButCod
     TempDir dir;
     // FOO appears in the vertex stage only in comments; in the fragment stage BAR is used on
     // the line a block comment ends on and FOO after a line comment's line.
-    dir.Write("c.vsh", "#version 100\n// FOO: nothing here\n/* FOO\n FOO */\nattribute vec4 p;\n"
-                       "void main() { gl_Position = p; }\n");
-    dir.Write("c.fsh", "#version 100\nprecision mediump float; // FOO\n/* FOO */ float f() {\n"
-                       "#ifdef FOO\n  return oops;\n#endif\n  return 1.0;\n}\n"
-                       "void main() { gl_FragColor = vec4(f()); }\n");
+    dir.Write("c.vsh",
+              "#version 100\n// FOO: nothing here\n/* FOO\n FOO */\nattribute vec4 p;\n"
+              "void main() { gl_Position = p; }\n");
+    dir.Write("c.fsh",
+              "#version 100\nprecision mediump float; // FOO\n/* FOO */ float f() {\n"
+              "#ifdef FOO\n  return oops;\n#endif\n  return 1.0;\n}\n"
+              "void main() { gl_FragColor = vec4(f()); }\n");
     const VariantConfig config = ConfigIn(dir, "c.vsh", "c.fsh", {"FOO"});
     base::ContentCache cache(dir.Path() / "cache");
     const ValidationReport report = ValidateAll(config, 1, &cache);
@@ -293,8 +294,8 @@ TEST(GlslValidatorTest, RecursionInOneStageIsACompileErrorOfThatStage) {
               "#version 100\nprecision mediump float;\nfloat g(float x);\n"
               "float f(float x) { return g(x); }\nfloat g(float x) { return f(x); }\n"
               "void main() { gl_FragColor = vec4(f(1.0)); }\n");
-    const ValidationReport report =
-            ValidateShaderFiles({ShaderFile{(dir.Path() / "r.frag").string(), Stage::kFragment}}, {});
+    const ValidationReport report = ValidateShaderFiles(
+            {ShaderFile{(dir.Path() / "r.frag").string(), Stage::kFragment}}, {});
     ASSERT_EQ(report.verdicts.size(), 1U);
     // GLSL ES 1.00 §6.1: glslang 12 reports it only when linking; tidepool when compiling.
     EXPECT_FALSE(report.stage_programs[0].valid);
@@ -342,9 +343,9 @@ TEST(GlslValidatorTest, Es300TargetCompilesThe100SourceUnchangedAndKeepsLines) {
     config.targets = {GlslTarget::kEs100, GlslTarget::kEs300};
     const ValidationReport report = ValidateAll(config);
     ASSERT_EQ(report.verdicts.size(), 4U);
-    EXPECT_TRUE(report.verdicts[2].valid) << (report.verdicts[2].diagnostics.empty()
-                                                      ? ""
-                                                      : report.verdicts[2].diagnostics[0].message);
+    EXPECT_TRUE(report.verdicts[2].valid)
+            << (report.verdicts[2].diagnostics.empty() ? ""
+                                                       : report.verdicts[2].diagnostics[0].message);
     EXPECT_EQ(report.verdicts[3].target, GlslTarget::kEs300);
     ASSERT_FALSE(report.verdicts[3].diagnostics.empty());
     EXPECT_EQ(report.verdicts[3].diagnostics[0].line, 8);
@@ -377,8 +378,7 @@ TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariants
     TempDir dir;
     dir.Write("a.vsh", kVertex);
     dir.Write("a.fsh", kCrashingFragment);
-    const ValidationReport report =
-            ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"CRASH"}), 2);
+    const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"CRASH"}), 2);
     ASSERT_EQ(report.verdicts.size(), 2U);
     EXPECT_TRUE(report.verdicts[0].valid) << Formatted(report.verdicts[0].diagnostics)[0];
     EXPECT_FALSE(report.verdicts[1].valid);
@@ -425,8 +425,9 @@ std::string FunctionLikeMacroBomb() {
 
 TEST(GlslValidatorTest, ByteOrderMarkIsAcceptedAndLinesStayRight) {
     TempDir dir;
-    const std::string path = dir.Write("bom.vsh", "\xEF\xBB\xBF#version 100\nattribute vec4 p;\n"
-                                                  "void main() { gl_Position = oops; }\n")
+    const std::string path = dir.Write("bom.vsh",
+                                       "\xEF\xBB\xBF#version 100\nattribute vec4 p;\n"
+                                       "void main() { gl_Position = oops; }\n")
                                      .string();
     const ValidationReport report = ValidateShaderFiles({{path, Stage::kVertex}}, {});
     ASSERT_EQ(report.verdicts.size(), 1U);
@@ -496,13 +497,12 @@ INSTANTIATE_TEST_SUITE_P(
                 PlainFileCase{"macro bomb, refused before glslang runs", nullptr, MacroBomb(),
                               "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
                               "(a macro bomb); tidepool refuses shaders that large"},
-                PlainFileCase{"100,000 nested invocations, refused without a stack overflow",
-                              nullptr,
-                              "#version 100\n#define F(x) x\nvoid main() { float f = " +
-                                      Repeated("F(", 100000) + "1.0" + Repeated(")", 100000) +
-                                      "; }\n",
-                              "a.fsh:3:25: error: macro 'F' expands to more than 131072 "
-                              "tokens (a macro bomb); tidepool refuses shaders that large"},
+                PlainFileCase{
+                        "100,000 nested invocations, refused without a stack overflow", nullptr,
+                        "#version 100\n#define F(x) x\nvoid main() { float f = " +
+                                Repeated("F(", 100000) + "1.0" + Repeated(")", 100000) + "; }\n",
+                        "a.fsh:3:25: error: macro 'F' expands to more than 131072 "
+                        "tokens (a macro bomb); tidepool refuses shaders that large"},
                 PlainFileCase{"function-like macro bomb, refused before glslang runs", nullptr,
                               FunctionLikeMacroBomb(),
                               "a.fsh:32:25: error: macro 'F29' expands to more than 131072 "
@@ -535,17 +535,17 @@ INSTANTIATE_TEST_SUITE_P(
                               "#version 100\nprecision mediump float;\nvoid main() {\n  float "
                               "big[100000];\n  gl_FragColor = vec4(big[0]);\n}\n",
                               ArrayError("a.fsh:4:9", "big", 100000)},
-                PlainFileCase{"varying", "#version 100\nattribute vec4 p;\nvarying float "
-                                         "big[100000];\nvoid main() { big[0] = 1.0; gl_Position "
-                                         "= p; }\n",
+                PlainFileCase{"varying",
+                              "#version 100\nattribute vec4 p;\nvarying float "
+                              "big[100000];\nvoid main() { big[0] = 1.0; gl_Position "
+                              "= p; }\n",
                               "#version 100\nprecision mediump float;\nvoid main() { "
                               "gl_FragColor = vec4(1.0); }\n",
                               ArrayError("a.vsh:3:15", "big", 100000)},
                 PlainFileCase{"vertex output (ES 3.00)",
                               "#version 300 es\nin vec4 p;\nout float big[100000];\nvoid main() "
                               "{ big[0] = 1.0; gl_Position = p; }\n",
-                              kFragment300,
-                              ArrayError("a.vsh:3:11", "big", 100000)},
+                              kFragment300, ArrayError("a.vsh:3:11", "big", 100000)},
                 PlainFileCase{"const parameter", nullptr,
                               "#version 100\nprecision mediump float;\nfloat first(const in "
                               "float values[100000]) { return values[0]; }\nvoid main() {\n  "
@@ -570,8 +570,9 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(GlslValidatorTest, ArrayOfExactlyTheBoundIsAccepted) {
     TempDir dir;
     const std::string path =
-            dir.Write("a.fsh", "#version 100\nprecision mediump float;\nvoid main() {\n  float "
-                               "ok[65536];\n  gl_FragColor = vec4(ok[0]);\n}\n")
+            dir.Write("a.fsh",
+                      "#version 100\nprecision mediump float;\nvoid main() {\n  float "
+                      "ok[65536];\n  gl_FragColor = vec4(ok[0]);\n}\n")
                     .string();
     const ValidationReport report = ValidateShaderFiles({{path, Stage::kFragment}}, {});
     ASSERT_EQ(report.verdicts.size(), 1U);
@@ -582,8 +583,9 @@ TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {
     TempDir dir;
     const std::string vertex = dir.Write("a.vsh", kVertex).string();
     const std::string fragment =
-            dir.Write("a.fsh", "#version 100\nprecision mediump float;\nvarying mediump vec3 "
-                               "unused;\nvoid main() { gl_FragColor = vec4(1.0); }\n")
+            dir.Write("a.fsh",
+                      "#version 100\nprecision mediump float;\nvarying mediump vec3 "
+                      "unused;\nvoid main() { gl_FragColor = vec4(1.0); }\n")
                     .string();
     const ValidationReport report =
             ValidateShaderFiles({{vertex, Stage::kVertex}, {fragment, Stage::kFragment}}, {});
@@ -598,10 +600,10 @@ TEST(GlslValidatorTest, EveryDefaultVariantIsValid) {
     const ValidationReport report = ValidateAll(*config.config, 2);
     EXPECT_GT(report.verdicts.size(), 50U);
     for (const VariantVerdict& verdict : report.verdicts) {
-        EXPECT_TRUE(verdict.valid) << verdict.variant.Id() << ": "
-                                   << (verdict.diagnostics.empty()
-                                               ? std::string("?")
-                                               : FormatDiagnostic(verdict.diagnostics[0]));
+        EXPECT_TRUE(verdict.valid)
+                << verdict.variant.Id() << ": "
+                << (verdict.diagnostics.empty() ? std::string("?")
+                                                : FormatDiagnostic(verdict.diagnostics[0]));
     }
     EXPECT_GT(report.SharedStageSlots(), 0);
 }

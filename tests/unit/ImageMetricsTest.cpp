@@ -1,11 +1,12 @@
 // PSNR, SSIM, share of visibly different pixels, heat maps.
+#include "tidepool/base/ImageMetrics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 
 #include "TestImages.h"
-#include "tidepool/base/ImageMetrics.h"
 
 namespace tidepool::base {
 namespace {

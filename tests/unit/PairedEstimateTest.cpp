@@ -1,14 +1,14 @@
 // The paired estimate, its interval's coverage and the sequential stopping rule
 // (base/include/tidepool/base/PairedEstimate.h).
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/base/SampleStatistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <random>
 #include <vector>
-
-#include "tidepool/base/PairedEstimate.h"
-#include "tidepool/base/SampleStatistics.h"
 
 namespace tidepool::base {
 namespace {
@@ -171,7 +171,8 @@ TEST(PairedEstimateTest, NinetyFivePercentIntervalCoversTheTrueEffectUnderMeasur
     EXPECT_GE(coverage, 0.93);
     EXPECT_LE(coverage, 0.97);
     EXPECT_EQ(resolved, kRuns) << "the cap should not be reached at this noise";
-    std::printf("coverage %.3f over %d runs, %.0f pairs on average\n", coverage, kRuns, static_cast<double>(total_pairs) / kRuns);
+    std::printf("coverage %.3f over %d runs, %.0f pairs on average\n", coverage, kRuns,
+                static_cast<double>(total_pairs) / kRuns);
 }
 
 TEST(PairedEstimateTest, StoppingRuleStopsAtTheResolutionNotBefore) {

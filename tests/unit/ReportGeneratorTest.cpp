@@ -3,6 +3,14 @@
 // configurations kept, corrupt inputs rejected with the file named, atomic publication, the
 // comparison clock (CPU time when every configuration has it), the Scenes section, and the
 // Reflection techniques section (cube-map and Fourier reflections against planar, depth optics).
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/report/ReportModel.h"
+#include "tidepool/report/ReportWriter.h"
+#include "tidepool/report/WhitepaperTable.h"
+
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -14,15 +22,8 @@
 #include <tuple>
 #include <vector>
 
-#include <gtest/gtest.h>
-#include <nlohmann/json.hpp>
-
 #include "TempDir.h"
-#include "tidepool/base/RgbaImage.h"
-#include "tidepool/report/ReportInputs.h"
-#include "tidepool/report/ReportModel.h"
-#include "tidepool/report/ReportWriter.h"
-#include "tidepool/report/WhitepaperTable.h"
+#include <nlohmann/json.hpp>
 
 namespace {
 
@@ -138,8 +139,10 @@ FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& c
                            {"views", views},
                            {"samples_ms", c.ok ? samples : nlohmann::json::array()},
                            {"statistics",
-                            {{"count", c.ok ? rounds * 2 : 0}, {"median_ms", c.ms},
-                             {"ci_low_ms", c.ms * 0.99}, {"ci_high_ms", c.ms * 1.01}}},
+                            {{"count", c.ok ? rounds * 2 : 0},
+                             {"median_ms", c.ms},
+                             {"ci_low_ms", c.ms * 0.99},
+                             {"ci_high_ms", c.ms * 1.01}}},
                            {"gl_error", ""},
                            {"ok", c.ok}});
         if (c.cpu_ms > 0) {
@@ -184,15 +187,39 @@ std::vector<FakeConfiguration> WhitepaperConfigurations() {
             {"water:FULL_NO_FOG", {"full_no_fog"}, 29.0, 3, true, "water", 190},
             {"water:CONST", {"full_constant_mix"}, 25.0, 3, true, "water", 150},
             {"water:UNSCALED", {"full_unscaled_distortion"}, 29.9, 3, true, "water", 195},
-            {"water:FULL@lowres", {"full_low_res_water"}, 26.0, 3, true, "water", 200,
+            {"water:FULL@lowres",
+             {"full_low_res_water"},
+             26.0,
+             3,
+             true,
+             "water",
+             200,
              {{"low_res_water", true}}},
             {"water:CUBE", {"full_cubemap_normalise"}, 36.0, 2, true, "water", 190},
             {"water_uniform:FULL", {"full_uniform_bools"}, 30.3, 2, true, "water_uniform", 400},
-            {"water:FULL@discard", {"full_clip_discard"}, 40.0, 2, true, "water", 200,
+            {"water:FULL@discard",
+             {"full_clip_discard"},
+             40.0,
+             2,
+             true,
+             "water",
+             200,
              {{"clip", "discard"}}},
-            {"water:FULL@refl128", {"full_reflection_128"}, 27.0, 3, true, "water", 200,
+            {"water:FULL@refl128",
+             {"full_reflection_128"},
+             27.0,
+             3,
+             true,
+             "water",
+             200,
              {{"reflection_size", 128}}},
-            {"water:EXACT@refl512", {"reference"}, 45.0, 0, true, "water", 220,
+            {"water:EXACT@refl512",
+             {"reference"},
+             45.0,
+             0,
+             true,
+             "water",
+             220,
              {{"reflection_size", 512}}},
     };
 }
@@ -205,7 +232,9 @@ PairedRatio Ratio(double ratio, double low, double high) {
     return r;
 }
 
-const WhitepaperRow& Row(int number) { return WhitepaperRows()[static_cast<std::size_t>(number - 1)]; }
+const WhitepaperRow& Row(int number) {
+    return WhitepaperRows()[static_cast<std::size_t>(number - 1)];
+}
 
 TEST(ReportWhitepaperTable, HasElevenRowsWithPresetsAndDirectionOnlyRowsEightToEleven) {
     ASSERT_EQ(WhitepaperRows().size(), 11u);
@@ -268,21 +297,21 @@ TEST(ReportGradeRow, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure)
              Ratio(1.005, 0.995, 1.015), Verdict::kNegligibleAsClaimed},
             {"row 6: a definite 30% loss is not <1%", 6, Ratio(1.43, 1.4, 1.46),
              Verdict::kSameDirectionDifferentMagnitude},
-            {"row 6: [-4.8, +1] is neither negligible nor a direction", 6,
-             Ratio(1.02, 0.99, 1.05), Verdict::kBelowResolution},
+            {"row 6: [-4.8, +1] is neither negligible nor a direction", 6, Ratio(1.02, 0.99, 1.05),
+             Verdict::kBelowResolution},
             {"row 8: qualitative faster, measured faster", 8, Ratio(0.8, 0.78, 0.82),
              Verdict::kSameDirectionOnly},
             {"row 8: qualitative faster, measured slower", 8, Ratio(1.2, 1.15, 1.25),
              Verdict::kOpposite},
-            {"row 11: qualitative, [-0.5, +1.5] includes no change", 11,
-             Ratio(0.995, 0.985, 1.005), Verdict::kBelowResolution},
+            {"row 11: qualitative, [-0.5, +1.5] includes no change", 11, Ratio(0.995, 0.985, 1.005),
+             Verdict::kBelowResolution},
             {"failed measurement", 3, PairedRatio{}, Verdict::kFailed},
     };
     for (const GradeCase& c : cases) {
         std::string reason;
         const Verdict verdict = GradeRow(Row(c.row), c.ratio, nullptr, &reason);
-        EXPECT_EQ(verdict, c.expected) << c.name << ": " << VerdictName(verdict) << " ("
-                                       << reason << ")";
+        EXPECT_EQ(verdict, c.expected)
+                << c.name << ": " << VerdictName(verdict) << " (" << reason << ")";
         EXPECT_FALSE(reason.empty()) << c.name;
     }
 }
@@ -384,8 +413,8 @@ TEST(ReportStaticCost, RankCorrelationAndLargestDisagreementsOnKnownInputs) {
     b.id = "b";
     c.id = "c";
     d.id = "d";
-    std::vector<StaticCostEntry> entries = {{&a, 0, 0, 10, 1.0}, {&b, 0, 0, 20, 2.0},
-                                            {&c, 0, 0, 30, 3.0}, {&d, 0, 0, 40, 4.0}};
+    std::vector<StaticCostEntry> entries = {
+            {&a, 0, 0, 10, 1.0}, {&b, 0, 0, 20, 2.0}, {&c, 0, 0, 30, 3.0}, {&d, 0, 0, 40, 4.0}};
     StaticCostAnalysis monotone = AnalyseStaticCost(entries);
     EXPECT_DOUBLE_EQ(monotone.spearman_rho, 1.0);
     // "d" has the most operations but is the fastest: the count misleads most there.
@@ -465,7 +494,8 @@ TEST(ReportModelTest, PrunedCombinationsAreSummarisedPerRuleNotListed) {
         const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
         ASSERT_EQ(written.error, "");
         const std::string md = ReadText(written.folder / "report.md");
-        EXPECT_NE(md.find("| water | ENABLE_FRESNEL requires ENABLE_REFRACTION | variants.yaml:36 | " +
+        EXPECT_NE(md.find("| water | ENABLE_FRESNEL requires ENABLE_REFRACTION | variants.yaml:36 "
+                          "| " +
                           std::to_string(first_count) + " |"),
                   std::string::npos)
                 << md;
@@ -528,9 +558,9 @@ TEST(ReportWriterTest, WritesAllFormatsAndReplacesOnlyItsOwnFolder) {
     ASSERT_TRUE(built.model) << built.error;
     WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
     ASSERT_EQ(written.error, "");
-    for (const char* file : {"index.html", "report.md", "data.json", "charts/accuracy.svg",
-                             "charts/whitepaper.svg", "charts/static_cost.svg",
-                             "images/reference-three_quarter.png"}) {
+    for (const char* file :
+         {"index.html", "report.md", "data.json", "charts/accuracy.svg", "charts/whitepaper.svg",
+          "charts/static_cost.svg", "images/reference-three_quarter.png"}) {
         EXPECT_TRUE(std::filesystem::is_regular_file(written.folder / file)) << file;
     }
     const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
@@ -786,16 +816,66 @@ std::vector<FakeConfiguration> ReflectionConfigurations() {
     }
     const std::vector<std::string> main_only = {"main"};
     const std::vector<std::string> refraction_main = {"refraction", "main"};
-    configurations.push_back({"water:REFLECTION_CUBEMAP", {"cubemap_reflection"}, 8.0, 6, true,
-                              "water", 45, {}, 0, main_only, 12, 6});
-    configurations.push_back({"water:REFLECTION_FOURIER", {"fourier_reflection"}, 12.5, 0, true,
-                              "water", 70, {}, 0, main_only, 12, 0});
-    configurations.push_back({"water:CUBE_FULL", {"full_cubemap_reflection"}, 24.0, 2, true,
-                              "water", 190, {}, 0, refraction_main, 22, 9});
-    configurations.push_back({"water:FOURIER_FULL", {"full_fourier_reflection"}, 26.0, 5, true,
-                              "water", 230, {}, 0, refraction_main, 22, 7});
-    configurations.push_back({"water:OPTICS", {"full_depth_optics"}, 33.0, 4, true, "water", 260,
-                              {}, 0, {"reflection", "refraction", "main"}, 30, 2});
+    configurations.push_back({"water:REFLECTION_CUBEMAP",
+                              {"cubemap_reflection"},
+                              8.0,
+                              6,
+                              true,
+                              "water",
+                              45,
+                              {},
+                              0,
+                              main_only,
+                              12,
+                              6});
+    configurations.push_back({"water:REFLECTION_FOURIER",
+                              {"fourier_reflection"},
+                              12.5,
+                              0,
+                              true,
+                              "water",
+                              70,
+                              {},
+                              0,
+                              main_only,
+                              12,
+                              0});
+    configurations.push_back({"water:CUBE_FULL",
+                              {"full_cubemap_reflection"},
+                              24.0,
+                              2,
+                              true,
+                              "water",
+                              190,
+                              {},
+                              0,
+                              refraction_main,
+                              22,
+                              9});
+    configurations.push_back({"water:FOURIER_FULL",
+                              {"full_fourier_reflection"},
+                              26.0,
+                              5,
+                              true,
+                              "water",
+                              230,
+                              {},
+                              0,
+                              refraction_main,
+                              22,
+                              7});
+    configurations.push_back({"water:OPTICS",
+                              {"full_depth_optics"},
+                              33.0,
+                              4,
+                              true,
+                              "water",
+                              260,
+                              {},
+                              0,
+                              {"reflection", "refraction", "main"},
+                              30,
+                              2});
     return configurations;
 }
 
@@ -865,8 +945,7 @@ TEST(ReportReflectionTest, SectionListsTheFourComparisonsWithPassesFromThePassNa
     EXPECT_TRUE(model.optics[0].passes_dropped.empty());
     EXPECT_NEAR(model.optics[0].change_percent, (30.0 / 33.0 - 1) * 100, 0.05);
     EXPECT_TRUE(std::isfinite(model.optics[0].psnr_db));
-    EXPECT_NE(model.optics[0].reading.find("Most changed view: three_quarter"),
-              std::string::npos)
+    EXPECT_NE(model.optics[0].reading.find("Most changed view: three_quarter"), std::string::npos)
             << model.optics[0].reading;
     // One panel per technique: its full-effect candidate beside planar full.
     ASSERT_EQ(model.reflection_panels.size(), 2u);
@@ -996,8 +1075,7 @@ TEST(ReportReflectionTest, SectionAppearsInHtmlMarkdownAndDataJson) {
             written.folder / "images/reflection-full_cubemap_reflection-three_quarter-diff.png"));
 
     const std::string html = ReadText(written.folder / "index.html");
-    EXPECT_NE(html.find("<h2 id=\"reflections\">9. Reflection techniques</h2>"),
-              std::string::npos);
+    EXPECT_NE(html.find("<h2 id=\"reflections\">9. Reflection techniques</h2>"), std::string::npos);
     EXPECT_NE(html.find("<a href=\"#reflections\">Reflection techniques</a>"), std::string::npos);
     EXPECT_NE(html.find("<h3 id=\"depth-optics\">Depth optics</h3>"), std::string::npos);
     EXPECT_NE(html.find("<tr class=\"technique-cubemap-full\">"), std::string::npos);
@@ -1005,9 +1083,13 @@ TEST(ReportReflectionTest, SectionAppearsInHtmlMarkdownAndDataJson) {
     // Every tag the section opens is closed (the page stays valid), and its panels' images
     // are embedded like the others.
     const std::string section = html.substr(html.find("<h2 id=\"reflections\">"));
-    for (const auto& [open, close] : std::vector<std::pair<std::string, std::string>>{
-                 {"<table", "</table>"}, {"<tr", "</tr>"}, {"<div", "</div>"},
-                 {"<figure>", "</figure>"}, {"<p", "</p>"}, {"<h3", "</h3>"}}) {
+    for (const auto& [open, close] :
+         std::vector<std::pair<std::string, std::string>>{{"<table", "</table>"},
+                                                          {"<tr", "</tr>"},
+                                                          {"<div", "</div>"},
+                                                          {"<figure>", "</figure>"},
+                                                          {"<p", "</p>"},
+                                                          {"<h3", "</h3>"}}) {
         std::size_t opened = 0;
         std::size_t closed = 0;
         for (std::size_t at = section.find(open); at != std::string::npos;
@@ -1113,8 +1195,8 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
             {"duplicate configuration id", false,
              [](nlohmann::json& j) { j["configurations"][1]["id"] = j["configurations"][0]["id"]; },
              "appears more than once"},
-            {"variant not an object", true,
-             [](nlohmann::json& j) { j["variants"][0] = 7; }, "'variants[0]' is not an object"},
+            {"variant not an object", true, [](nlohmann::json& j) { j["variants"][0] = 7; },
+             "'variants[0]' is not an object"},
             {"variant without id", true, [](nlohmann::json& j) { j["variants"][1].erase("id"); },
              "'variants[1].id' is not a non-empty string"},
             {"variant valid not boolean", true,
@@ -1146,7 +1228,9 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
                 LoadEdited(dir, c.manifest ? run.manifest : run.results, c.edit);
         EXPECT_FALSE(loaded.inputs) << c.what;
         const std::filesystem::path file = c.manifest ? run.manifest : run.results;
-        EXPECT_EQ(loaded.error.rfind(file.string() + ": ", 0), 0u) << c.what << ": " << loaded.error;
-        EXPECT_NE(loaded.error.find(c.message), std::string::npos) << c.what << ": " << loaded.error;
+        EXPECT_EQ(loaded.error.rfind(file.string() + ": ", 0), 0u)
+                << c.what << ": " << loaded.error;
+        EXPECT_NE(loaded.error.find(c.message), std::string::npos)
+                << c.what << ": " << loaded.error;
     }
 }

@@ -1,4 +1,6 @@
 // Paired frame-time ratios, whitepaper conversions and verdicts, ranks and the Pareto frontier.
+#include "tidepool/report/Statistics.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,8 +8,6 @@
 #include <limits>
 #include <random>
 #include <vector>
-
-#include "tidepool/report/Statistics.h"
 
 namespace tidepool::report {
 namespace {
@@ -148,8 +148,8 @@ TEST(ReportStatisticsTest, SplitHalvesSeparateWhoRenderedFirst) {
 }
 
 TEST(ReportStatisticsTest, SplitHalfOfTooFewPairsFails) {
-    const SplitHalf split = CompareSplitPairs(std::vector<double>(12, 1.0),
-                                              std::vector<double>(12, 2.0));
+    const SplitHalf split =
+            CompareSplitPairs(std::vector<double>(12, 1.0), std::vector<double>(12, 2.0));
     EXPECT_TRUE(std::isnan(split.disagreement_percent_points));
     EXPECT_FALSE(split.odd.error.empty());
 }

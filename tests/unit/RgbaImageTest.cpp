@@ -1,4 +1,6 @@
 // PNG reading and atomic writing.
+#include "tidepool/base/RgbaImage.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -9,7 +11,6 @@
 #include "FileContents.h"
 #include "TempDir.h"
 #include "TestImages.h"
-#include "tidepool/base/RgbaImage.h"
 
 namespace tidepool::base {
 namespace {

@@ -1,8 +1,8 @@
 // Configuration ids, uniform-bool names, filters, file names and the "no GL" message.
-#include <gtest/gtest.h>
-
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/RenderConfig.h"
+
+#include <gtest/gtest.h>
 
 namespace tidepool::runner {
 namespace {
@@ -26,11 +26,15 @@ TEST(RunnerConfigTest, NonDefaultPassesAppendSuffixesInFixedOrder) {
 
 TEST(RunnerConfigTest, UniformBoolNamesFollowTheInterface) {
     const std::pair<const char*, const char*> cases[] = {
-        {"ENABLE_DISTORTION", "bDistortion"},   {"ENABLE_SCALE_DISTORTION", "bScaleDistortion"},
-        {"ENABLE_REFRACTION", "bRefraction"},   {"ENABLE_FRESNEL", "bFresnel"},
-        {"FRESNEL_EXACT", "bFresnelExact"},     {"NORMALISE_CUBEMAP", "bNormaliseCubemap"},
-        {"ENABLE_WATER_COLOUR", "bWaterColour"}, {"ENABLE_ALPHA_BLEND", "bAlphaBlend"},
-        {"ENABLE_FOG", "bFog"}};
+            {"ENABLE_DISTORTION", "bDistortion"},
+            {"ENABLE_SCALE_DISTORTION", "bScaleDistortion"},
+            {"ENABLE_REFRACTION", "bRefraction"},
+            {"ENABLE_FRESNEL", "bFresnel"},
+            {"FRESNEL_EXACT", "bFresnelExact"},
+            {"NORMALISE_CUBEMAP", "bNormaliseCubemap"},
+            {"ENABLE_WATER_COLOUR", "bWaterColour"},
+            {"ENABLE_ALPHA_BLEND", "bAlphaBlend"},
+            {"ENABLE_FOG", "bFog"}};
     for (const auto& [define, name] : cases) {
         EXPECT_EQ(UniformBoolName(define), name) << define;
     }
@@ -65,15 +69,16 @@ TEST(RunnerConfigTest, PresetsJoinTheWaterVariantsAndDeduplicate) {
     EXPECT_TRUE(set.configurations[3].UsesUniformBools());
 
     const ConfigurationSet fog_only =
-        FilterConfigurations(set, ConfigurationFilter{{"*FOG@*"}, {"uniform_fog"}});
+            FilterConfigurations(set, ConfigurationFilter{{"*FOG@*"}, {"uniform_fog"}});
     ASSERT_EQ(fog_only.configurations.size(), 2U);
     EXPECT_EQ(fog_only.configurations[0].id, "water:ENABLE_FOG@lowres");
     EXPECT_EQ(fog_only.configurations[1].id, "water_uniform:ENABLE_FOG");
 
     const ConfigurationSet unknown = FilterConfigurations(set, ConfigurationFilter{{}, {"nope"}});
     ASSERT_EQ(unknown.diagnostics.size(), 1U);
-    EXPECT_EQ(unknown.diagnostics[0].message, "unknown preset 'nope'; see the presets in "
-                                              "variants.yaml");
+    EXPECT_EQ(unknown.diagnostics[0].message,
+              "unknown preset 'nope'; see the presets in "
+              "variants.yaml");
 }
 
 TEST(RunnerConfigTest, FileNamesAreSafeAndDistinct) {
@@ -85,10 +90,10 @@ TEST(RunnerConfigTest, FileNamesAreSafeAndDistinct) {
 
 TEST(RunnerConfigTest, NoGlMessageNamesPackagesAndVariables) {
     const std::string message = DescribeMissingGl(
-        {{BackendKind::kEgl, "eglInitialize failed"}, {BackendKind::kOsMesa, "no libOSMesa"}});
-    for (const char* needle : {"egl: eglInitialize failed", "osmesa: no libOSMesa",
-                               "libegl-mesa0", "libgl1-mesa-dri", "libosmesa6", "EGL_PLATFORM",
-                               "LIBGL_ALWAYS_SOFTWARE", "MESA_LOADER_DRIVER_OVERRIDE"}) {
+            {{BackendKind::kEgl, "eglInitialize failed"}, {BackendKind::kOsMesa, "no libOSMesa"}});
+    for (const char* needle :
+         {"egl: eglInitialize failed", "osmesa: no libOSMesa", "libegl-mesa0", "libgl1-mesa-dri",
+          "libosmesa6", "EGL_PLATFORM", "LIBGL_ALWAYS_SOFTWARE", "MESA_LOADER_DRIVER_OVERRIDE"}) {
         EXPECT_NE(message.find(needle), std::string::npos) << needle << "\n" << message;
     }
 }

@@ -1,16 +1,16 @@
 // Mesa's info-log format into diagnostics at the user's file and line.
-#include <gtest/gtest.h>
-
 #include "tidepool/runner/MesaInfoLog.h"
+
+#include <gtest/gtest.h>
 
 namespace tidepool::runner {
 namespace {
 
 TEST(RunnerMesaInfoLogTest, PositionedErrorsKeepLineAndMesasColumnWithoutSource) {
     const std::vector<Diagnostic> d = ParseMesaInfoLog(
-        "0:5(22): error: `x' undeclared\n0:5(17): error: cannot construct `vec4' from a "
-        "non-numeric data type\n\n",
-        "shaders/water.fsh", "water:ENABLE_FOG");
+            "0:5(22): error: `x' undeclared\n0:5(17): error: cannot construct `vec4' from a "
+            "non-numeric data type\n\n",
+            "shaders/water.fsh", "water:ENABLE_FOG");
     ASSERT_EQ(d.size(), 2U);
     EXPECT_EQ(FormatDiagnostic(d[0]),
               "shaders/water.fsh:5:22: error: `x' undeclared [water:ENABLE_FOG]");
@@ -23,7 +23,7 @@ TEST(RunnerMesaInfoLogTest, PositionedErrorsKeepLineAndMesasColumnWithoutSource)
 TEST(RunnerMesaInfoLogTest, ColumnsMapBackThroughCollapsedBlanks) {
     const std::string source = "#version 100\nvoid main()\n{\n    colour =  undeclaredThing;\n}\n";
     const std::vector<Diagnostic> d =
-        ParseMesaInfoLog("0:4(11): error: `undeclaredThing' undeclared\n", "u.fsh", "", source);
+            ParseMesaInfoLog("0:4(11): error: `undeclaredThing' undeclared\n", "u.fsh", "", source);
     ASSERT_EQ(d.size(), 1U);
     EXPECT_EQ(d[0].column, 15);  // two blanks after '=' also count once
     EXPECT_EQ(MapMesaColumn("x = y", 5), 5);
@@ -33,9 +33,9 @@ TEST(RunnerMesaInfoLogTest, ColumnsMapBackThroughCollapsedBlanks) {
 
 TEST(RunnerMesaInfoLogTest, WarningsAndUnpositionedLinkErrors) {
     const std::vector<Diagnostic> d = ParseMesaInfoLog(
-        "0:12(3): warning: `foo' used uninitialized\nerror: vertex shader output `Colour' is "
-        "not read\n  by the fragment shader\n",
-        "shaders/model.vsh", "model:");
+            "0:12(3): warning: `foo' used uninitialized\nerror: vertex shader output `Colour' is "
+            "not read\n  by the fragment shader\n",
+            "shaders/model.vsh", "model:");
     ASSERT_EQ(d.size(), 2U);
     EXPECT_EQ(d[0].severity, Severity::kWarning);
     EXPECT_EQ(d[0].line, 12);

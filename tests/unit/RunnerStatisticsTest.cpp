@@ -1,7 +1,7 @@
 // Order statistics of frame times: median, quartiles and the binomial CI of the median.
-#include <gtest/gtest.h>
-
 #include "tidepool/runner/Statistics.h"
+
+#include <gtest/gtest.h>
 
 namespace tidepool::runner {
 namespace {

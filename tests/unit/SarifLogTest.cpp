@@ -1,9 +1,9 @@
 // The SARIF log of a validation report, built from hand-made reports: no glslang needed.
 #include "tidepool/SarifLog.h"
 
-#include <string>
-
 #include <gtest/gtest.h>
+
+#include <string>
 
 namespace {
 
@@ -30,7 +30,9 @@ VariantVerdict FragmentFailure(const std::string& id, const Diagnostic& diagnost
     return verdict;
 }
 
-const nlohmann::json& Results(const nlohmann::json& log) { return log["runs"][0]["results"]; }
+const nlohmann::json& Results(const nlohmann::json& log) {
+    return log["runs"][0]["results"];
+}
 
 TEST(SarifLogTest, ArtifactUriPercentEncodesBytesAndMarksAbsolutePaths) {
     struct Case {

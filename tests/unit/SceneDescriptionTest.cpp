@@ -78,9 +78,10 @@ TEST(SceneDescriptionTest, MissingFileIsAnError) {
     const SceneResult result = LoadSceneDescription("/nonexistent/x.yaml");
     EXPECT_FALSE(result.scene);
     ASSERT_EQ(result.diagnostics.size(), 1U);
-    EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
-              "/nonexistent/x.yaml: error: cannot read the scene file: no such file; scenes live in "
-              "scenes/NAME.yaml next to the configuration");
+    EXPECT_EQ(
+            FormatDiagnostic(result.diagnostics[0]),
+            "/nonexistent/x.yaml: error: cannot read the scene file: no such file; scenes live in "
+            "scenes/NAME.yaml next to the configuration");
 }
 
 SceneDescription ParseOrDie(const std::string& yaml) {

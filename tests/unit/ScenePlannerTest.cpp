@@ -1,12 +1,12 @@
 // The scene planner's parts that need no GL: its choice between measured candidates, on a tie
 // and at the margins (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate).
+#include "tidepool/lab/ScenePlanner.h"
+
 #include <gtest/gtest.h>
 
 #include <optional>
 #include <string>
 #include <vector>
-
-#include "tidepool/lab/ScenePlanner.h"
 
 namespace tidepool::runner {
 namespace {

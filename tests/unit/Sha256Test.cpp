@@ -1,9 +1,9 @@
 #include "tidepool/base/Sha256.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <string>
-
-#include <gtest/gtest.h>
 
 namespace tidepool::base {
 namespace {

@@ -1,17 +1,17 @@
 // The CPU side of the hard-case catalogue: every CPU sweep passes its stated bound, and the
 // mediump precision study names the expressions it should.
+#include "tidepool/lab/HardCases.h"
+#include "tidepool/lab/PrecisionStudy.h"
+#include "tidepool/lab/StabilityReport.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/WaterMath.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <limits>
 #include <set>
 #include <string>
-
-#include "tidepool/lab/HardCases.h"
-#include "tidepool/lab/PrecisionStudy.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/lab/StabilityReport.h"
-#include "tidepool/runner/WaterMath.h"
 
 namespace tidepool::runner {
 namespace {
@@ -39,13 +39,14 @@ TEST_P(StabilityCpuCaseTest, SweepIsFiniteAndWithinItsBound) {
     EXPECT_TRUE(r.passed) << r.note;
 }
 
-INSTANTIATE_TEST_SUITE_P(
-        AllCpuCases, StabilityCpuCaseTest,
-        ::testing::Values("cpu_mirror_matrix", "cpu_oblique_near_plane",
-                          "cpu_infinite_plane_polygon", "cpu_projective_tex_coord",
-                          "cpu_view_matrix_vertical", "cpu_bump_translation_long_run",
-                          "cpu_fresnel_unnormalised_normal", "cpu_distortion_eye_distance_zero",
-                          "cpu_fog_depth_extremes"));
+INSTANTIATE_TEST_SUITE_P(AllCpuCases, StabilityCpuCaseTest,
+                         ::testing::Values("cpu_mirror_matrix", "cpu_oblique_near_plane",
+                                           "cpu_infinite_plane_polygon", "cpu_projective_tex_coord",
+                                           "cpu_view_matrix_vertical",
+                                           "cpu_bump_translation_long_run",
+                                           "cpu_fresnel_unnormalised_normal",
+                                           "cpu_distortion_eye_distance_zero",
+                                           "cpu_fog_depth_extremes"));
 
 TEST(StabilityCpuTest, EveryCpuCaseOfTheCatalogueIsCovered) {
     for (const HardCase& c : HardCaseCatalogue()) {
@@ -56,8 +57,7 @@ TEST(StabilityCpuTest, EveryCpuCaseOfTheCatalogueIsCovered) {
 }
 
 TEST(StabilityCpuTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
-    const CameraView down{"down", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}, 0.8F, 1.0F,
-                          2000.0F};
+    const CameraView down{"down", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}, 0.8F, 1.0F, 2000.0F};
     EXPECT_FALSE(std::isfinite(ViewMatrix(down)[0][0]));  // why the fallback exists
     const glm::mat4 view = LookAtWithFallbackUp(down.eye, down.target);
     for (int c = 0; c < 4; ++c) {
@@ -129,10 +129,10 @@ TEST(PrecisionStudyTest, NamesTheExpressionsThatLosePrecisionAtMediump) {
     // The guarded forms the shaders use stay within the bound (1e-2 relative, see
     // PrecisionStudy.cpp), and in float every expression is within 1e-3 (a few float ulps of
     // the largest values swept, eye distances of 2000).
-    for (const char* kept : {"eyeScale * sqrt", "(E / eyeScale)", "Schlick", "exact Fresnel",
-                             "bump * inversesqrt", "Fresnel chain", "bumpNormal.x",
-                             "clamp(eyeDistance", "exp2(-738.65", "clamp(D / max(Extinction",
-                             "a^2 * min(MaxWaterDepth"}) {
+    for (const char* kept :
+         {"eyeScale * sqrt", "(E / eyeScale)", "Schlick", "exact Fresnel", "bump * inversesqrt",
+          "Fresnel chain", "bumpNormal.x", "clamp(eyeDistance", "exp2(-738.65",
+          "clamp(D / max(Extinction", "a^2 * min(MaxWaterDepth"}) {
         const PrecisionRow& row = Row(rows, kept);
         EXPECT_FALSE(row.loses_precision) << kept << ": " << row.max_rel_error_fp16;
         EXPECT_EQ(row.non_finite_fp16, 0) << kept;

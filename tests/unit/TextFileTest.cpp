@@ -1,10 +1,9 @@
 #include "tidepool/TextFile.h"
 
-#include <sys/stat.h>
-
 #include <gtest/gtest.h>
 
 #include "TempDir.h"
+#include <sys/stat.h>
 
 namespace tidepool {
 namespace {

@@ -1,9 +1,9 @@
 #include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
 
 #include <gtest/gtest.h>
 
 #include "TempDir.h"
-#include "tidepool/VariantExpander.h"
 
 namespace tidepool {
 namespace {
@@ -15,8 +15,9 @@ class VariantConfigTest : public ::testing::Test {
 protected:
     VariantConfigTest() {
         dir_.Write("s.vsh", "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n");
-        dir_.Write("s.fsh", "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
-                            "vec4(1.0); }\n");
+        dir_.Write("s.fsh",
+                   "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
+                   "vec4(1.0); }\n");
     }
     ConfigResult Parse(const std::string& yaml) {
         return ParseVariantConfig(yaml, "v.yaml", dir_.Path());
@@ -102,18 +103,18 @@ TEST_F(VariantConfigTest, AxisMapFormLoadsValuesAndDefaultAndListsNoDefineForThe
     // The map form without `default:` is the list form: every value adds a define.
     EXPECT_EQ(p.axes[2].values, (std::vector<std::string>{"fast", "exact"}));
     EXPECT_EQ(p.axes[2].default_value, "");
-    EXPECT_EQ(p.AllDefines(),
-              (std::vector<std::string>{"ENABLE_FOG", "QUALITY_LOW", "QUALITY_HIGH",
-                                        "REFLECTION_CUBEMAP", "REFLECTION_FOURIER", "MODE_FAST",
-                                        "MODE_EXACT"}));
+    EXPECT_EQ(p.AllDefines(), (std::vector<std::string>{"ENABLE_FOG", "QUALITY_LOW", "QUALITY_HIGH",
+                                                        "REFLECTION_CUBEMAP", "REFLECTION_FOURIER",
+                                                        "MODE_FAST", "MODE_EXACT"}));
 }
 
 // Adding an axis with a default to a program keeps the ids of the variants it had before.
 TEST_F(VariantConfigTest, AxisWithDefaultKeepsTheIdsOfExistingVariants) {
     const std::string before = std::string(kProgramHead) + "    features: [ENABLE_FOG]\n";
     const std::string after =
-            before + "    axes:\n"
-                     "      REFLECTION: { values: [planar, cubemap, fourier], default: planar }\n";
+            before +
+            "    axes:\n"
+            "      REFLECTION: { values: [planar, cubemap, fourier], default: planar }\n";
     const ConfigResult old_config = Parse(before);
     const ConfigResult new_config = Parse(after);
     ASSERT_TRUE(old_config.config.has_value());
@@ -130,10 +131,10 @@ TEST_F(VariantConfigTest, AxisWithDefaultKeepsTheIdsOfExistingVariants) {
         new_ids.push_back(v.Id());
     }
     EXPECT_EQ(old_ids, (std::vector<std::string>{"p:", "p:ENABLE_FOG"}));
-    EXPECT_EQ(new_ids, (std::vector<std::string>{"p:", "p:ENABLE_FOG",
-                                                 "p:ENABLE_FOG,REFLECTION_CUBEMAP",
-                                                 "p:ENABLE_FOG,REFLECTION_FOURIER",
-                                                 "p:REFLECTION_CUBEMAP", "p:REFLECTION_FOURIER"}));
+    EXPECT_EQ(new_ids,
+              (std::vector<std::string>{"p:", "p:ENABLE_FOG", "p:ENABLE_FOG,REFLECTION_CUBEMAP",
+                                        "p:ENABLE_FOG,REFLECTION_FOURIER", "p:REFLECTION_CUBEMAP",
+                                        "p:REFLECTION_FOURIER"}));
 }
 
 TEST_F(VariantConfigTest, PresetThatChoosesNoValueOfAnAxisWithDefaultGetsTheDefault) {
@@ -219,18 +220,16 @@ INSTANTIATE_TEST_SUITE_P(
                              "v.yaml:5:5: error: unknown key 'featurs' in program 'p'; allowed "
                              "keys: vertex, fragment, features, axes, rules, description\n"},
                 BadInputCase{"RuleNamesUnknownFeature",
-                             std::string(kProgramHead) +
-                                     "    features: [A]\n"
-                                     "    rules:\n"
-                                     "      - { if: A, requires: B }\n",
+                             std::string(kProgramHead) + "    features: [A]\n"
+                                                         "    rules:\n"
+                                                         "      - { if: A, requires: B }\n",
                              "v.yaml:7:9: error: rule names unknown feature 'B' in program 'p'; "
                              "known: A\n"},
                 BadInputCase{"FeatureDeclaredTwice",
                              std::string(kProgramHead) + "    features: [A, B, A]\n",
                              "v.yaml:5:22: error: feature 'A' is declared twice in program 'p'; "
                              "remove one\n"},
-                BadInputCase{"DuplicateMapKey",
-                             std::string(kProgramHead) + "    vertex: s.vsh\n",
+                BadInputCase{"DuplicateMapKey", std::string(kProgramHead) + "    vertex: s.vsh\n",
                              "v.yaml:5:5: error: duplicate key 'vertex' (first written at line "
                              "3); remove one of them\n"},
                 BadInputCase{"InvalidDefineName",
@@ -239,17 +238,15 @@ INSTANTIATE_TEST_SUITE_P(
                              "use letters, digits and _, start with a letter, no 'GL_' prefix "
                              "and no '__'\n"},
                 BadInputCase{"PresetBreaksRule",
-                             std::string(kProgramHead) +
-                                     "    features: [A, B]\n"
-                                     "    rules: [{ if: B, requires: A }]\n"
-                                     "presets:\n"
-                                     "  bad: { program: p, defines: [B] }\n",
+                             std::string(kProgramHead) + "    features: [A, B]\n"
+                                                         "    rules: [{ if: B, requires: A }]\n"
+                                                         "presets:\n"
+                                                         "  bad: { program: p, defines: [B] }\n",
                              "v.yaml:8:3: error: preset 'bad' breaks rule 'B requires A' (line "
                              "6); change its defines\n"},
                 BadInputCase{"MalformedRule",
-                             std::string(kProgramHead) +
-                                     "    features: [A, B]\n"
-                                     "    rules: [{ if: A }]\n",
+                             std::string(kProgramHead) + "    features: [A, B]\n"
+                                                         "    rules: [{ if: A }]\n",
                              "v.yaml:6:13: error: a rule is either `{if: A, requires: [B]}`, "
                              "`{if: A, excludes: [B]}` or `{exclude: [A, B]}`\n"},
                 BadInputCase{"AxisMapWithUnknownKey",
@@ -260,9 +257,8 @@ INSTANTIATE_TEST_SUITE_P(
                              "v.yaml:6:48: error: unknown key 'defualt' in axis 'REFLECTION'; "
                              "allowed keys: values, default\n"},
                 BadInputCase{"AxisMapWithoutValues",
-                             std::string(kProgramHead) +
-                                     "    axes:\n"
-                                     "      REFLECTION: { default: planar }\n",
+                             std::string(kProgramHead) + "    axes:\n"
+                                                         "      REFLECTION: { default: planar }\n",
                              "v.yaml:6:7: error: axis 'REFLECTION' has no 'values'; write "
                              "`REFLECTION: { values: [a, b], default: a }`\n"},
                 BadInputCase{"AxisDefaultIsNotOneOfItsValues",
@@ -279,9 +275,8 @@ INSTANTIATE_TEST_SUITE_P(
                              "v.yaml:6:7: error: axis 'REFLECTION' needs at least two values (a "
                              "single value is a feature that is always on)\n"},
                 BadInputCase{"AxisListWithOneValue",
-                             std::string(kProgramHead) +
-                                     "    axes:\n"
-                                     "      QUALITY: [low]\n",
+                             std::string(kProgramHead) + "    axes:\n"
+                                                         "      QUALITY: [low]\n",
                              "v.yaml:6:7: error: axis 'QUALITY' needs at least two values (a "
                              "single value is a feature that is always on)\n"},
                 BadInputCase{"RuleNamesTheDefineOfAnAxisDefault",
@@ -317,20 +312,22 @@ INSTANTIATE_TEST_SUITE_P(
                              "axis 'REFLECTION' (it chose 2); choosing none means its default "
                              "'planar'\n"},
                 BadInputCase{"PresetChoosesNoValueOfAnAxisWithoutDefault",
-                             std::string(kProgramHead) +
-                                     "    features: [A]\n"
-                                     "    axes:\n"
-                                     "      QUALITY: [low, high]\n"
-                                     "presets:\n"
-                                     "  bad: { program: p, defines: [A] }\n",
+                             std::string(kProgramHead) + "    features: [A]\n"
+                                                         "    axes:\n"
+                                                         "      QUALITY: [low, high]\n"
+                                                         "presets:\n"
+                                                         "  bad: { program: p, defines: [A] }\n",
                              "v.yaml:9:3: error: preset 'bad' must choose exactly one value of "
                              "axis 'QUALITY' (it chose 0)\n"},
-                BadInputCase{"DesktopOnlyTargets", "targets: [330]\n" + std::string(kProgramHead),
-                             "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100, 300, webgl1 or "
-                             "webgl2\n"
-                             "v.yaml:1:10: error: targets must include 100 (GLSL ES 1.00 is the "
-                             "shaders' own language)\n"}),
-        [](const ::testing::TestParamInfo<BadInputCase>& case_info) { return case_info.param.name; });
+                BadInputCase{
+                        "DesktopOnlyTargets", "targets: [330]\n" + std::string(kProgramHead),
+                        "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100, 300, webgl1 or "
+                        "webgl2\n"
+                        "v.yaml:1:10: error: targets must include 100 (GLSL ES 1.00 is the "
+                        "shaders' own language)\n"}),
+        [](const ::testing::TestParamInfo<BadInputCase>& case_info) {
+            return case_info.param.name;
+        });
 
 TEST_F(VariantConfigTest, MaxVariantsOutOfRangeOrNotAWholeNumberIsRefusedAtItsLine) {
     for (const char* value : {"2147483647", "-1", "0", "18446744073709551616", "1e3", "16777217"}) {
@@ -369,7 +366,8 @@ TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {
     ASSERT_EQ(result.diagnostics.size(), 1U);
     EXPECT_EQ(FormatDiagnostic(result.diagnostics[0]),
               (dir_.Path() / "missing.yaml").string() +
-                      ": error: cannot read the configuration file: no such file; check the path or pass "
+                      ": error: cannot read the configuration file: no such file; check the path "
+                      "or pass "
                       "--config PATH");
 }
 

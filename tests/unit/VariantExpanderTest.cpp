@@ -1,11 +1,11 @@
 #include "tidepool/VariantExpander.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <map>
 #include <random>
 #include <set>
-
-#include <gtest/gtest.h>
 
 #include "ExpandOneByOne.h"
 
@@ -33,7 +33,8 @@ VariantConfig Config(std::vector<ProgramConfig> programs) {
 }
 
 Rule Requires(std::string subject, std::vector<std::string> others, int line = 0) {
-    return Rule{RuleKind::kRequires, std::move(subject), std::move(others), {}, {"v.yaml", line, 1}};
+    return Rule{
+            RuleKind::kRequires, std::move(subject), std::move(others), {}, {"v.yaml", line, 1}};
 }
 Rule Excludes(std::string subject, std::vector<std::string> others) {
     return Rule{RuleKind::kExcludes, std::move(subject), std::move(others), {}, {}};
@@ -93,7 +94,9 @@ TEST(VariantExpanderTest, EachRuleKindKeepsExactlyTheSubsetsItAllows) {
                  return s.count("A") == 0 || (s.count("C") == 0 && s.count("D") == 0);
              }},
             {ExcludeCombination({"B", "D"}),
-             [](const std::set<std::string>& s) { return !(s.count("B") != 0 && s.count("D") != 0); }},
+             [](const std::set<std::string>& s) {
+                 return !(s.count("B") != 0 && s.count("D") != 0);
+             }},
     };
     for (const Case& c : cases) {
         const ExpansionResult result =
@@ -161,9 +164,8 @@ TEST(VariantExpanderTest, AxisDefaultValueAddsNoDefineAndStillCountsAsACombinati
 }
 
 TEST(VariantExpanderTest, CountMultipliesByEveryAxisValueIncludingTheDefault) {
-    const ProgramConfig program =
-            Program({"A", "B"}, {},
-                    {Axis{"QUALITY", {"low", "high"}, {}}, ReflectionWithPlanarDefault()});
+    const ProgramConfig program = Program(
+            {"A", "B"}, {}, {Axis{"QUALITY", {"low", "high"}, {}}, ReflectionWithPlanarDefault()});
     EXPECT_EQ(CountCombinations(program), 24U);
     const ExpansionResult result = ExpandVariants(Config({program}), ExpansionOptions{});
     EXPECT_EQ(result.variants.size(), 24U);
@@ -171,9 +173,8 @@ TEST(VariantExpanderTest, CountMultipliesByEveryAxisValueIncludingTheDefault) {
     // Every variant has exactly one QUALITY define and at most one REFLECTION define.
     for (const Variant& v : result.variants) {
         auto count = [&](const std::string& prefix) {
-            return std::count_if(v.defines.begin(), v.defines.end(), [&](const std::string& d) {
-                return d.rfind(prefix, 0) == 0;
-            });
+            return std::count_if(v.defines.begin(), v.defines.end(),
+                                 [&](const std::string& d) { return d.rfind(prefix, 0) == 0; });
         };
         EXPECT_EQ(count("QUALITY_"), 1) << v.Id();
         EXPECT_LE(count("REFLECTION_"), 1) << v.Id();
@@ -181,10 +182,10 @@ TEST(VariantExpanderTest, CountMultipliesByEveryAxisValueIncludingTheDefault) {
 }
 
 TEST(VariantExpanderTest, RuleOverTheOtherValuesOfAnAxisWithDefaultPrunesOnlyThoseValues) {
-    const ExpansionResult result = ExpandVariants(
-            Config({Program({"A"}, {Requires("REFLECTION_FOURIER", {"A"}, 4)},
-                            {ReflectionWithPlanarDefault()})}),
-            ListingEveryPruned());
+    const ExpansionResult result =
+            ExpandVariants(Config({Program({"A"}, {Requires("REFLECTION_FOURIER", {"A"}, 4)},
+                                           {ReflectionWithPlanarDefault()})}),
+                           ListingEveryPruned());
     EXPECT_EQ(Ids(result.variants),
               (std::set<std::string>{"p:", "p:A", "p:REFLECTION_CUBEMAP", "p:A,REFLECTION_CUBEMAP",
                                      "p:A,REFLECTION_FOURIER"}));
@@ -287,11 +288,11 @@ TEST(VariantExpanderTest, RaisedLimitAdmitsTheMatrix) {
 }
 
 TEST(VariantExpanderTest, RulesThatLeaveNoVariantAreAnErrorAtTheProgram) {
-    const ExpansionResult result = ExpandVariants(
-            Config({Program({"A"}, {ExcludeCombination({"A", "MODE_X"})},
-                            {Axis{"MODE", {"x", "y"}, {}}}),
-                    Program({}, {}, {})}),
-            ExpansionOptions{});
+    const ExpansionResult result =
+            ExpandVariants(Config({Program({"A"}, {ExcludeCombination({"A", "MODE_X"})},
+                                           {Axis{"MODE", {"x", "y"}, {}}}),
+                                   Program({}, {}, {})}),
+                           ExpansionOptions{});
     EXPECT_FALSE(HasErrors(result.diagnostics));
 
     ProgramConfig impossible = Program({"A"}, {Requires("A", {"A"})});
@@ -331,7 +332,9 @@ ProgramConfig RandomProgram(std::mt19937& random) {
     if (names.empty()) {
         return program;
     }
-    auto name = [&] { return names[static_cast<std::size_t>(below(static_cast<int>(names.size())))]; };
+    auto name = [&] {
+        return names[static_cast<std::size_t>(below(static_cast<int>(names.size())))];
+    };
     const int rule_count = below(11);
     for (int r = 0; r < rule_count; ++r) {
         std::vector<std::string> others;
@@ -339,7 +342,10 @@ ProgramConfig RandomProgram(std::mt19937& random) {
         for (int o = 0; o < other_count; ++o) {
             others.push_back(name());
         }
-        Rule rule{static_cast<RuleKind>(below(3)), name(), std::move(others), {},
+        Rule rule{static_cast<RuleKind>(below(3)),
+                  name(),
+                  std::move(others),
+                  {},
                   SourceLocation{"v.yaml", 10 + r, 5}};
         if (rule.kind == RuleKind::kExcludeCombination) {
             rule.subject.clear();

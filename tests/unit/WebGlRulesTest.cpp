@@ -124,21 +124,20 @@ INSTANTIATE_TEST_SUITE_P(
 // WebGL 1.0 §6.21: outside comments and inactive blocks, only the GLSL ES character set.
 INSTANTIATE_TEST_SUITE_P(
         CharacterSet, WebGlRuleTest,
-        ::testing::Values(
-                WebGlCase{"non-ASCII text in comments and a quote in an inactive block",
-                          GlslTarget::kWebGl1, kVertex100,
-                          Fragment100("// Wasserfarbe, “gemischt” — ok\n"
-                                      "#ifdef __cplusplus\n"
-                                      "#line 42 \"water.glsl\"\n"
-                                      "#endif\n",
-                                      "    gl_FragColor = vec4(uv, 0.0, 1.0); /* ü */\n"),
-                          ""},
-                WebGlCase{"a dollar sign in code", GlslTarget::kWebGl1, kVertex100,
-                          Fragment100("float $tint = 0.5;\n",
-                                      "    gl_FragColor = vec4(uv, 0.0, 1.0);\n"),
-                          // glslang's preprocessor refuses it first and drops it from its
-                          // output; the verdict is the same.
-                          "a.fsh:4:7: error: '$' : unexpected token"}));
+        ::testing::Values(WebGlCase{"non-ASCII text in comments and a quote in an inactive block",
+                                    GlslTarget::kWebGl1, kVertex100,
+                                    Fragment100("// Wasserfarbe, “gemischt” — ok\n"
+                                                "#ifdef __cplusplus\n"
+                                                "#line 42 \"water.glsl\"\n"
+                                                "#endif\n",
+                                                "    gl_FragColor = vec4(uv, 0.0, 1.0); /* ü */\n"),
+                                    ""},
+                          WebGlCase{"a dollar sign in code", GlslTarget::kWebGl1, kVertex100,
+                                    Fragment100("float $tint = 0.5;\n",
+                                                "    gl_FragColor = vec4(uv, 0.0, 1.0);\n"),
+                                    // glslang's preprocessor refuses it first and drops it from its
+                                    // output; the verdict is the same.
+                                    "a.fsh:4:7: error: '$' : unexpected token"}));
 
 // GLSL ES 1.00 Appendix A §4 and §5, which WebGL 1 requires (WebGL 1.0 §4.3); plain GLSL ES and
 // WebGL 2 accept these shaders.

@@ -1,4 +1,4 @@
-#include "WorkerProcessPool.h"
+#include <gtest/gtest.h>
 
 #include <chrono>
 #include <csignal>
@@ -8,7 +8,7 @@
 #include <thread>
 #include <vector>
 
-#include <gtest/gtest.h>
+#include "WorkerProcessPool.h"
 
 namespace tidepool {
 namespace {
@@ -52,8 +52,8 @@ TEST(WorkerProcessPoolTest, PoolsOnSeveralThreadsAtOnceAllFinish) {
 }
 
 TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
-    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
-            4, 1, WorkerLimits{}, [](std::size_t i, const ProgressNote& note) {
+    const std::vector<WorkerItemResult> results =
+            RunInWorkerProcesses(4, 1, WorkerLimits{}, [](std::size_t i, const ProgressNote& note) {
                 note("before");
                 if (i == 1) {
                     std::raise(SIGSEGV);
@@ -87,8 +87,7 @@ TEST(WorkerProcessPoolTest, ItemThatTakesTooLongIsKilledAndReportedAsTimedOut) {
 // under an address-space limit: 256 MiB blocks pass a 1 GiB limit at the fourth.
 TEST(WorkerProcessPoolTest, FailedAllocationIsReportedAsOutOfMemory) {
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
-            2, 1, WorkerLimits{std::uint64_t{1} << 30, 0},
-            [](std::size_t i, const ProgressNote&) {
+            2, 1, WorkerLimits{std::uint64_t{1} << 30, 0}, [](std::size_t i, const ProgressNote&) {
                 std::vector<std::unique_ptr<char[]>> blocks;
                 for (int k = 0; i == 0 && k < 64; ++k) {
                     blocks.emplace_back(new char[std::size_t{256} << 20]);

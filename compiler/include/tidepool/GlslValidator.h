@@ -2,12 +2,6 @@
 // every distinct stage program is parsed once, every program is linked.
 #pragma once
 
-#include <array>
-#include <optional>
-#include <string>
-#include <utility>
-#include <vector>
-
 #include "tidepool/DeviceLimits.h"
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
@@ -16,11 +10,17 @@
 #include "tidepool/VariantExpander.h"
 #include "tidepool/base/ContentCache.h"
 
+#include <array>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
 namespace tidepool {
 
 /// How to validate.
 struct ValidationOptions {
-    int jobs = 1;                                       // worker threads
+    int jobs = 1;  // worker threads
     std::vector<GlslTarget> targets = {GlslTarget::kEs100};
     /// Where stage and link results are looked up before glslang runs and stored after, keyed
     /// by the stage's source as glslang receives it (file text and the defines it names),
@@ -35,8 +35,8 @@ struct ValidationOptions {
 struct StageProgram {
     Stage stage = Stage::kVertex;
     GlslTarget target = GlslTarget::kEs100;
-    std::string file;                   // as the user named it
-    std::string hash;                   // 16 hex digits of a 64-bit FNV-1a over the preprocessed text
+    std::string file;  // as the user named it
+    std::string hash;  // 16 hex digits of a 64-bit FNV-1a over the preprocessed text
     std::vector<std::string> defines;   // the defines of the first variant that produced it
     std::vector<std::string> variants;  // ids of every variant that uses it
     bool valid = false;

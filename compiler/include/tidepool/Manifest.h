@@ -2,12 +2,12 @@
 // cost, as versioned JSON (schema "tidepool.manifest", version 1; README.md documents it).
 #pragma once
 
-#include <nlohmann/json.hpp>
-
 #include "tidepool/Diagnostic.h"
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+
+#include <nlohmann/json.hpp>
 
 namespace tidepool {
 

@@ -2,12 +2,12 @@
 // scanning, GitLab, Azure DevOps) read to show each message on the shader line it is about.
 #pragma once
 
+#include "tidepool/GlslValidator.h"
+
 #include <filesystem>
 #include <string>
 
 #include <nlohmann/json.hpp>
-
-#include "tidepool/GlslValidator.h"
 
 namespace tidepool {
 

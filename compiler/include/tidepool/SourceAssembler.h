@@ -2,11 +2,11 @@
 // without moving the user's line numbers.
 #pragma once
 
+#include "tidepool/VariantConfig.h"
+
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/VariantConfig.h"
 
 namespace tidepool {
 
@@ -25,8 +25,9 @@ std::string DefinePreamble(const std::vector<std::string>& defines);
 /// If the file starts with its own `#version` line, that line is replaced (and `#line 2` follows);
 /// otherwise `#line 1` precedes the whole file. For the 300 es target, a compatibility block maps
 /// the 1.00 keywords (attribute, varying, texture2D, textureCube, gl_FragColor) to 3.00 ones.
-std::string AssembleDriverSource(std::string_view user_source, const std::vector<std::string>& defines,
-                                 Stage stage, GlslTarget target);
+std::string AssembleDriverSource(std::string_view user_source,
+                                 const std::vector<std::string>& defines, Stage stage,
+                                 GlslTarget target);
 
 /// The `#version` line of a user's file, if its first non-blank line is one; "" otherwise.
 std::string FindVersionLine(std::string_view user_source);

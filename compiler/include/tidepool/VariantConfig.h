@@ -2,14 +2,14 @@
 // presets and GLSL ES targets. Loaded from variants.yaml (schema in README.md).
 #pragma once
 
+#include "tidepool/Diagnostic.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/Diagnostic.h"
 
 namespace tidepool {
 
@@ -47,9 +47,10 @@ struct Feature {
 };
 
 /// An enumerated axis: exactly one value is chosen; value `v` of axis `A` becomes `#define A_V 1`
-/// with `V` upper-cased (`REFLECTION: [planar, cubemap]` → `REFLECTION_PLANAR`, `REFLECTION_CUBEMAP`).
-/// An axis may name a default value that adds no define: the shader reads "no `A_*` define" as the
-/// default, so adding such an axis to a program leaves the ids of its existing variants unchanged.
+/// with `V` upper-cased (`REFLECTION: [planar, cubemap]` → `REFLECTION_PLANAR`,
+/// `REFLECTION_CUBEMAP`). An axis may name a default value that adds no define: the shader reads
+/// "no `A_*` define" as the default, so adding such an axis to a program leaves the ids of its
+/// existing variants unchanged.
 struct Axis {
     std::string name;
     std::vector<std::string> values;
@@ -84,7 +85,7 @@ struct Rule {
 /// One shader program: a vertex and a fragment file plus its variant axes.
 struct ProgramConfig {
     std::string name;
-    std::string vertex_path;    // as written in the YAML, relative to the YAML file's folder
+    std::string vertex_path;  // as written in the YAML, relative to the YAML file's folder
     std::string fragment_path;
     std::vector<Feature> features;
     std::vector<Axis> axes;
@@ -100,9 +101,9 @@ struct PassOptions {
     // Texture sizes, powers of two; 0 follows the window by the demo's rule (DemoTargetSize).
     int reflection_size = 0;
     int refraction_size = 0;
-    bool low_res_water = false;     // render the water into a small texture, then apply it
-    std::string clip = "oblique";   // "oblique" (modified projection) or "discard"
-    bool culling = true;            // CPU culling of objects per pass
+    bool low_res_water = false;    // render the water into a small texture, then apply it
+    std::string clip = "oblique";  // "oblique" (modified projection) or "discard"
+    bool culling = true;           // CPU culling of objects per pass
     // With ENABLE_FOG: the underwater depth fog on the models of the refraction pass
     // (whitepaper 2.4.1). Off leaves the water's distance fog, the sky's fog, the refraction's
     // clear colour and its omitted sky as they are, so that it alone is whitepaper row 4.
@@ -145,11 +146,11 @@ inline constexpr std::uint64_t kLargeVariantCeiling = 16777216;
 
 /// The whole configuration file.
 struct VariantConfig {
-    std::string path;               // the file as named by the user
-    std::filesystem::path base_dir; // shader paths are relative to this folder
+    std::string path;                // the file as named by the user
+    std::filesystem::path base_dir;  // shader paths are relative to this folder
     int version = 1;
-    std::uint64_t max_variants = 4096;   // valid variants (after pruning), all programs together
-    SourceLocation max_variants_where;   // where the file sets max_variants; empty when it does not
+    std::uint64_t max_variants = 4096;  // valid variants (after pruning), all programs together
+    SourceLocation max_variants_where;  // where the file sets max_variants; empty when it does not
     std::vector<GlslTarget> targets;
     std::vector<ProgramConfig> programs;
     std::vector<Preset> presets;

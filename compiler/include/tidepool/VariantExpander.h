@@ -2,12 +2,12 @@
 // applies the rules while choosing, so its cost follows the valid variants, not every combination.
 #pragma once
 
+#include "tidepool/Diagnostic.h"
+#include "tidepool/VariantConfig.h"
+
 #include <cstdint>
 #include <string>
 #include <vector>
-
-#include "tidepool/Diagnostic.h"
-#include "tidepool/VariantConfig.h"
 
 namespace tidepool {
 
@@ -28,15 +28,15 @@ Variant MakeVariant(std::string program, std::vector<std::string> defines);
 /// A combination the rules removed, and the first rule that removed it.
 struct PrunedCombination {
     Variant combination;
-    std::string rule;       // Rule::Describe() of the rule
-    SourceLocation where;   // where that rule is written
+    std::string rule;      // Rule::Describe() of the rule
+    SourceLocation where;  // where that rule is written
 };
 
 /// How many combinations one rule pruned: those whose first broken rule it is.
 struct RulePruneCount {
     std::string program;
-    std::string rule;       // Rule::Describe() of the rule
-    SourceLocation where;   // where that rule is written
+    std::string rule;         // Rule::Describe() of the rule
+    SourceLocation where;     // where that rule is written
     std::uint64_t count = 0;  // saturates at UINT64_MAX
 };
 
@@ -49,8 +49,8 @@ struct ExpansionOptions {
     // Where the file sets it (its diagnostics point there); empty when set on the command line
     // or by default, and the over-the-limit error then points at the program.
     SourceLocation limit_where = {};  // "= {}": `ExpansionOptions{n}` leaves it out unwarned
-    bool allow_large_matrix = false;    // permit max_variants above kVariantCeiling
-    std::uint64_t pruned_limit = 0;     // list at most this many pruned combinations (0: none)
+    bool allow_large_matrix = false;  // permit max_variants above kVariantCeiling
+    std::uint64_t pruned_limit = 0;   // list at most this many pruned combinations (0: none)
 };
 
 /// Every valid variant of every program, in a stable order, with how many combinations each

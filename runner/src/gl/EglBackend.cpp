@@ -3,12 +3,11 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include <fmt/format.h>
-
 #include <cstring>
 #include <string>
 
 #include "gl/GlContextImpl.h"
+#include <fmt/format.h>
 
 namespace tidepool::runner::gl {
 namespace {
@@ -30,18 +29,19 @@ void* EglProc(const char* name) {
 std::unique_ptr<GlContext::Impl> CreateEglContext(std::string* failure) {
     const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
     if (!HasExtension(client_extensions, "EGL_MESA_platform_surfaceless")) {
-        *failure = "EGL_MESA_platform_surfaceless is not offered (is Mesa's EGL, package "
-                   "libegl-mesa0, installed and chosen by libglvnd?)";
+        *failure =
+                "EGL_MESA_platform_surfaceless is not offered (is Mesa's EGL, package "
+                "libegl-mesa0, installed and chosen by libglvnd?)";
         return nullptr;
     }
     auto get_platform_display = reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(
-        eglGetProcAddress("eglGetPlatformDisplayEXT"));
+            eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (get_platform_display == nullptr) {
         *failure = "eglGetPlatformDisplayEXT is missing";
         return nullptr;
     }
-    EGLDisplay display = get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY,
-                                              nullptr);
+    EGLDisplay display =
+            get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (display == EGL_NO_DISPLAY) {
         *failure = fmt::format("eglGetPlatformDisplayEXT(surfaceless) failed (EGL error 0x{:x})",
                                eglGetError());
@@ -50,9 +50,10 @@ std::unique_ptr<GlContext::Impl> CreateEglContext(std::string* failure) {
     EGLint major = 0;
     EGLint minor = 0;
     if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
-        *failure = fmt::format("eglInitialize failed (EGL error 0x{:x}): no usable Mesa driver "
-                               "(package libgl1-mesa-dri)",
-                               eglGetError());
+        *failure = fmt::format(
+                "eglInitialize failed (EGL error 0x{:x}): no usable Mesa driver "
+                "(package libgl1-mesa-dri)",
+                eglGetError());
         return nullptr;
     }
     const char* display_extensions = eglQueryString(display, EGL_EXTENSIONS);
@@ -72,16 +73,16 @@ std::unique_ptr<GlContext::Impl> CreateEglContext(std::string* failure) {
     // GLES 2.0 is what the shaders target; Mesa returns the highest compatible version (3.2 on
     // llvmpipe), which the NaN check uses for float render targets when it is there.
     const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 2, EGL_NONE};
-    EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT,
-                                          context_attributes);
+    EGLContext context =
+            eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, context_attributes);
     if (context == EGL_NO_CONTEXT) {
         *failure = fmt::format("eglCreateContext(GLES 2, no config) failed (EGL error 0x{:x})",
                                eglGetError());
         return nullptr;
     }
     if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
-        *failure = fmt::format("eglMakeCurrent(surfaceless) failed (EGL error 0x{:x})",
-                               eglGetError());
+        *failure =
+                fmt::format("eglMakeCurrent(surfaceless) failed (EGL error 0x{:x})", eglGetError());
         eglDestroyContext(display, context);
         return nullptr;
     }

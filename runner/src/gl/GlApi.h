@@ -7,78 +7,79 @@
 #pragma once
 
 #include <GLES3/gl3.h>
-#include <GLES2/gl2ext.h>
 
 #include <string>
+
+#include <GLES2/gl2ext.h>
 
 namespace tidepool::runner::gl {
 
 // X(name, type) for every entry point; the type is the Khronos PFN typedef.
-#define TIDEPOOL_GL_FUNCTIONS(X)                                           \
-    X(glGetString, PFNGLGETSTRINGPROC)                                     \
-    X(glGetError, PFNGLGETERRORPROC)                                       \
-    X(glGetIntegerv, PFNGLGETINTEGERVPROC)                                 \
-    X(glEnable, PFNGLENABLEPROC)                                           \
-    X(glDisable, PFNGLDISABLEPROC)                                         \
-    X(glViewport, PFNGLVIEWPORTPROC)                                       \
-    X(glClearColor, PFNGLCLEARCOLORPROC)                                   \
-    X(glClear, PFNGLCLEARPROC)                                             \
-    X(glDepthFunc, PFNGLDEPTHFUNCPROC)                                     \
-    X(glDepthMask, PFNGLDEPTHMASKPROC)                                     \
-    X(glBlendFunc, PFNGLBLENDFUNCPROC)                                     \
-    X(glFrontFace, PFNGLFRONTFACEPROC)                                     \
-    X(glCullFace, PFNGLCULLFACEPROC)                                       \
-    X(glFinish, PFNGLFINISHPROC)                                           \
-    X(glReadPixels, PFNGLREADPIXELSPROC)                                   \
-    X(glPixelStorei, PFNGLPIXELSTOREIPROC)                                 \
-    X(glCreateShader, PFNGLCREATESHADERPROC)                               \
-    X(glShaderSource, PFNGLSHADERSOURCEPROC)                               \
-    X(glCompileShader, PFNGLCOMPILESHADERPROC)                             \
-    X(glGetShaderiv, PFNGLGETSHADERIVPROC)                                 \
-    X(glGetShaderInfoLog, PFNGLGETSHADERINFOLOGPROC)                       \
-    X(glDeleteShader, PFNGLDELETESHADERPROC)                               \
-    X(glCreateProgram, PFNGLCREATEPROGRAMPROC)                             \
-    X(glAttachShader, PFNGLATTACHSHADERPROC)                               \
-    X(glBindAttribLocation, PFNGLBINDATTRIBLOCATIONPROC)                   \
-    X(glLinkProgram, PFNGLLINKPROGRAMPROC)                                 \
-    X(glGetProgramiv, PFNGLGETPROGRAMIVPROC)                               \
-    X(glGetProgramInfoLog, PFNGLGETPROGRAMINFOLOGPROC)                     \
-    X(glDeleteProgram, PFNGLDELETEPROGRAMPROC)                             \
-    X(glUseProgram, PFNGLUSEPROGRAMPROC)                                   \
-    X(glGetUniformLocation, PFNGLGETUNIFORMLOCATIONPROC)                   \
-    X(glUniform1i, PFNGLUNIFORM1IPROC)                                     \
-    X(glUniform1f, PFNGLUNIFORM1FPROC)                                     \
-    X(glUniform2f, PFNGLUNIFORM2FPROC)                                     \
-    X(glUniform3f, PFNGLUNIFORM3FPROC)                                     \
-    X(glUniform4f, PFNGLUNIFORM4FPROC)                                     \
-    X(glUniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC)                       \
-    X(glGenBuffers, PFNGLGENBUFFERSPROC)                                   \
-    X(glBindBuffer, PFNGLBINDBUFFERPROC)                                   \
-    X(glBufferData, PFNGLBUFFERDATAPROC)                                   \
-    X(glBufferSubData, PFNGLBUFFERSUBDATAPROC)                             \
-    X(glDeleteBuffers, PFNGLDELETEBUFFERSPROC)                             \
-    X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC)         \
-    X(glDisableVertexAttribArray, PFNGLDISABLEVERTEXATTRIBARRAYPROC)       \
-    X(glVertexAttribPointer, PFNGLVERTEXATTRIBPOINTERPROC)                 \
-    X(glVertexAttrib3f, PFNGLVERTEXATTRIB3FPROC)                           \
-    X(glDrawArrays, PFNGLDRAWARRAYSPROC)                                   \
-    X(glDrawElements, PFNGLDRAWELEMENTSPROC)                               \
-    X(glGenTextures, PFNGLGENTEXTURESPROC)                                 \
-    X(glBindTexture, PFNGLBINDTEXTUREPROC)                                 \
-    X(glTexImage2D, PFNGLTEXIMAGE2DPROC)                                   \
-    X(glTexParameteri, PFNGLTEXPARAMETERIPROC)                             \
-    X(glActiveTexture, PFNGLACTIVETEXTUREPROC)                             \
-    X(glGenerateMipmap, PFNGLGENERATEMIPMAPPROC)                           \
-    X(glDeleteTextures, PFNGLDELETETEXTURESPROC)                           \
-    X(glGenFramebuffers, PFNGLGENFRAMEBUFFERSPROC)                         \
-    X(glBindFramebuffer, PFNGLBINDFRAMEBUFFERPROC)                         \
-    X(glFramebufferTexture2D, PFNGLFRAMEBUFFERTEXTURE2DPROC)               \
-    X(glFramebufferRenderbuffer, PFNGLFRAMEBUFFERRENDERBUFFERPROC)         \
-    X(glCheckFramebufferStatus, PFNGLCHECKFRAMEBUFFERSTATUSPROC)           \
-    X(glDeleteFramebuffers, PFNGLDELETEFRAMEBUFFERSPROC)                   \
-    X(glGenRenderbuffers, PFNGLGENRENDERBUFFERSPROC)                       \
-    X(glBindRenderbuffer, PFNGLBINDRENDERBUFFERPROC)                       \
-    X(glRenderbufferStorage, PFNGLRENDERBUFFERSTORAGEPROC)                 \
+#define TIDEPOOL_GL_FUNCTIONS(X)                                     \
+    X(glGetString, PFNGLGETSTRINGPROC)                               \
+    X(glGetError, PFNGLGETERRORPROC)                                 \
+    X(glGetIntegerv, PFNGLGETINTEGERVPROC)                           \
+    X(glEnable, PFNGLENABLEPROC)                                     \
+    X(glDisable, PFNGLDISABLEPROC)                                   \
+    X(glViewport, PFNGLVIEWPORTPROC)                                 \
+    X(glClearColor, PFNGLCLEARCOLORPROC)                             \
+    X(glClear, PFNGLCLEARPROC)                                       \
+    X(glDepthFunc, PFNGLDEPTHFUNCPROC)                               \
+    X(glDepthMask, PFNGLDEPTHMASKPROC)                               \
+    X(glBlendFunc, PFNGLBLENDFUNCPROC)                               \
+    X(glFrontFace, PFNGLFRONTFACEPROC)                               \
+    X(glCullFace, PFNGLCULLFACEPROC)                                 \
+    X(glFinish, PFNGLFINISHPROC)                                     \
+    X(glReadPixels, PFNGLREADPIXELSPROC)                             \
+    X(glPixelStorei, PFNGLPIXELSTOREIPROC)                           \
+    X(glCreateShader, PFNGLCREATESHADERPROC)                         \
+    X(glShaderSource, PFNGLSHADERSOURCEPROC)                         \
+    X(glCompileShader, PFNGLCOMPILESHADERPROC)                       \
+    X(glGetShaderiv, PFNGLGETSHADERIVPROC)                           \
+    X(glGetShaderInfoLog, PFNGLGETSHADERINFOLOGPROC)                 \
+    X(glDeleteShader, PFNGLDELETESHADERPROC)                         \
+    X(glCreateProgram, PFNGLCREATEPROGRAMPROC)                       \
+    X(glAttachShader, PFNGLATTACHSHADERPROC)                         \
+    X(glBindAttribLocation, PFNGLBINDATTRIBLOCATIONPROC)             \
+    X(glLinkProgram, PFNGLLINKPROGRAMPROC)                           \
+    X(glGetProgramiv, PFNGLGETPROGRAMIVPROC)                         \
+    X(glGetProgramInfoLog, PFNGLGETPROGRAMINFOLOGPROC)               \
+    X(glDeleteProgram, PFNGLDELETEPROGRAMPROC)                       \
+    X(glUseProgram, PFNGLUSEPROGRAMPROC)                             \
+    X(glGetUniformLocation, PFNGLGETUNIFORMLOCATIONPROC)             \
+    X(glUniform1i, PFNGLUNIFORM1IPROC)                               \
+    X(glUniform1f, PFNGLUNIFORM1FPROC)                               \
+    X(glUniform2f, PFNGLUNIFORM2FPROC)                               \
+    X(glUniform3f, PFNGLUNIFORM3FPROC)                               \
+    X(glUniform4f, PFNGLUNIFORM4FPROC)                               \
+    X(glUniformMatrix4fv, PFNGLUNIFORMMATRIX4FVPROC)                 \
+    X(glGenBuffers, PFNGLGENBUFFERSPROC)                             \
+    X(glBindBuffer, PFNGLBINDBUFFERPROC)                             \
+    X(glBufferData, PFNGLBUFFERDATAPROC)                             \
+    X(glBufferSubData, PFNGLBUFFERSUBDATAPROC)                       \
+    X(glDeleteBuffers, PFNGLDELETEBUFFERSPROC)                       \
+    X(glEnableVertexAttribArray, PFNGLENABLEVERTEXATTRIBARRAYPROC)   \
+    X(glDisableVertexAttribArray, PFNGLDISABLEVERTEXATTRIBARRAYPROC) \
+    X(glVertexAttribPointer, PFNGLVERTEXATTRIBPOINTERPROC)           \
+    X(glVertexAttrib3f, PFNGLVERTEXATTRIB3FPROC)                     \
+    X(glDrawArrays, PFNGLDRAWARRAYSPROC)                             \
+    X(glDrawElements, PFNGLDRAWELEMENTSPROC)                         \
+    X(glGenTextures, PFNGLGENTEXTURESPROC)                           \
+    X(glBindTexture, PFNGLBINDTEXTUREPROC)                           \
+    X(glTexImage2D, PFNGLTEXIMAGE2DPROC)                             \
+    X(glTexParameteri, PFNGLTEXPARAMETERIPROC)                       \
+    X(glActiveTexture, PFNGLACTIVETEXTUREPROC)                       \
+    X(glGenerateMipmap, PFNGLGENERATEMIPMAPPROC)                     \
+    X(glDeleteTextures, PFNGLDELETETEXTURESPROC)                     \
+    X(glGenFramebuffers, PFNGLGENFRAMEBUFFERSPROC)                   \
+    X(glBindFramebuffer, PFNGLBINDFRAMEBUFFERPROC)                   \
+    X(glFramebufferTexture2D, PFNGLFRAMEBUFFERTEXTURE2DPROC)         \
+    X(glFramebufferRenderbuffer, PFNGLFRAMEBUFFERRENDERBUFFERPROC)   \
+    X(glCheckFramebufferStatus, PFNGLCHECKFRAMEBUFFERSTATUSPROC)     \
+    X(glDeleteFramebuffers, PFNGLDELETEFRAMEBUFFERSPROC)             \
+    X(glGenRenderbuffers, PFNGLGENRENDERBUFFERSPROC)                 \
+    X(glBindRenderbuffer, PFNGLBINDRENDERBUFFERPROC)                 \
+    X(glRenderbufferStorage, PFNGLRENDERBUFFERSTORAGEPROC)           \
     X(glDeleteRenderbuffers, PFNGLDELETERENDERBUFFERSPROC)
 
 /// A backend's way of finding an entry point by name (eglGetProcAddress, OSMesaGetProcAddress).

@@ -1,8 +1,6 @@
 // Backend selection, the "no GL" message and what a context reports about itself.
 #include "tidepool/runner/GlBackend.h"
 
-#include <fmt/format.h>
-
 #include <atomic>
 #include <cstring>
 #include <regex>
@@ -11,14 +9,18 @@
 #include "gl/GlApi.h"
 #include "gl/GlContextImpl.h"
 #include "gl/OsMesaSession.h"
+#include <fmt/format.h>
 
 namespace tidepool::runner {
 
 const char* BackendName(BackendKind kind) {
     switch (kind) {
-        case BackendKind::kAuto: return "auto";
-        case BackendKind::kEgl: return "egl";
-        case BackendKind::kOsMesa: return "osmesa";
+        case BackendKind::kAuto:
+            return "auto";
+        case BackendKind::kEgl:
+            return "egl";
+        case BackendKind::kOsMesa:
+            return "osmesa";
     }
     return "auto";
 }
@@ -44,10 +46,11 @@ std::string DescribeMissingGl(const std::vector<BackendAttempt>& attempts) {
         tried_osmesa = tried_osmesa || attempt.kind == BackendKind::kOsMesa;
     }
     if (tried_egl) {
-        message += "\n  EGL needs Mesa's EGL vendor library (Debian package libegl-mesa0) and the "
-                   "llvmpipe/swrast driver (libgl1-mesa-dri); check that EGL_PLATFORM, "
-                   "__EGL_VENDOR_LIBRARY_FILENAMES, MESA_LOADER_DRIVER_OVERRIDE and "
-                   "LIBGL_ALWAYS_SOFTWARE are unset or point at installed drivers";
+        message +=
+                "\n  EGL needs Mesa's EGL vendor library (Debian package libegl-mesa0) and the "
+                "llvmpipe/swrast driver (libgl1-mesa-dri); check that EGL_PLATFORM, "
+                "__EGL_VENDOR_LIBRARY_FILENAMES, MESA_LOADER_DRIVER_OVERRIDE and "
+                "LIBGL_ALWAYS_SOFTWARE are unset or point at installed drivers";
     }
     if (tried_osmesa) {
         message += "\n  OSMesa needs libOSMesa.so.8 (Debian package libosmesa6)";
@@ -64,17 +67,21 @@ GlContext::~GlContext() {
     }
 }
 
-const GlEnvironment& GlContext::Environment() const { return impl_->environment; }
+const GlEnvironment& GlContext::Environment() const {
+    return impl_->environment;
+}
 
-bool GlContext::MakeCurrent() { return impl_->make_current && impl_->make_current(); }
+bool GlContext::MakeCurrent() {
+    return impl_->make_current && impl_->make_current();
+}
 
 GlContextResult CreateGlContext(BackendKind kind) {
     GlContextResult result;
     auto try_backend = [&](BackendKind backend) {
         std::string failure;
         std::unique_ptr<GlContext::Impl> impl = backend == BackendKind::kEgl
-                                                    ? gl::CreateEglContext(&failure)
-                                                    : gl::CreateOsMesaContext(&failure);
+                                                        ? gl::CreateEglContext(&failure)
+                                                        : gl::CreateOsMesaContext(&failure);
         result.attempts.push_back(BackendAttempt{backend, impl ? "" : failure});
         if (impl) {
             result.context = std::make_unique<GlContext>(std::move(impl));
@@ -118,10 +125,10 @@ int RunOnRenderingThreads(GlContext& context, const GlContextFactory& make_conte
 namespace gl {
 
 std::string LoadGlApi(ProcLoader loader, GlApi* api) {
-#define TIDEPOOL_GL_LOAD(name, type)                                  \
-    api->name = reinterpret_cast<type>(loader(#name));                \
-    if (api->name == nullptr) {                                       \
-        return #name;                                                 \
+#define TIDEPOOL_GL_LOAD(name, type)                   \
+    api->name = reinterpret_cast<type>(loader(#name)); \
+    if (api->name == nullptr) {                        \
+        return #name;                                  \
     }
     TIDEPOOL_GL_FUNCTIONS(TIDEPOOL_GL_LOAD)
 #undef TIDEPOOL_GL_LOAD
@@ -169,8 +176,9 @@ void QueryEnvironment(GlContext::Impl* impl, bool is_gles, ProcLoader loader) {
     // A GLES context renders to RGBA32F only with GLES 3 and EXT_color_buffer_float; desktop GL
     // 3.0 and later always can.
     env.float_render_target =
-        is_gles ? (major >= 3 && extensions.find("GL_EXT_color_buffer_float") != std::string::npos)
-                : major >= 3;
+            is_gles ? (major >= 3 &&
+                       extensions.find("GL_EXT_color_buffer_float") != std::string::npos)
+                    : major >= 3;
     LoadTimerQueryApi(loader, extensions, &impl->timer_query);
     env.timer_query = impl->timer_query.Available();
 }
@@ -182,11 +190,11 @@ void LoadTimerQueryApi(ProcLoader loader, const std::string& extensions, GlTimer
     }
     api->glGenQueriesEXT = reinterpret_cast<PFNGLGENQUERIESEXTPROC>(loader("glGenQueriesEXT"));
     api->glDeleteQueriesEXT =
-        reinterpret_cast<PFNGLDELETEQUERIESEXTPROC>(loader("glDeleteQueriesEXT"));
+            reinterpret_cast<PFNGLDELETEQUERIESEXTPROC>(loader("glDeleteQueriesEXT"));
     api->glBeginQueryEXT = reinterpret_cast<PFNGLBEGINQUERYEXTPROC>(loader("glBeginQueryEXT"));
     api->glEndQueryEXT = reinterpret_cast<PFNGLENDQUERYEXTPROC>(loader("glEndQueryEXT"));
-    api->glGetQueryObjectui64vEXT = reinterpret_cast<PFNGLGETQUERYOBJECTUI64VEXTPROC>(
-        loader("glGetQueryObjectui64vEXT"));
+    api->glGetQueryObjectui64vEXT =
+            reinterpret_cast<PFNGLGETQUERYOBJECTUI64VEXTPROC>(loader("glGetQueryObjectui64vEXT"));
     if (!api->Available()) {
         *api = GlTimerQueryApi{};
     }

@@ -2,11 +2,12 @@
 // and the renderer.
 #pragma once
 
+#include "tidepool/runner/GlBackend.h"
+
 #include <functional>
 #include <string>
 
 #include "gl/GlApi.h"
-#include "tidepool/runner/GlBackend.h"
 
 namespace tidepool::runner {
 

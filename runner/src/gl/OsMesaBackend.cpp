@@ -21,13 +21,19 @@ constexpr int kBufferSize = 4;
 struct OsMesaSession {
     OSMesaContext context = nullptr;
     std::vector<unsigned char> buffer =
-        std::vector<unsigned char>(static_cast<std::size_t>(kBufferSize * kBufferSize * 4));
+            std::vector<unsigned char>(static_cast<std::size_t>(kBufferSize * kBufferSize * 4));
 };
 
 OsMesaSession* CreateOsMesaSession(std::string* failure) {
-    const int attributes[] = {OSMESA_FORMAT, OSMESA_RGBA, OSMESA_DEPTH_BITS, 24,
-                              OSMESA_PROFILE, OSMESA_COMPAT_PROFILE,
-                              OSMESA_CONTEXT_MAJOR_VERSION, 2, 0};
+    const int attributes[] = {OSMESA_FORMAT,
+                              OSMESA_RGBA,
+                              OSMESA_DEPTH_BITS,
+                              24,
+                              OSMESA_PROFILE,
+                              OSMESA_COMPAT_PROFILE,
+                              OSMESA_CONTEXT_MAJOR_VERSION,
+                              2,
+                              0};
     OSMesaContext context = OSMesaCreateContextAttribs(attributes, nullptr);
     if (context == nullptr) {
         *failure = "OSMesaCreateContextAttribs(compatibility profile) failed";
@@ -53,6 +59,8 @@ void DestroyOsMesaSession(OsMesaSession* session) {
     delete session;
 }
 
-void* OsMesaProc(const char* name) { return reinterpret_cast<void*>(OSMesaGetProcAddress(name)); }
+void* OsMesaProc(const char* name) {
+    return reinterpret_cast<void*>(OSMesaGetProcAddress(name));
+}
 
 }  // namespace tidepool::runner::gl

@@ -1,9 +1,11 @@
 // The water renderer's GL side. A frame is planned on the CPU first (matrices, the water polygon,
 // clip planes, which meshes each pass draws), then executed with GL calls only, so the harness's
 // own cost per frame can be measured apart from the driver's.
+#include "tidepool/TextFile.h"
+#include "tidepool/runner/FramePlan.h"
+#include "tidepool/runner/MesaInfoLog.h"
 #include "tidepool/runner/Renderer.h"
-
-#include <fmt/format.h>
+#include "tidepool/runner/WaterMath.h"
 
 #include <algorithm>
 #include <array>
@@ -15,14 +17,10 @@
 #include <map>
 #include <sstream>
 
-#include <glm/gtc/type_ptr.hpp>
-
 #include "gl/GlApi.h"
 #include "gl/GlContextImpl.h"
-#include "tidepool/runner/FramePlan.h"
-#include "tidepool/TextFile.h"
-#include "tidepool/runner/MesaInfoLog.h"
-#include "tidepool/runner/WaterMath.h"
+#include <fmt/format.h>
+#include <glm/gtc/type_ptr.hpp>
 
 namespace tidepool::runner {
 namespace {
@@ -42,21 +40,26 @@ constexpr GLint kUnitNormalisation = 3;
 constexpr GLint kUnitSky = 4;
 constexpr GLint kUnitLowRes = 5;
 
-
 // The water effects that water_uniform reads as uniform bools (INTERFACE.md).
 constexpr std::array<const char*, 9> kWaterEffects = {
-    "ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION", "ENABLE_REFRACTION",
-    "ENABLE_FRESNEL",    "FRESNEL_EXACT",           "NORMALISE_CUBEMAP",
-    "ENABLE_WATER_COLOUR", "ENABLE_ALPHA_BLEND",    "ENABLE_FOG"};
+        "ENABLE_DISTORTION",   "ENABLE_SCALE_DISTORTION", "ENABLE_REFRACTION",
+        "ENABLE_FRESNEL",      "FRESNEL_EXACT",           "NORMALISE_CUBEMAP",
+        "ENABLE_WATER_COLOUR", "ENABLE_ALPHA_BLEND",      "ENABLE_FOG"};
 
 std::string ErrorName(GLenum error) {
     switch (error) {
-        case GL_INVALID_ENUM: return "GL_INVALID_ENUM";
-        case GL_INVALID_VALUE: return "GL_INVALID_VALUE";
-        case GL_INVALID_OPERATION: return "GL_INVALID_OPERATION";
-        case GL_OUT_OF_MEMORY: return "GL_OUT_OF_MEMORY";
-        case GL_INVALID_FRAMEBUFFER_OPERATION: return "GL_INVALID_FRAMEBUFFER_OPERATION";
-        default: return fmt::format("GL error 0x{:x}", error);
+        case GL_INVALID_ENUM:
+            return "GL_INVALID_ENUM";
+        case GL_INVALID_VALUE:
+            return "GL_INVALID_VALUE";
+        case GL_INVALID_OPERATION:
+            return "GL_INVALID_OPERATION";
+        case GL_OUT_OF_MEMORY:
+            return "GL_OUT_OF_MEMORY";
+        case GL_INVALID_FRAMEBUFFER_OPERATION:
+            return "GL_INVALID_FRAMEBUFFER_OPERATION";
+        default:
+            return fmt::format("GL error 0x{:x}", error);
     }
 }
 
@@ -74,7 +77,8 @@ glm::vec3 MeanLitColourAbove(const Mesh& terrain, float water_height, glm::vec3 
     glm::dvec3 sum(0.0);
     std::size_t count = 0;
     for (std::size_t i = 0; i < terrain.positions.size(); ++i) {
-        const glm::vec3 world = glm::vec3(terrain.model_matrix * glm::vec4(terrain.positions[i], 1));
+        const glm::vec3 world =
+                glm::vec3(terrain.model_matrix * glm::vec4(terrain.positions[i], 1));
         if (world.y <= water_height) {
             continue;
         }
@@ -143,7 +147,7 @@ struct WaterRenderer::Impl {
     RenderTarget refraction;
 
     std::map<std::string, CompiledProgram> programs;  // by program id (variant id or helper id)
-    std::map<std::string, std::string> sources;        // shader file contents by path
+    std::map<std::string, std::string> sources;       // shader file contents by path
 
     ~Impl();
     std::string Init();
@@ -202,8 +206,7 @@ GLuint WaterRenderer::Impl::UploadCube(const CubeMapImage& image) {
     for (int face = 0; face < 6; ++face) {
         const base::RgbaImage& side = image.faces[static_cast<std::size_t>(face)];
         gl->glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), 0, GL_RGBA,
-                         side.width, side.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-                         side.pixels.data());
+                         side.width, side.height, 0, GL_RGBA, GL_UNSIGNED_BYTE, side.pixels.data());
     }
     gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     gl->glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
@@ -235,8 +238,7 @@ MeshBuffers WaterRenderer::Impl::UploadMesh(const Mesh& mesh) {
 }
 
 std::string WaterRenderer::Impl::MakeTarget(RenderTarget* target, int width, int height,
-                                            GLenum internal_format, GLenum type,
-                                            bool with_depth) {
+                                            GLenum internal_format, GLenum type, bool with_depth) {
     FreeTarget(target);
     target->width = width;
     target->height = height;
@@ -251,8 +253,8 @@ std::string WaterRenderer::Impl::MakeTarget(RenderTarget* target, int width, int
     gl->glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     gl->glGenFramebuffers(1, &target->framebuffer);
     gl->glBindFramebuffer(GL_FRAMEBUFFER, target->framebuffer);
-    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D,
-                               target->colour, 0);
+    gl->glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target->colour,
+                               0);
     if (with_depth) {
         gl->glGenRenderbuffers(1, &target->depth);
         gl->glBindRenderbuffer(GL_RENDERBUFFER, target->depth);
@@ -274,8 +276,7 @@ std::string WaterRenderer::Impl::EnsureTarget(std::map<int, RenderTarget>* targe
         return "";
     }
     RenderTarget target;
-    const std::string error =
-        MakeTarget(&target, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+    const std::string error = MakeTarget(&target, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
     if (!error.empty()) {
         FreeTarget(&target);
         return error;
@@ -303,8 +304,8 @@ std::string WaterRenderer::Impl::Init() {
         scene = BuildDefaultScene();
     }
     meshes.push_back(UploadMesh(scene.terrain));
-    terrain_reflection_colour = MeanLitColourAbove(scene.terrain, scene.water_height,
-                                                   scene.sun_direction);
+    terrain_reflection_colour =
+            MeanLitColourAbove(scene.terrain, scene.water_height, scene.sun_direction);
     for (const Mesh& object : scene.objects) {
         meshes.push_back(UploadMesh(object));
     }
@@ -355,11 +356,10 @@ std::string WaterRenderer::Impl::Init() {
         return "float_target needs a context that renders to RGBA32F (GLES 3 with "
                "EXT_color_buffer_float, or desktop GL 3)";
     }
-    std::string error = settings.float_target
-                            ? MakeTarget(&main, settings.width, settings.height, GL_RGBA32F,
-                                         GL_FLOAT, true)
-                            : MakeTarget(&main, settings.width, settings.height, GL_RGBA8,
-                                         GL_UNSIGNED_BYTE, true);
+    std::string error = settings.float_target ? MakeTarget(&main, settings.width, settings.height,
+                                                           GL_RGBA32F, GL_FLOAT, true)
+                                              : MakeTarget(&main, settings.width, settings.height,
+                                                           GL_RGBA8, GL_UNSIGNED_BYTE, true);
     if (error.empty()) {
         // With depth: the low-resolution pass draws the ground that hides water first.
         const int size = LowResWaterSize(settings);
@@ -406,15 +406,15 @@ CompiledProgram& WaterRenderer::Impl::Program(const Variant& variant) {
             if (!read_ok) {
                 sources.erase(cached);
                 verdict.diagnostics.push_back(Diagnostic{
-                    Severity::kError, *paths[s], 0, 0,
-                    fmt::format("cannot read {} for the GL driver", resolved.string()), key});
+                        Severity::kError, *paths[s], 0, 0,
+                        fmt::format("cannot read {} for the GL driver", resolved.string()), key});
                 continue;
             }
         }
         const std::string source =
-            AssembleDriverSource(cached->second, defines, stage, GlslTarget::kEs100);
-        shaders[s] = gl->glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER
-                                                                : GL_FRAGMENT_SHADER);
+                AssembleDriverSource(cached->second, defines, stage, GlslTarget::kEs100);
+        shaders[s] =
+                gl->glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
         const char* text = source.c_str();
         gl->glShaderSource(shaders[s], 1, &text, nullptr);
         gl->glCompileShader(shaders[s]);
@@ -432,8 +432,8 @@ CompiledProgram& WaterRenderer::Impl::Program(const Variant& variant) {
         }
         if (!compiled[s] && !HasErrors(verdict.diagnostics)) {
             verdict.diagnostics.push_back(
-                Diagnostic{Severity::kError, *paths[s], 0, 0,
-                           "the GL driver rejected the shader without an error message", key});
+                    Diagnostic{Severity::kError, *paths[s], 0, 0,
+                               "the GL driver rejected the shader without an error message", key});
         }
     }
     verdict.vertex_compiled = compiled[0];
@@ -464,8 +464,8 @@ CompiledProgram& WaterRenderer::Impl::Program(const Variant& variant) {
         }
         if (!verdict.linked && !HasErrors(verdict.diagnostics)) {
             verdict.diagnostics.push_back(Diagnostic{
-                Severity::kError, vertex_path, 0, 0,
-                "the GL driver refused to link the program without an error message", key});
+                    Severity::kError, vertex_path, 0, 0,
+                    "the GL driver refused to link the program without an error message", key});
         }
     }
     for (GLuint shader : shaders) {
@@ -550,7 +550,7 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, FrameReport* report) 
     constexpr GLsizei kStride = 9 * sizeof(float);
     for (int index : pass.meshes) {
         const Mesh& mesh =
-            index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
+                index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
         const MeshBuffers& buffers = meshes[static_cast<std::size_t>(index + 1)];
         const glm::mat4 mvp = view_projection * mesh.model_matrix;
         gl->glUniformMatrix4fv(mvp_location, 1, GL_FALSE, glm::value_ptr(mvp));
@@ -616,17 +616,14 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
     gl->glUniformMatrix4fv(Uniform(program, "ModelViewProjMatrix"), 1, GL_FALSE,
                            glm::value_ptr(plan.view_projection));
     gl->glUniform3f(Uniform(program, "EyePosition"), plan.eye.x, plan.eye.y, plan.eye.z);
-    gl->glUniform2f(Uniform(program, "BumpScale0"), settings.bump_scale0.x,
-                    settings.bump_scale0.y);
-    gl->glUniform2f(Uniform(program, "BumpScale1"), settings.bump_scale1.x,
-                    settings.bump_scale1.y);
+    gl->glUniform2f(Uniform(program, "BumpScale0"), settings.bump_scale0.x, settings.bump_scale0.y);
+    gl->glUniform2f(Uniform(program, "BumpScale1"), settings.bump_scale1.x, settings.bump_scale1.y);
     gl->glUniform2f(Uniform(program, "BumpTranslation0"), plan.bump_translation0.x,
                     plan.bump_translation0.y);
     gl->glUniform2f(Uniform(program, "BumpTranslation1"), plan.bump_translation1.x,
                     plan.bump_translation1.y);
     gl->glUniform1f(Uniform(program, "WaveDistortion"), plan.wave_distortion);
-    gl->glUniform2f(Uniform(program, "RcpWindowSize"), 1.0F / target_width,
-                    1.0F / target_height);
+    gl->glUniform2f(Uniform(program, "RcpWindowSize"), 1.0F / target_width, 1.0F / target_height);
     gl->glUniform4f(Uniform(program, "WaterColour"), settings.water_colour.r,
                     settings.water_colour.g, settings.water_colour.b, settings.water_colour.a);
     gl->glUniform3f(Uniform(program, "FogColour"), settings.fog_colour.r, settings.fog_colour.g,
@@ -650,13 +647,13 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
                     extinction.surface_colour.g, extinction.surface_colour.b);
     gl->glUniform3f(Uniform(program, "DepthColour"), extinction.depth_colour.r,
                     extinction.depth_colour.g, extinction.depth_colour.b);
-    gl->glUniform3f(Uniform(program, "FoamColour"), settings.foam_colour.r,
-                    settings.foam_colour.g, settings.foam_colour.b);
+    gl->glUniform3f(Uniform(program, "FoamColour"), settings.foam_colour.r, settings.foam_colour.g,
+                    settings.foam_colour.b);
     gl->glUniform2f(Uniform(program, "FoamDepth"), settings.foam_depth.x, settings.foam_depth.y);
     gl->glUniform2f(Uniform(program, "FoamScale"), settings.foam_scale.x, settings.foam_scale.y);
     gl->glUniform1f(Uniform(program, "ShoreHardness"), settings.shore_hardness);
-    gl->glUniform3f(Uniform(program, "SunDirection"), scene.sun_direction.x,
-                    scene.sun_direction.y, scene.sun_direction.z);
+    gl->glUniform3f(Uniform(program, "SunDirection"), scene.sun_direction.x, scene.sun_direction.y,
+                    scene.sun_direction.z);
     gl->glUniform3f(Uniform(program, "SunColour"), settings.sun_colour.r, settings.sun_colour.g,
                     settings.sun_colour.b);
     gl->glUniform1f(Uniform(program, "Shininess"), settings.shininess);
@@ -671,8 +668,8 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
     gl->glActiveTexture(GL_TEXTURE0 + kUnitRefraction);
     // Without a refraction pass the sampler still needs a complete texture behind it.
     gl->glBindTexture(GL_TEXTURE_2D, c.Has("ENABLE_REFRACTION") && refraction.colour != 0
-                                         ? refraction.colour
-                                         : reflection.colour);
+                                             ? refraction.colour
+                                             : reflection.colour);
     gl->glActiveTexture(GL_TEXTURE0);
     if (alpha_blend && pass.kind == PassKind::kMain) {
         gl->glEnable(GL_BLEND);
@@ -711,8 +708,9 @@ std::string WaterRenderer::Impl::BuildFourierGrid() {
     }
     const FourierWaterGrid grid = BuildFourierWaterGrid(scene, settings.fourier);
     if (grid.positions.empty() || grid.indices.empty()) {
-        fourier_grid_error = "the Fourier water grid is empty (over 65535 vertices? raise "
-                             "fourier grid spacing)";
+        fourier_grid_error =
+                "the Fourier water grid is empty (over 65535 vertices? raise "
+                "fourier grid spacing)";
         return fourier_grid_error;
     }
     std::vector<float> interleaved;
@@ -815,7 +813,7 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
     const auto plan_start = std::chrono::steady_clock::now();
     const FramePlan plan = PlanFrame(c, r.settings, r.scene, view);
     report.plan_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - plan_start).count();
     report.oblique_fallback = plan.oblique_fallback;
     const auto reflection = r.reflection_targets.find(
             ReflectionSize(c.passes, r.settings.width, r.settings.height));
@@ -841,8 +839,8 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
     }
     gl.glDepthFunc(GL_LEQUAL);  // LEQUAL: the sky sits exactly on the cleared depth 1.0
     for (const PassPlan& pass : plan.passes) {
-        const RenderTarget& target = pass.kind == PassKind::kReflection  ? r.reflection
-                                     : pass.kind == PassKind::kRefraction ? r.refraction
+        const RenderTarget& target = pass.kind == PassKind::kReflection    ? r.reflection
+                                     : pass.kind == PassKind::kRefraction  ? r.refraction
                                      : pass.kind == PassKind::kLowResWater ? r.low_res
                                                                            : r.main;
         gl.glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
@@ -869,7 +867,8 @@ FrameReport WaterRenderer::RenderFrame(const RenderConfiguration& c, const Camer
         report.pass_draw_calls.push_back(report.draw_calls - draws_before);
         const GLenum error = gl.glGetError();
         if (error != GL_NO_ERROR && report.gl_error.empty()) {
-            report.gl_error = fmt::format("{} after pass {}", ErrorName(error), PassName(pass.kind));
+            report.gl_error =
+                    fmt::format("{} after pass {}", ErrorName(error), PassName(pass.kind));
         }
         if (after_pass) {
             after_pass(report.pass_names.back());
@@ -923,7 +922,9 @@ void WaterRenderer::UpdateFrameSettings(const RenderSettings& settings) {
     kept = updated;
 }
 
-void WaterRenderer::Finish() { impl_->gl->glFinish(); }
+void WaterRenderer::Finish() {
+    impl_->gl->glFinish();
+}
 
 base::RgbaImage WaterRenderer::ReadImage() {
     Impl& r = *impl_;
@@ -946,11 +947,11 @@ base::RgbaImage WaterRenderer::ReadImage() {
                        bottom_up.data());
     for (int row = 0; row < image.height; ++row) {
         std::copy_n(bottom_up.begin() +
-                        static_cast<std::ptrdiff_t>(row_bytes *
-                                                    static_cast<std::size_t>(image.height - 1 - row)),
+                            static_cast<std::ptrdiff_t>(
+                                    row_bytes * static_cast<std::size_t>(image.height - 1 - row)),
                     row_bytes,
                     image.pixels.begin() +
-                        static_cast<std::ptrdiff_t>(row_bytes * static_cast<std::size_t>(row)));
+                            static_cast<std::ptrdiff_t>(row_bytes * static_cast<std::size_t>(row)));
     }
     return image;
 }
@@ -967,19 +968,24 @@ std::vector<float> WaterRenderer::ReadFloatPixels() {
                        bottom_up.data());
     std::vector<float> pixels(bottom_up.size());
     for (int row = 0; row < r.settings.height; ++row) {
-        std::copy_n(bottom_up.begin() +
+        std::copy_n(
+                bottom_up.begin() +
                         static_cast<std::ptrdiff_t>(
-                            row_floats * static_cast<std::size_t>(r.settings.height - 1 - row)),
-                    row_floats,
-                    pixels.begin() +
+                                row_floats * static_cast<std::size_t>(r.settings.height - 1 - row)),
+                row_floats,
+                pixels.begin() +
                         static_cast<std::ptrdiff_t>(row_floats * static_cast<std::size_t>(row)));
     }
     return pixels;
 }
 
-const RenderSettings& WaterRenderer::Settings() const { return impl_->settings; }
+const RenderSettings& WaterRenderer::Settings() const {
+    return impl_->settings;
+}
 
-const Scene& WaterRenderer::GetScene() const { return impl_->scene; }
+const Scene& WaterRenderer::GetScene() const {
+    return impl_->scene;
+}
 
 DriverStageResult CompileDriverStage(GlContext& context, Stage stage, const std::string& source) {
     DriverStageResult result;
@@ -989,7 +995,7 @@ DriverStageResult CompileDriverStage(GlContext& context, Stage stage, const std:
     }
     const gl::GlApi& gl = context.Internal().api;
     const GLuint shader =
-        gl.glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
+            gl.glCreateShader(stage == Stage::kVertex ? GL_VERTEX_SHADER : GL_FRAGMENT_SHADER);
     const char* text = source.c_str();
     gl.glShaderSource(shader, 1, &text, nullptr);
     gl.glCompileShader(shader);

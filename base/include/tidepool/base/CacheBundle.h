@@ -3,11 +3,11 @@
 // run, hundreds of new files and folders, whose creation cost more than half of the run.
 #pragma once
 
+#include "tidepool/base/ContentCache.h"
+
 #include <optional>
 #include <string>
 #include <unordered_map>
-
-#include "tidepool/base/ContentCache.h"
 
 namespace tidepool::base {
 
@@ -45,8 +45,8 @@ private:
     std::string lineage_key_;
     std::unordered_map<std::string, std::string> read_;  // the bundle read
     std::unordered_map<std::string, std::string> used_;  // what this run found or stored
-    bool read_is_current_ = false;  // read_ is the entry under bundle_key_
-    bool changed_ = false;          // a Load missed or a Store happened
+    bool read_is_current_ = false;                       // read_ is the entry under bundle_key_
+    bool changed_ = false;                               // a Load missed or a Store happened
 };
 
 }  // namespace tidepool::base

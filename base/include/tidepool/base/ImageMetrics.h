@@ -8,9 +8,9 @@
 // code values (0..255).
 #pragma once
 
-#include <vector>
-
 #include "tidepool/base/RgbaImage.h"
+
+#include <vector>
 
 namespace tidepool::base {
 

@@ -4,12 +4,12 @@
 // list; docs/HARD_CASES.md describes it for readers.
 #pragma once
 
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/Renderer.h"
+
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/Renderer.h"
 
 namespace tidepool::runner {
 
@@ -24,7 +24,7 @@ struct HardCase {
     std::string name;         // stable identifier, used on the command line and in tests
     std::string description;  // what it sets up and which assumption it breaks
     HardCaseKind kind = HardCaseKind::kGl;
-    std::string fix;          // what the code needed for the case to pass; "" when nothing
+    std::string fix;  // what the code needed for the case to pass; "" when nothing
     // The rest applies to kGl cases only.
     CameraView view;          // the camera (a free camera: any eye, target, near and far)
     RenderSettings settings;  // the defaults with the case's changes; width/height only count

@@ -42,8 +42,8 @@ ImageError MeasureImageError(const base::RgbaImage& reference, const base::RgbaI
 
 /// How a plan renders and times.
 struct PlanOptions {
-    RenderSettings settings;           // size and the defaults the description does not move
-    int warmup_frames = 1;             // untimed frames per candidate before its image
+    RenderSettings settings;  // size and the defaults the description does not move
+    int warmup_frames = 1;    // untimed frames per candidate before its image
     // Each candidate is timed against the full configuration pair by pair until its interval
     // is this narrow (the timing engine, FrameTimer.h); 3 points is plenty to rank candidates
     // that differ by tens of percent, and the choice rule never picks on a smaller difference.
@@ -70,16 +70,16 @@ struct PlanCandidate {
     bool valid = false;                   // passed glslang and Mesa; never chosen otherwise
     std::vector<Diagnostic> diagnostics;  // why it is invalid
     ImageError error;
-    std::string image_path;          // relative to PlanOptions::out_dir; "" when not written
-    double time_ms = 0;              // median frame time on the timing clock
+    std::string image_path;  // relative to PlanOptions::out_dir; "" when not written
+    double time_ms = 0;      // median frame time on the timing clock
     // Frame time vs the full configuration in percent (+ = slower), paired frame by frame, with
     // its 95% interval; 0 and [0, 0] for the full configuration itself.
     double time_change_percent = 0;
     double time_change_low = 0;
     double time_change_high = 0;
-    int pairs = 0;                   // pairs of frames behind the figure
-    FrameReport frame;               // passes, draws and pixels of one frame
-    bool meets_quality = false;      // the image-error bounds of the target hold
+    int pairs = 0;               // pairs of frames behind the figure
+    FrameReport frame;           // passes, draws and pixels of one frame
+    bool meets_quality = false;  // the image-error bounds of the target hold
 };
 
 /// Why one effect of the full configuration is not in the chosen one.
@@ -98,7 +98,7 @@ struct ScenePlan {
     int full = -1;  // index into candidates; -1 when the plan failed
     int chosen = -1;
     std::string choice_reason;  // ChooseCandidate's reason
-    bool met = false;  // the chosen candidate meets every bound of the target
+    bool met = false;           // the chosen candidate meets every bound of the target
     std::vector<DroppedEffect> dropped;
     // Effects the rules offered to drop but the measurement kept, with the same fields: the
     // error dropping each alone causes breaks the target.
@@ -149,8 +149,8 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
 
 /// Plans `scene`: validates the candidates with glslang (invalid ones are skipped, never
 /// chosen), renders the scene built from the description with each and measures its error
-/// (MeasureImageError), adds one candidate that combines every drop that met the target alone (at most
-/// 12 in all), times them all in paired rounds, and picks the cheapest that meets the target.
+/// (MeasureImageError), adds one candidate that combines every drop that met the target alone (at
+/// most 12 in all), times them all in paired rounds, and picks the cheapest that meets the target.
 /// Fails through ScenePlan::diagnostics when the full configuration is invalid or the renderer
 /// cannot be created.
 ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,

@@ -3,15 +3,15 @@
 // (schema "tidepool.stability", version 1).
 #pragma once
 
+#include "tidepool/VariantConfig.h"
+#include "tidepool/lab/HardCases.h"
+#include "tidepool/lab/PrecisionStudy.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/RenderConfig.h"
+
 #include <map>
 #include <string>
 #include <vector>
-
-#include "tidepool/VariantConfig.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/lab/HardCases.h"
-#include "tidepool/lab/PrecisionStudy.h"
-#include "tidepool/runner/RenderConfig.h"
 
 namespace tidepool::runner {
 
@@ -23,16 +23,16 @@ struct StabilityCaseResult {
     int variants_checked = 0;  // GL: configurations rendered; CPU: 0
     long nan_count = 0;        // GL: pixel channels; CPU: evaluated values
     long inf_count = 0;
-    double max_error = 0;      // GL: largest distance of a channel outside [0, 1]; CPU: see bound
-    double bound = 0;          // the largest max_error that passes, and why (in `note`)
+    double max_error = 0;  // GL: largest distance of a channel outside [0, 1]; CPU: see bound
+    double bound = 0;      // the largest max_error that passes, and why (in `note`)
     bool passed = false;
     std::string fix;
-    std::string note;          // what max_error measures and failures, if any
+    std::string note;  // what max_error measures and failures, if any
 };
 
 /// What removing one shader guard changes on the default views.
 struct GuardResult {
-    std::string guard;                  // the guard, and the test-only define that removes it
+    std::string guard;  // the guard, and the test-only define that removes it
     double max_channel_diff_normal_views = 0;
     double tolerance = 0;
     bool passed = false;
@@ -52,7 +52,7 @@ StabilityCaseResult RunCpuHardCase(const HardCase& hard_case);
 
 /// How GL hard cases are rendered.
 struct GlStabilityOptions {
-    int width = 64;   // small: every variant at every case must stay fast
+    int width = 64;  // small: every variant at every case must stay fast
     int height = 48;
 };
 

@@ -51,8 +51,8 @@ struct ViewImage {
 
 /// One render configuration (variant + pass options) as the runner recorded it.
 struct MeasuredConfiguration {
-    std::string id;        // variant id plus pass suffix
-    std::string variant;   // the variant compiled
+    std::string id;       // variant id plus pass suffix
+    std::string variant;  // the variant compiled
     std::string program;
     std::vector<std::string> defines;
     std::vector<std::string> effects;
@@ -63,14 +63,14 @@ struct MeasuredConfiguration {
     bool low_res_water = false;
     std::string clip = "oblique";
     bool culling = true;
-    bool depth_fog = true;  // the refraction pass's underwater depth fog (with ENABLE_FOG)
-    bool ok = false;                     // compiled, linked, rendered without a GL error
-    bool driver_valid = false;           // Mesa's verdict
-    std::optional<bool> glslang_valid;   // glslang's verdict, when the runner compared
+    bool depth_fog = true;      // the refraction pass's underwater depth fog (with ENABLE_FOG)
+    bool ok = false;            // compiled, linked, rendered without a GL error
+    bool driver_valid = false;  // Mesa's verdict
+    std::optional<bool> glslang_valid;  // glslang's verdict, when the runner compared
     std::string gl_error;
     std::vector<std::string> driver_messages;  // GCC-style driver diagnostics
     std::vector<ViewImage> views;
-    std::vector<std::vector<double>> samples_ms;  // wall clock, per round
+    std::vector<std::vector<double>> samples_ms;                  // wall clock, per round
     double median_ms = std::numeric_limits<double>::quiet_NaN();  // wall clock
     double ci_low_ms = std::numeric_limits<double>::quiet_NaN();
     double ci_high_ms = std::numeric_limits<double>::quiet_NaN();
@@ -102,38 +102,38 @@ struct MeasuredConfiguration {
 /// Two configurations the runner timed pair by pair (results.json `comparisons`).
 struct MeasuredComparison {
     std::string label;
-    std::string baseline;   // configuration ids
+    std::string baseline;  // configuration ids
     std::string candidate;
-    std::vector<double> baseline_ms;  // on the run's clock, pair i = (baseline_ms[i],
-    std::vector<double> candidate_ms;  // candidate_ms[i])
-    std::vector<double> baseline_wall_ms;   // the same frames on the wall clock (may be empty)
+    std::vector<double> baseline_ms;       // on the run's clock, pair i = (baseline_ms[i],
+    std::vector<double> candidate_ms;      // candidate_ms[i])
+    std::vector<double> baseline_wall_ms;  // the same frames on the wall clock (may be empty)
     std::vector<double> candidate_wall_ms;
-    std::string decision;   // "resolved" or "capped"
-    std::string error;      // why the runner has no pairs ("" when it has)
+    std::string decision;  // "resolved" or "capped"
+    std::string error;     // why the runner has no pairs ("" when it has)
 };
 
 /// Everything a report is built from.
 struct ReportInputs {
     std::filesystem::path manifest_path;
     std::filesystem::path results_path;
-    nlohmann::json manifest;  // as read (schema checked)
-    nlohmann::json results;   // as read (schema checked)
+    nlohmann::json manifest;                            // as read (schema checked)
+    nlohmann::json results;                             // as read (schema checked)
     std::vector<MeasuredConfiguration> configurations;  // in run order, failed ones included
     std::string timing_view;  // the view that was timed (the report's default view)
     int width = 640;          // the render size of the run
     int height = 480;
     std::vector<std::string> view_names;
-    std::filesystem::path stability_path;      // where stability.json was looked for
-    std::optional<nlohmann::json> stability;   // its content when present and valid
-    std::string stability_error;               // why a present stability.json was not used
-    std::filesystem::path plans_path;          // where plans.json was looked for
-    std::optional<nlohmann::json> plans;       // its content when present and valid
-    std::string plans_error;                   // why a present plans.json was not used
+    std::filesystem::path stability_path;     // where stability.json was looked for
+    std::optional<nlohmann::json> stability;  // its content when present and valid
+    std::string stability_error;              // why a present stability.json was not used
+    std::filesystem::path plans_path;         // where plans.json was looked for
+    std::optional<nlohmann::json> plans;      // its content when present and valid
+    std::string plans_error;                  // why a present plans.json was not used
     // The clock every comparison uses: CPU time when every timed configuration has CPU samples
     // (wall time on a shared machine is disturbed by other processes), else wall time.
     TimingClock clock = TimingClock::kWall;
-    std::string clock_name;                    // as results.json names it ("thread_cpu", ...)
-    std::string clock_reason;                  // one sentence: why this clock
+    std::string clock_name;    // as results.json names it ("thread_cpu", ...)
+    std::string clock_reason;  // one sentence: why this clock
     std::vector<MeasuredComparison> comparisons;
     double resolution_points = std::numeric_limits<double>::quiet_NaN();  // asked of each pair
 

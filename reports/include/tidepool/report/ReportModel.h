@@ -6,6 +6,12 @@
 // agree.
 #pragma once
 
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/report/ReportInputs.h"
+#include "tidepool/report/Statistics.h"
+#include "tidepool/report/WhitepaperTable.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <limits>
@@ -15,12 +21,6 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
-
-#include "tidepool/base/PairedEstimate.h"
-#include "tidepool/base/RgbaImage.h"
-#include "tidepool/report/ReportInputs.h"
-#include "tidepool/report/Statistics.h"
-#include "tidepool/report/WhitepaperTable.h"
 
 namespace tidepool::report {
 
@@ -66,9 +66,9 @@ bool IsFirmVerdict(Verdict verdict, FigureKind kind);
 /// change ("|change| < X%", X the larger end); opposite when it lies beyond the margin on the
 /// other side; for a percent figure, same direction and magnitude when it overlaps
 /// kMagnitudeFactor's band and different magnitude otherwise; for "<1%", negligible as claimed
-/// when the interval lies within the band; direction only for qualitative figures. `reason` says why in one line, with the interval and, when `split`
-/// (may be null) shows the two halves of the pairs on opposite sides, that too. Never fails
-/// (no ratio is kFailed).
+/// when the interval lies within the band; direction only for qualitative figures. `reason` says
+/// why in one line, with the interval and, when `split` (may be null) shows the two halves of the
+/// pairs on opposite sides, that too. Never fails (no ratio is kFailed).
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
                  std::string* reason);
 
@@ -84,8 +84,8 @@ struct RowComparison {
     ComparisonSide baseline;
     ComparisonSide candidate;
     PairedRatio ratio;  // candidate / baseline frame time over the pairs
-    double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
-    Interval change_ci;  // of change_percent
+    double change_percent = std::numeric_limits<double>::quiet_NaN();     // + = faster
+    Interval change_ci;                                                   // of change_percent
     double resolution_points = std::numeric_limits<double>::quiet_NaN();  // achieved half-width
     std::string pairs_source;  // "the runner's pairs" or "one pair per round (older results)"
     // Measured "why": each pass's time in both configurations and the pass that changed most,
@@ -107,8 +107,8 @@ struct AccuracyEntry {
     const MeasuredConfiguration* configuration = nullptr;
     bool measured = false;  // has a time and an image error (false for failed configurations)
     double median_ms = std::numeric_limits<double>::quiet_NaN();  // on the model's clock
-    double psnr_db = std::numeric_limits<double>::quiet_NaN();  // from the mean MSE over views
-    double ssim = std::numeric_limits<double>::quiet_NaN();     // mean over views
+    double psnr_db = std::numeric_limits<double>::quiet_NaN();    // from the mean MSE over views
+    double ssim = std::numeric_limits<double>::quiet_NaN();       // mean over views
     double share_visible = std::numeric_limits<double>::quiet_NaN();  // mean over views, 0..1
     int views_compared = 0;
     bool on_frontier = false;
@@ -134,8 +134,8 @@ struct StaticCostEntry {
 struct StaticCostAnalysis {
     std::vector<StaticCostEntry> entries;  // default-pass configurations with a static cost
     double spearman_rho = std::numeric_limits<double>::quiet_NaN();
-    std::vector<std::size_t> misleading;   // indices into entries, largest |rank gap| first
-    std::string note;                      // why there is no correlation, when there is none
+    std::vector<std::size_t> misleading;  // indices into entries, largest |rank gap| first
+    std::string note;                     // why there is no correlation, when there is none
 };
 
 /// A pair of verdicts that differ between glslang and Mesa.
@@ -162,12 +162,12 @@ struct ValidationSummary {
     int configurations = 0;
     std::vector<const MeasuredConfiguration*> failed;  // configurations not ok
     std::vector<VerdictDisagreementRow> disagreements;
-    std::vector<std::string> run_diagnostics;   // results.json diagnostics (GCC-style text)
+    std::vector<std::string> run_diagnostics;  // results.json diagnostics (GCC-style text)
 };
 
 /// A configuration's image at a view beside the reference's and their difference.
 struct ImagePanel {
-    std::string title;       // the preset(s), e.g. "full_no_fog (row 4)"
+    std::string title;  // the preset(s), e.g. "full_no_fog (row 4)"
     const MeasuredConfiguration* configuration = nullptr;  // null when no configuration has it
     std::string view;
     base::RgbaImage image;
@@ -207,9 +207,9 @@ struct ViewError {
 /// configurations keep their entry, with `note` saying which and NaN figures.
 struct TechniqueComparison {
     TechniqueKind kind = TechniqueKind::kCubemapReflection;
-    std::string technique;  // "cube-map reflection", "Fourier reflection", "depth optics"
-    std::string context;    // what both sides share: "reflection only", "full effect"
-    ComparisonSide baseline;   // the planar reflection (or the full effect, for the optics)
+    std::string technique;    // "cube-map reflection", "Fourier reflection", "depth optics"
+    std::string context;      // what both sides share: "reflection only", "full effect"
+    ComparisonSide baseline;  // the planar reflection (or the full effect, for the optics)
     ComparisonSide candidate;
     // Pass names of one frame at the timing view (empty when unknown: older results, missing
     // or failed configuration) and the baseline's passes the candidate does not run.
@@ -222,7 +222,7 @@ struct TechniqueComparison {
     double candidate_median_ms = std::numeric_limits<double>::quiet_NaN();
     PairedRatio ratio;  // candidate / baseline frame time over the pairs
     double change_percent = std::numeric_limits<double>::quiet_NaN();  // + = faster
-    Interval change_ci;  // of change_percent
+    Interval change_ci;                                                // of change_percent
     // +1 faster, -1 slower: the whole interval lies on that side of no change (as GradeRow's
     // direction); 0 when it does not or nothing was measured.
     int direction = 0;
@@ -234,7 +234,7 @@ struct TechniqueComparison {
     double share_visible = std::numeric_limits<double>::quiet_NaN();
     int views_compared = 0;
     std::vector<ViewError> per_view;  // in the candidate's view order
-    std::string worst_view;  // the view of lowest PSNR when 2+ views differ; else empty
+    std::string worst_view;           // the view of lowest PSNR when 2+ views differ; else empty
     double worst_psnr_db = std::numeric_limits<double>::quiet_NaN();
     // One line: where the technique breaks (reflections) or what the addition changes (optics),
     // naming the worst view when there is one.
@@ -262,7 +262,7 @@ struct ClockNoiseRow {
 /// Options of a report build.
 struct ReportOptions {
     std::string name = "default";
-    std::string generated_utc;  // supplied by the caller (the library reads no clock)
+    std::string generated_utc;             // supplied by the caller (the library reads no clock)
     std::vector<std::string> panel_views;  // views shown in the image panels; empty: timing view
 };
 
@@ -274,8 +274,8 @@ struct ReportModel {
     TimingClock clock = TimingClock::kWall;
     const MeasuredConfiguration* reference = nullptr;
     std::vector<RowComparison> rows;
-    std::vector<AccuracyEntry> accuracy;   // one per configuration, run order
-    std::vector<std::size_t> frontier;     // indices into accuracy, by time
+    std::vector<AccuracyEntry> accuracy;  // one per configuration, run order
+    std::vector<std::size_t> frontier;    // indices into accuracy, by time
     StaticCostAnalysis static_cost;
     ValidationSummary validation;
     std::vector<ImagePanel> panels;
@@ -287,7 +287,7 @@ struct ReportModel {
     // `reference` here is the planar image, not the reference preset's.
     std::vector<ImagePanel> reflection_panels;
     std::vector<TechniqueComparison> optics;  // (full -> full_depth_optics)
-    std::vector<ClockNoiseRow> clock_noise;  // one per recorded comparison
+    std::vector<ClockNoiseRow> clock_noise;   // one per recorded comparison
     double largest_split_half_disagreement = std::numeric_limits<double>::quiet_NaN();
     int largest_split_half_row = 0;
     int failed_configurations = 0;
@@ -308,8 +308,8 @@ ReportModelResult BuildReportModel(const ReportInputs& inputs, const ReportOptio
 
 /// Two presets whose configurations the report compares in time.
 struct PresetPair {
-    std::string label;      // "row 4", or "cube-map reflection (full effect)"
-    std::string baseline;   // preset names
+    std::string label;     // "row 4", or "cube-map reflection (full effect)"
+    std::string baseline;  // preset names
     std::string candidate;
 };
 

@@ -3,14 +3,14 @@
 // data.json (schema "tidepool.report" v1), and publishes them atomically as one folder.
 #pragma once
 
+#include "tidepool/report/ReportModel.h"
+
 #include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
-
-#include "tidepool/report/ReportModel.h"
 
 namespace tidepool::report {
 
@@ -51,9 +51,9 @@ struct WrittenReport {
     std::filesystem::path folder;              // out_dir / model.options.name
     std::vector<std::filesystem::path> files;  // relative to folder
     std::uintmax_t html_bytes = 0;
-    int image_downscale = 1;                   // factor applied to the images embedded in HTML
-    std::string error;                         // "" on success, otherwise naming the path
-    bool refused = false;  // the error is a refusal to replace a folder tidepool did not write
+    int image_downscale = 1;  // factor applied to the images embedded in HTML
+    std::string error;        // "" on success, otherwise naming the path
+    bool refused = false;     // the error is a refusal to replace a folder tidepool did not write
 };
 
 /// Writes index.html, report.md, data.json, images/ and charts/ into a staging folder beside

@@ -14,15 +14,15 @@
 // comment says, never throws and never prints.
 #pragma once
 
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/base/SampleStatistics.h"
+
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/base/PairedEstimate.h"
-#include "tidepool/base/SampleStatistics.h"
 
 namespace tidepool::report {
 

@@ -20,8 +20,8 @@ enum class FigureKind {
 /// One row of the whitepaper's cost table.
 struct WhitepaperRow {
     int number = 0;
-    std::string change;            // what the row changes, in the whitepaper's terms
-    std::string whitepaper_text;   // the figure as the whitepaper words it
+    std::string change;           // what the row changes, in the whitepaper's terms
+    std::string whitepaper_text;  // the figure as the whitepaper words it
     FigureKind kind = FigureKind::kPercent;
     // Performance change in percent of frame rate, positive = faster (kPercent rows); for
     // kNegligible the bound's sign (-1: slower by at most 1%); NaN for kDirection rows.

@@ -4,15 +4,15 @@
 // comparison differ only in what the whitepaper changed (tests/unit/FramePlanTest.cpp).
 #pragma once
 
-#include <string>
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include "tidepool/VariantExpander.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
+
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 namespace tidepool::runner {
 
@@ -28,21 +28,21 @@ const char* PassName(PassKind kind);
 /// Everything one pass needs, computed on the CPU before any GL call.
 struct PassPlan {
     PassKind kind = PassKind::kMain;
-    int width = 0;                  // the target's size in pixels
+    int width = 0;  // the target's size in pixels
     int height = 0;
     glm::mat4 view{1.0F};
     glm::mat4 projection{1.0F};
-    bool mirrored = false;          // front faces flip (glFrontFace(GL_CW))
-    bool clip_discard = false;      // models clip with CLIP_DISCARD instead of the projection
-    bool clip_oblique = false;      // the projection's near plane is the clip plane
-    glm::vec4 clip_plane{0.0F};     // world space, kept side >= 0
+    bool mirrored = false;       // front faces flip (glFrontFace(GL_CW))
+    bool clip_discard = false;   // models clip with CLIP_DISCARD instead of the projection
+    bool clip_oblique = false;   // the projection's near plane is the clip plane
+    glm::vec4 clip_plane{0.0F};  // world space, kept side >= 0
     glm::vec4 clear_colour{0.0F, 0.0F, 0.0F, 1.0F};
     bool draw_sky = false;
-    Variant sky_program;            // skybox variant, when draw_sky
-    std::vector<int> meshes;        // -1 is the terrain, k >= 0 is scene.objects[k]
-    Variant model_program;          // model variant, when meshes is not empty
+    Variant sky_program;      // skybox variant, when draw_sky
+    std::vector<int> meshes;  // -1 is the terrain, k >= 0 is scene.objects[k]
+    Variant model_program;    // model variant, when meshes is not empty
     bool draw_water = false;
-    Variant water_program;          // the configuration's, or water_composite applying low-res
+    Variant water_program;  // the configuration's, or water_composite applying low-res
 };
 
 /// A whole frame.
@@ -56,7 +56,7 @@ struct FramePlan {
     // divided by the eye distance under ENABLE_SCALE_DISTORTION (DistortionConstant).
     float wave_distortion = 0.0F;
     std::vector<PassPlan> passes;
-    bool oblique_fallback = false;   // the oblique near plane was impossible; discard clipped
+    bool oblique_fallback = false;  // the oblique near plane was impossible; discard clipped
 };
 
 /// The frame `configuration` renders from `view` over `scene` with `settings`. Never fails: a

@@ -3,16 +3,16 @@
 // narrow as asked. `render`, `bench`, `run` and the scene planner all time through here.
 #pragma once
 
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/runner/ProceduralScene.h"
+#include "tidepool/runner/RenderConfig.h"
+#include "tidepool/runner/Renderer.h"
+
 #include <functional>
 #include <map>
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/base/PairedEstimate.h"
-#include "tidepool/runner/ProceduralScene.h"
-#include "tidepool/runner/RenderConfig.h"
-#include "tidepool/runner/Renderer.h"
 
 namespace tidepool::runner {
 

@@ -22,14 +22,14 @@ bool ParseBackendKind(std::string_view text, BackendKind* kind);
 
 /// What the context reports about itself, recorded in every result file.
 struct GlEnvironment {
-    std::string backend;           // "egl" or "osmesa"
-    std::string context_api;       // "OpenGL ES" (EGL) or "OpenGL compatibility" (OSMesa)
-    std::string renderer;          // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
-    std::string version;           // GL_VERSION
-    std::string shading_language;  // GL_SHADING_LANGUAGE_VERSION
-    std::string mesa_version;      // the "Mesa x.y.z" part of GL_VERSION, "" when not Mesa
+    std::string backend;               // "egl" or "osmesa"
+    std::string context_api;           // "OpenGL ES" (EGL) or "OpenGL compatibility" (OSMesa)
+    std::string renderer;              // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string version;               // GL_VERSION
+    std::string shading_language;      // GL_SHADING_LANGUAGE_VERSION
+    std::string mesa_version;          // the "Mesa x.y.z" part of GL_VERSION, "" when not Mesa
     bool float_render_target = false;  // RGBA32F colour attachments render (NaN/Inf checks)
-    bool timer_query = false;  // GL_EXT_disjoint_timer_query is offered and loaded
+    bool timer_query = false;          // GL_EXT_disjoint_timer_query is offered and loaded
 };
 
 /// One backend that was tried and why it failed ("" when it worked).

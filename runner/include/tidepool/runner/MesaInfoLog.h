@@ -1,11 +1,11 @@
 // Turning a Mesa GLSL compiler or linker info log into diagnostics at the user's file and line.
 #pragma once
 
+#include "tidepool/Diagnostic.h"
+
 #include <string>
 #include <string_view>
 #include <vector>
-
-#include "tidepool/Diagnostic.h"
 
 namespace tidepool::runner {
 

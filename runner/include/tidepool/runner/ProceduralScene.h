@@ -4,6 +4,9 @@
 // no rand()), so the same build renders the same pixels every run.
 #pragma once
 
+#include "tidepool/SceneDescription.h"
+#include "tidepool/base/RgbaImage.h"
+
 #include <array>
 #include <cstdint>
 #include <string>
@@ -12,9 +15,6 @@
 
 #include <glm/ext/vector_uint4_sized.hpp>
 #include <glm/glm.hpp>
-
-#include "tidepool/SceneDescription.h"
-#include "tidepool/base/RgbaImage.h"
 
 namespace tidepool::runner {
 

@@ -2,13 +2,13 @@
 // default set, the filters and the file names of a run are derived from variants.yaml.
 #pragma once
 
-#include <string>
-#include <string_view>
-#include <vector>
-
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+
+#include <string>
+#include <string_view>
+#include <vector>
 
 namespace tidepool::runner {
 
@@ -19,8 +19,8 @@ inline constexpr std::string_view kWaterUniformProgram = "water_uniform";
 
 /// One thing the runner renders and times: a water variant and its pass options.
 struct RenderConfiguration {
-    std::string id;            // variant id plus the pass suffix, e.g. `water:ENABLE_FOG@lowres`
-    Variant variant;           // the program and the defines it is compiled with
+    std::string id;   // variant id plus the pass suffix, e.g. `water:ENABLE_FOG@lowres`
+    Variant variant;  // the program and the defines it is compiled with
     std::vector<std::string> effects;  // water effects in force (define names, sorted); for
                                        // water_uniform the uniform bools that are set
     PassOptions passes;

@@ -3,13 +3,6 @@
 // variant under test through the real GL driver.
 #pragma once
 
-#include <functional>
-#include <memory>
-#include <string>
-#include <vector>
-
-#include <glm/glm.hpp>
-
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/VariantConfig.h"
@@ -18,6 +11,13 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/WaterMath.h"
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
 
 namespace tidepool::runner {
 
@@ -43,27 +43,27 @@ struct RenderSettings {
     glm::vec2 bump_scale1{1.0F / 15.0F, 1.0F / 15.0F};  // a second, finer layer
     glm::vec2 bump_velocity0{0.013F, 0.021F};           // texture units per second
     glm::vec2 bump_velocity1{-0.017F, 0.009F};
-    glm::vec3 fog_colour{0.85F, 0.95F, 1.0F};    // water fog (whitepaper demo)
-    float rcp_max_fog_distance = 1.0F / 2000.0F; // water fog reaches 1 at the far plane (demo)
-    glm::vec3 underwater_colour{0.05F, 0.15F, 0.10F};  // refraction clear + depth fog (demo)
-    float rcp_max_fog_depth = 1.0F / 80.0F;            // underwater depth fog (demo)
-    glm::vec4 water_colour{0.05F, 0.15F, 0.10F, 0.4F}; // ENABLE_WATER_COLOUR rgb and mix factor
+    glm::vec3 fog_colour{0.85F, 0.95F, 1.0F};     // water fog (whitepaper demo)
+    float rcp_max_fog_distance = 1.0F / 2000.0F;  // water fog reaches 1 at the far plane (demo)
+    glm::vec3 underwater_colour{0.05F, 0.15F, 0.10F};   // refraction clear + depth fog (demo)
+    float rcp_max_fog_depth = 1.0F / 80.0F;             // underwater depth fog (demo)
+    glm::vec4 water_colour{0.05F, 0.15F, 0.10F, 0.4F};  // ENABLE_WATER_COLOUR rgb and mix factor
     // Low-resolution water texture; 0 follows the demo's rule for the window (FramePlan.h,
     // LowResWaterSize: 256 at 640x480).
     int low_res_water_size = 0;
-    int sky_size = 128;             // sky cube-map face size
-    int normal_map_size = 256;      // water normal map size
+    int sky_size = 128;               // sky cube-map face size
+    int normal_map_size = 256;        // water normal map size
     int normalisation_cube_size = 8;  // per face, the demo's size (whitepaper 3.3.1)
     // Depth-based optics (../shared/seeds/003; shaders/water.fsh). The refraction pass stores
     // depth up to max_water_depth; extinction is the depth at which each channel is gone.
     float max_water_depth = 80.0F;
-    ExtinctionModel extinction;                       // ENABLE_EXTINCTION (WaterMath.h)
+    ExtinctionModel extinction;  // ENABLE_EXTINCTION (WaterMath.h)
     glm::vec3 foam_colour{0.9F, 0.95F, 0.95F};
-    glm::vec2 foam_depth{0.5F, 2.0F};                 // foam full up to .x, gone at .y
-    glm::vec2 foam_scale{1.0F / 6.0F, 1.0F / 6.0F};   // one foam tile per 6 units
-    float shore_hardness = 1.0F;                      // 1 / depth over which the shore blends
+    glm::vec2 foam_depth{0.5F, 2.0F};                // foam full up to .x, gone at .y
+    glm::vec2 foam_scale{1.0F / 6.0F, 1.0F / 6.0F};  // one foam tile per 6 units
+    float shore_hardness = 1.0F;                     // 1 / depth over which the shore blends
     glm::vec3 sun_colour{1.0F, 0.95F, 0.85F};
-    float shininess = 0.6F;                           // seed: 0.5 to 0.7
+    float shininess = 0.6F;  // seed: 0.5 to 0.7
     // REFLECTION_FOURIER: the per-vertex coefficients and the tessellated water grid.
     FourierSettings fourier;
     // Render the main pass into an RGBA32F target instead of RGBA8, so NaN and Inf survive to
@@ -74,11 +74,11 @@ struct RenderSettings {
 /// The driver's verdict on one configuration's programs: its water program and the helper
 /// programs (skybox, model, water_composite variants) the configuration's passes need.
 struct DriverVerdict {
-    bool valid = false;               // every program compiled and linked
-    bool vertex_compiled = false;     // the water program's stages and link
+    bool valid = false;            // every program compiled and linked
+    bool vertex_compiled = false;  // the water program's stages and link
     bool fragment_compiled = false;
     bool linked = false;
-    std::string vertex_log;           // Mesa's info logs of the water program, verbatim
+    std::string vertex_log;  // Mesa's info logs of the water program, verbatim
     std::string fragment_log;
     std::string link_log;
     std::vector<Diagnostic> diagnostics;  // parsed from every log, at the user's files
@@ -86,10 +86,10 @@ struct DriverVerdict {
 
 /// What one frame did.
 struct FrameReport {
-    int passes = 0;                        // render passes (framebuffer targets) drawn
-    int draw_calls = 0;                    // glDrawArrays/glDrawElements calls
-    std::vector<std::string> pass_names;   // "reflection", "refraction", "low_res_water", "main"
-    std::vector<int> pass_draw_calls;      // draw calls of each pass, in pass_names' order
+    int passes = 0;                       // render passes (framebuffer targets) drawn
+    int draw_calls = 0;                   // glDrawArrays/glDrawElements calls
+    std::vector<std::string> pass_names;  // "reflection", "refraction", "low_res_water", "main"
+    std::vector<int> pass_draw_calls;     // draw calls of each pass, in pass_names' order
     // Pixels of each pass's target: every pass clears and covers its whole target once, so this
     // is an occlusion-free estimate of the fragments it shades (GLES 2 has no occlusion query).
     std::vector<long long> pass_pixels;
@@ -110,8 +110,7 @@ public:
     /// the default scene otherwise. Fails (null, `error` set) when a render target is
     /// incomplete or float_target is asked for but the context cannot render to float.
     static std::unique_ptr<WaterRenderer> Create(GlContext& context, const VariantConfig& config,
-                                                 const RenderSettings& settings,
-                                                 std::string* error,
+                                                 const RenderSettings& settings, std::string* error,
                                                  const Scene* scene = nullptr);
     ~WaterRenderer();
     WaterRenderer(const WaterRenderer&) = delete;
@@ -123,8 +122,9 @@ public:
 
     /// Renders one frame of `configuration` from `view` into the main target. Call Prepare
     /// first (it makes the context current; RenderFrame does not, to keep eglMakeCurrent out of
-    /// timed frames, so re-current the context if another was made current since); fails through FrameReport::gl_error (glGetError after each pass) or, when the
-    /// programs are invalid, by drawing nothing and saying so there.
+    /// timed frames, so re-current the context if another was made current since); fails through
+    /// FrameReport::gl_error (glGetError after each pass) or, when the programs are invalid, by
+    /// drawing nothing and saying so there.
     FrameReport RenderFrame(const RenderConfiguration& configuration, const CameraView& view,
                             const PassCallback& after_pass = {});
 

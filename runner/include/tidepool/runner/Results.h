@@ -2,16 +2,6 @@
 // versioned results.json that records them (schema: runner/RESULTS.md).
 #pragma once
 
-#include <filesystem>
-#include <map>
-#include <memory>
-#include <functional>
-#include <optional>
-#include <string>
-#include <vector>
-
-#include <nlohmann/json.hpp>
-
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/PairedEstimate.h"
@@ -21,6 +11,16 @@
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
 #include "tidepool/runner/Statistics.h"
+
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 namespace tidepool::runner {
 
@@ -35,14 +35,14 @@ struct HostInfo {
     std::string lp_num_threads;  // as set in the environment before the context was created
     std::string build_type;
     std::string git_revision = "unknown";
-    std::string command;         // "render" or "bench"
+    std::string command;  // "render" or "bench"
 };
 
 /// Two configurations whose frame times a report compares: they are timed pair by pair until
 /// the interval is as narrow as the stopping rule asks.
 struct TimedComparison {
-    std::string label;          // e.g. "row 4" or "full -> full_cubemap_reflection"
-    std::size_t baseline = 0;   // indices into RunOptions::configurations
+    std::string label;         // e.g. "row 4" or "full -> full_cubemap_reflection"
+    std::size_t baseline = 0;  // indices into RunOptions::configurations
     std::size_t candidate = 0;
 };
 
@@ -52,14 +52,14 @@ struct RunOptions {
     std::vector<CameraView> views;  // an image per configuration per view
     std::string timing_view;        // the view timed; "" means the first of `views`
     RenderSettings settings;
-    int warmup_frames = 2;          // untimed, per compared configuration and thread (llvmpipe
-                                    // compiles on first draw); images warm the others
+    int warmup_frames = 2;  // untimed, per compared configuration and thread (llvmpipe
+                            // compiles on first draw); images warm the others
 
     // Timed frames of every configuration on its own: enough for the accuracy-versus-time chart
     // (a coarse time), not for a comparison, which `comparisons` time in pairs.
     int coarse_frames = 3;
     std::vector<TimedComparison> comparisons;
-    base::StoppingRule rule;        // when a comparison has enough pairs
+    base::StoppingRule rule;  // when a comparison has enough pairs
     // Frames with a glFinish after each pass, per compared configuration: the per-pass times
     // behind the report's "why" column (medians over these frames).
     int pass_frames = 5;
@@ -72,7 +72,7 @@ struct RunOptions {
     bool write_images = true;
     bool compare_with_glslang = true;  // list variants where glslang and Mesa disagree
     HostInfo host;
-    std::string config_path;        // variants.yaml as named by the user
+    std::string config_path;  // variants.yaml as named by the user
 };
 
 /// One view of one configuration.
@@ -99,9 +99,9 @@ struct ConfigurationResult {
     // (compared configurations only), and the median of those frames as a whole.
     std::map<std::string, double> pass_ms;
     double instrumented_frame_ms = 0;
-    int passes = 0;                               // per frame at the timing view
+    int passes = 0;  // per frame at the timing view
     int draw_calls = 0;
-    std::string gl_error;                         // the first GL error seen, "" when none
+    std::string gl_error;       // the first GL error seen, "" when none
     double plan_ms_median = 0;  // CPU planning time per frame (matrices, polygon, culling)
 
     /// True when the driver accepted every program and no frame raised a GL error.
@@ -153,7 +153,7 @@ struct RunProgress {
     // The remaining frames of each kind (comparisons, images) times that kind's measured
     // thread-seconds per frame, over the rendering threads; 0 until something is done.
     double eta_seconds = 0;
-    double percent = 0;         // the share of the work done, each kind's frames weighed alike
+    double percent = 0;  // the share of the work done, each kind's frames weighed alike
 };
 
 /// Called after every unit of work; may print, must not throw.

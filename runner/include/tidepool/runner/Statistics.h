@@ -29,5 +29,4 @@ struct SampleStatistics {
 /// coverage where the sample count allows. Fails (all zero, count 0) when samples is empty.
 SampleStatistics ComputeSampleStatistics(std::vector<double> samples, double confidence = 0.95);
 
-
 }  // namespace tidepool::runner

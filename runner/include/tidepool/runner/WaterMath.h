@@ -109,10 +109,10 @@ inline float MediumpMaxWaterDepth(float depth) {
 /// The depth-based colour model of ../shared/seeds/003 as water.fsh evaluates it
 /// (ENABLE_EXTINCTION). Units are world units (the default scene's are metres).
 struct ExtinctionModel {
-    glm::vec3 extinction{4.5F, 75.0F, 300.0F};  ///< depth at which red, green, blue are gone
-    float visibility = 40.0F;                   ///< path length at which the water is opaque
+    glm::vec3 extinction{4.5F, 75.0F, 300.0F};         ///< depth at which red, green, blue are gone
+    float visibility = 40.0F;                          ///< path length at which the water is opaque
     glm::vec3 surface_colour{0.0078F, 0.5176F, 0.7F};  ///< the water's own colour (the seed's)
-    glm::vec3 depth_colour{0.0039F, 0.00196F, 0.145F}; ///< what deep water fades to (the seed's)
+    glm::vec3 depth_colour{0.0039F, 0.00196F, 0.145F};  ///< what deep water fades to (the seed's)
 };
 
 /// Floor under the cosine of the view angle in ExtinctionColour (and water.fsh): the path
