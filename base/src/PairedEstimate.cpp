@@ -156,8 +156,19 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     long needed = fallback;
     const double half_width = estimate.HalfWidthPoints();
     if (estimate.Valid() && half_width > 0) {
-        const double wanted = NearDirectionMargin(estimate, rule) ? rule.resolution_points / 2.0
-                                                                  : rule.resolution_points;
+        double wanted = rule.resolution_points;
+        if (NearDirectionMargin(estimate, rule)) {
+            // Near the margin the rule stops as soon as the end clears it by
+            // boundary_standard_errors standard errors (half-width / z each): with the centre d
+            // points beyond the margin that is at half-width z d / (z + boundary), if the centre
+            // holds; never later than half the resolution, where it stops wherever it lies.
+            // Guessing half the resolution for every such comparison overestimated most of them.
+            const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
+            const double centre = (estimate.change_low + estimate.change_high) / 2.0;
+            const double beyond = std::fabs(centre) - kDirectionMarginPoints;
+            wanted = std::clamp(z * beyond / (z + rule.boundary_standard_errors),
+                                rule.resolution_points / 2.0, rule.resolution_points);
+        }
         const double ratio = half_width / wanted;
         needed = static_cast<long>(std::ceil(pairs * std::min(ratio * ratio, 1e6)));
     }

@@ -270,9 +270,17 @@ TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     // Half-width 3.0 at 20 pairs, clear of the margins: (3.0 / 1.5)^2 x 20 = 80, and the first
     // look at or after 80 is 20, 30, 40, 50, 62, 77, 96.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(20, 5.0, 11.0), rule, 60), 96);
-    // Near the margin the rule waits for half the resolution: (1.25 / 0.75)^2 x 150 = 417,
-    // beyond the cap of 400.
+    // Near the margin with the centre only 1.15 points beyond it, the end clears the margin
+    // by 1.5 standard errors at no wider than half the resolution: (1.25 / 0.75)^2 x 150 =
+    // 417, beyond the cap of 400.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -3.9, -1.4), rule, 60), 400);
+    // With the centre 1.9 points beyond the margin (-3.4 +/- 1.25, upper end -2.15, 0.65 from
+    // the margin, within 1.5 standard errors of 0.64), the end clears it at half-width
+    // 1.96 x 1.9 / 3.46 = 1.08: (1.25 / 1.08)^2 x 150 = 202 pairs, the look at 233; waiting for
+    // half the resolution would have guessed the cap.
+    EXPECT_TRUE(NearDirectionMargin(EstimateWithInterval(150, -4.65, -2.15), rule));
+    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60), 233);
+    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, +2.15, +4.65), rule, 60), 233);
     // No interval yet: the fallback, rounded to a look.
     EXPECT_EQ(PairsExpectedAtStop(PairedEstimate{}, rule, 60), 62);
     // Already narrow enough: the pairs so far.

@@ -114,6 +114,8 @@ bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rul
 /// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
 /// scaled by (half-width / the half-width the rule waits for)^2, rounded up to the next look
 /// and clamped to [pairs so far, max_pairs]; `fallback` when the estimate gives no interval.
+/// Near the direction margin the half-width waited for is the one at which the interval's end
+/// would clear the margin (the estimate's centre assumed to hold), at least half the resolution.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
 /// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
