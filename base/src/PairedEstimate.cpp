@@ -121,6 +121,10 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
     return out;
 }
 
+double FinestHalfWidthPoints(const StoppingRule& rule) {
+    return std::min(rule.resolution_points, kDirectionMarginPoints) / 2.0;
+}
+
 bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (!estimate.Valid()) {
         return false;
@@ -134,7 +138,7 @@ bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rul
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (estimate.pairs >= rule.min_pairs && estimate.Valid()) {
         const double half_width = estimate.HalfWidthPoints();
-        if (half_width <= rule.resolution_points / 2.0 ||
+        if (half_width <= FinestHalfWidthPoints(rule) ||
             (half_width <= rule.resolution_points && !NearDirectionMargin(estimate, rule))) {
             return StopDecision::kResolved;
         }
@@ -167,7 +171,7 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
             const double centre = (estimate.change_low + estimate.change_high) / 2.0;
             const double beyond = std::fabs(centre) - kDirectionMarginPoints;
             wanted = std::clamp(z * beyond / (z + rule.boundary_standard_errors),
-                                rule.resolution_points / 2.0, rule.resolution_points);
+                                FinestHalfWidthPoints(rule), rule.resolution_points);
         }
         const double ratio = half_width / wanted;
         needed = static_cast<long>(std::ceil(pairs * std::min(ratio * ratio, 1e6)));

@@ -235,6 +235,24 @@ TEST(PairedEstimateTest, AnIntervalEndingOnTheMarginKeepsGoingUntilItClearsIt) {
     EXPECT_EQ(DecideStop(EstimateWithInterval(400, -3.9, -1.4), rule), StopDecision::kCapped);
 }
 
+TEST(PairedEstimateTest, ACoarseRuleStillResolvesTheMarginAtHalfTheMargin) {
+    // The planner's rule: 3 points far from the margin, but near it as fine as the report's.
+    const StoppingRule coarse{3.0, 20, 400, 10};
+    EXPECT_DOUBLE_EQ(FinestHalfWidthPoints(coarse), 0.75);
+    EXPECT_DOUBLE_EQ(FinestHalfWidthPoints(StoppingRule{}), 0.75);
+    EXPECT_DOUBLE_EQ(FinestHalfWidthPoints(StoppingRule{0.5, 20, 400, 10}), 0.25);
+    // Far from the margins (ends 4 points from them, beyond 1.5 standard errors of 1.28) it
+    // stops at the coarse resolution, whether the effect is large or nothing.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(40, -10.5, -5.5), coarse), StopDecision::kResolved);
+    EXPECT_EQ(DecideStop(EstimateWithInterval(40, -2.5, +2.5), coarse), StopDecision::kResolved);
+    // -2.8 +/- 1.2: the upper end -1.6 sits on the margin. Half the resolution (1.5) would stop
+    // here; the rule goes on until the end clears it or the half-width is 0.75.
+    EXPECT_TRUE(NearDirectionMargin(EstimateWithInterval(100, -4.0, -1.6), coarse));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(100, -4.0, -1.6), coarse), StopDecision::kContinue);
+    EXPECT_EQ(DecideStop(EstimateWithInterval(300, -3.5, -2.0), coarse), StopDecision::kResolved);
+    EXPECT_EQ(DecideStop(EstimateWithInterval(300, -2.9, -1.5), coarse), StopDecision::kResolved);
+}
+
 TEST(PairedEstimateTest, AnEffectOfThreePercentIsClaimedInMostRunsNotInAboutHalf) {
     // A true effect of -3% at the noise of the thread-CPU clock (row 8 of the default run: 150
     // pairs gave a half-width of 1.26 points, a pair's log ratio varying by about 8%). Without

@@ -72,8 +72,8 @@ double PerformanceChangePercent(double frame_time_ratio);
 
 /// When a comparison has enough pairs: its interval's half-width is at most
 /// `resolution_points` and neither end of the interval sits on a verdict's boundary, or its
-/// half-width is at most half of `resolution_points`, or it has `max_pairs`. Never fewer than
-/// `min_pairs`.
+/// half-width is at most FinestHalfWidthPoints (half the resolution or half the direction
+/// margin, whichever is smaller), or it has `max_pairs`. Never fewer than `min_pairs`.
 ///
 /// Why the boundary clause: a direction is claimed when an end of the interval clears
 /// +/-kDirectionMarginPoints. An interval that stops with that end within a standard error or so
@@ -95,6 +95,15 @@ struct StoppingRule {
     double boundary_standard_errors = 1.5;
 };
 
+/// The half-width at which a comparison near the direction margin stops wherever its end lies:
+/// half of `rule.resolution_points` or half of kDirectionMarginPoints, whichever is smaller.
+/// Why the margin bounds it: the scene planner times to a coarse resolution (3 points), but
+/// whether an end lies beyond the 1.5-point margin is a question of the margin's scale; with
+/// half the resolution (1.5) an effect of 2.5 to 3% was chosen in one run and not the next
+/// (`open_sea`'s half-size reflection, bench/main_job.sh), while the comparisons far from the
+/// margin, most of them, still stop at the coarse resolution. Never fails.
+double FinestHalfWidthPoints(const StoppingRule& rule);
+
 /// What the sequential rule says after a look.
 enum class StopDecision {
     kContinue,  // take another batch
@@ -115,7 +124,8 @@ bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rul
 /// scaled by (half-width / the half-width the rule waits for)^2, rounded up to the next look
 /// and clamped to [pairs so far, max_pairs]; `fallback` when the estimate gives no interval.
 /// Near the direction margin the half-width waited for is the one at which the interval's end
-/// would clear the margin (the estimate's centre assumed to hold), at least half the resolution.
+/// would clear the margin (the estimate's centre assumed to hold), at least
+/// FinestHalfWidthPoints.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
 /// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
