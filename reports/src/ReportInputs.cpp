@@ -1,11 +1,13 @@
 #include "tidepool/report/ReportInputs.h"
 
+#include "tidepool/report/StageFileShapes.h"
 #include "tidepool/report/Statistics.h"
 
 #include <cmath>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -524,6 +526,11 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         out.error = fmt::format("{}: {}", manifest_path.string(), problem);
         return out;
     }
+    if (std::string problem = CheckStageFileShape(StageFile::kManifest, *manifest);
+        !problem.empty()) {
+        out.error = fmt::format("{}: {}", manifest_path.string(), problem);
+        return out;
+    }
     if (!manifest->contains("variants") || !(*manifest)["variants"].is_array() ||
         !manifest->contains("counts") || !(*manifest)["counts"].is_object()) {
         out.error = fmt::format(
@@ -544,6 +551,11 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     }
     if (std::string problem =
                 CheckSchema(*results, kResultsSchemaName, "schema_version", kResultsVersion);
+        !problem.empty()) {
+        out.error = fmt::format("{}: {}", results_path.string(), problem);
+        return out;
+    }
+    if (std::string problem = CheckStageFileShape(StageFile::kResults, *results);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", results_path.string(), problem);
         return out;
@@ -634,6 +646,19 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     inputs.plans_path = folder / kPlansFileName;
     LoadOptionalSibling(inputs.plans_path, kPlansSchemaName, kPlansVersion, &inputs.plans,
                         &inputs.plans_error);
+    // A sibling that is unreadable or not tidepool's is left out and named in its section (it
+    // may be anything a user left there); one that claims the schema but has a wrongly typed
+    // field is a damaged stage file, an error like a damaged manifest or results file.
+    for (const auto& [sibling, kind, path] :
+         {std::tuple{&inputs.stability, StageFile::kStability, &inputs.stability_path},
+          std::tuple{&inputs.plans, StageFile::kPlans, &inputs.plans_path}}) {
+        if (*sibling) {
+            if (std::string problem = CheckStageFileShape(kind, **sibling); !problem.empty()) {
+                out.error = fmt::format("{}: {}", path->string(), problem);
+                return out;
+            }
+        }
+    }
     if (inputs.plans) {
         if (std::string problem = CheckPlans(*inputs.plans); !problem.empty()) {
             inputs.plans_error = fmt::format("{}: {}", inputs.plans_path.string(), problem);

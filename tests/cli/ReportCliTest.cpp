@@ -12,6 +12,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "TempDir.h"
 #include "TidepoolProcess.h"
@@ -172,6 +173,49 @@ TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
     EXPECT_EQ(r.exit_code, 2) << r.out;
     EXPECT_NE(r.out.find(missing.string()), std::string::npos) << r.out;
     EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out" / "default"));
+}
+
+// Issue 14: a wrongly typed field in any of the four stage files, as the real writers laid
+// them out, is exit 2 with the file and the field's path on stderr, and no report is written.
+TEST_F(ReportCliTest, WronglyTypedFieldInAnyStageFileExitsTwoNamingTheFileAndField) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    struct Case {
+        const char* file;  // relative to the run's folder
+        const char* pointer;
+        nlohmann::json value;
+        const char* message;
+    };
+    const std::vector<Case> cases = {
+            {"manifest/manifest.json", "/counts/variants", "many",
+             "'counts.variants' has the wrong type (expected number, found string)"},
+            {"render/results.json", "/comparisons/0/baseline_ms/0", true,
+             "'comparisons[0].baseline_ms[0]' has the wrong type (expected number, found bool)"},
+            {"render/stability.json", "/cases/0/passed", "yes",
+             "'cases[0].passed' has the wrong type (expected bool, found string)"},
+            {"render/plans.json", "/plans/0/candidates/0/psnr_db", "high",
+             "'plans[0].candidates[0].psnr_db' has the wrong type (expected number, found "
+             "string)"},
+    };
+    for (const Case& c : cases) {
+        TempDir copy;
+        for (const char* folder : {"manifest", "render"}) {
+            std::filesystem::copy(Out() / folder, copy.Path() / folder,
+                                  std::filesystem::copy_options::recursive);
+        }
+        const std::filesystem::path file = copy.Path() / c.file;
+        nlohmann::json document = nlohmann::json::parse(ReadText(file));
+        document[nlohmann::json::json_pointer(c.pointer)] = c.value;
+        std::ofstream(file, std::ios::trunc) << document.dump();
+        const tidepool::testing::SplitResult r = tidepool::testing::RunTidepoolSplit(
+                "report --manifest '" + (copy.Path() / "manifest/manifest.json").string() +
+                        "' --results '" + (copy.Path() / "render/results.json").string() +
+                        "' --out '" + (copy.Path() / "out").string() + "'",
+                copy.Path());
+        EXPECT_EQ(r.exit_code, 2) << c.file << ": " << r.err;
+        EXPECT_NE(r.err.find(file.string() + ": " + c.message), std::string::npos)
+                << c.file << ": " << r.err;
+        EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out")) << c.file;
+    }
 }
 
 TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {

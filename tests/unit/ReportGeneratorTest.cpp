@@ -1196,7 +1196,7 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
              [](nlohmann::json& j) { j["configurations"][1]["id"] = j["configurations"][0]["id"]; },
              "appears more than once"},
             {"variant not an object", true, [](nlohmann::json& j) { j["variants"][0] = 7; },
-             "'variants[0]' is not an object"},
+             "'variants[0]' has the wrong type (expected object, found number)"},
             {"variant without id", true, [](nlohmann::json& j) { j["variants"][1].erase("id"); },
              "'variants[1].id' is not a non-empty string"},
             {"variant valid not boolean", true,
@@ -1213,13 +1213,14 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
             // Wrongly typed fields (issue 15 class 3): an error naming the field, not an abort.
             {"uniform_bools a string", false,
              [](nlohmann::json& j) { j["configurations"][0]["uniform_bools"] = "yes"; },
-             "'uniform_bools' must be true or false, not \"yes\""},
+             "'configurations[0].uniform_bools' has the wrong type (expected bool, found string)"},
             {"driver.valid a number", false,
              [](nlohmann::json& j) { j["configurations"][0]["driver"]["valid"] = 1; },
-             "driver: 'valid' must be true or false, not 1"},
+             "'configurations[0].driver.valid' has the wrong type (expected bool, found number)"},
             {"passes.culling a string", false,
              [](nlohmann::json& j) { j["configurations"][0]["passes"]["culling"] = "no"; },
-             "passes: 'culling' must be true or false, not \"no\""},
+             "'configurations[0].passes.culling' has the wrong type (expected bool, found "
+             "string)"},
     };
     for (const Case& c : cases) {
         TempDir dir;

@@ -1,0 +1,591 @@
+#include "tidepool/report/StageFileShapes.h"
+
+#include <fmt/format.h>
+
+namespace tidepool::report {
+namespace {
+
+// Each writer's fields and their types. A writer that adds a field need not change its shape
+// (unknown fields pass); one that changes a field's type must, or every report of its files
+// fails: the CLI tests build reports from files the real writers wrote, so they catch it.
+// Written by compiler/src/Manifest.cpp (`tidepool validate --out`).
+constexpr const char* kManifestShape = R"json(
+{
+  "config": "string",
+  "counts": {
+    "invalid": "number",
+    "links": "number",
+    "pruned": "number",
+    "shared_stage_slots": "number",
+    "stage_programs": "number",
+    "stage_slots": "number",
+    "variants": "number"
+  },
+  "presets": [
+    {
+      "description": "string",
+      "name": "string",
+      "passes": {
+        "clip": "string",
+        "culling": "bool",
+        "depth_fog": "bool",
+        "low_res_water": "bool",
+        "reflection_size": "number",
+        "refraction_size": "number"
+      },
+      "runtime_features": ["string"],
+      "variant": "string"
+    }
+  ],
+  "programs": [{"defines": ["string"], "fragment": "string", "name": "string", "vertex": "string"}],
+  "pruned_by_rule": [
+    {
+      "count": "number",
+      "file": "string",
+      "line": "number",
+      "program": "string",
+      "rule": "string"
+    }
+  ],
+  "schema": "string",
+  "stage_programs": [
+    {
+      "cost": {
+        "arithmetic_ops": "number",
+        "branches": "number",
+        "builtin_calls": {"*": "number"},
+        "longest_path_ops": "number",
+        "loops": "number",
+        "samplers": "number",
+        "shortest_path_ops": "number",
+        "texture_samples": "number",
+        "total_ops": "number",
+        "uniforms": "number",
+        "varyings": "number"
+      },
+      "defines": ["string"],
+      "file": "string",
+      "hash": "string",
+      "stage": "string",
+      "target": "string",
+      "valid": "bool",
+      "variants": ["string"]
+    }
+  ],
+  "targets": ["string"],
+  "variants": [
+    {
+      "defines": ["string"],
+      "diagnostics": [
+        {
+          "severity": "string",
+          "file": "string",
+          "line": "number",
+          "column": "number",
+          "message": "string",
+          "variant": "string",
+          "text": "string"
+        }
+      ],
+      "failed_steps": ["string"],
+      "id": "string",
+      "program": "string",
+      "stages": {
+        "fragment": {
+          "cost": {
+            "arithmetic_ops": "number",
+            "branches": "number",
+            "builtin_calls": {"*": "number"},
+            "longest_path_ops": "number",
+            "loops": "number",
+            "samplers": "number",
+            "shortest_path_ops": "number",
+            "texture_samples": "number",
+            "total_ops": "number",
+            "uniforms": "number",
+            "varyings": "number"
+          },
+          "file": "string",
+          "hash": "string"
+        },
+        "vertex": {
+          "cost": {
+            "arithmetic_ops": "number",
+            "branches": "number",
+            "builtin_calls": {"*": "number"},
+            "longest_path_ops": "number",
+            "loops": "number",
+            "samplers": "number",
+            "shortest_path_ops": "number",
+            "texture_samples": "number",
+            "total_ops": "number",
+            "uniforms": "number",
+            "varyings": "number"
+          },
+          "file": "string",
+          "hash": "string"
+        }
+      },
+      "steps": {"*": "string"},
+      "target": "string",
+      "valid": "bool"
+    }
+  ],
+  "version": "number"
+}
+)json";
+
+// Written by runner/src/Results.cpp, ResultsToJson.
+constexpr const char* kResultsShape = R"json(
+{
+  "comparisons": [
+    {
+      "baseline": "string",
+      "baseline_ms": ["number"],
+      "baseline_wall_ms": ["number"],
+      "candidate": "string",
+      "candidate_ms": ["number"],
+      "candidate_wall_ms": ["number"],
+      "change_high": "number",
+      "change_low": "number",
+      "change_percent": "number",
+      "decision": "string",
+      "error": "string",
+      "label": "string",
+      "pairs": "number",
+      "ratio": "number",
+      "ratio_high": "number",
+      "ratio_low": "number"
+    }
+  ],
+  "configurations": [
+    {
+      "cpu_samples_ms": [["number"]],
+      "cpu_statistics": {
+        "ci_coverage": "number",
+        "ci_high_ms": "number",
+        "ci_low_ms": "number",
+        "ci_method": "string",
+        "count": "number",
+        "iqr_ms": "number",
+        "max_ms": "number",
+        "mean_ms": "number",
+        "median_ms": "number",
+        "min_ms": "number",
+        "q1_ms": "number",
+        "q3_ms": "number"
+      },
+      "defines": ["string"],
+      "driver": {
+        "diagnostics": [
+          {
+            "severity": "string",
+            "file": "string",
+            "line": "number",
+            "column": "number",
+            "message": "string",
+            "variant": "string",
+            "text": "string"
+          }
+        ],
+        "fragment_compiled": "bool",
+        "fragment_log": "string",
+        "link_log": "string",
+        "linked": "bool",
+        "valid": "bool",
+        "vertex_compiled": "bool",
+        "vertex_log": "string"
+      },
+      "effects": ["string"],
+      "frame_draw_calls": "number",
+      "frame_passes": "number",
+      "gl_error": "string",
+      "glslang_valid": "bool",
+      "id": "string",
+      "instrumented_frame_ms": "number",
+      "ok": "bool",
+      "pass_ms": {"*": "number"},
+      "passes": {
+        "clip": "string",
+        "culling": "bool",
+        "depth_fog": "bool",
+        "low_res_water": "bool",
+        "reflection_size": "number",
+        "refraction_size": "number"
+      },
+      "plan_ms_median": "number",
+      "presets": ["string"],
+      "program": "string",
+      "samples_ms": [["number"]],
+      "statistics": {
+        "ci_coverage": "number",
+        "ci_high_ms": "number",
+        "ci_low_ms": "number",
+        "ci_method": "string",
+        "count": "number",
+        "iqr_ms": "number",
+        "max_ms": "number",
+        "mean_ms": "number",
+        "median_ms": "number",
+        "min_ms": "number",
+        "q1_ms": "number",
+        "q3_ms": "number"
+      },
+      "uniform_bools": "bool",
+      "variant": "string",
+      "views": [
+        {
+          "draw_calls": "number",
+          "gl_error": "string",
+          "image": "string",
+          "oblique_fallback": "bool",
+          "pass_names": ["string"],
+          "passes": "number",
+          "view": "string"
+        }
+      ]
+    }
+  ],
+  "diagnostics": [
+    {
+      "severity": "string",
+      "file": "string",
+      "line": "number",
+      "column": "number",
+      "message": "string",
+      "variant": "string",
+      "text": "string"
+    }
+  ],
+  "disagreements": [{"variant": "string", "glslang_valid": "bool", "mesa_valid": "bool"}],
+  "environment": {
+    "backend": "string",
+    "build_type": "string",
+    "command": "string",
+    "context_api": "string",
+    "cpu_model": "string",
+    "float_render_target": "bool",
+    "git_revision": "string",
+    "gl_renderer": "string",
+    "gl_version": "string",
+    "glsl_version": "string",
+    "lp_num_threads": "string",
+    "mesa_version": "string",
+    "timer_query": "bool"
+  },
+  "ok": "bool",
+  "schema": "string",
+  "schema_version": "number",
+  "settings": {
+    "animation_time_s": "number",
+    "bump_scale": [["number"]],
+    "bump_velocity": [["number"]],
+    "clip_plane_offset": "number",
+    "coarse_frames": "number",
+    "config": "string",
+    "extinction": {
+      "depth_colour": ["number"],
+      "extinction": ["number"],
+      "surface_colour": ["number"],
+      "visibility": "number"
+    },
+    "foam_depth": ["number"],
+    "fog_colour": ["number"],
+    "fourier": {
+      "coefficients": "number",
+      "directions": "number",
+      "grid_margin": "number",
+      "grid_spacing": "number",
+      "integration_samples": "number",
+      "march_distance": "number"
+    },
+    "height": "number",
+    "low_res_water_size": "number",
+    "max_water_depth": "number",
+    "normal_map_size": "number",
+    "normalisation_cube_size": "number",
+    "pass_frames": "number",
+    "rcp_max_fog_depth": "number",
+    "rcp_max_fog_distance": "number",
+    "shininess": "number",
+    "shore_hardness": "number",
+    "sky_size": "number",
+    "timing_method": "string",
+    "timing_view": "string",
+    "underwater_colour": ["number"],
+    "views": [
+      {
+        "eye": ["number"],
+        "far": "number",
+        "fov_y_radians": "number",
+        "name": "string",
+        "near": "number",
+        "target": ["number"]
+      }
+    ],
+    "warmup_frames": "number",
+    "water_colour": ["number"],
+    "wave_distortion": "number",
+    "width": "number",
+    "workers": "number"
+  },
+  "started_utc": "string",
+  "timing": {
+    "batch_pairs": "number",
+    "clock": "string",
+    "clock_reason": "string",
+    "confidence": "number",
+    "estimator": "string",
+    "max_pairs": "number",
+    "min_pairs": "number",
+    "resolution_points": "number"
+  },
+  "wall_seconds": "number"
+}
+)json";
+
+// Written by lab/src/StabilityReport.cpp.
+constexpr const char* kStabilityShape = R"json(
+{
+  "cases": [
+    {
+      "bound": "number",
+      "description": "string",
+      "fix": "string",
+      "inf_count": "number",
+      "kind": "string",
+      "max_error": "number",
+      "name": "string",
+      "nan_count": "number",
+      "note": "string",
+      "passed": "bool",
+      "variants_checked": "number"
+    }
+  ],
+  "environment": {
+    "backend": "string",
+    "config": "string",
+    "lp_num_threads": "string",
+    "mesa_version": "string",
+    "renderer": "string",
+    "size": "string",
+    "version": "string"
+  },
+  "guards": [
+    {
+      "guard": "string",
+      "max_channel_diff_normal_views": "number",
+      "passed": "bool",
+      "tolerance": "number"
+    }
+  ],
+  "precision": [
+    {
+      "bound_fp16": "number",
+      "expression": "string",
+      "loses_precision": "bool",
+      "max_abs_error_float": "number",
+      "max_abs_error_fp16": "number",
+      "max_rel_error_fp16": "number",
+      "non_finite_fp16": "number",
+      "note": "string"
+    }
+  ],
+  "schema": "string",
+  "version": "number"
+}
+)json";
+
+// Written by lab/src/ScenePlanner.cpp, PlansToJson.
+constexpr const char* kPlansShape = R"json(
+{
+  "plans": [
+    {
+      "candidates": [
+        {
+          "draw_calls": "number",
+          "id": "string",
+          "image": "string",
+          "meets_quality": "bool",
+          "pairs": "number",
+          "pass_draw_calls": ["number"],
+          "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
+          "passes": ["string"],
+          "pixels_shaded_estimate": "number",
+          "proposed_because": "string",
+          "psnr_db": "number",
+          "share_visible": "number",
+          "ssim": "number",
+          "time_change_interval": ["number"],
+          "time_change_percent": "number",
+          "time_ms": "number",
+          "valid": "bool",
+          "variant": "string",
+          "water_colour_alpha": "number"
+        }
+      ],
+      "choice_reason": "string",
+      "chosen": {
+        "draw_calls": "number",
+        "id": "string",
+        "image": "string",
+        "pass_draw_calls": ["number"],
+        "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
+        "passes": ["string"],
+        "pixels_shaded_estimate": "number",
+        "variant": "string"
+      },
+      "description": "string",
+      "draws_saved": "number",
+      "dropped": [
+        {
+          "effect": "string",
+          "psnr_change_db": "number",
+          "reason": "string",
+          "time_change_percent": "number"
+        }
+      ],
+      "error": {"psnr_db": "number", "share_visible": "number", "ssim": "number"},
+      "errors": ["string"],
+      "full": {
+        "draw_calls": "number",
+        "id": "string",
+        "image": "string",
+        "pass_draw_calls": ["number"],
+        "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
+        "passes": ["string"],
+        "pixels_shaded_estimate": "number",
+        "variant": "string"
+      },
+      "kept": [
+        {
+          "effect": "string",
+          "psnr_change_db": "number",
+          "reason": "string",
+          "time_change_percent": "number"
+        }
+      ],
+      "met": "bool",
+      "needed": ["string"],
+      "passes_saved": "number",
+      "pixels_saved": "number",
+      "scene": "string",
+      "target": {"min_psnr_db": "number"},
+      "time_change_interval": ["number"],
+      "time_change_percent": "number",
+      "time_ms_chosen": "number",
+      "time_ms_full": "number"
+    }
+  ],
+  "schema": "string",
+  "size": ["number"],
+  "timing": {"max_pairs": "number", "min_pairs": "number", "resolution_points": "number"},
+  "version": "number"
+}
+)json";
+
+const char* TypeName(const nlohmann::json& value) {
+    switch (value.type()) {
+        case nlohmann::json::value_t::null:
+            return "null";
+        case nlohmann::json::value_t::boolean:
+            return "bool";
+        case nlohmann::json::value_t::number_integer:
+        case nlohmann::json::value_t::number_unsigned:
+        case nlohmann::json::value_t::number_float:
+            return "number";
+        case nlohmann::json::value_t::string:
+            return "string";
+        case nlohmann::json::value_t::array:
+            return "array";
+        case nlohmann::json::value_t::object:
+            return "object";
+        default:
+            return "binary";
+    }
+}
+
+std::string WrongType(const std::string& path, std::string_view expected,
+                      const nlohmann::json& found) {
+    return fmt::format("'{}' has the wrong type (expected {}, found {})",
+                       path.empty() ? "(the document)" : path, expected, TypeName(found));
+}
+
+// Whether `value` is of the type named by `type` (a shape's leaf).
+bool IsOfType(const nlohmann::json& value, std::string_view type) {
+    if (type == "any") {
+        return true;
+    }
+    if (type == "number") {
+        return value.is_number() || value.is_null();  // NaN is written as null
+    }
+    if (type == "string") {
+        return value.is_string();
+    }
+    if (type == "bool") {
+        return value.is_boolean();
+    }
+    return false;
+}
+
+}  // namespace
+
+std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json& shape,
+                           const std::string& path) {
+    if (shape.is_string()) {
+        const std::string& type = shape.get_ref<const std::string&>();
+        return IsOfType(document, type) ? std::string() : WrongType(path, type, document);
+    }
+    if (shape.is_array()) {
+        if (!document.is_array()) {
+            return WrongType(path, "array", document);
+        }
+        if (shape.empty()) {
+            return {};
+        }
+        for (std::size_t i = 0; i < document.size(); ++i) {
+            if (std::string problem =
+                        CheckJsonShape(document[i], shape.front(), fmt::format("{}[{}]", path, i));
+                !problem.empty()) {
+                return problem;
+            }
+        }
+        return {};
+    }
+    if (!document.is_object()) {
+        return WrongType(path, "object", document);
+    }
+    const auto every = shape.find("*");
+    for (const auto& [key, value] : document.items()) {
+        const auto field = every != shape.end() ? every : shape.find(key);
+        if (field == shape.end()) {
+            continue;  // a field this shape does not know: a newer writer's
+        }
+        const std::string field_path = path.empty() ? key : path + "." + key;
+        if (std::string problem = CheckJsonShape(value, *field, field_path); !problem.empty()) {
+            return problem;
+        }
+    }
+    return {};
+}
+
+std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) {
+    // Parsed once: the shapes are constants of this build.
+    static const nlohmann::json manifest = nlohmann::json::parse(kManifestShape);
+    static const nlohmann::json results = nlohmann::json::parse(kResultsShape);
+    static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
+    static const nlohmann::json plans = nlohmann::json::parse(kPlansShape);
+    switch (file) {
+        case StageFile::kManifest:
+            return CheckJsonShape(document, manifest);
+        case StageFile::kResults:
+            return CheckJsonShape(document, results);
+        case StageFile::kStability:
+            return CheckJsonShape(document, stability);
+        case StageFile::kPlans:
+            return CheckJsonShape(document, plans);
+    }
+    return {};
+}
+
+}  // namespace tidepool::report
