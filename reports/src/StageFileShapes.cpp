@@ -200,7 +200,7 @@ constexpr const char* kResultsShape = R"json(
       "frame_draw_calls": "number",
       "frame_passes": "number",
       "gl_error": "string",
-      "glslang_valid": "bool",
+      "glslang_valid": "bool?",
       "id": "string",
       "instrumented_frame_ms": "number",
       "ok": "bool",
@@ -511,8 +511,11 @@ std::string WrongType(const std::string& path, std::string_view expected,
                        path.empty() ? "(the document)" : path, expected, TypeName(found));
 }
 
-// Whether `value` is of the type named by `type` (a shape's leaf).
+// Whether `value` is of the type named by `type` (a shape's leaf; a trailing '?' allows null).
 bool IsOfType(const nlohmann::json& value, std::string_view type) {
+    if (!type.empty() && type.back() == '?') {
+        return value.is_null() || IsOfType(value, type.substr(0, type.size() - 1));
+    }
     if (type == "any") {
         return true;
     }

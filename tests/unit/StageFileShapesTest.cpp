@@ -40,6 +40,15 @@ TEST(JsonShapeTest, NullIsANumberUnknownAndAbsentFieldsPass) {
     EXPECT_EQ(CheckJsonShape(json::object(), shape), "");
     EXPECT_EQ(CheckJsonShape(json::parse(R"({"s": null})"), shape),
               "'s' has the wrong type (expected string, found null)");
+    // A verdict not taken is written as null: "bool?".
+    const json optional = json::parse(R"({"b": "bool?"})");
+    EXPECT_EQ(CheckJsonShape(json::parse(R"({"b": null})"), optional), "");
+    EXPECT_EQ(CheckJsonShape(json::parse(R"({"b": false})"), optional), "");
+    EXPECT_EQ(CheckJsonShape(json::parse(R"({"b": 0})"), optional),
+              "'b' has the wrong type (expected bool?, found number)");
+    EXPECT_EQ(CheckStageFileShape(StageFile::kResults,
+                                  json::parse(R"({"configurations": [{"glslang_valid": null}]})")),
+              "");
 }
 
 // One wrongly typed field per stage file, deep and shallow, as the writers lay the files out.

@@ -23,7 +23,7 @@ enum class StageFile { kManifest, kResults, kStability, kPlans };
 std::string CheckStageFileShape(StageFile file, const nlohmann::json& document);
 
 /// Checks `document` against `shape`, a JSON template: a string names a type ("number",
-/// "string", "bool", "any"); `[S]` is an array whose every item has shape S (`[]`: any array);
+/// "string", "bool", "any"; a trailing "?" also allows null); `[S]` is an array whose every item has shape S (`[]`: any array);
 /// an object lists its fields' shapes, or is `{"*": S}` for a map whose every value has shape S.
 /// Returns "" or the first mismatch as CheckStageFileShape does; `path` prefixes the paths.
 /// Never throws.
