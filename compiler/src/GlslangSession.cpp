@@ -204,6 +204,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
             const std::vector<Diagnostic> characters =
                     CheckWebGlCharacters(preprocessed.text, input.text, input.file);
             webgl_errors.insert(webgl_errors.end(), characters.begin(), characters.end());
+            if (IsTarget(input, GlslTarget::kWebGl2)) {
+                const std::vector<Diagnostic> layouts =
+                        CheckWebGl2BlockLayouts(preprocessed.text, input.text, input.file);
+                webgl_errors.insert(webgl_errors.end(), layouts.begin(), layouts.end());
+            }
         }
     }
     // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
@@ -279,6 +284,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
         const std::vector<Diagnostic> conformance =
                 CheckStageConformance(*result.intermediate, input.file);
         broken.insert(broken.end(), conformance.begin(), conformance.end());
+        if (webgl) {
+            const std::vector<Diagnostic> nesting =
+                    CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
+            broken.insert(broken.end(), nesting.begin(), nesting.end());
+        }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;
         if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(prepared.text); !pluses.empty()) {
