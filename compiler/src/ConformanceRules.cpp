@@ -232,6 +232,24 @@ std::string InterfaceKey(const glslang::TIntermSymbol& symbol) {
     return symbol.getName().c_str();
 }
 
+// The 1-based column of the first whole-word `name` on 1-based line `line` of `text` (0 when
+// it is not there): the preprocessed text glslang gives back keeps lines, not columns.
+int ColumnOnLine(std::string_view text, int line, std::string_view name) {
+    std::size_t start = 0;
+    for (int l = 1; l < line && start != std::string_view::npos; ++l) {
+        start = text.find('\n', start);
+        start = start == std::string_view::npos ? start : start + 1;
+    }
+    if (start == std::string_view::npos) {
+        return 0;
+    }
+    const std::size_t end = text.find('\n', start);
+    const std::string_view row =
+            text.substr(start, end == std::string_view::npos ? text.size() - start : end - start);
+    const auto [row_line, column] = FirstMention(row, name);
+    return row_line == 0 ? 0 : column;
+}
+
 const char* InterpolationName(const glslang::TQualifier& qualifier) {
     return qualifier.flat ? "flat" : "smooth";
 }
@@ -270,11 +288,13 @@ std::vector<Diagnostic> CheckStageConformance(const glslang::TIntermediate& stag
     return errors;
 }
 
-std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& vertex,
-                                             const std::string& vertex_file,
-                                             const glslang::TIntermediate& fragment,
-                                             const std::string& fragment_file,
-                                             std::string_view fragment_source) {
+std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex_stage,
+                                             const LinkedStage& fragment_stage) {
+    const glslang::TIntermediate& vertex = vertex_stage.intermediate;
+    const glslang::TIntermediate& fragment = fragment_stage.intermediate;
+    const std::string& vertex_file = vertex_stage.file;
+    const std::string& fragment_file = fragment_stage.file;
+    const std::string_view fragment_source = fragment_stage.source;
     std::vector<Diagnostic> errors;
     // Reported at the fragment stage's declaration: the vertex side is named in the message.
     auto report = [&](std::string_view name, std::string message) {
@@ -326,6 +346,121 @@ std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& verte
                                name, InterpolationName(type.getQualifier()),
                                InterpolationName(output->second->getType().getQualifier()),
                                vertex_file));
+        } else if (type.getQualifier().storage == glslang::EvqVaryingIn &&
+                   fragment.getVersion() == 100) {
+            // GLSL ES 1.00 §4.6.4: "The invariance of varyings that are declared in both the
+            // vertex and fragment shaders must match." `#pragma STDGL invariant(all)` makes "all
+            // output variables" invariant (§4.6.1): the vertex shader's varyings, not the
+            // fragment shader's.
+            const auto output = vertex_outputs.find(name);
+            if (output == vertex_outputs.end()) {
+                continue;
+            }
+            const bool here = type.getQualifier().invariant;
+            const bool there = output->second->getType().getQualifier().invariant ||
+                               vertex_stage.invariance.all;
+            if (here != there) {
+                report(name, fmt::format("varying '{}' is {} here but {} in the vertex shader {}; "
+                                         "the invariance of a varying declared in both stages "
+                                         "must match (GLSL ES 1.00 §4.6.4)",
+                                         name, here ? "invariant" : "not invariant",
+                                         there ? "invariant" : "not invariant", vertex_file));
+            }
+        }
+    }
+    if (fragment.getVersion() == 100) {
+        // GLSL ES 1.00 §4.6.4: gl_FragCoord may be declared invariant only if gl_Position is, and
+        // gl_PointCoord only if gl_PointSize is.
+        auto invariant_in_vertex = [&](std::string_view name) {
+            return vertex_stage.invariance.all ||
+                   std::any_of(vertex_stage.invariance.builtins.begin(),
+                               vertex_stage.invariance.builtins.end(),
+                               [&](const InvariantBuiltIn& b) { return b.name == name; });
+        };
+        static const std::pair<std::string_view, std::string_view> kPairs[] = {
+                {"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}};
+        for (const InvariantBuiltIn& builtin : fragment_stage.invariance.builtins) {
+            for (const auto& [input, output] : kPairs) {
+                if (builtin.name == input && !invariant_in_vertex(output)) {
+                    errors.push_back(MakeError(
+                            fragment_file, builtin.line, builtin.column,
+                            fmt::format("'{}' is declared invariant, but '{}' is not invariant "
+                                        "in the vertex shader {}; {} may be invariant only if "
+                                        "{} is (GLSL ES 1.00 §4.6.4)",
+                                        input, output, vertex_file, input, output)));
+                }
+            }
+        }
+    }
+    return errors;
+}
+
+bool MayRedeclareInvariant(std::string_view source) {
+    return source.find("invariant") != std::string_view::npos;
+}
+
+InvarianceDeclarations FindInvarianceDeclarations(std::string_view preprocessed,
+                                                  std::string_view source) {
+    InvarianceDeclarations found;
+    std::vector<SourceToken> tokens;
+    for (const std::vector<SourceToken>& line : SourceTokenLines(preprocessed)) {
+        if (!line.empty() && line[0].text == "#") {
+            // A directive is no declaration, but `#pragma STDGL invariant(all)` is the pragma
+            // (glslang's preprocessed text may write it without blanks: "STDGLinvariant(all)").
+            if (line.size() >= 2 && line[1].text == "pragma") {
+                std::string words;
+                for (std::size_t k = 2; k < line.size(); ++k) {
+                    words += line[k].text;
+                }
+                found.all = found.all || words == "STDGLinvariant(all)";
+            }
+            continue;
+        }
+        tokens.insert(tokens.end(), line.begin(), line.end());
+    }
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        if (tokens[i].text != "invariant") {
+            continue;
+        }
+        // invariant NAME (, NAME)* ;  -- anything else (invariant varying ...) declares a
+        // variable, whose qualifiers glslang keeps.
+        std::vector<const SourceToken*> names;
+        std::size_t k = i + 1;
+        while (k < tokens.size() && tokens[k].identifier) {
+            names.push_back(&tokens[k]);
+            ++k;
+            if (k < tokens.size() && tokens[k].text == ",") {
+                ++k;
+                continue;
+            }
+            break;
+        }
+        if (names.empty() || k >= tokens.size() || tokens[k].text != ";") {
+            continue;
+        }
+        for (const SourceToken* name : names) {
+            if (name->text.rfind("gl_", 0) == 0) {
+                found.builtins.push_back(
+                        InvariantBuiltIn{std::string(name->text), name->line,
+                                         ColumnOnLine(source, name->line, name->text)});
+            }
+        }
+    }
+    return found;
+}
+
+std::vector<Diagnostic> CheckInvariantBuiltIns(const glslang::TIntermediate& stage,
+                                               const InvarianceDeclarations& invariance,
+                                               const std::string& file) {
+    std::vector<Diagnostic> errors;
+    if (stage.getVersion() != 100 || stage.getStage() != EShLangFragment) {
+        return errors;
+    }
+    for (const InvariantBuiltIn& builtin : invariance.builtins) {
+        if (builtin.name == "gl_FrontFacing") {
+            errors.push_back(MakeError(file, builtin.line, builtin.column,
+                                       "'gl_FrontFacing' cannot be declared invariant; its "
+                                       "invariance is that of gl_Position (GLSL ES 1.00 §4.6.4)"));
         }
     }
     return errors;
@@ -392,11 +527,166 @@ constexpr std::string_view kReservedMacro100 =
 constexpr std::string_view kReservedMacroWarning =
         "names containing consecutive underscores are reserved:";
 
+constexpr std::string_view kEmptyLastCase = "last case/default label not followed by statements";
+
 bool Mentions(const Diagnostic& d, std::string_view text) {
     return d.message.find(text) != std::string::npos;
 }
 
+// The tokens of a text outside preprocessor directives, in order.
+std::vector<SourceToken> CodeTokens(std::string_view text) {
+    std::vector<SourceToken> tokens;
+    for (const std::vector<SourceToken>& line : SourceTokenLines(text)) {
+        if (!line.empty() && line[0].text == "#") {
+            continue;
+        }
+        tokens.insert(tokens.end(), line.begin(), line.end());
+    }
+    return tokens;
+}
+
+// The index of the token closing the bracket opened at tokens[open] (tokens.size() if none).
+std::size_t Closing(const std::vector<SourceToken>& tokens, std::size_t open) {
+    const std::string_view opener = tokens[open].text;
+    const std::string_view closer = opener == "(" ? ")" : opener == "[" ? "]" : "}";
+    int depth = 0;
+    for (std::size_t i = open; i < tokens.size(); ++i) {
+        if (tokens[i].text == opener) {
+            ++depth;
+        } else if (tokens[i].text == closer && --depth == 0) {
+            return i;
+        }
+    }
+    return tokens.size();
+}
+
+// Two single-character tokens written as one operator (`++`, `+=`).
+bool Adjacent(const SourceToken& a, const SourceToken& b) {
+    return a.line == b.line && b.column == a.column + static_cast<int>(a.text.size());
+}
+
 }  // namespace
+
+std::set<int> SwitchesWithStatementAfterLastLabel(std::string_view preprocessed) {
+    const std::vector<SourceToken> tokens = CodeTokens(preprocessed);
+    std::map<int, bool> lines;  // line of a switch -> every switch there ends in a statement
+    for (std::size_t i = 0; i + 1 < tokens.size(); ++i) {
+        if (tokens[i].text != "switch" || tokens[i + 1].text != "(") {
+            continue;
+        }
+        const std::size_t condition_end = Closing(tokens, i + 1);
+        bool ok = false;
+        if (condition_end + 1 < tokens.size() && tokens[condition_end + 1].text == "{") {
+            const std::size_t body_end = Closing(tokens, condition_end + 1);
+            // A label ends in `:`, and no statement or expression can end in one: the token
+            // before the closing brace is that `:` exactly when the last label stands alone. An
+            // empty body is left to glslang.
+            ok = body_end < tokens.size() && body_end > condition_end + 2 &&
+                 tokens[body_end - 1].text != ":";
+        }
+        const auto [entry, inserted] = lines.emplace(tokens[i].line, ok);
+        if (!inserted) {
+            entry->second = entry->second && ok;
+        }
+    }
+    std::set<int> result;
+    for (const auto& [line, ok] : lines) {
+        if (ok) {
+            result.insert(line);
+        }
+    }
+    return result;
+}
+
+bool MentionsEmptyLastCase(const std::vector<Diagnostic>& diagnostics) {
+    return std::any_of(diagnostics.begin(), diagnostics.end(),
+                       [](const Diagnostic& d) { return Mentions(d, kEmptyLastCase); });
+}
+
+std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
+    const std::vector<SourceToken> tokens = CodeTokens(text);
+    std::vector<UnaryPlus> pluses;
+    // Whether tokens[i - 1] ends an operand, so that a `+` after it is binary.
+    bool after_operand = false;
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        const SourceToken& token = tokens[i];
+        const bool next_adjacent = i + 1 < tokens.size() && Adjacent(token, tokens[i + 1]);
+        const std::string_view next = next_adjacent ? tokens[i + 1].text : std::string_view();
+        if ((token.text == "+" || token.text == "-") && (next == token.text)) {
+            // `++` or `--`: postfix after an operand (and still ending one), else prefix.
+            ++i;
+            continue;
+        }
+        if (token.text == "+" && next != "=" && !after_operand) {
+            const bool number_follows =
+                    i + 1 < tokens.size() &&
+                    (std::isdigit(static_cast<unsigned char>(tokens[i + 1].text[0])) != 0 ||
+                     (tokens[i + 1].text == "." && i + 2 < tokens.size() &&
+                      std::isdigit(static_cast<unsigned char>(tokens[i + 2].text[0])) != 0));
+            if (!number_follows) {
+                pluses.push_back(
+                        UnaryPlus{token.line, token.column,
+                                  static_cast<std::size_t>(token.text.data() - text.data())});
+            }
+        }
+        const bool keyword_before_expression = token.text == "return" || token.text == "case" ||
+                                               token.text == "else" || token.text == "do";
+        const bool name_or_number = std::isalnum(static_cast<unsigned char>(token.text[0])) != 0 ||
+                                    token.text[0] == '_';
+        after_operand = (name_or_number && !keyword_before_expression) || token.text == ")" ||
+                        token.text == "]";
+        // A number's exponent sign (1.5e+3) follows the "name" 5e, so it counts as binary,
+        // which is right: it is no operator at all.
+    }
+    return pluses;
+}
+
+std::string NegateUnaryPluses(std::string_view text, const std::vector<UnaryPlus>& pluses) {
+    std::string out;
+    std::size_t copied = 0;
+    for (const UnaryPlus& plus : pluses) {
+        out.append(text.substr(copied, plus.offset - copied));
+        out.append(" - ");
+        copied = plus.offset + 1;
+    }
+    out.append(text.substr(copied));
+    return out;
+}
+
+std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_log,
+                                        const std::vector<UnaryPlus>& pluses,
+                                        const std::string& file) {
+    std::vector<Diagnostic> errors;
+    for (const Diagnostic& d : negated_log) {
+        if (d.severity != Severity::kError || d.message.rfind("'-' :", 0) != 0 ||
+            !Mentions(d, "wrong operand type")) {
+            continue;
+        }
+        const auto plus = std::find_if(pluses.begin(), pluses.end(),
+                                       [&](const UnaryPlus& p) { return p.line == d.line; });
+        if (plus == pluses.end()) {
+            continue;
+        }
+        // glslang names the operand's type: "... an operand of type <type> (or there is ...".
+        std::string type = "this type";
+        constexpr std::string_view kOfType = "operand of type";
+        if (const std::size_t at = d.message.find(kOfType); at != std::string::npos) {
+            const std::size_t start = d.message.find_first_not_of(' ', at + kOfType.size());
+            const std::size_t end = d.message.find(" (or there", start);
+            if (start != std::string::npos) {
+                type = "'" + d.message.substr(start, end == std::string::npos ? end : end - start) +
+                       "'";
+            }
+        }
+        errors.push_back(MakeError(
+                file, plus->line, plus->column,
+                fmt::format("'+' : wrong operand type: unary '+' takes an integer or "
+                            "floating-point scalar, vector or matrix, not {} (GLSL ES 1.00 §5.9, "
+                            "GLSL ES 3.00 §5.9)",
+                            type)));
+    }
+    return errors;
+}
 
 bool MayHaveLateExtension(std::string_view source) {
     bool tokens_seen = false;
@@ -440,14 +730,16 @@ std::vector<Diagnostic> CheckExtensionPlacement(std::string_view preprocessed,
 }
 
 bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
-                                   bool webgl) {
+                                   bool webgl, const std::set<int>& switch_lines) {
     bool any = false;
     for (const Diagnostic& d : diagnostics) {
         if (d.severity != Severity::kError) {
             continue;
         }
-        const bool relaxable = (!webgl && Mentions(d, kDefinedFromMacro)) ||
-                               (version == 100 && Mentions(d, kReservedMacro100));
+        const bool relaxable =
+                (!webgl && Mentions(d, kDefinedFromMacro)) ||
+                (version == 100 && Mentions(d, kReservedMacro100)) ||
+                (version >= 300 && Mentions(d, kEmptyLastCase) && switch_lines.count(d.line) != 0);
         if (!relaxable) {
             return false;
         }
@@ -456,7 +748,16 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
     return any;
 }
 
-std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics) {
+std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
+                                             const std::set<int>& switch_lines) {
+    // GLSL ES 3.00 §6.2: the statement after the last label is there, glslang only lost it.
+    diagnostics.erase(std::remove_if(diagnostics.begin(), diagnostics.end(),
+                                     [&](const Diagnostic& d) {
+                                         return d.severity == Severity::kWarning &&
+                                                Mentions(d, kEmptyLastCase) &&
+                                                switch_lines.count(d.line) != 0;
+                                     }),
+                      diagnostics.end());
     for (Diagnostic& d : diagnostics) {
         // In 3.00 the reserved-name warning is glslang's strict verdict too (and is made an
         // error by PromoteReservedMacroNames); in 1.00 it is the relaxed form of the error.

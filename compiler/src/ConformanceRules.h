@@ -7,6 +7,7 @@
 
 #include "tidepool/Diagnostic.h"
 
+#include <set>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -24,16 +25,58 @@ namespace tidepool {
 std::vector<Diagnostic> CheckStageConformance(const glslang::TIntermediate& stage,
                                               const std::string& file);
 
+/// A built-in variable a stage redeclares `invariant` (`invariant gl_Position;`, GLSL ES 1.00
+/// §4.6.1), where the user wrote it. glslang 12 keeps no trace of such a redeclaration unless the
+/// variable is also used.
+struct InvariantBuiltIn {
+    std::string name;
+    int line = 0;
+    int column = 0;
+};
+
+/// A cheap over-estimate: true when `source` mentions `invariant` at all. Only then does
+/// FindInvarianceDeclarations need the preprocessed text.
+bool MayRedeclareInvariant(std::string_view source);
+
+/// What a stage's text says about invariance beyond glslang's qualifiers.
+struct InvarianceDeclarations {
+    /// Built-ins redeclared `invariant`.
+    std::vector<InvariantBuiltIn> builtins;
+    /// `#pragma STDGL invariant(all)` (GLSL ES 1.00 §4.6.1): glslang 12 accepts it but marks
+    /// nothing invariant.
+    bool all = false;
+};
+
+/// The invariance declarations in glslang's preprocessed text of a stage (comments and inactive
+/// blocks gone, lines kept): `invariant` followed by a list of names starting with `gl_` and a
+/// `;`, and the pragma. Columns are found on the same line of `source`, the user's text.
+InvarianceDeclarations FindInvarianceDeclarations(std::string_view preprocessed,
+                                                  std::string_view source);
+
+/// In a `#version 100` fragment shader, redeclaring gl_FrontFacing `invariant` is an error
+/// (GLSL ES 1.00 §4.6.4: its invariance is that of gl_Position); glslang 12 accepts it.
+std::vector<Diagnostic> CheckInvariantBuiltIns(const glslang::TIntermediate& stage,
+                                               const InvarianceDeclarations& invariance,
+                                               const std::string& file);
+
+/// What CheckLinkConformance needs to know of a stage besides its tree.
+struct LinkedStage {
+    const glslang::TIntermediate& intermediate;
+    const std::string& file;
+    std::string_view source;  // the text glslang parsed, line for line the user's
+    const InvarianceDeclarations& invariance;
+};
+
 /// Checks a linked vertex and fragment stage for mismatches glslang 12 lets through: a uniform
 /// declared in both stages whose struct or block members differ in precision (GLSL ES 1.00
 /// §4.5.3, 3.00 §4.3.5; glslang compares the precision of the top-level declaration only), and
-/// an output and input of the same name with different interpolation qualifiers (3.00 §4.3.9).
-/// `fragment_source` is the fragment file's text, where the declaration is found for its line.
-std::vector<Diagnostic> CheckLinkConformance(const glslang::TIntermediate& vertex,
-                                             const std::string& vertex_file,
-                                             const glslang::TIntermediate& fragment,
-                                             const std::string& fragment_file,
-                                             std::string_view fragment_source);
+/// an output and input of the same name with different interpolation qualifiers (3.00 §4.3.9),
+/// and, in `#version 100`, a varying declared in both stages that is `invariant` in one only (the
+/// vertex shader's `#pragma STDGL invariant(all)` makes all its varyings invariant), or
+/// gl_FragCoord (gl_PointCoord) redeclared `invariant` while gl_Position (gl_PointSize) is not
+/// (1.00 §4.6.4). Errors are reported at the fragment stage's declaration.
+std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex,
+                                             const LinkedStage& fragment);
 
 /// A cheap over-estimate: true when some `#extension` line follows a line that is not a
 /// directive. Only then does CheckExtensionPlacement need the preprocessed text.
@@ -45,20 +88,63 @@ bool MayHaveLateExtension(std::string_view source);
 std::vector<Diagnostic> CheckExtensionPlacement(std::string_view preprocessed,
                                                 const std::string& file);
 
+/// The lines of the `switch` statements in glslang's preprocessed text (comments and inactive
+/// blocks gone, lines kept) whose last case or default label is followed by a statement before
+/// the closing brace: an empty statement `;`, an empty compound statement `{}` or an empty
+/// declaration such as `float;` all are statements (GLSL ES 3.00 §6.2 and its grammar, §9), but
+/// glslang 12 keeps no node for them and so reports "last case/default label not followed by
+/// statements". A line holding another `switch` that does end in a bare label is left out.
+std::set<int> SwitchesWithStatementAfterLastLabel(std::string_view preprocessed);
+
 /// True when a failed parse failed only for a reason the specification does not make an error,
 /// so that parsing again with glslang's relaxed errors is worth trying: `defined` produced by a
 /// macro expansion inside `#if` (dEQP requires it to work; glslang refuses it for GLSL ES), and,
 /// in a `#version 100` shader, `#define`/`#undef` of a name containing `__` (GLSL ES 1.00 §3.4:
 /// reserved, "does not itself result in an error"). For a WebGL target (`webgl`), `defined`
-/// from a macro stays an error: WebGL 1.0 §6.34 makes it one.
+/// from a macro stays an error: WebGL 1.0 §6.34 makes it one. In `#version 300 es`, glslang's
+/// error for a switch whose last label has no statement after it is relaxable when the switch is
+/// at one of `switch_lines` (see SwitchesWithStatementAfterLastLabel).
 bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
-                                   bool webgl);
+                                   bool webgl, const std::set<int>& switch_lines = {});
 
 /// The log of a parse with glslang's relaxed errors, with every warning except the relaxable
 /// reasons above made an error again: relaxed mode demotes other errors to warnings too (an
 /// undefined name in `#if`, a disabled extension's feature, ...), and a warning it did not
-/// demote is also taken as one, which can only make a shader invalid, never valid.
-std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics);
+/// demote is also taken as one, which can only make a shader invalid, never valid. The
+/// relaxed warning for a switch at one of `switch_lines` is dropped (see
+/// SwitchesWithStatementAfterLastLabel).
+std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
+                                             const std::set<int>& switch_lines = {});
+
+/// True when `diagnostics` holds glslang's error for a switch whose last label it believes has no
+/// statement after it, so that SwitchesWithStatementAfterLastLabel is worth computing.
+bool MentionsEmptyLastCase(const std::vector<Diagnostic>& diagnostics);
+
+/// A unary `+` of the user's text: its place, and its offset in the text.
+struct UnaryPlus {
+    int line = 0;
+    int column = 0;
+    std::size_t offset = 0;
+};
+
+/// The unary `+` operators of a stage's text outside preprocessor directives: a `+` (not part of
+/// `++` or `+=`) that does not follow an operand (a name, a number, `)`, `]` or a postfix `++` or
+/// `--`), and is not directly followed by a number, whose type is never in doubt. glslang 12's
+/// grammar drops unary `+` without checking its operand.
+std::vector<UnaryPlus> FindUnaryPluses(std::string_view text);
+
+/// `text` with each of `pluses` replaced by ` - `: unary `-` takes exactly the operands unary
+/// `+` takes (GLSL ES 1.00 §5.9, 3.00 §5.9), and glslang does check those. Lines are kept.
+std::string NegateUnaryPluses(std::string_view text, const std::vector<UnaryPlus>& pluses);
+
+/// From the log of a parse of NegateUnaryPluses' text, the errors of a `-` glslang refused for
+/// its operand's type, reported at the unary `+` of that line (GLSL ES 1.00 §5.9, 3.00 §5.9: the
+/// arithmetic unary operators take integer and floating-point scalars, vectors and matrices;
+/// not a struct, an array, a bool or a sampler). Any other error of that parse is ignored: the
+/// negation may change a constant's value, never a type.
+std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_log,
+                                        const std::vector<UnaryPlus>& pluses,
+                                        const std::string& file);
 
 /// In a `#version 300 es` shader, glslang only warns when `#define` or `#undef` names a macro
 /// containing `__`; GLSL ES 3.00 §3.4 reserves those names, so each such warning becomes an

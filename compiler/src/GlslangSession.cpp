@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <set>
 #include <sstream>
 #include <tuple>
 #include <utility>
@@ -17,6 +18,7 @@
 #pragma GCC diagnostic ignored "-Wsign-conversion"
 #pragma GCC diagnostic ignored "-Wshadow"
 #pragma GCC diagnostic ignored "-Wpedantic"
+#include <glslang/Include/PoolAlloc.h>
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
 #include <glslang/build_info.h>
@@ -110,9 +112,11 @@ PreparedStage Prepare(const GlslangStageInput& input) {
     if (prepared.default_version == 100) {
         // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
         prepared.renaming = PlanEs100Renaming({prepared.text, prepared.preamble});
-        prepared.text = prepared.renaming.Apply(prepared.text);
-        prepared.preamble = prepared.renaming.Apply(prepared.preamble);
     }
+    // GLSL ES 1.00 and 3.00 §4.1.8: a member may be named `length`; glslang 12 refuses its use.
+    prepared.renaming.length_members = PlanLengthMemberRenaming({prepared.text, prepared.preamble});
+    prepared.text = prepared.renaming.Apply(prepared.text);
+    prepared.preamble = prepared.renaming.Apply(prepared.preamble);
     return prepared;
 }
 
@@ -126,6 +130,20 @@ std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
 }
 
 constexpr auto kMessages = static_cast<EShMessages>(EShMsgDefault);
+
+// Gives the thread's glslang pool allocator back to what it was when this was made: every
+// glslang shader takes it over for its own pool, and a parsed tree must be used with the pool
+// it lives in, not with one freed by a shader made and destroyed after it.
+class KeepThreadPool {
+public:
+    KeepThreadPool() : saved_(glslang::GetThreadPoolAllocator()) {}
+    ~KeepThreadPool() { glslang::SetThreadPoolAllocator(&saved_); }
+    KeepThreadPool(const KeepThreadPool&) = delete;
+    KeepThreadPool& operator=(const KeepThreadPool&) = delete;
+
+private:
+    glslang::TPoolAllocator& saved_;
+};
 
 TBuiltInResource ResourcesOf(const GlslangStageInput& input, int version) {
     return ResourcesFor(version, input.limits, IsTarget(input, GlslTarget::kWebGl1));
@@ -186,6 +204,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
             const std::vector<Diagnostic> characters =
                     CheckWebGlCharacters(preprocessed.text, input.text, input.file);
             webgl_errors.insert(webgl_errors.end(), characters.begin(), characters.end());
+            if (IsTarget(input, GlslTarget::kWebGl2)) {
+                const std::vector<Diagnostic> layouts =
+                        CheckWebGl2BlockLayouts(preprocessed.text, input.text, input.file);
+                webgl_errors.insert(webgl_errors.end(), layouts.begin(), layouts.end());
+            }
         }
     }
     // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
@@ -218,14 +241,24 @@ StageParse ParseStage(const GlslangStageInput& input) {
     std::tie(result.ok, result.shader) = parse(kMessages);
     result.diagnostics =
             ParseGlslangLog(renaming.Restore(result.shader->getInfoLog()), input.file, input.text);
-    if (!result.ok && FailedOnlyForRelaxableReasons(result.diagnostics, version, webgl)) {
+    std::set<int> switch_lines;
+    if (!result.ok && version >= 300 && MentionsEmptyLastCase(result.diagnostics)) {
+        const KeepThreadPool keep;
+        const PreprocessResult preprocessed = PreprocessStage(input);
+        if (preprocessed.ok) {
+            switch_lines = SwitchesWithStatementAfterLastLabel(preprocessed.text);
+        }
+    }
+    if (!result.ok &&
+        FailedOnlyForRelaxableReasons(result.diagnostics, version, webgl, switch_lines)) {
         // glslang's relaxed mode turns exactly these errors into warnings (and others too, which
         // RestoreDemotedErrors turns back), so the second parse is the specification's verdict.
         auto [ok, shader] = parse(static_cast<EShMessages>(kMessages | EShMsgRelaxedErrors));
         // Any other error relaxed mode demoted is an error again; the relaxed log, unlike the
         // first one, goes past the relaxable error to the real one.
         result.diagnostics = RestoreDemotedErrors(
-                ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text));
+                ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text),
+                switch_lines);
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
@@ -251,6 +284,41 @@ StageParse ParseStage(const GlslangStageInput& input) {
         const std::vector<Diagnostic> conformance =
                 CheckStageConformance(*result.intermediate, input.file);
         broken.insert(broken.end(), conformance.begin(), conformance.end());
+        if (webgl) {
+            const std::vector<Diagnostic> nesting =
+                    CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
+            broken.insert(broken.end(), nesting.begin(), nesting.end());
+        }
+        // The glslang work below must leave the thread's pool allocator to the parsed tree.
+        const KeepThreadPool keep;
+        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(prepared.text); !pluses.empty()) {
+            // glslang drops unary '+' unchecked; the same text with '-' in its place shows which
+            // operand types it would refuse (GLSL ES 1.00 §5.9, 3.00 §5.9).
+            const std::string negated = NegateUnaryPluses(prepared.text, pluses);
+            const char* negated_text = negated.c_str();
+            auto shader = MakeShader(input, prepared, &negated_text);
+            shader->parse(&resources, version, EEsProfile, prepared.force_version, false,
+                          kMessages);
+            // Reported where the user wrote it: renaming lengthens words, never moves a '+'
+            // to another place among the '+'s.
+            std::vector<UnaryPlus> shown = FindUnaryPluses(input.text);
+            if (shown.size() != pluses.size()) {
+                shown = pluses;
+            }
+            const std::vector<Diagnostic> plus_errors = UnaryPlusErrors(
+                    ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, negated),
+                    shown, input.file);
+            broken.insert(broken.end(), plus_errors.begin(), plus_errors.end());
+        }
+        if (MayRedeclareInvariant(input.text)) {
+            const PreprocessResult preprocessed = PreprocessStage(input);
+            if (preprocessed.ok) {
+                result.invariance = FindInvarianceDeclarations(preprocessed.text, input.text);
+                const std::vector<Diagnostic> invariance =
+                        CheckInvariantBuiltIns(*result.intermediate, result.invariance, input.file);
+                broken.insert(broken.end(), invariance.begin(), invariance.end());
+            }
+        }
         for (Diagnostic& d : broken) {
             d.message = renaming.Restore(d.message);
         }
@@ -295,8 +363,10 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
                                             *parses[1].shader->getIntermediate(), inputs[1]->file);
         if (!HasErrors(result.diagnostics)) {
             result.diagnostics = CheckLinkConformance(
-                    *parses[0].shader->getIntermediate(), inputs[0]->file,
-                    *parses[1].shader->getIntermediate(), inputs[1]->file, parses[1].text);
+                    LinkedStage{*parses[0].shader->getIntermediate(), inputs[0]->file,
+                                parses[0].text, parses[0].invariance},
+                    LinkedStage{*parses[1].shader->getIntermediate(), inputs[1]->file,
+                                parses[1].text, parses[1].invariance});
         }
         for (Diagnostic& d : result.diagnostics) {
             d.message = restore(d.message);

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "ConformanceRules.h"
 #include "KeywordRenaming.h"
 
 namespace glslang {
@@ -54,6 +55,8 @@ struct StageParse {
     /// user's, line for line), where the names in `intermediate` are found.
     KeywordRenaming renaming;
     std::string text;
+    /// What the stage declares invariant beyond glslang's qualifiers, for the link's rules.
+    InvarianceDeclarations invariance;
 };
 
 /// The outcome of a link.

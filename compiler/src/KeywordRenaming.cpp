@@ -59,7 +59,93 @@ std::string Replace(std::string_view text,
     return out;
 }
 
+struct Token {
+    std::size_t start = 0;
+    std::string_view text;
+};
+
+// The tokens of `text` for the member scan: identifier runs and single other characters, with
+// comments and blanks left out.
+std::vector<Token> MemberScanTokens(std::string_view text) {
+    std::vector<Token> tokens;
+    std::size_t i = 0;
+    while (i < text.size()) {
+        if (text.compare(i, 2, "//") == 0) {
+            i = text.find('\n', i);
+            i = i == std::string_view::npos ? text.size() : i;
+        } else if (text.compare(i, 2, "/*") == 0) {
+            const std::size_t end = text.find("*/", i + 2);
+            i = end == std::string_view::npos ? text.size() : end + 2;
+        } else if (std::isspace(static_cast<unsigned char>(text[i])) != 0) {
+            ++i;
+        } else if (IsIdentifierChar(text[i])) {
+            const std::size_t start = i;
+            while (i < text.size() && IsIdentifierChar(text[i])) {
+                ++i;
+            }
+            tokens.push_back(Token{start, text.substr(start, i - start)});
+        } else {
+            tokens.push_back(Token{i, text.substr(i, 1)});
+            ++i;
+        }
+    }
+    return tokens;
+}
+
+// A `length` token that names a member: declared inside the body of a struct
+// (`struct [Name] {`) or a uniform block (`uniform Name {`), or selected after a `.`. A `length`
+// followed by `(` is a call (the built-in function, or the array method) and is left alone.
+struct LengthMember {
+    std::size_t offset = 0;
+    bool declared = false;  // in a body, rather than selected
+};
+
+std::vector<LengthMember> LengthMembers(std::string_view text) {
+    const std::vector<Token> tokens = MemberScanTokens(text);
+    auto text_at = [&](std::size_t i) {
+        return i < tokens.size() ? tokens[i].text : std::string_view();
+    };
+    std::vector<LengthMember> members;
+    int body_depth = 0;  // braces opened since the outermost struct or block body began
+    for (std::size_t i = 0; i < tokens.size(); ++i) {
+        const std::string_view t = tokens[i].text;
+        if (t == "{") {
+            const bool opens_body =
+                    (i >= 1 && text_at(i - 1) == "struct") ||
+                    (i >= 2 && (text_at(i - 2) == "struct" || text_at(i - 2) == "uniform"));
+            if (body_depth > 0 || opens_body) {
+                ++body_depth;
+            }
+        } else if (t == "}") {
+            body_depth = body_depth > 0 ? body_depth - 1 : 0;
+        } else if (t == "length" && text_at(i + 1) != "(") {
+            const bool selected = i >= 1 && text_at(i - 1) == ".";
+            if (body_depth > 0 || selected) {
+                members.push_back(LengthMember{tokens[i].start, !selected});
+            }
+        }
+    }
+    return members;
+}
+
 }  // namespace
+
+bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts) {
+    bool declared = false;
+    for (std::string_view text : texts) {
+        bool spelled = false;
+        ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
+            spelled = spelled || text.substr(start, length) == kLengthMemberStandIn;
+        });
+        if (spelled) {
+            return false;
+        }
+        for (const LengthMember& member : LengthMembers(text)) {
+            declared = declared || member.declared;
+        }
+    }
+    return declared;
+}
 
 const std::vector<std::string>& Es100IdentifiersGlslangRejects() {
     static const std::vector<std::string> words = {
@@ -77,11 +163,27 @@ const std::vector<std::string>& Es100IdentifiersGlslangRejects() {
 }
 
 std::string KeywordRenaming::Apply(std::string_view text) const {
-    return Replace(text, names, /*to_stand_in=*/true);
+    if (!length_members) {
+        return Replace(text, names, /*to_stand_in=*/true);
+    }
+    std::string members;
+    std::size_t copied = 0;
+    for (const LengthMember& member : LengthMembers(text)) {
+        members.append(text.substr(copied, member.offset - copied));
+        members.append(kLengthMemberStandIn);
+        copied = member.offset + std::string_view("length").size();
+    }
+    members.append(text.substr(copied));
+    return Replace(members, names, /*to_stand_in=*/true);
 }
 
 std::string KeywordRenaming::Restore(std::string_view text) const {
-    return Replace(text, names, /*to_stand_in=*/false);
+    std::string restored = Replace(text, names, /*to_stand_in=*/false);
+    if (length_members) {
+        restored = Replace(restored, {{std::string(kLengthMemberStandIn), "length"}},
+                           /*to_stand_in=*/false);
+    }
+    return restored;
 }
 
 KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts) {

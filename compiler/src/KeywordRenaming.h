@@ -17,16 +17,32 @@ namespace tidepool {
 /// `#version 100` shader and comparing the errors with the two lists of §3.7.
 const std::vector<std::string>& Es100IdentifiersGlslangRejects();
 
-/// Each word of Es100IdentifiersGlslangRejects() that a shader uses, renamed for glslang.
+/// The name glslang is given for a struct or block member named `length` (see
+/// PlanLengthMemberRenaming).
+inline constexpr std::string_view kLengthMemberStandIn = "tp_member_length";
+
+/// Each word of Es100IdentifiersGlslangRejects() that a shader uses, renamed for glslang, and
+/// members named `length`.
 struct KeywordRenaming {
     /// {stand-in, word as the user wrote it}, in the order of Es100IdentifiersGlslangRejects().
     std::vector<std::pair<std::string, std::string>> names;
+    /// Whether members named `length` are given to glslang as kLengthMemberStandIn.
+    bool length_members = false;
 
-    /// `text` with every whole-word use of a renamed word replaced by its stand-in.
+    /// `text` with every whole-word use of a renamed word replaced by its stand-in, and, when
+    /// `length_members`, every `length` that names a member (declared in a struct or uniform
+    /// block body, or selected after a `.` and not called) replaced by kLengthMemberStandIn.
     std::string Apply(std::string_view text) const;
     /// `text` (a glslang message) with every stand-in replaced by the user's word again.
     std::string Restore(std::string_view text) const;
 };
+
+/// True when `texts` declare a struct or uniform block member named `length` and none spells
+/// kLengthMemberStandIn. `length` is no keyword (GLSL ES 1.00 §3.7, 3.00 §3.7) and a structure's
+/// members have a name space of their own (1.00 §4.1.8, 3.00 §4.1.8), but glslang 12 takes every
+/// `.length` for the array method `length()` and refuses `s.length` on a struct. Renaming the
+/// member lets glslang check everything else; `.length()` calls are left alone. Never fails.
+bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts);
 
 /// Plans the renaming of a `#version 100` stage whose text (file and preamble) is `texts`: each
 /// word of Es100IdentifiersGlslangRejects() that appears as a whole token gets the stand-in

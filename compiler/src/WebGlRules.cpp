@@ -1,7 +1,12 @@
 #include "WebGlRules.h"
 
+#include <glslang/Include/intermediate.h>
+#include <glslang/MachineIndependent/localintermediate.h>
+
+#include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <set>
 
 #include "GlslEsRules.h"
 #include <fmt/format.h>
@@ -21,6 +26,20 @@ bool InSourceCharacterSet(char c) {
         return true;
     }
     return c != '\0' && std::strchr(".+-/*%<>[](){}^|&~=!:;,?# \t\v\f\r\n\\", c) != nullptr;
+}
+
+// Line `line` (1-based) of `text`, "" when there is none.
+std::string_view SourceLine(std::string_view text, int line) {
+    std::size_t start = 0;
+    for (int l = 1; l < line; ++l) {
+        start = text.find('\n', start);
+        if (start == std::string_view::npos) {
+            return {};
+        }
+        ++start;
+    }
+    const std::size_t end = text.find('\n', start);
+    return text.substr(start, end == std::string_view::npos ? text.size() - start : end - start);
 }
 
 std::string Shown(char c) {
@@ -100,6 +119,95 @@ std::vector<Diagnostic> CheckWebGlCharacters(std::string_view preprocessed, std:
         while (i + 1 < preprocessed.size() && preprocessed[i + 1] != '\n') {
             ++i;
         }
+    }
+    return errors;
+}
+
+std::vector<Diagnostic> CheckWebGl2BlockLayouts(std::string_view preprocessed,
+                                                std::string_view source, const std::string& file) {
+    std::vector<Diagnostic> errors;
+    std::vector<SourceToken> tokens;
+    for (const std::vector<SourceToken>& line : SourceTokenLines(preprocessed)) {
+        if (line.empty() || line[0].text != "#") {
+            tokens.insert(tokens.end(), line.begin(), line.end());
+        }
+    }
+    for (std::size_t i = 0; i + 1 < tokens.size(); ++i) {
+        if (tokens[i].text != "layout" || tokens[i + 1].text != "(") {
+            continue;
+        }
+        for (std::size_t k = i + 2; k < tokens.size() && tokens[k].text != ")"; ++k) {
+            if (tokens[k].text != "shared" && tokens[k].text != "packed") {
+                continue;
+            }
+            const auto [row, column] =
+                    FirstMention(SourceLine(source, tokens[k].line), tokens[k].text);
+            errors.push_back(MakeError(
+                    file, tokens[k].line, row == 0 ? 0 : column,
+                    fmt::format("layout qualifier '{}': WebGL 2 supports only the std140 layout "
+                                "for uniform blocks (WebGL 2.0 \"Only std140 layout supported in "
+                                "uniform blocks\"); use layout(std140) or leave the layout out",
+                                tokens[k].text)));
+        }
+    }
+    return errors;
+}
+
+namespace {
+
+// How many levels of structures `type` nests (0 for a type with no structure in it).
+int StructNesting(const glslang::TType& type) {
+    if (!type.isStruct()) {
+        return 0;
+    }
+    int deepest = 0;
+    for (const glslang::TTypeLoc& member : *type.getStruct()) {
+        deepest = std::max(deepest, StructNesting(*member.type));
+    }
+    return deepest + 1;
+}
+
+// Every structure type the tree's symbols, constructors, calls and functions have.
+class StructTypeCollector : public glslang::TIntermTraverser {
+public:
+    void visitSymbol(glslang::TIntermSymbol* node) override { Note(node->getType()); }
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        Note(node->getType());
+        return true;
+    }
+    std::vector<const glslang::TType*> types;
+
+private:
+    void Note(const glslang::TType& type) {
+        if (type.isStruct()) {
+            types.push_back(&type);
+        }
+    }
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& stage,
+                                                const std::string& file, std::string_view source) {
+    std::vector<Diagnostic> errors;
+    if (stage.getTreeRoot() == nullptr) {
+        return errors;
+    }
+    StructTypeCollector collector;
+    stage.getTreeRoot()->traverse(&collector);
+    std::set<std::string> reported;
+    for (const glslang::TType* type : collector.types) {
+        const int nesting = StructNesting(*type);
+        const std::string name = type->getTypeName().c_str();
+        if (nesting <= kMaxWebGlStructNesting || !reported.insert(name).second) {
+            continue;
+        }
+        const auto [line, column] = FirstMention(source, name);
+        errors.push_back(MakeError(
+                file, line, column,
+                fmt::format("struct '{}' nests structures {} levels deep; WebGL allows at most {} "
+                            "(WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")",
+                            name, nesting, kMaxWebGlStructNesting)));
     }
     return errors;
 }

@@ -10,6 +10,10 @@
 #include <string_view>
 #include <vector>
 
+namespace glslang {
+class TIntermediate;
+}  // namespace glslang
+
 namespace tidepool {
 
 /// The longest token a WebGL target accepts: 256 characters for WebGL 1 (WebGL 1.0 §6.20
@@ -29,5 +33,24 @@ std::vector<Diagnostic> CheckWebGlTokens(std::string_view text, GlslTarget targe
 /// Character Set"). Columns are found on the same line of `source`, the user's text.
 std::vector<Diagnostic> CheckWebGlCharacters(std::string_view preprocessed, std::string_view source,
                                              const std::string& file);
+
+/// Checks glslang's preprocessed text of a `#version 300 es` stage (comments and inactive blocks
+/// gone, lines kept) for a `shared` or `packed` layout qualifier: WebGL 2 supports only the
+/// std140 layout for uniform blocks, and a shader asking for another is refused (WebGL 2.0 "Only
+/// std140 layout supported in uniform blocks"). Columns are found on the same line of `source`.
+std::vector<Diagnostic> CheckWebGl2BlockLayouts(std::string_view preprocessed,
+                                                std::string_view source, const std::string& file);
+
+/// The deepest nesting of structures WebGL accepts (WebGL 1.0 §6.22 "Maximum Nesting of
+/// Structures", kept by WebGL 2.0): a structure whose members are no structures is nested 1
+/// level deep, one holding such a structure (or an array of them) 2 levels, and so on.
+inline constexpr int kMaxWebGlStructNesting = 4;
+
+/// Checks one parsed stage for a structure nested more than kMaxWebGlStructNesting levels deep,
+/// among the types of every variable, parameter, constructor and function the stage keeps (a
+/// structure type that nothing declared or used leaves no trace in glslang's tree). Reported at
+/// the first mention of the structure's name in `source`, the text glslang parsed.
+std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& stage,
+                                                const std::string& file, std::string_view source);
 
 }  // namespace tidepool

@@ -329,5 +329,255 @@ INSTANTIATE_TEST_SUITE_P(
                          "a.fsh: error: Linking vertex and fragment stages: Types must match:; "
                          "vertex stage: \" vec2 filter\"; fragment stage: \" float filter\""}));
 
+// GLSL ES 1.00 §4.6.4: the invariance of a varying declared in both stages matches; gl_FragCoord
+// and gl_PointCoord may be invariant only with gl_Position and gl_PointSize; never gl_FrontFacing.
+INSTANTIATE_TEST_SUITE_P(
+        Invariance, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"a varying invariant in the fragment stage only",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { ripple = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant varying vec2 ripple;\n"
+                         "void main() { gl_FragColor = vec4(ripple, 0.0, 1.0); }\n",
+                         "a.fsh:3:24: error: varying 'ripple' is invariant here but not invariant "
+                         "in the vertex "
+                         "shader a.vsh; the invariance of a varying declared in both stages must "
+                         "match (GLSL ES 1.00 §4.6.4)"},
+                RuleCase{"a varying made invariant by a redeclaration in the vertex stage only",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 ripple;\n"
+                         "invariant ripple;\n"
+                         "void main() { ripple = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { gl_FragColor = vec4(ripple, 0.0, 1.0); }\n",
+                         "a.fsh:3:14: error: varying 'ripple' is not invariant here but invariant "
+                         "in the "
+                         "vertex shader a.vsh; the invariance of a varying declared in both stages "
+                         "must match (GLSL ES 1.00 §4.6.4)"},
+                RuleCase{"invariant(all) in the vertex stage, invariant in the fragment stage",
+                         "#version 100\n"
+                         "#pragma STDGL invariant(all)\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { ripple = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant varying vec2 ripple;\n"
+                         "void main() { gl_FragColor = vec4(ripple, 0.0, 1.0); }\n",
+                         ""},
+                RuleCase{"invariant(all) in the fragment stage makes its outputs invariant, not "
+                         "its varyings",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { ripple = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "#pragma STDGL invariant(all)\n"
+                         "precision mediump float;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { gl_FragColor = vec4(ripple, 0.0, 1.0); }\n",
+                         ""},
+                RuleCase{"invariant(all) in the vertex stage, a plain varying in the fragment",
+                         "#version 100\n"
+                         "#pragma STDGL invariant(all)\n"
+                         "attribute vec4 position;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { ripple = position.xy; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "varying vec2 ripple;\n"
+                         "void main() { gl_FragColor = vec4(ripple, 0.0, 1.0); }\n",
+                         "a.fsh:3:14: error: varying 'ripple' is not invariant here but invariant "
+                         "in the vertex shader a.vsh; the invariance of a varying declared in both "
+                         "stages must match (GLSL ES 1.00 §4.6.4)"},
+                RuleCase{"gl_FragCoord invariant while gl_Position is not",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant gl_FragCoord;\n"
+                         "void main() { gl_FragColor = gl_FragCoord * 0.001; }\n",
+                         "a.fsh:3:11: error: 'gl_FragCoord' is declared invariant, but "
+                         "'gl_Position' is not "
+                         "invariant in the vertex shader a.vsh; gl_FragCoord may be invariant only "
+                         "if gl_Position is (GLSL ES 1.00 §4.6.4)"},
+                RuleCase{"gl_FragCoord and gl_Position both invariant",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "invariant gl_Position;\n"
+                         "void main() { gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant gl_FragCoord;\n"
+                         "void main() { gl_FragColor = gl_FragCoord * 0.001; }\n",
+                         ""},
+                RuleCase{"gl_PointCoord invariant while gl_PointSize is not",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "invariant gl_Position;\n"
+                         "void main() { gl_PointSize = 4.0; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant gl_FragCoord, gl_PointCoord;\n"
+                         "void main() { gl_FragColor = vec4(gl_PointCoord, 0.0, 1.0); }\n",
+                         "a.fsh:3:25: error: 'gl_PointCoord' is declared invariant, but "
+                         "'gl_PointSize' is not "
+                         "invariant in the vertex shader a.vsh; gl_PointCoord may be invariant "
+                         "only if gl_PointSize is (GLSL ES 1.00 §4.6.4)"},
+                RuleCase{"an invariant redeclaration inside an inactive block does not count",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "#ifdef STABLE_DEPTH\n"
+                         "invariant gl_FragCoord;\n"
+                         "#endif\n"
+                         "void main() { gl_FragColor = gl_FragCoord * 0.001; }\n",
+                         ""},
+                RuleCase{"gl_FrontFacing declared invariant", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "invariant gl_FrontFacing;\n"
+                         "void main() { gl_FragColor = vec4(gl_FrontFacing ? 1.0 : 0.0); }\n",
+                         "a.fsh:3:11: error: 'gl_FrontFacing' cannot be declared invariant; its "
+                         "invariance is "
+                         "that of gl_Position (GLSL ES 1.00 §4.6.4)"}));
+
+// GLSL ES 1.00 §5.9, 3.00 §5.9: unary '+' takes integer and floating-point operands only; glslang
+// 12 drops it unchecked.
+INSTANTIATE_TEST_SUITE_P(
+        UnaryPlus, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"unary + on a struct", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "void main() {\n"
+                         "    Wave w = Wave(0.5);\n"
+                         "    Wave copy = +w;\n"
+                         "    gl_FragColor = vec4(copy.height);\n"
+                         "}\n",
+                         "a.fsh:6:17: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or "
+                         "floating-point scalar, vector or matrix, not 'temp structure{ global "
+                         "mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on a bool in a 3.00 shader", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform bool wet;\n"
+                         "out vec4 colour;\n"
+                         "void main() { bool w = (+wet); colour = vec4(w ? 1.0 : 0.0); }\n",
+                         "a.fsh:5:25: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or "
+                         "floating-point scalar, vector or matrix, not 'uniform bool' (GLSL ES "
+                         "1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on numbers, vectors, matrices and after operators", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform mat2 turn;\n"
+                         "uniform int steps;\n"
+                         "void main() {\n"
+                         "    vec2 v = +vec2(1.0e+2, +.5);\n"
+                         "    float a = v.x + +v.y - +1.0;\n"
+                         "    mat2 m = +turn;\n"
+                         "    int k = steps;\n"
+                         "    int n = k++ + -k;\n"
+                         "    gl_FragColor = vec4(a > 0.0 ? +a : -a, m[0].x, float(+n), 1.0);\n"
+                         "}\n",
+                         ""}));
+
+// GLSL ES 3.00 §6.2: a statement must follow the last label of a switch; `;`, `{}` and an empty
+// declaration are statements, which glslang 12 does not see.
+INSTANTIATE_TEST_SUITE_P(
+        SwitchLastLabel, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"last labels followed by an empty statement, block and declaration",
+                         nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform int mode;\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "    colour = vec4(0.0);\n"
+                         "    switch (mode) { case 0: colour.r = 1.0; break; default: ; }\n"
+                         "    switch (mode) {\n"
+                         "        case 1: colour.g = 1.0; break;\n"
+                         "        case 2: {}\n"
+                         "    }\n"
+                         "    switch (mode) { case 3: colour.b = 1.0; break; default: float; }\n"
+                         "}\n",
+                         ""},
+                RuleCase{"a switch ending in a bare label", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform int mode;\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "    colour = vec4(0.0);\n"
+                         "    switch (mode) { case 0: colour.r = 1.0; break; default: ; }\n"
+                         "    switch (mode) {\n"
+                         "        case 1: colour.g = 1.0; break;\n"
+                         "        default:\n"
+                         "    }\n"
+                         "}\n",
+                         "a.fsh:8:5: error: 'switch' : last case/default label not followed by "
+                         "statements"}));
+
+// GLSL ES 1.00 §4.1.8, 3.00 §4.1.8: `length` is no keyword, so a member may be named so.
+INSTANTIATE_TEST_SUITE_P(
+        LengthMember, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"a struct member named length, read and written",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "struct Wave { float length; float height; };\n"
+                         "uniform Wave wave;\n"
+                         "void main() {\n"
+                         "    Wave w = wave;\n"
+                         "    w.length = length(position.xy) * wave.length;\n"
+                         "    gl_Position = position * w . length;\n"
+                         "}\n",
+                         nullptr, ""},
+                RuleCase{"a block member named length beside an array's length()", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform Waves { float length; vec4 heights[3]; } waves;\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "    colour = waves.heights[2] * waves.length * "
+                         "float(waves.heights.length());\n"
+                         "}\n",
+                         ""},
+                RuleCase{"a struct without such a member", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float length; };\n"
+                         "struct Tide { float height; };\n"
+                         "void main() { Tide t = Tide(1.0); gl_FragColor = vec4(t.length); }\n",
+                         "a.fsh:5:57: error: 'length' : no such field in structure 't'"}));
+
+// GLSL ES 1.00 §3.4, 3.00 §3.4: `#version` names 100 or `300 es`; desktop versions are refused.
+INSTANTIATE_TEST_SUITE_P(
+        DesktopVersions, ConformanceRuleTest,
+        ::testing::Values(RuleCase{"#version 130", nullptr,
+                                   "#version 130\n"
+                                   "void main() { gl_FragColor = vec4(1.0); }\n",
+                                   "a.fsh:1:1: error: '#version 130' is desktop GLSL; tidepool "
+                                   "validates GLSL ES: use '#version 100' or '#version 300 es'"},
+                          RuleCase{"#version 120", nullptr,
+                                   "#version 120\n"
+                                   "void main() { gl_FragColor = vec4(1.0); }\n",
+                                   "a.fsh:1:1: error: '#version 120' is desktop GLSL; tidepool "
+                                   "validates GLSL ES: use '#version 100' or '#version 300 es'"}));
+
 }  // namespace
 }  // namespace tidepool

@@ -2,6 +2,8 @@
 // and the way back for glslang's messages.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "KeywordRenaming.h"
 
 namespace tidepool {
@@ -36,6 +38,32 @@ TEST(KeywordRenamingTest, DefinesInThePreambleAreRenamedAlike) {
 TEST(KeywordRenamingTest, AWordWhoseStandInTheShaderSpellsIsLeftForGlslang) {
     const KeywordRenaming renaming = PlanEs100Renaming({"float filter, tp_es100_filter;", ""});
     EXPECT_TRUE(renaming.names.empty());
+}
+
+TEST(KeywordRenamingTest, LengthIsRenamedOnlyWhereItNamesAMember) {
+    const std::string shader =
+            "struct Wave { float length; };\n"
+            "uniform Tide { float length; vec4 h[2]; } tide;\n"
+            "float f(Wave w) { return w.length + w . length + length(tide.h[0]) +\n"
+            "                  float(tide.h.length()); }\n";
+    EXPECT_TRUE(PlanLengthMemberRenaming({shader, ""}));
+    KeywordRenaming renaming;
+    renaming.length_members = true;
+    EXPECT_EQ(renaming.Apply(shader),
+              "struct Wave { float tp_member_length; };\n"
+              "uniform Tide { float tp_member_length; vec4 h[2]; } tide;\n"
+              "float f(Wave w) { return w.tp_member_length + w . tp_member_length + "
+              "length(tide.h[0]) +\n"
+              "                  float(tide.h.length()); }\n");
+    EXPECT_EQ(renaming.Restore("'tp_member_length' : no such field in structure"),
+              "'length' : no such field in structure");
+}
+
+TEST(KeywordRenamingTest, NoMemberNamedLengthOrTheStandInSpelledMeansNoRenaming) {
+    EXPECT_FALSE(PlanLengthMemberRenaming({"float f(vec2 v) { return length(v); }", ""}));
+    EXPECT_FALSE(PlanLengthMemberRenaming({"float g(Wave w) { return w.length; }", ""}));
+    EXPECT_FALSE(PlanLengthMemberRenaming(
+            {"struct Wave { float length; float tp_member_length; };", ""}));
 }
 
 }  // namespace

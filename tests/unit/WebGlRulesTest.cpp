@@ -214,5 +214,63 @@ INSTANTIATE_TEST_SUITE_P(
                           "a.fsh:4: error: 'defined' : cannot use in preprocessor expression "
                           "when expanded from macros"}));
 
+// WebGL 1.0 §6.22: structures nest at most 4 levels deep; plain GLSL ES sets no such limit.
+const std::string kNestedStructs =
+        "struct Foam { float density; };\n"
+        "struct Crest { Foam foam; };\n"
+        "struct Wave { Crest crests[2]; };\n"
+        "struct Swell { Wave wave; };\n";
+
+INSTANTIATE_TEST_SUITE_P(
+        StructNesting, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"structures nested 4 levels deep", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100(kNestedStructs + "uniform Swell swell;\n",
+                                      "    gl_FragColor = "
+                                      "vec4(swell.wave.crests[1].foam.density);\n"),
+                          ""},
+                WebGlCase{"structures nested 5 levels deep", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100(kNestedStructs + "struct Sea { Swell swell; };\n"
+                                                       "uniform Sea sea;\n",
+                                      "    gl_FragColor = "
+                                      "vec4(sea.swell.wave.crests[1].foam.density);\n"),
+                          "a.fsh:8:8: error: struct 'Sea' nests structures 5 levels deep; WebGL "
+                          "allows at most "
+                          "4 (WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")"},
+                WebGlCase{
+                        "5 levels in a local variable in WebGL 2", GlslTarget::kWebGl2, kVertex300,
+                        Fragment300(kNestedStructs + "struct Sea { Swell swell; };\n",
+                                    "    Sea sea;\n"
+                                    "    sea.swell.wave.crests[0].foam.density = uv.x;\n"
+                                    "    colour = vec4(sea.swell.wave.crests[0].foam.density);\n"),
+                        "a.fsh:9:8: error: struct 'Sea' nests structures 5 levels deep; WebGL "
+                        "allows at most "
+                        "4 (WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")"}));
+
+// WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
+INSTANTIATE_TEST_SUITE_P(
+        BlockLayouts, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"std140 and an unqualified block", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("layout(std140) uniform Tide { vec4 level; };\n"
+                                      "uniform Spray { vec4 amount; };\n",
+                                      "    colour = level + amount;\n"),
+                          ""},
+                WebGlCase{"a shared block", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("layout(shared, row_major) uniform Tide { vec4 level; };\n",
+                                      "    colour = level;\n"),
+                          "a.fsh:5:8: error: layout qualifier 'shared': WebGL 2 supports only the "
+                          "std140 layout "
+                          "for uniform blocks (WebGL 2.0 \"Only std140 layout supported in "
+                          "uniform blocks\"); use layout(std140) or leave the layout out"},
+                WebGlCase{"packed as the default of every block", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("layout(packed) uniform;\n"
+                                      "uniform Tide { vec4 level; };\n",
+                                      "    colour = level;\n"),
+                          "a.fsh:5:8: error: layout qualifier 'packed': WebGL 2 supports only the "
+                          "std140 layout "
+                          "for uniform blocks (WebGL 2.0 \"Only std140 layout supported in "
+                          "uniform blocks\"); use layout(std140) or leave the layout out"}));
+
 }  // namespace
 }  // namespace tidepool
