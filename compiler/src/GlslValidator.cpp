@@ -335,17 +335,32 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
     return names;
 }
 
-// The part of a slot's identity that can change glslang's preprocessed output.
-std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
-    std::string key =
-            fmt::format("{}|{}|{}|{}|", job.file, StageName(job.stage), TargetName(job.target),
-                        job.limits != nullptr ? job.limits->Text() : "");
-    for (const std::string& define : job.defines) {
-        if (mentioned.count(define) != 0) {
+// The part of a stage's identity that can change glslang's preprocessed output: `target` is a
+// target's name or, for a plain file, PlainTargetLabel's. A define is kept when its name (before
+// any `=VALUE`, which plain files' -D may add) is mentioned, with its value.
+std::string StageGroupKey(const std::string& file, Stage stage, const std::string& target,
+                          const DeviceLimits* limits, const std::vector<std::string>& defines,
+                          const std::set<std::string>& mentioned) {
+    std::string key = fmt::format("{}|{}|{}|{}|", file, StageName(stage), target,
+                                  limits != nullptr ? limits->Text() : "");
+    for (const std::string& define : defines) {
+        if (mentioned.count(define.substr(0, define.find('='))) != 0) {
             key += define + ",";
         }
     }
     return key;
+}
+
+std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
+    return StageGroupKey(job.file, job.stage, TargetName(job.target), job.limits, job.defines,
+                         mentioned);
+}
+
+// The target part of a plain file's stage key. A plain file is compiled as the GLSL ES version of
+// its own `#version` line (a configuration's stage as its target's), so its keys are kept apart
+// from a configuration's: "file", or "file:webgl1" with --target.
+std::string PlainTargetLabel(const std::optional<GlslTarget>& target) {
+    return target ? "file:" + TargetName(*target) : "file";
 }
 
 // The start of every cache key: the validation code and what glslang decides with, as one
@@ -377,6 +392,17 @@ std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
             .Update(fmt::format("link\n{}\n{}\n{}\n{}\n", vertex.file, vertex.digest, fragment.file,
                                 fragment.digest))
             .FinishHex();
+}
+
+// The cache key of a plain-file link (or of a lone stage's): the stage keys, which decide each
+// stage's input to glslang exactly, so no preprocessing is needed to find it.
+std::string PlainLinkCacheKey(const std::vector<std::string>& stage_keys) {
+    base::Sha256 key;
+    key.Update(CacheKeyPrefix()).Update("plain link\n");
+    for (const std::string& stage_key : stage_keys) {
+        key.Update(stage_key).Update("\n");
+    }
+    return key.FinishHex();
 }
 
 // The name of a configuration's latest bundle of results: its file and the programs validated,
@@ -812,7 +838,6 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines,
                                      const ShaderFileOptions& options) {
-    WarmUpGlslang({GlslTarget::kEs100});
     ValidationReport report;
     std::vector<FileText> texts(files.size());
     for (std::size_t i = 0; i < files.size(); ++i) {
@@ -859,6 +884,73 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         }
     }
     auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
+    auto group_usable = [&](std::size_t g) {
+        return std::all_of(groups[g].begin(), groups[g].end(), usable);
+    };
+
+    // The cache, as for configurations (one bundle per run, every result under its own key): a
+    // group whose stages and link it knows needs no glslang at all, not even its warm-up.
+    base::ContentCache* const cache = options.cache;
+    const std::uint64_t stored_before = cache != nullptr ? cache->Stats().stored : 0;
+    std::optional<base::CacheBundle> bundle;
+    std::vector<std::string> stage_keys(files.size());
+    std::vector<std::optional<CachedStage>> cached_stages(files.size());
+    std::vector<std::string> link_keys(groups.size());
+    std::vector<std::optional<LinkResult>> cached_links(groups.size());
+    if (cache != nullptr) {
+        base::Sha256 run_digest;
+        run_digest.Update(CacheKeyPrefix()).Update("plain bundle\n");
+        base::Sha256 lineage;
+        lineage.Update(CacheKeyPrefix()).Update("plain lineage\n");
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            if (usable(i)) {
+                stage_keys[i] = StageCacheKey(
+                        StageGroupKey(files[i].path, files[i].stage,
+                                      PlainTargetLabel(options.target), options.limits, defines,
+                                      MentionedIdentifiers(texts[i].text)),
+                        base::Sha256Hex(texts[i].text));
+                run_digest.Update(stage_keys[i]).Update("\n");
+            }
+            std::error_code ec;
+            lineage.Update(std::filesystem::absolute(files[i].path, ec).string()).Update("\n");
+        }
+        bundle.emplace(*cache, run_digest.FinishHex(), lineage.FinishHex());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            if (!group_usable(g)) {
+                continue;
+            }
+            std::vector<std::string> keys;
+            bool all_cached = true;
+            bool all_valid = true;
+            for (std::size_t i : groups[g]) {
+                keys.push_back(stage_keys[i]);
+                if (std::optional<std::string> payload = bundle->Load(stage_keys[i])) {
+                    cached_stages[i] = DecodeCachedStage(*payload);
+                }
+                all_cached = all_cached && cached_stages[i].has_value();
+                all_valid = all_valid && cached_stages[i] && cached_stages[i]->outcome.valid;
+            }
+            link_keys[g] = PlainLinkCacheKey(keys);
+            if (all_cached && !all_valid) {
+                cached_links[g] = LinkResult{};  // no link is attempted with an invalid stage
+            } else if (all_cached) {
+                if (std::optional<std::string> payload = bundle->Load(link_keys[g])) {
+                    try {
+                        cached_links[g] = DecodeLink(*payload);
+                    } catch (const nlohmann::json::exception&) {
+                        // Recomputed below, and the entry replaced.
+                    }
+                }
+            }
+        }
+    }
+    auto group_runs = [&](std::size_t g) { return group_usable(g) && !cached_links[g]; };
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (group_runs(g)) {
+            WarmUpGlslang({GlslTarget::kEs100});
+            break;
+        }
+    }
     std::vector<bool> reported(files.size(), false);
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
             groups.size(), 2, GlslangLimits(),
@@ -871,20 +963,38 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 }
                 return ParseAndLink(stages, note, &reported);
             },
-            [&](std::size_t g) { return std::all_of(groups[g].begin(), groups[g].end(), usable); });
+            group_runs);
     for (std::size_t g = 0; g < groups.size(); ++g) {
-        for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
-            StageProgram& program = report.stage_programs[index];
-            program.valid = outcome.valid;
-            program.diagnostics = std::move(outcome.diagnostics);
-            program.cost = outcome.cost;
+        LinkResult link;
+        if (cached_links[g]) {
+            for (std::size_t i : groups[g]) {
+                StageProgram& program = report.stage_programs[i];
+                program.valid = cached_stages[i]->outcome.valid;
+                program.diagnostics = cached_stages[i]->outcome.diagnostics;
+                program.cost = cached_stages[i]->outcome.cost;
+            }
+            link = *cached_links[g];
+        } else {
+            for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
+                StageProgram& program = report.stage_programs[index];
+                program.valid = outcome.valid;
+                program.diagnostics = std::move(outcome.diagnostics);
+                program.cost = outcome.cost;
+                // glslang's own verdict, not an internal compiler error: the cache may keep it.
+                if (bundle && !stage_keys[index].empty()) {
+                    bundle->Store(stage_keys[index], EncodeCachedStage(program, ""));
+                }
+            }
+            link = LinkOutcome(results[g], files[groups[g].back()].path,
+                               [&](std::size_t index, const std::string& message) {
+                                   report.stage_programs[index].diagnostics = {
+                                           MakeError(files[index].path, 0, 0, message)};
+                               });
+            if (bundle && !link_keys[g].empty() && results[g].failure == WorkerFailure::kNone &&
+                !results[g].payload.empty()) {
+                bundle->Store(link_keys[g], results[g].payload);
+            }
         }
-        const LinkResult link =
-                LinkOutcome(results[g], files[groups[g].back()].path,
-                            [&](std::size_t index, const std::string& message) {
-                                report.stage_programs[index].diagnostics = {
-                                        MakeError(files[index].path, 0, 0, message)};
-                            });
         VariantVerdict verdict;
         std::vector<std::string> names;
         bool stages_ok = true;
@@ -905,6 +1015,12 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         CollectStepDiagnostics(verdict);
         report.links += stages_ok ? 1 : 0;
         report.verdicts.push_back(std::move(verdict));
+    }
+    if (bundle) {
+        bundle->Save();
+        if (cache->Stats().stored > stored_before) {
+            cache->Trim();
+        }
     }
     return report;
 }
