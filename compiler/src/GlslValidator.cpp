@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -427,27 +428,161 @@ struct CachedStage {
     StageOutcome outcome;
 };
 
+// A cached stage's bytes: a tag, then fixed-width little-endian integers and length-prefixed
+// strings, not CBOR: a warm run decodes every stage of the matrix, and nlohmann's CBOR reader
+// made that a fifth of the run. The entry is already checksummed by the cache; the reader still
+// checks every length against what is left, so bytes that are not an entry are a miss.
+constexpr std::string_view kCachedStageTag = "tidepool stage 1\n";
+
+class EntryWriter {
+public:
+    void Int(std::int64_t value) {
+        const auto bits = static_cast<std::uint64_t>(value);
+        for (int shift = 0; shift < 64; shift += 8) {
+            bytes_.push_back(static_cast<char>((bits >> shift) & 0xffU));
+        }
+    }
+    void Text(std::string_view text) {
+        Int(static_cast<std::int64_t>(text.size()));
+        bytes_.append(text);
+    }
+    std::string& bytes() { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class EntryReader {
+public:
+    explicit EntryReader(std::string_view bytes) : rest_(bytes) {}
+    bool Tag(std::string_view tag) {
+        if (rest_.substr(0, tag.size()) != tag) {
+            return Fail();
+        }
+        rest_.remove_prefix(tag.size());
+        return true;
+    }
+    std::int64_t Int() {
+        if (rest_.size() < 8) {
+            Fail();
+            return 0;
+        }
+        std::uint64_t bits = 0;
+        for (int i = 7; i >= 0; --i) {
+            bits = (bits << 8) | static_cast<unsigned char>(rest_[static_cast<std::size_t>(i)]);
+        }
+        rest_.remove_prefix(8);
+        return static_cast<std::int64_t>(bits);
+    }
+    // An int that must fit `int` (line numbers, counts): anything else is not an entry.
+    int SmallInt() {
+        const std::int64_t value = Int();
+        if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+            Fail();
+            return 0;
+        }
+        return static_cast<int>(value);
+    }
+    std::string Text() {
+        const std::int64_t size = Int();
+        if (size < 0 || static_cast<std::uint64_t>(size) > rest_.size()) {
+            Fail();
+            return {};
+        }
+        std::string text(rest_.substr(0, static_cast<std::size_t>(size)));
+        rest_.remove_prefix(static_cast<std::size_t>(size));
+        return text;
+    }
+    // A count of items that each take at least `min_bytes`, so a bad count cannot reserve much.
+    std::size_t Count(std::size_t min_bytes) {
+        const std::int64_t count = Int();
+        if (count < 0 || static_cast<std::uint64_t>(count) > rest_.size() / min_bytes) {
+            Fail();
+            return 0;
+        }
+        return static_cast<std::size_t>(count);
+    }
+    bool ok() const { return ok_; }
+    bool AtEnd() const { return ok_ && rest_.empty(); }
+
+private:
+    bool Fail() {
+        ok_ = false;
+        rest_ = {};
+        return false;
+    }
+    std::string_view rest_;
+    bool ok_ = true;
+};
+
 std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
-    const nlohmann::json json{{"hash", program.hash},
-                              {"digest", digest},
-                              {"valid", program.valid},
-                              {"diagnostics", DiagnosticsToJson(program.diagnostics)},
-                              {"cost", ToJson(program.cost)}};
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(json);
-    return std::string(bytes.begin(), bytes.end());
+    EntryWriter out;
+    out.bytes().append(kCachedStageTag);
+    out.Text(program.hash);
+    out.Text(digest);
+    out.Int(program.valid ? 1 : 0);
+    out.Int(static_cast<std::int64_t>(program.diagnostics.size()));
+    for (const Diagnostic& d : program.diagnostics) {
+        out.Int(static_cast<int>(d.severity));
+        out.Text(d.file);
+        out.Int(d.line);
+        out.Int(d.column);
+        out.Text(d.message);
+    }
+    const StageCost& cost = program.cost;
+    for (int value :
+         {cost.arithmetic_ops, cost.texture_samples, cost.branches, cost.loops, cost.uniforms,
+          cost.varyings, cost.samplers, cost.shortest_path_ops, cost.longest_path_ops}) {
+        out.Int(value);
+    }
+    out.Int(static_cast<std::int64_t>(cost.builtin_calls.size()));
+    for (const auto& [name, count] : cost.builtin_calls) {
+        out.Text(name);
+        out.Int(count);
+    }
+    return std::move(out.bytes());
 }
 
 // The entry's outcome, or none when it does not decode (it is then recomputed and replaced).
 std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
-    try {
-        const nlohmann::json json = nlohmann::json::from_cbor(payload);
-        return CachedStage{json.at("hash").get<std::string>(), json.at("digest").get<std::string>(),
-                           StageOutcome{json.at("valid").get<bool>(),
-                                        DiagnosticsFromJson(json.at("diagnostics")),
-                                        CostFromJson(json.at("cost"))}};
-    } catch (const nlohmann::json::exception&) {
+    EntryReader in(payload);
+    if (!in.Tag(kCachedStageTag)) {
         return std::nullopt;
     }
+    CachedStage stage;
+    stage.hash = in.Text();
+    stage.digest = in.Text();
+    const std::int64_t valid = in.Int();
+    stage.outcome.valid = valid == 1;
+    const std::size_t diagnostics = in.Count(40);  // five fields of at least 8 bytes
+    for (std::size_t i = 0; i < diagnostics && in.ok(); ++i) {
+        Diagnostic d;
+        const int severity = in.SmallInt();
+        if (severity < 0 || severity > static_cast<int>(Severity::kNote)) {
+            return std::nullopt;
+        }
+        d.severity = static_cast<Severity>(severity);
+        d.file = in.Text();
+        d.line = in.SmallInt();
+        d.column = in.SmallInt();
+        d.message = in.Text();
+        stage.outcome.diagnostics.push_back(std::move(d));
+    }
+    StageCost& cost = stage.outcome.cost;
+    for (int* field :
+         {&cost.arithmetic_ops, &cost.texture_samples, &cost.branches, &cost.loops, &cost.uniforms,
+          &cost.varyings, &cost.samplers, &cost.shortest_path_ops, &cost.longest_path_ops}) {
+        *field = in.SmallInt();
+    }
+    const std::size_t calls = in.Count(16);
+    for (std::size_t i = 0; i < calls && in.ok(); ++i) {
+        std::string name = in.Text();
+        cost.builtin_calls[std::move(name)] = in.SmallInt();
+    }
+    if (!in.AtEnd() || (valid != 0 && valid != 1)) {
+        return std::nullopt;
+    }
+    return stage;
 }
 
 std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::string& id) {
