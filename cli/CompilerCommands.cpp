@@ -222,7 +222,10 @@ int RunValidateFiles(const CompilerOptions& options) {
     ShaderFileOptions file_options;
     file_options.target = TargetOption(options);
     file_options.limits = limits ? &*limits : nullptr;
+    const std::unique_ptr<base::ContentCache> cache = OpenCache(options.cache);
+    file_options.cache = cache.get();
     const ValidationReport report = ValidateShaderFiles(files, options.defines, file_options);
+    WarnAboutCache(cache.get());
     const std::string format = ReportFormat(options);
     int errors = 0;
     nlohmann::json json = nlohmann::json::array();

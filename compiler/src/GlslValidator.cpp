@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -335,17 +336,32 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
     return names;
 }
 
-// The part of a slot's identity that can change glslang's preprocessed output.
-std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
-    std::string key =
-            fmt::format("{}|{}|{}|{}|", job.file, StageName(job.stage), TargetName(job.target),
-                        job.limits != nullptr ? job.limits->Text() : "");
-    for (const std::string& define : job.defines) {
-        if (mentioned.count(define) != 0) {
+// The part of a stage's identity that can change glslang's preprocessed output: `target` is a
+// target's name or, for a plain file, PlainTargetLabel's. A define is kept when its name (before
+// any `=VALUE`, which plain files' -D may add) is mentioned, with its value.
+std::string StageGroupKey(const std::string& file, Stage stage, const std::string& target,
+                          const DeviceLimits* limits, const std::vector<std::string>& defines,
+                          const std::set<std::string>& mentioned) {
+    std::string key = fmt::format("{}|{}|{}|{}|", file, StageName(stage), target,
+                                  limits != nullptr ? limits->Text() : "");
+    for (const std::string& define : defines) {
+        if (mentioned.count(define.substr(0, define.find('='))) != 0) {
             key += define + ",";
         }
     }
     return key;
+}
+
+std::string PreprocessGroupKey(const StageJob& job, const std::set<std::string>& mentioned) {
+    return StageGroupKey(job.file, job.stage, TargetName(job.target), job.limits, job.defines,
+                         mentioned);
+}
+
+// The target part of a plain file's stage key. A plain file is compiled as the GLSL ES version of
+// its own `#version` line (a configuration's stage as its target's), so its keys are kept apart
+// from a configuration's: "file", or "file:webgl1" with --target.
+std::string PlainTargetLabel(const std::optional<GlslTarget>& target) {
+    return target ? "file:" + TargetName(*target) : "file";
 }
 
 // The start of every cache key: the validation code and what glslang decides with, as one
@@ -379,6 +395,17 @@ std::string LinkCacheKey(const StageJob& vertex, const StageJob& fragment) {
             .FinishHex();
 }
 
+// The cache key of a plain-file link (or of a lone stage's): the stage keys, which decide each
+// stage's input to glslang exactly, so no preprocessing is needed to find it.
+std::string PlainLinkCacheKey(const std::vector<std::string>& stage_keys) {
+    base::Sha256 key;
+    key.Update(CacheKeyPrefix()).Update("plain link\n");
+    for (const std::string& stage_key : stage_keys) {
+        key.Update(stage_key).Update("\n");
+    }
+    return key.FinishHex();
+}
+
 // The name of a configuration's latest bundle of results: its file and the programs validated,
 // so that a run after an edit finds the results the edit did not change.
 std::string LineageKey(const VariantConfig& config, const std::vector<Variant>& variants) {
@@ -401,27 +428,161 @@ struct CachedStage {
     StageOutcome outcome;
 };
 
+// A cached stage's bytes: a tag, then fixed-width little-endian integers and length-prefixed
+// strings, not CBOR: a warm run decodes every stage of the matrix, and nlohmann's CBOR reader
+// made that a fifth of the run. The entry is already checksummed by the cache; the reader still
+// checks every length against what is left, so bytes that are not an entry are a miss.
+constexpr std::string_view kCachedStageTag = "tidepool stage 1\n";
+
+class EntryWriter {
+public:
+    void Int(std::int64_t value) {
+        const auto bits = static_cast<std::uint64_t>(value);
+        for (int shift = 0; shift < 64; shift += 8) {
+            bytes_.push_back(static_cast<char>((bits >> shift) & 0xffU));
+        }
+    }
+    void Text(std::string_view text) {
+        Int(static_cast<std::int64_t>(text.size()));
+        bytes_.append(text);
+    }
+    std::string& bytes() { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class EntryReader {
+public:
+    explicit EntryReader(std::string_view bytes) : rest_(bytes) {}
+    bool Tag(std::string_view tag) {
+        if (rest_.substr(0, tag.size()) != tag) {
+            return Fail();
+        }
+        rest_.remove_prefix(tag.size());
+        return true;
+    }
+    std::int64_t Int() {
+        if (rest_.size() < 8) {
+            Fail();
+            return 0;
+        }
+        std::uint64_t bits = 0;
+        for (int i = 7; i >= 0; --i) {
+            bits = (bits << 8) | static_cast<unsigned char>(rest_[static_cast<std::size_t>(i)]);
+        }
+        rest_.remove_prefix(8);
+        return static_cast<std::int64_t>(bits);
+    }
+    // An int that must fit `int` (line numbers, counts): anything else is not an entry.
+    int SmallInt() {
+        const std::int64_t value = Int();
+        if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+            Fail();
+            return 0;
+        }
+        return static_cast<int>(value);
+    }
+    std::string Text() {
+        const std::int64_t size = Int();
+        if (size < 0 || static_cast<std::uint64_t>(size) > rest_.size()) {
+            Fail();
+            return {};
+        }
+        std::string text(rest_.substr(0, static_cast<std::size_t>(size)));
+        rest_.remove_prefix(static_cast<std::size_t>(size));
+        return text;
+    }
+    // A count of items that each take at least `min_bytes`, so a bad count cannot reserve much.
+    std::size_t Count(std::size_t min_bytes) {
+        const std::int64_t count = Int();
+        if (count < 0 || static_cast<std::uint64_t>(count) > rest_.size() / min_bytes) {
+            Fail();
+            return 0;
+        }
+        return static_cast<std::size_t>(count);
+    }
+    bool ok() const { return ok_; }
+    bool AtEnd() const { return ok_ && rest_.empty(); }
+
+private:
+    bool Fail() {
+        ok_ = false;
+        rest_ = {};
+        return false;
+    }
+    std::string_view rest_;
+    bool ok_ = true;
+};
+
 std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
-    const nlohmann::json json{{"hash", program.hash},
-                              {"digest", digest},
-                              {"valid", program.valid},
-                              {"diagnostics", DiagnosticsToJson(program.diagnostics)},
-                              {"cost", ToJson(program.cost)}};
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(json);
-    return std::string(bytes.begin(), bytes.end());
+    EntryWriter out;
+    out.bytes().append(kCachedStageTag);
+    out.Text(program.hash);
+    out.Text(digest);
+    out.Int(program.valid ? 1 : 0);
+    out.Int(static_cast<std::int64_t>(program.diagnostics.size()));
+    for (const Diagnostic& d : program.diagnostics) {
+        out.Int(static_cast<int>(d.severity));
+        out.Text(d.file);
+        out.Int(d.line);
+        out.Int(d.column);
+        out.Text(d.message);
+    }
+    const StageCost& cost = program.cost;
+    for (int value :
+         {cost.arithmetic_ops, cost.texture_samples, cost.branches, cost.loops, cost.uniforms,
+          cost.varyings, cost.samplers, cost.shortest_path_ops, cost.longest_path_ops}) {
+        out.Int(value);
+    }
+    out.Int(static_cast<std::int64_t>(cost.builtin_calls.size()));
+    for (const auto& [name, count] : cost.builtin_calls) {
+        out.Text(name);
+        out.Int(count);
+    }
+    return std::move(out.bytes());
 }
 
 // The entry's outcome, or none when it does not decode (it is then recomputed and replaced).
 std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
-    try {
-        const nlohmann::json json = nlohmann::json::from_cbor(payload);
-        return CachedStage{json.at("hash").get<std::string>(), json.at("digest").get<std::string>(),
-                           StageOutcome{json.at("valid").get<bool>(),
-                                        DiagnosticsFromJson(json.at("diagnostics")),
-                                        CostFromJson(json.at("cost"))}};
-    } catch (const nlohmann::json::exception&) {
+    EntryReader in(payload);
+    if (!in.Tag(kCachedStageTag)) {
         return std::nullopt;
     }
+    CachedStage stage;
+    stage.hash = in.Text();
+    stage.digest = in.Text();
+    const std::int64_t valid = in.Int();
+    stage.outcome.valid = valid == 1;
+    const std::size_t diagnostics = in.Count(40);  // five fields of at least 8 bytes
+    for (std::size_t i = 0; i < diagnostics && in.ok(); ++i) {
+        Diagnostic d;
+        const int severity = in.SmallInt();
+        if (severity < 0 || severity > static_cast<int>(Severity::kNote)) {
+            return std::nullopt;
+        }
+        d.severity = static_cast<Severity>(severity);
+        d.file = in.Text();
+        d.line = in.SmallInt();
+        d.column = in.SmallInt();
+        d.message = in.Text();
+        stage.outcome.diagnostics.push_back(std::move(d));
+    }
+    StageCost& cost = stage.outcome.cost;
+    for (int* field :
+         {&cost.arithmetic_ops, &cost.texture_samples, &cost.branches, &cost.loops, &cost.uniforms,
+          &cost.varyings, &cost.samplers, &cost.shortest_path_ops, &cost.longest_path_ops}) {
+        *field = in.SmallInt();
+    }
+    const std::size_t calls = in.Count(16);
+    for (std::size_t i = 0; i < calls && in.ok(); ++i) {
+        std::string name = in.Text();
+        cost.builtin_calls[std::move(name)] = in.SmallInt();
+    }
+    if (!in.AtEnd() || (valid != 0 && valid != 1)) {
+        return std::nullopt;
+    }
+    return stage;
 }
 
 std::vector<Diagnostic> Tagged(std::vector<Diagnostic> diagnostics, const std::string& id) {
@@ -812,7 +973,6 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines,
                                      const ShaderFileOptions& options) {
-    WarmUpGlslang({GlslTarget::kEs100});
     ValidationReport report;
     std::vector<FileText> texts(files.size());
     for (std::size_t i = 0; i < files.size(); ++i) {
@@ -859,6 +1019,73 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         }
     }
     auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
+    auto group_usable = [&](std::size_t g) {
+        return std::all_of(groups[g].begin(), groups[g].end(), usable);
+    };
+
+    // The cache, as for configurations (one bundle per run, every result under its own key): a
+    // group whose stages and link it knows needs no glslang at all, not even its warm-up.
+    base::ContentCache* const cache = options.cache;
+    const std::uint64_t stored_before = cache != nullptr ? cache->Stats().stored : 0;
+    std::optional<base::CacheBundle> bundle;
+    std::vector<std::string> stage_keys(files.size());
+    std::vector<std::optional<CachedStage>> cached_stages(files.size());
+    std::vector<std::string> link_keys(groups.size());
+    std::vector<std::optional<LinkResult>> cached_links(groups.size());
+    if (cache != nullptr) {
+        base::Sha256 run_digest;
+        run_digest.Update(CacheKeyPrefix()).Update("plain bundle\n");
+        base::Sha256 lineage;
+        lineage.Update(CacheKeyPrefix()).Update("plain lineage\n");
+        for (std::size_t i = 0; i < files.size(); ++i) {
+            if (usable(i)) {
+                stage_keys[i] = StageCacheKey(
+                        StageGroupKey(files[i].path, files[i].stage,
+                                      PlainTargetLabel(options.target), options.limits, defines,
+                                      MentionedIdentifiers(texts[i].text)),
+                        base::Sha256Hex(texts[i].text));
+                run_digest.Update(stage_keys[i]).Update("\n");
+            }
+            std::error_code ec;
+            lineage.Update(std::filesystem::absolute(files[i].path, ec).string()).Update("\n");
+        }
+        bundle.emplace(*cache, run_digest.FinishHex(), lineage.FinishHex());
+        for (std::size_t g = 0; g < groups.size(); ++g) {
+            if (!group_usable(g)) {
+                continue;
+            }
+            std::vector<std::string> keys;
+            bool all_cached = true;
+            bool all_valid = true;
+            for (std::size_t i : groups[g]) {
+                keys.push_back(stage_keys[i]);
+                if (std::optional<std::string> payload = bundle->Load(stage_keys[i])) {
+                    cached_stages[i] = DecodeCachedStage(*payload);
+                }
+                all_cached = all_cached && cached_stages[i].has_value();
+                all_valid = all_valid && cached_stages[i] && cached_stages[i]->outcome.valid;
+            }
+            link_keys[g] = PlainLinkCacheKey(keys);
+            if (all_cached && !all_valid) {
+                cached_links[g] = LinkResult{};  // no link is attempted with an invalid stage
+            } else if (all_cached) {
+                if (std::optional<std::string> payload = bundle->Load(link_keys[g])) {
+                    try {
+                        cached_links[g] = DecodeLink(*payload);
+                    } catch (const nlohmann::json::exception&) {
+                        // Recomputed below, and the entry replaced.
+                    }
+                }
+            }
+        }
+    }
+    auto group_runs = [&](std::size_t g) { return group_usable(g) && !cached_links[g]; };
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+        if (group_runs(g)) {
+            WarmUpGlslang({GlslTarget::kEs100});
+            break;
+        }
+    }
     std::vector<bool> reported(files.size(), false);
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
             groups.size(), 2, GlslangLimits(),
@@ -871,20 +1098,38 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 }
                 return ParseAndLink(stages, note, &reported);
             },
-            [&](std::size_t g) { return std::all_of(groups[g].begin(), groups[g].end(), usable); });
+            group_runs);
     for (std::size_t g = 0; g < groups.size(); ++g) {
-        for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
-            StageProgram& program = report.stage_programs[index];
-            program.valid = outcome.valid;
-            program.diagnostics = std::move(outcome.diagnostics);
-            program.cost = outcome.cost;
+        LinkResult link;
+        if (cached_links[g]) {
+            for (std::size_t i : groups[g]) {
+                StageProgram& program = report.stage_programs[i];
+                program.valid = cached_stages[i]->outcome.valid;
+                program.diagnostics = cached_stages[i]->outcome.diagnostics;
+                program.cost = cached_stages[i]->outcome.cost;
+            }
+            link = *cached_links[g];
+        } else {
+            for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
+                StageProgram& program = report.stage_programs[index];
+                program.valid = outcome.valid;
+                program.diagnostics = std::move(outcome.diagnostics);
+                program.cost = outcome.cost;
+                // glslang's own verdict, not an internal compiler error: the cache may keep it.
+                if (bundle && !stage_keys[index].empty()) {
+                    bundle->Store(stage_keys[index], EncodeCachedStage(program, ""));
+                }
+            }
+            link = LinkOutcome(results[g], files[groups[g].back()].path,
+                               [&](std::size_t index, const std::string& message) {
+                                   report.stage_programs[index].diagnostics = {
+                                           MakeError(files[index].path, 0, 0, message)};
+                               });
+            if (bundle && !link_keys[g].empty() && results[g].failure == WorkerFailure::kNone &&
+                !results[g].payload.empty()) {
+                bundle->Store(link_keys[g], results[g].payload);
+            }
         }
-        const LinkResult link =
-                LinkOutcome(results[g], files[groups[g].back()].path,
-                            [&](std::size_t index, const std::string& message) {
-                                report.stage_programs[index].diagnostics = {
-                                        MakeError(files[index].path, 0, 0, message)};
-                            });
         VariantVerdict verdict;
         std::vector<std::string> names;
         bool stages_ok = true;
@@ -905,6 +1150,12 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         CollectStepDiagnostics(verdict);
         report.links += stages_ok ? 1 : 0;
         report.verdicts.push_back(std::move(verdict));
+    }
+    if (bundle) {
+        bundle->Save();
+        if (cache->Stats().stored > stored_before) {
+            cache->Trim();
+        }
     }
     return report;
 }

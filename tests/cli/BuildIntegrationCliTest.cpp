@@ -218,6 +218,51 @@ TEST_P(ExampleProjectTest, AnInvalidVariantFailsTheBuildAtTheShaderLine) {
     EXPECT_NE(BuildAll().exit_code, 0);
 }
 
+// `cmake --install` into a prefix, which is then moved (the package finds its binary relative to
+// itself): find_package(tidepool) through CMAKE_PREFIX_PATH alone builds the example project
+// with the installed binary, and the installed front end finds the installed tidepool-gl.
+TEST(InstalledPackageTest, AMovedInstallPrefixBuildsTheExampleProject) {
+    const TempDir dir;
+    const fs::path staged = dir.Path() / "staged";
+    const fs::path prefix = dir.Path() / "prefix";
+    const CommandResult install =
+            RunShell("'" CMAKE_COMMAND "' --install '" TIDEPOOL_BUILD_DIR "' --prefix '" +
+                     staged.string() + "' 2>&1");
+    ASSERT_EQ(install.exit_code, 0) << install.out;
+    fs::rename(staged, prefix);
+    for (const char* file :
+         {"bin/tidepool", "bin/tidepool-gl", "lib/cmake/tidepool/tidepoolConfig.cmake",
+          "lib/cmake/tidepool/tidepoolConfigVersion.cmake",
+          "lib/cmake/tidepool/TidepoolShaderVariants.cmake"}) {
+        EXPECT_TRUE(fs::exists(prefix / file)) << file;
+    }
+    // A GL command: the front end execs tidepool-gl from its own folder.
+    const CommandResult gl =
+            RunShell("'" + (prefix / "bin/tidepool").string() + "' render --help 2>&1");
+    EXPECT_EQ(gl.exit_code, 0) << gl.out;
+    EXPECT_TRUE(Contains(gl.out, "--size")) << gl.out;
+
+    fs::copy(fs::path(TIDEPOOL_SOURCE_ROOT) / "examples/shader_variants", dir.Path() / "src",
+             fs::copy_options::recursive);
+    const CommandResult configure =
+            RunShell("'" CMAKE_COMMAND "' -S '" + (dir.Path() / "src").string() + "' -B '" +
+                     (dir.Path() / "build").string() + "' -G Ninja -DCMAKE_PREFIX_PATH='" +
+                     prefix.string() + "' 2>&1");
+    ASSERT_EQ(configure.exit_code, 0) << configure.out;
+    EXPECT_TRUE(Contains(ReadText(dir.Path() / "build/CMakeCache.txt"),
+                         "tidepool_DIR:PATH=" + (prefix / "lib/cmake/tidepool").string()));
+    // -v: Ninja prints each command, so the log shows which binary validated.
+    const CommandResult build = RunShell("'" CMAKE_COMMAND "' --build '" +
+                                         (dir.Path() / "build").string() + "' -- -v 2>&1");
+    ASSERT_EQ(build.exit_code, 0) << build.out;
+    EXPECT_TRUE(Contains(build.out, (prefix / "bin/tidepool").string() + " validate --config"))
+            << build.out;
+    const CommandResult loaded =
+            RunShell("'" + (dir.Path() / "build/variant_loader").string() + "' tint FOG TINT 2>&1");
+    EXPECT_EQ(loaded.exit_code, 0) << loaded.out;
+    EXPECT_TRUE(Contains(loaded.out, "tint:FOG,TINT")) << loaded.out;
+}
+
 INSTANTIATE_TEST_SUITE_P(Generators, ExampleProjectTest,
                          ::testing::Values("Ninja", "Unix Makefiles"),
                          [](const ::testing::TestParamInfo<const char*>& param) {

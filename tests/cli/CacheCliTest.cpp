@@ -110,6 +110,42 @@ TEST_F(CacheCliTest, UnwritableCacheFolderWarnsAndStillValidates) {
     EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;
 }
 
+TEST_F(CacheCliTest, PlainFilesWithAWarmCacheGiveTheSameDiagnosticsAndExitCodeAsNoCache) {
+    const std::string cache = Quoted(dir_.Path() / "cache");
+    for (const char* files : {"s.vsh s.fsh", "-D B s.vsh s.fsh", "--json -D B s.vsh s.fsh",
+                              "--format sarif -D B s.fsh"}) {
+        SCOPED_TRACE(files);
+        const std::string args = std::string("validate ") + files;
+        const CommandResult uncached = Tidepool(args + " --no-cache", dir_.Path());
+        const CommandResult cold = Tidepool(args + " --cache " + cache, dir_.Path());
+        const std::size_t entries = EntryCount(dir_.Path() / "cache");
+        const CommandResult warm = Tidepool(args + " --cache " + cache, dir_.Path());
+        EXPECT_EQ(cold.exit_code, uncached.exit_code);
+        EXPECT_EQ(warm.exit_code, uncached.exit_code);
+        EXPECT_EQ(cold.out, uncached.out);
+        EXPECT_EQ(warm.out, uncached.out);
+        EXPECT_GT(entries, 0U);
+        EXPECT_EQ(EntryCount(dir_.Path() / "cache"), entries) << "the warm run wrote entries";
+    }
+    const CommandResult broken =
+            Tidepool("validate -D B s.vsh s.fsh --cache " + cache, dir_.Path());
+    EXPECT_EQ(broken.exit_code, 1);
+    EXPECT_NE(broken.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier"),
+              std::string::npos)
+            << broken.out;
+    // The default folder and --no-cache, as for a configuration.
+    const CommandResult home = RunShell("cd " + Quoted(dir_.Path()) +
+                                        " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
+                                        " '" TIDEPOOL_BINARY "' validate s.vsh s.fsh 2>&1");
+    EXPECT_EQ(home.exit_code, 0) << home.out;
+    EXPECT_GT(EntryCount(dir_.Path() / "xdg" / "tidepool" / "v1"), 0U);
+    const CommandResult off = RunShell("cd " + Quoted(dir_.Path()) +
+                                       " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg2") +
+                                       " '" TIDEPOOL_BINARY "' validate --no-cache s.vsh 2>&1");
+    EXPECT_EQ(off.exit_code, 0) << off.out;
+    EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg2" / "tidepool"));
+}
+
 TEST_F(CacheCliTest, ConcurrentProcessesShareOneCacheFolderWithoutError) {
     // The default matrix, cold: both processes miss, store the same entries and race on every
     // rename; then two warm processes read what the first two wrote.

@@ -333,6 +333,129 @@ TEST(GlslValidatorTest, PlainVertexAndFragmentFilesAreLinkedTogether) {
     EXPECT_EQ(report.links, 1);
 }
 
+// Described, with each step's status, which plain files report on their own (a link not run).
+std::vector<std::string> DescribedWithSteps(const ValidationReport& report) {
+    std::vector<std::string> lines = Described(report);
+    for (const VariantVerdict& verdict : report.verdicts) {
+        for (const auto& [name, step] : verdict.NamedSteps()) {
+            lines.push_back(std::string(name) + " " + StepStatusName(step->status) + " " +
+                            std::to_string(step->diagnostics.size()));
+        }
+    }
+    return lines;
+}
+
+// Plain files of each kind the cache keeps: a valid pair, a pair with a link error, a pair with
+// a stage error (no link) and three files validated one by one.
+std::vector<std::vector<ShaderFile>> PlainFileRuns(const TempDir& dir) {
+    const std::string vs = dir.Write("p.vert", kVertex).string();
+    const std::string fs = dir.Write("p.frag", kFragment).string();
+    const std::string mismatch = dir.Write("m.frag",
+                                           "#version 100\nprecision mediump float;\n"
+                                           "varying mediump vec3 uv;\n"
+                                           "void main() { gl_FragColor = vec4(uv, 1.0); }\n")
+                                         .string();
+    const std::string broken = dir.Write("b.frag",
+                                         "#version 100\nprecision mediump float;\n"
+                                         "void main() { gl_FragColor = vec4(oops); }\n")
+                                       .string();
+    return {{{vs, Stage::kVertex}, {fs, Stage::kFragment}},
+            {{vs, Stage::kVertex}, {mismatch, Stage::kFragment}},
+            {{vs, Stage::kVertex}, {broken, Stage::kFragment}},
+            {{fs, Stage::kFragment}, {broken, Stage::kFragment}, {vs, Stage::kVertex}}};
+}
+
+TEST(GlslValidatorTest, PlainFileCacheHitGivesTheSameReportAsAMiss) {
+    TempDir dir;
+    base::ContentCache cache(dir.Path() / "cache");
+    ShaderFileOptions cached;
+    cached.cache = &cache;
+    for (const std::vector<ShaderFile>& files : PlainFileRuns(dir)) {
+        SCOPED_TRACE(files.back().path);
+        const ValidationReport uncached = ValidateShaderFiles(files, {});
+        const ValidationReport cold = ValidateShaderFiles(files, {}, cached);
+        const base::ContentCacheStats after_cold = cache.Stats();
+        EXPECT_GT(after_cold.stored, 0U);
+        const ValidationReport warm = ValidateShaderFiles(files, {}, cached);
+        const base::ContentCacheStats after_warm = cache.Stats();
+        EXPECT_EQ(after_warm.misses, after_cold.misses) << "the warm run missed";
+        EXPECT_EQ(after_warm.stored, after_cold.stored) << "the warm run stored";
+        EXPECT_GT(after_warm.hits, after_cold.hits);
+        EXPECT_EQ(DescribedWithSteps(cold), DescribedWithSteps(uncached));
+        EXPECT_EQ(DescribedWithSteps(warm), DescribedWithSteps(uncached));
+    }
+    // The runs really have each kind of result.
+    const std::vector<std::vector<ShaderFile>> runs = PlainFileRuns(dir);
+    EXPECT_TRUE(ValidateShaderFiles(runs[0], {}).verdicts[0].valid);
+    EXPECT_EQ(ValidateShaderFiles(runs[1], {}).verdicts[0].link.status, StepStatus::kInvalid);
+    EXPECT_EQ(ValidateShaderFiles(runs[2], {}).verdicts[0].link.status, StepStatus::kNotRun);
+}
+
+TEST(GlslValidatorTest, PlainFileDefineValuesAndTargetsAreKeptApartInTheCache) {
+    TempDir dir;
+    // N=1 reaches an undeclared name; any other value does not. KEEP is never mentioned.
+    const std::string path = dir.Write("n.frag",
+                                       "#version 100\nprecision mediump float;\n"
+                                       "void main() {\n#if N == 1\n  gl_FragColor = oops;\n"
+                                       "#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n")
+                                     .string();
+    const std::vector<ShaderFile> files{{path, Stage::kFragment}};
+    base::ContentCache cache(dir.Path() / "cache");
+    ShaderFileOptions cached;
+    cached.cache = &cache;
+    ShaderFileOptions webgl = cached;
+    webgl.target = GlslTarget::kWebGl1;
+    for (int pass = 0; pass < 2; ++pass) {
+        for (const std::vector<std::string>& defines :
+             std::vector<std::vector<std::string>>{{"N=1"}, {"N=2"}, {"N=1", "KEEP"}, {"N"}}) {
+            SCOPED_TRACE(defines.front());
+            EXPECT_EQ(DescribedWithSteps(ValidateShaderFiles(files, defines, cached)),
+                      DescribedWithSteps(ValidateShaderFiles(files, defines)));
+        }
+        // A while loop: GLSL ES 1.00 allows it, WebGL 1's Appendix A (glslang's limits, so
+        // decided by glslang, not before it) does not.
+        const std::string loop = dir.Write("w.frag",
+                                           "#version 100\nprecision mediump float;\nvoid main() {\n"
+                                           "  float x = 0.0;\n  while (x < 1.0) { x += 0.5; }\n"
+                                           "  gl_FragColor = vec4(x);\n}\n")
+                                         .string();
+        const std::vector<ShaderFile> webgl_files{{loop, Stage::kFragment}};
+        EXPECT_TRUE(ValidateShaderFiles(webgl_files, {}, cached).verdicts[0].valid);
+        EXPECT_FALSE(ValidateShaderFiles(webgl_files, {}, webgl).verdicts[0].valid);
+    }
+    EXPECT_FALSE(ValidateShaderFiles(files, {"N=1"}, cached).verdicts[0].valid);
+    EXPECT_TRUE(ValidateShaderFiles(files, {"N=2"}, cached).verdicts[0].valid);
+    EXPECT_GT(cache.Stats().hits, 0U);
+}
+
+TEST(GlslValidatorTest, CorruptPlainFileCacheEntryIsIgnoredAndRewritten) {
+    TempDir dir;
+    const std::vector<ShaderFile> files = PlainFileRuns(dir)[1];
+    base::ContentCache cache(dir.Path() / "cache");
+    ShaderFileOptions cached;
+    cached.cache = &cache;
+    const ValidationReport cold = ValidateShaderFiles(files, {}, cached);
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(dir.Path() / "cache")) {
+        if (entry.is_regular_file()) {
+            std::fstream file(entry.path(), std::ios::binary | std::ios::in | std::ios::out);
+            file.seekp(-1, std::ios::end);
+            file.put('\x7f');
+        }
+    }
+    base::ContentCache reopened(dir.Path() / "cache");
+    cached.cache = &reopened;
+    const ValidationReport damaged = ValidateShaderFiles(files, {}, cached);
+    EXPECT_GT(reopened.Stats().corrupt, 0U);
+    EXPECT_EQ(reopened.Stats().hits, 0U);
+    EXPECT_EQ(DescribedWithSteps(damaged), DescribedWithSteps(cold));
+    base::ContentCache again(dir.Path() / "cache");
+    cached.cache = &again;
+    const ValidationReport rewritten = ValidateShaderFiles(files, {}, cached);
+    EXPECT_EQ(again.Stats().corrupt, 0U);
+    EXPECT_EQ(again.Stats().misses, 0U);
+    EXPECT_EQ(DescribedWithSteps(rewritten), DescribedWithSteps(cold));
+}
+
 TEST(GlslValidatorTest, Es300TargetCompilesThe100SourceUnchangedAndKeepsLines) {
     TempDir dir;
     dir.Write("a.vsh", kVertex);

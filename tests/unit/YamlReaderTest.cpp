@@ -9,6 +9,7 @@
 #include <string>
 
 #include "TempDir.h"
+#include "YamlReader.h"
 namespace tidepool {
 namespace {
 
@@ -104,6 +105,41 @@ TEST(YamlReaderTest, RepeatedKeyInAnAliasedMappingIsReportedOnce) {
                       .find("v.yaml:1:14: error: duplicate key 'a' (first "
                             "written at line 1)"),
               std::string::npos);
+}
+
+// What YamlReader::Load says about `yaml`: whether it gave a node, then its diagnostics.
+std::string LoadFindings(const std::string& yaml) {
+    YamlReader reader("d.yaml");
+    const bool loaded = reader.Load(yaml).has_value();
+    return (loaded ? "loaded\n" : "refused\n") + Formatted(reader.diagnostics());
+}
+
+// A document with no anchor is read in one parse and checked on its tree; one with an anchor
+// through the event pass. Both must find the same: the document, then with an unused anchor
+// added at its end (which moves nothing).
+TEST(YamlReaderTest, DocumentWithoutAnchorsGetsTheSameFindingsAsTheEventCheck) {
+    std::string long_list = "a: 1\nb: [";
+    for (std::uint64_t i = 0; i <= kMaxYamlExpandedNodes; ++i) {
+        long_list += "x, ";
+    }
+    long_list += "y]\nc: {d: 1, d: 2}\n";
+    const std::vector<std::string> documents = {
+            "a: 1\nb:\n  c: 2\n  c: 3\n  ~: x\n  : y\n  null: z\nd: [{e: 1, e: 2}, {f: 1}]\n"
+            "? [g, {h: 1, h: 2}]\n: {i: 1, i: 2}\na: 4\n'a': 5\n",
+            "programs:\n  p:\n    vertex: a.vsh\n    vertex: b.vsh\n",
+            "- 1\n- {k: v, k: w}\n",
+            long_list,
+    };
+    for (const std::string& yaml : documents) {
+        SCOPED_TRACE(yaml.substr(0, 80));
+        const std::string one_parse = LoadFindings(yaml);
+        EXPECT_EQ(one_parse,
+                  LoadFindings(yaml + (yaml[0] == '-' ? "- &unused 1\n" : "zz: &unused 1\n")))
+                << "the tree check and the event check disagree";
+        EXPECT_NE(one_parse.find(yaml == long_list ? "refused\nd.yaml:2:" : "duplicate key"),
+                  std::string::npos)
+                << one_parse;
+    }
 }
 
 TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {

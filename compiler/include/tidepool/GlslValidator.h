@@ -109,6 +109,9 @@ struct ShaderFileOptions {
     std::optional<GlslTarget> target;
     /// A device's limits, checked instead of the GLSL ES minimums; none: the minimums. Not owned.
     const DeviceLimits* limits = nullptr;
+    /// As ValidationOptions::cache: each file's result and the link's are looked up before
+    /// glslang runs and stored after; none: no cache. Not owned.
+    base::ContentCache* cache = nullptr;
 };
 
 /// Validates plain shader files: each is parsed (the GLSL ES version comes from its own `#version`
