@@ -14,6 +14,7 @@ namespace {
 
 using tidepool::testing::CommandResult;
 using tidepool::testing::RunShell;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
 std::string Quoted(const std::filesystem::path& path) {
@@ -21,11 +22,6 @@ std::string Quoted(const std::filesystem::path& path) {
     quoted += path.string();
     quoted += '\'';
     return quoted;
-}
-
-// `tidepool ARGS` in `cwd`, stdout and stderr together.
-CommandResult Tidepool(const std::string& args, const std::filesystem::path& cwd) {
-    return RunShell("cd " + Quoted(cwd) + " && '" TIDEPOOL_BINARY "' " + args + " 2>&1");
 }
 
 std::string Read(const std::filesystem::path& path) {
@@ -61,15 +57,20 @@ protected:
 
 TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
     const std::string cache = Quoted(dir_.Path() / "cache");
-    const CommandResult uncached = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
-    const CommandResult cold = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
-    const CommandResult warm = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
-    EXPECT_EQ(uncached.exit_code, 1) << uncached.out;
-    EXPECT_NE(uncached.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
+    const CommandResult uncached = RunTidepool("validate --config v.yaml --no-cache", dir_.Path());
+    const CommandResult cold =
+            RunTidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    const CommandResult warm =
+            RunTidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    EXPECT_EQ(uncached.exit_code, 1) << uncached.err;
+    EXPECT_NE(uncached.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
               std::string::npos)
-            << uncached.out;
+            << uncached.err;
+    EXPECT_NE(uncached.out.find("2 INVALID"), std::string::npos) << uncached.out;
     EXPECT_EQ(cold.exit_code, 1);
     EXPECT_EQ(warm.exit_code, 1);
+    EXPECT_EQ(cold.err, uncached.err);
+    EXPECT_EQ(warm.err, uncached.err);
     EXPECT_EQ(cold.out, uncached.out);
     EXPECT_EQ(warm.out, uncached.out);
     EXPECT_GT(EntryCount(dir_.Path() / "cache"), 0U);
@@ -77,36 +78,36 @@ TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
 
 TEST_F(CacheCliTest, NoCacheWritesNothing) {
     dir_.Write("xdg/keep", "");
-    const CommandResult r = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    const CommandResult with_env = RunShell(
-            "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
-            " '" TIDEPOOL_BINARY "' validate --config v.yaml --no-cache 2>&1");
-    EXPECT_EQ(with_env.exit_code, 1) << with_env.out;
+    const CommandResult r = RunTidepool("validate --config v.yaml --no-cache", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const CommandResult with_env = RunTidepool("validate --config v.yaml --no-cache", dir_.Path(),
+                                               "XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg"));
+    EXPECT_EQ(with_env.exit_code, 1) << with_env.err;
     EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg" / "tidepool"));
 }
 
 TEST_F(CacheCliTest, DefaultFolderIsTidepoolUnderXdgCacheHome) {
-    const CommandResult r = RunShell("cd " + Quoted(dir_.Path()) +
-                                     " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
-                                     " '" TIDEPOOL_BINARY "' validate --config v.yaml 2>&1");
-    EXPECT_EQ(r.exit_code, 1) << r.out;
+    const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path(),
+                                        "XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_GT(EntryCount(dir_.Path() / "xdg" / "tidepool" / "v1"), 0U);
 }
 
 TEST_F(CacheCliTest, CacheAndNoCacheTogetherAreAUsageError) {
-    const CommandResult r = Tidepool("validate --config v.yaml --no-cache --cache c", dir_.Path());
-    EXPECT_EQ(r.exit_code, 2) << r.out;
-    EXPECT_NE(r.out.find("--no-cache"), std::string::npos) << r.out;
+    const CommandResult r =
+            RunTidepool("validate --config v.yaml --no-cache --cache c", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--no-cache"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
 }
 
 TEST_F(CacheCliTest, UnwritableCacheFolderWarnsAndStillValidates) {
     dir_.Write("file", "a file where the cache folder should be");
-    const CommandResult r =
-            Tidepool("validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
-                     dir_.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_NE(r.out.find("warning: validation cache"), std::string::npos) << r.out;
+    const CommandResult r = RunTidepool(
+            "validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
+            dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("warning: validation cache"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;
 }
 
