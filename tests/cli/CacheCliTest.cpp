@@ -3,16 +3,16 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
 
 namespace {
 
 using tidepool::testing::CommandResult;
+using tidepool::testing::ReadText;
 using tidepool::testing::RunShell;
 using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
@@ -22,13 +22,6 @@ std::string Quoted(const std::filesystem::path& path) {
     quoted += path.string();
     quoted += '\'';
     return quoted;
-}
-
-std::string Read(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 std::size_t EntryCount(const std::filesystem::path& folder) {
@@ -131,14 +124,14 @@ TEST_F(CacheCliTest, ConcurrentProcessesShareOneCacheFolderWithoutError) {
         ASSERT_EQ(RunShell(script).exit_code, 0);
         const std::filesystem::path a = dir_.Path() / (std::string(round) + "a");
         const std::filesystem::path b = dir_.Path() / (std::string(round) + "b");
-        EXPECT_EQ(Read(a.string() + ".code"), "0\n") << Read(a.string() + ".err");
-        EXPECT_EQ(Read(b.string() + ".code"), "0\n") << Read(b.string() + ".err");
-        EXPECT_EQ(Read(a.string() + ".err"), "");
-        EXPECT_EQ(Read(b.string() + ".err"), "");
+        EXPECT_EQ(ReadText(a.string() + ".code"), "0\n") << ReadText(a.string() + ".err");
+        EXPECT_EQ(ReadText(b.string() + ".code"), "0\n") << ReadText(b.string() + ".err");
+        EXPECT_EQ(ReadText(a.string() + ".err"), "");
+        EXPECT_EQ(ReadText(b.string() + ".err"), "");
         // EXPECT_TRUE, not EXPECT_EQ: a failure must not print two manifests of 400 kB.
-        const std::string manifest = Read(a.string() + ".out");
-        EXPECT_TRUE(manifest == Read(b.string() + ".out")) << "the two processes disagree";
-        EXPECT_TRUE(manifest == Read((dir_.Path() / "colda").string() + ".out"))
+        const std::string manifest = ReadText(a.string() + ".out");
+        EXPECT_TRUE(manifest == ReadText(b.string() + ".out")) << "the two processes disagree";
+        EXPECT_TRUE(manifest == ReadText((dir_.Path() / "colda").string() + ".out"))
                 << "the warm processes disagree with the cold ones";
         EXPECT_NE(manifest.find("\"invalid\": 0"), std::string::npos);
     }

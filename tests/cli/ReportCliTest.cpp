@@ -7,12 +7,11 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <regex>
-#include <sstream>
 #include <string>
 
+#include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
 #include <nlohmann/json.hpp>
@@ -23,19 +22,13 @@ namespace {
 using tidepool::testing::TempDir;
 
 using tidepool::testing::CommandResult;
+using tidepool::testing::ReadText;
 using tidepool::testing::RunShell;
 
 // Runs the tidepool binary with `args` (a shell fragment) in the source root, on the two threads
 // Mesa's llvmpipe may use here.
 CommandResult RunTidepool(const std::string& args) {
     return tidepool::testing::RunTidepool(args, TIDEPOOL_SOURCE_ROOT, "LP_NUM_THREADS=2");
-}
-
-std::string ReadText(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 // One small `tidepool run` shared by every test of the suite (it is the slow part): 160x120,
