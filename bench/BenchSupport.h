@@ -1,7 +1,7 @@
-// What every benchmark needs and none of the libraries should offer: a wall clock, order
-// statistics over repeated runs and a description of the machine and build, so that every
-// printed figure can be read next to the conditions it was measured under. (The parallel loop
-// is base::ParallelFor.)
+// What every benchmark needs and none of the libraries should offer: a wall clock, the smallest
+// of repeated runs and a description of the machine and build, so that every printed figure can
+// be read next to the conditions it was measured under. (The median is base::Median, the
+// parallel loop base::ParallelFor.)
 #pragma once
 
 #include <algorithm>
@@ -57,16 +57,6 @@ inline std::string LoadAverage() {
 inline int HardwareThreads() {
     const unsigned threads = std::thread::hardware_concurrency();
     return threads == 0 ? 1 : static_cast<int>(threads);
-}
-
-/// The median of `samples` (mean of the two middle values for an even count); 0 when empty.
-inline double Median(std::vector<double> samples) {
-    if (samples.empty()) {
-        return 0.0;
-    }
-    std::sort(samples.begin(), samples.end());
-    const std::size_t mid = samples.size() / 2;
-    return samples.size() % 2 == 1 ? samples[mid] : (samples[mid - 1] + samples[mid]) / 2.0;
 }
 
 /// The smallest of `samples`; 0 when empty.

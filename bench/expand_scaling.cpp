@@ -23,6 +23,8 @@
 //
 // Exit codes: 0 (figures printed), 1 when the binary cannot run or a case gives a wrong count,
 // 2 on a bad argument.
+#include "tidepool/base/SampleStatistics.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -166,8 +168,8 @@ int main(int argc, char** argv) {
             continue;
         }
         std::printf("%-26s %8s %7s %10.1f %9.1f %12.1f   %s\n", c.name.c_str(),
-                    c.combinations.c_str(), valid.c_str(), tidepool::bench::Median(c.wall_ms),
-                    tidepool::bench::Min(c.wall_ms), tidepool::bench::Median(c.rss_mb),
+                    c.combinations.c_str(), valid.c_str(), tidepool::base::Median(c.wall_ms),
+                    tidepool::bench::Min(c.wall_ms), tidepool::base::Median(c.rss_mb),
                     c.target.c_str());
     }
     std::printf(

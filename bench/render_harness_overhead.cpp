@@ -2,11 +2,11 @@
 // the CPU: matrices, the infinite water polygon, oblique projections, per-pass culling), next to
 // the whole frame (submission + glFinish). Target: under 3%. Prints figures; never fails a build.
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/SampleStatistics.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
-#include "tidepool/runner/Statistics.h"
 
 #include <algorithm>
 #include <chrono>
@@ -82,9 +82,9 @@ int main() {
             fmt::print("{:<70} image looks wrong ({} colours)\n", c.id, colours.size());
             continue;
         }
-        const double frame = ComputeSampleStatistics(frame_ms).median;
-        const double plan = ComputeSampleStatistics(plan_ms).median;
-        const double submit = ComputeSampleStatistics(submit_ms).median;
+        const double frame = base::Median(frame_ms);
+        const double plan = base::Median(plan_ms);
+        const double submit = base::Median(submit_ms);
         const double share = 100.0 * plan / frame;
         worst_share = std::max(worst_share, share);
         fmt::print("{:<70} {:>9.3f} {:>9.4f} {:>9.3f} {:>6.3f}%\n", c.id, frame, plan, submit,

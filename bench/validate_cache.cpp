@@ -21,6 +21,8 @@
 //
 // Exit codes: 0 (figures printed), 1 when a tool cannot run or a case is WRONG, 2 on a bad
 // argument.
+#include "tidepool/base/SampleStatistics.h"
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -53,8 +55,8 @@ void Report(const char* name, const std::vector<double>& wall_ms, const std::vec
         std::printf("%-34s %10s\n", name, "WRONG");
         return;
     }
-    std::printf("%-34s %10.1f %9.1f %12.1f\n", name, tidepool::bench::Median(wall_ms),
-                tidepool::bench::Min(wall_ms), tidepool::bench::Median(rss));
+    std::printf("%-34s %10.1f %9.1f %12.1f\n", name, tidepool::base::Median(wall_ms),
+                tidepool::bench::Min(wall_ms), tidepool::base::Median(rss));
 }
 
 }  // namespace
@@ -136,9 +138,9 @@ int main(int argc, char** argv) {
     Report(fmt::format("glslangValidator -l loop ({} runs)", pairs.size()).c_str(),
            all_right ? loop_ms : std::vector<double>{}, loop_rss);
     if (all_right) {
-        const double cold = tidepool::bench::Median(cold_ms);
-        const double warm = tidepool::bench::Median(warm_ms);
-        const double loop = tidepool::bench::Median(loop_ms);
+        const double cold = tidepool::base::Median(cold_ms);
+        const double warm = tidepool::base::Median(warm_ms);
+        const double loop = tidepool::base::Median(loop_ms);
         std::printf(
                 "\ncold: %.1f ms, %.1fx faster than the loop; target <= 125 ms and >= 20x: %s\n",
                 cold, loop / cold, tidepool::bench::Verdict(cold <= 125 && loop / cold >= 20));

@@ -22,6 +22,8 @@
 //
 // Exit codes: 0 (figures printed), 1 when a tool cannot run or a case is WRONG, 2 on a bad
 // argument.
+#include "tidepool/base/SampleStatistics.h"
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -114,12 +116,12 @@ int main(int argc, char** argv) {
             continue;
         }
         std::printf("%-28s %10.1f %9.1f %12.1f\n", c.name.c_str(),
-                    tidepool::bench::Median(c.wall_ms), tidepool::bench::Min(c.wall_ms),
-                    tidepool::bench::Median(c.rss_mb));
+                    tidepool::base::Median(c.wall_ms), tidepool::bench::Min(c.wall_ms),
+                    tidepool::base::Median(c.rss_mb));
     }
     if (!cases[0].wrong && !cases[1].wrong) {
-        const double ratio = tidepool::bench::Median(cases[0].wall_ms) /
-                             tidepool::bench::Median(cases[1].wall_ms);
+        const double ratio =
+                tidepool::base::Median(cases[0].wall_ms) / tidepool::base::Median(cases[1].wall_ms);
         std::printf(
                 "\ntidepool validate FILE / glslangValidator (medians): %.2fx; target <= 1.5x: "
                 "%s\n",

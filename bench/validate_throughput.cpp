@@ -24,6 +24,7 @@
 #include "tidepool/SourceAssembler.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/SampleStatistics.h"
 
 #include <cstdio>
 #include <cstdlib>
@@ -48,7 +49,7 @@ extern char** environ;
 namespace {
 
 namespace fs = std::filesystem;
-using tidepool::bench::Median;
+using tidepool::base::Median;
 using tidepool::bench::Min;
 using tidepool::bench::NowSeconds;
 using tidepool::bench::ProcessCpuSeconds;

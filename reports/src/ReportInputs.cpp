@@ -1,7 +1,7 @@
 #include "tidepool/report/ReportInputs.h"
 
+#include "tidepool/base/SampleStatistics.h"
 #include "tidepool/report/StageFileShapes.h"
-#include "tidepool/report/Statistics.h"
 
 #include <cmath>
 #include <fstream>
@@ -304,7 +304,7 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
         for (const std::vector<double>& round : c.cpu_samples_ms) {
             all.insert(all.end(), round.begin(), round.end());
         }
-        c.cpu_median_ms = Median(all);
+        c.cpu_median_ms = base::Median(all);
     }
     c.frame_passes = static_cast<int>(NumberOr(entry, "frame_passes", 0));
     c.frame_draw_calls = static_cast<int>(NumberOr(entry, "frame_draw_calls", 0));

@@ -3,6 +3,7 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/ParallelFor.h"
+#include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
 #include <cmath>
@@ -36,28 +37,6 @@ bool HasDefaultPasses(const MeasuredConfiguration& c, const ReportInputs& inputs
     const int size = DemoTargetSize(inputs.width, inputs.height);
     return c.reflection_size == size && c.refraction_size == size && c.clip == "oblique" &&
            !c.low_res_water && c.culling && c.depth_fog;
-}
-
-// Ranks 1..n, ties getting the average of their ranks.
-std::vector<double> Ranks(const std::vector<double>& values) {
-    std::vector<std::size_t> order(values.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-    std::vector<double> ranks(values.size());
-    std::size_t i = 0;
-    while (i < order.size()) {
-        std::size_t j = i;
-        while (j + 1 < order.size() && values[order[j + 1]] == values[order[i]]) {
-            ++j;
-        }
-        const double rank = (static_cast<double>(i) + static_cast<double>(j)) / 2.0 + 1.0;
-        for (std::size_t k = i; k <= j; ++k) {
-            ranks[order[k]] = rank;
-        }
-        i = j + 1;
-    }
-    return ranks;
 }
 
 // Image error of one configuration against the reference over every view both have.
@@ -171,15 +150,7 @@ double LogRatioSd(const std::vector<double>& a, const std::vector<double>& b) {
             d.push_back(std::log(b[i] / a[i]));
         }
     }
-    if (d.size() < 2) {
-        return kNaN;
-    }
-    const double mean = std::accumulate(d.begin(), d.end(), 0.0) / static_cast<double>(d.size());
-    double sum = 0;
-    for (double v : d) {
-        sum += (v - mean) * (v - mean);
-    }
-    return std::sqrt(sum / static_cast<double>(d.size() - 1));
+    return base::StandardDeviation(d);
 }
 
 // The paired frames behind a comparison of two configurations.
@@ -730,13 +701,13 @@ StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries) {
         ops.push_back(static_cast<double>(e.total_ops));
         times.push_back(e.median_ms);
     }
-    const std::vector<double> ops_ranks = Ranks(ops);
-    const std::vector<double> time_ranks = Ranks(times);
+    const std::vector<double> ops_ranks = base::AverageRanks(ops);
+    const std::vector<double> time_ranks = base::AverageRanks(times);
     for (std::size_t i = 0; i < analysis.entries.size(); ++i) {
         analysis.entries[i].ops_rank = ops_ranks[i];
         analysis.entries[i].time_rank = time_ranks[i];
     }
-    analysis.spearman_rho = SpearmanRho(ops, times);
+    analysis.spearman_rho = base::SpearmanRho(ops, times);
     if (std::isnan(analysis.spearman_rho)) {
         analysis.note = "the counts or the times are all equal";
     }

@@ -55,7 +55,7 @@ nlohmann::json DiagnosticJson(const Diagnostic& d) {
             {"text", FormatDiagnostic(d)}};
 }
 
-nlohmann::json StatisticsJson(const SampleStatistics& s) {
+nlohmann::json StatisticsJson(const base::SampleStatistics& s) {
     return {{"count", s.count},
             {"min_ms", s.min},
             {"max_ms", s.max},
@@ -483,12 +483,12 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         for (const std::vector<double>& round : r.samples_ms) {
             all.insert(all.end(), round.begin(), round.end());
         }
-        r.statistics = ComputeSampleStatistics(all);
+        r.statistics = base::ComputeSampleStatistics(all);
         std::vector<double> all_clock;
         for (const std::vector<double>& round : r.cpu_samples_ms) {
             all_clock.insert(all_clock.end(), round.begin(), round.end());
         }
-        r.cpu_statistics = ComputeSampleStatistics(all_clock);
+        r.cpu_statistics = base::ComputeSampleStatistics(all_clock);
         const std::string id = r.configuration.variant.Id();
         if (auto found = glslang.find(id); found != glslang.end()) {
             r.glslang_valid = found->second;

@@ -21,8 +21,7 @@ namespace fs = std::filesystem;
 using tidepool::testing::CommandResult;
 using tidepool::testing::ReadText;
 using tidepool::testing::RunShell;
-using tidepool::testing::RunTidepoolSplit;
-using tidepool::testing::SplitResult;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
 constexpr const char* kVertex =
@@ -57,8 +56,8 @@ TEST_F(DepfileCliTest, ValidateDepfileNamesTheManifestTheConfigAndEveryShaderRea
     dir_.Write("v.yaml",
                "programs:\n  p:\n    vertex: a b.vsh\n    fragment: s.fsh\n"
                "  q:\n    vertex: a b.vsh\n    fragment: t.fsh\n");
-    const SplitResult r =
-            RunTidepoolSplit("validate --config v.yaml --out o --depfile o.d", dir_.Path());
+    const CommandResult r =
+            RunTidepool("validate --config v.yaml --out o --depfile o.d", dir_.Path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     // A space is escaped for Make and Ninja; a shader two programs share is named once.
     EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "a\\ b.vsh", "s.fsh", "t.fsh"}));
@@ -68,7 +67,7 @@ TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
     dir_.Write("v.yaml",
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
                "    features: [A]\n  q:\n    vertex: s.vsh\n    fragment: t.fsh\n");
-    const SplitResult r = RunTidepoolSplit(
+    const CommandResult r = RunTidepool(
             "validate --config v.yaml --program q --out o --sources --depfile o.d", dir_.Path());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "t.fsh"}));
@@ -80,21 +79,19 @@ TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
     EXPECT_EQ(ReadText(dir_.Path() / "o/100/q/q..frag"),
               "#version 100\n#line 2\nprecision mediump float;\nvoid main() { gl_FragColor = "
               "vec4(1.0); }\n");
-    const SplitResult unknown =
-            RunTidepoolSplit("validate --config v.yaml --program r", dir_.Path());
+    const CommandResult unknown = RunTidepool("validate --config v.yaml --program r", dir_.Path());
     EXPECT_EQ(unknown.exit_code, 2);
     EXPECT_NE(unknown.err.find("error: --program r: v.yaml has no such program; it has p, q"),
               std::string::npos)
             << unknown.err;
-    EXPECT_EQ(RunTidepoolSplit("validate --config v.yaml --depfile o.d", dir_.Path()).exit_code, 2)
+    EXPECT_EQ(RunTidepool("validate --config v.yaml --depfile o.d", dir_.Path()).exit_code, 2)
             << "a depfile names the output it belongs to, so it needs --out";
 }
 
 TEST_F(DepfileCliTest, ExpandWritesADepfileToo) {
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
-    ASSERT_EQ(
-            RunTidepoolSplit("expand --config v.yaml --out o --depfile o.d", dir_.Path()).exit_code,
-            0);
+    ASSERT_EQ(RunTidepool("expand --config v.yaml --out o --depfile o.d", dir_.Path()).exit_code,
+              0);
     EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "s.fsh"}));
 }
 
@@ -119,14 +116,13 @@ protected:
         return RunShell("'" CMAKE_COMMAND "' --build '" + Build().string() + "'" +
                         (ninja ? " -- -d explain" : "") + " 2>&1");
     }
-    // Runs the example's program with `args`.
+    // Runs the example's program with `args`, stdout and stderr apart.
     CommandResult RunLoader(const std::string& args) const {
         // Appended piece by piece: GCC 12 warns falsely (-Wrestrict) on "'" + string + "...".
         std::string command = "'";
         command += (Build() / "variant_loader").string();
         command += "' ";
         command += args;
-        command += " 2>&1";
         return RunShell(command);
     }
     // Gives `file` a time stamp later than every output so far, without changing its content.
@@ -152,11 +148,15 @@ TEST_P(ExampleProjectTest, BuildsFromACleanFolderAndRebuildsOnlyWhatATouchedShad
 
     // The program finds a variant by its feature set, in any order, and refuses a pruned one.
     const CommandResult loaded = RunLoader("tint TINT FOG");
-    EXPECT_EQ(loaded.exit_code, 0) << loaded.out;
+    EXPECT_EQ(loaded.exit_code, 0) << loaded.err;
     EXPECT_TRUE(Contains(loaded.out, "tint:FOG,TINT\n  vertex   100/tint/tint.FOG.TINT.vert"))
             << loaded.out;
     const CommandResult pruned = RunLoader("tint FOG_EXP2");
-    EXPECT_EQ(pruned.exit_code, 1) << pruned.out;
+    EXPECT_EQ(pruned.exit_code, 1) << pruned.err;
+    EXPECT_TRUE(
+            Contains(pruned.err, "error: tint has no valid variant with exactly those features"))
+            << pruned.err;
+    EXPECT_EQ(pruned.out, "");
 
     // Nothing changed: nothing runs.
     const CommandResult idle = BuildAll();

@@ -3,17 +3,18 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 #include <string>
 
+#include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
 
 namespace {
 
 using tidepool::testing::CommandResult;
+using tidepool::testing::ReadText;
 using tidepool::testing::RunShell;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
 std::string Quoted(const std::filesystem::path& path) {
@@ -21,18 +22,6 @@ std::string Quoted(const std::filesystem::path& path) {
     quoted += path.string();
     quoted += '\'';
     return quoted;
-}
-
-// `tidepool ARGS` in `cwd`, stdout and stderr together.
-CommandResult Tidepool(const std::string& args, const std::filesystem::path& cwd) {
-    return RunShell("cd " + Quoted(cwd) + " && '" TIDEPOOL_BINARY "' " + args + " 2>&1");
-}
-
-std::string Read(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 std::size_t EntryCount(const std::filesystem::path& folder) {
@@ -61,15 +50,20 @@ protected:
 
 TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
     const std::string cache = Quoted(dir_.Path() / "cache");
-    const CommandResult uncached = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
-    const CommandResult cold = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
-    const CommandResult warm = Tidepool("validate --config v.yaml --cache " + cache, dir_.Path());
-    EXPECT_EQ(uncached.exit_code, 1) << uncached.out;
-    EXPECT_NE(uncached.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
+    const CommandResult uncached = RunTidepool("validate --config v.yaml --no-cache", dir_.Path());
+    const CommandResult cold =
+            RunTidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    const CommandResult warm =
+            RunTidepool("validate --config v.yaml --cache " + cache, dir_.Path());
+    EXPECT_EQ(uncached.exit_code, 1) << uncached.err;
+    EXPECT_NE(uncached.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
               std::string::npos)
-            << uncached.out;
+            << uncached.err;
+    EXPECT_NE(uncached.out.find("2 INVALID"), std::string::npos) << uncached.out;
     EXPECT_EQ(cold.exit_code, 1);
     EXPECT_EQ(warm.exit_code, 1);
+    EXPECT_EQ(cold.err, uncached.err);
+    EXPECT_EQ(warm.err, uncached.err);
     EXPECT_EQ(cold.out, uncached.out);
     EXPECT_EQ(warm.out, uncached.out);
     EXPECT_GT(EntryCount(dir_.Path() / "cache"), 0U);
@@ -77,36 +71,36 @@ TEST_F(CacheCliTest, WarmCacheGivesTheSameDiagnosticsAndExitCodeAsNoCache) {
 
 TEST_F(CacheCliTest, NoCacheWritesNothing) {
     dir_.Write("xdg/keep", "");
-    const CommandResult r = Tidepool("validate --config v.yaml --no-cache", dir_.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    const CommandResult with_env = RunShell(
-            "cd " + Quoted(dir_.Path()) + " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
-            " '" TIDEPOOL_BINARY "' validate --config v.yaml --no-cache 2>&1");
-    EXPECT_EQ(with_env.exit_code, 1) << with_env.out;
+    const CommandResult r = RunTidepool("validate --config v.yaml --no-cache", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    const CommandResult with_env = RunTidepool("validate --config v.yaml --no-cache", dir_.Path(),
+                                               "XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg"));
+    EXPECT_EQ(with_env.exit_code, 1) << with_env.err;
     EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg" / "tidepool"));
 }
 
 TEST_F(CacheCliTest, DefaultFolderIsTidepoolUnderXdgCacheHome) {
-    const CommandResult r = RunShell("cd " + Quoted(dir_.Path()) +
-                                     " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
-                                     " '" TIDEPOOL_BINARY "' validate --config v.yaml 2>&1");
-    EXPECT_EQ(r.exit_code, 1) << r.out;
+    const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path(),
+                                        "XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg"));
+    EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_GT(EntryCount(dir_.Path() / "xdg" / "tidepool" / "v1"), 0U);
 }
 
 TEST_F(CacheCliTest, CacheAndNoCacheTogetherAreAUsageError) {
-    const CommandResult r = Tidepool("validate --config v.yaml --no-cache --cache c", dir_.Path());
-    EXPECT_EQ(r.exit_code, 2) << r.out;
-    EXPECT_NE(r.out.find("--no-cache"), std::string::npos) << r.out;
+    const CommandResult r =
+            RunTidepool("validate --config v.yaml --no-cache --cache c", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("--no-cache"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
 }
 
 TEST_F(CacheCliTest, UnwritableCacheFolderWarnsAndStillValidates) {
     dir_.Write("file", "a file where the cache folder should be");
-    const CommandResult r =
-            Tidepool("validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
-                     dir_.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_NE(r.out.find("warning: validation cache"), std::string::npos) << r.out;
+    const CommandResult r = RunTidepool(
+            "validate --config v.yaml --cache " + Quoted(dir_.Path() / "file" / "cache"),
+            dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("warning: validation cache"), std::string::npos) << r.err;
     EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;
 }
 
@@ -116,23 +110,25 @@ TEST_F(CacheCliTest, PlainFilesWithAWarmCacheGiveTheSameDiagnosticsAndExitCodeAs
                               "--format sarif -D B s.fsh"}) {
         SCOPED_TRACE(files);
         const std::string args = std::string("validate ") + files;
-        const CommandResult uncached = Tidepool(args + " --no-cache", dir_.Path());
-        const CommandResult cold = Tidepool(args + " --cache " + cache, dir_.Path());
+        const CommandResult uncached = RunTidepool(args + " --no-cache", dir_.Path());
+        const CommandResult cold = RunTidepool(args + " --cache " + cache, dir_.Path());
         const std::size_t entries = EntryCount(dir_.Path() / "cache");
-        const CommandResult warm = Tidepool(args + " --cache " + cache, dir_.Path());
+        const CommandResult warm = RunTidepool(args + " --cache " + cache, dir_.Path());
         EXPECT_EQ(cold.exit_code, uncached.exit_code);
         EXPECT_EQ(warm.exit_code, uncached.exit_code);
         EXPECT_EQ(cold.out, uncached.out);
         EXPECT_EQ(warm.out, uncached.out);
+        EXPECT_EQ(cold.err, uncached.err);
+        EXPECT_EQ(warm.err, uncached.err);
         EXPECT_GT(entries, 0U);
         EXPECT_EQ(EntryCount(dir_.Path() / "cache"), entries) << "the warm run wrote entries";
     }
     const CommandResult broken =
-            Tidepool("validate -D B s.vsh s.fsh --cache " + cache, dir_.Path());
+            RunTidepool("validate -D B s.vsh s.fsh --cache " + cache, dir_.Path());
     EXPECT_EQ(broken.exit_code, 1);
-    EXPECT_NE(broken.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier"),
+    EXPECT_NE(broken.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier"),
               std::string::npos)
-            << broken.out;
+            << broken.err;
     // The default folder and --no-cache, as for a configuration.
     const CommandResult home = RunShell("cd " + Quoted(dir_.Path()) +
                                         " && XDG_CACHE_HOME=" + Quoted(dir_.Path() / "xdg") +
@@ -166,14 +162,14 @@ TEST_F(CacheCliTest, ConcurrentProcessesShareOneCacheFolderWithoutError) {
         ASSERT_EQ(RunShell(script).exit_code, 0);
         const std::filesystem::path a = dir_.Path() / (std::string(round) + "a");
         const std::filesystem::path b = dir_.Path() / (std::string(round) + "b");
-        EXPECT_EQ(Read(a.string() + ".code"), "0\n") << Read(a.string() + ".err");
-        EXPECT_EQ(Read(b.string() + ".code"), "0\n") << Read(b.string() + ".err");
-        EXPECT_EQ(Read(a.string() + ".err"), "");
-        EXPECT_EQ(Read(b.string() + ".err"), "");
+        EXPECT_EQ(ReadText(a.string() + ".code"), "0\n") << ReadText(a.string() + ".err");
+        EXPECT_EQ(ReadText(b.string() + ".code"), "0\n") << ReadText(b.string() + ".err");
+        EXPECT_EQ(ReadText(a.string() + ".err"), "");
+        EXPECT_EQ(ReadText(b.string() + ".err"), "");
         // EXPECT_TRUE, not EXPECT_EQ: a failure must not print two manifests of 400 kB.
-        const std::string manifest = Read(a.string() + ".out");
-        EXPECT_TRUE(manifest == Read(b.string() + ".out")) << "the two processes disagree";
-        EXPECT_TRUE(manifest == Read((dir_.Path() / "colda").string() + ".out"))
+        const std::string manifest = ReadText(a.string() + ".out");
+        EXPECT_TRUE(manifest == ReadText(b.string() + ".out")) << "the two processes disagree";
+        EXPECT_TRUE(manifest == ReadText((dir_.Path() / "colda").string() + ".out"))
                 << "the warm processes disagree with the cold ones";
         EXPECT_NE(manifest.find("\"invalid\": 0"), std::string::npos);
     }

@@ -12,9 +12,9 @@
 
 namespace {
 
+using tidepool::testing::CommandResult;
 using tidepool::testing::ReadText;
-using tidepool::testing::RunTidepoolSplit;
-using tidepool::testing::SplitResult;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
 // A: the vertex stage does not compile. B: the fragment stage does not. C: both compile, but the
@@ -60,7 +60,7 @@ struct StepCase {
 };
 
 TEST_F(CiReportCliTest, JsonSaysPerVariantWhichStepFailed) {
-    const SplitResult r = RunTidepoolSplit("validate --config v.yaml --json", dir_.Path());
+    const CommandResult r = RunTidepool("validate --config v.yaml --json", dir_.Path());
     ASSERT_EQ(r.exit_code, 1) << r.err;
     const nlohmann::json manifest = nlohmann::json::parse(r.out);
     const StepCase cases[] = {
@@ -95,8 +95,7 @@ TEST_F(CiReportCliTest, PlainFileJsonSaysWhichStepFailed) {
     };
     for (const PlainCase& c : cases) {
         SCOPED_TRACE(c.args);
-        const SplitResult r =
-                RunTidepoolSplit(std::string("validate --json ") + c.args, dir_.Path());
+        const CommandResult r = RunTidepool(std::string("validate --json ") + c.args, dir_.Path());
         ASSERT_EQ(r.exit_code, 1) << r.err;
         const nlohmann::json json = nlohmann::json::parse(r.out);
         ASSERT_EQ(json.size(), 1u);
@@ -142,7 +141,7 @@ void ExpectSarifShape(const nlohmann::json& log) {
 }
 
 TEST_F(CiReportCliTest, SarifHasTheRequiredFieldsAndOneResultPerStepAtTheShaderLine) {
-    const SplitResult r = RunTidepoolSplit("validate --config v.yaml --format sarif", dir_.Path());
+    const CommandResult r = RunTidepool("validate --config v.yaml --format sarif", dir_.Path());
     ASSERT_EQ(r.exit_code, 1) << r.err;
     const nlohmann::json log = nlohmann::json::parse(r.out);
     ExpectSarifShape(log);
@@ -177,7 +176,7 @@ TEST_F(CiReportCliTest, SarifHasTheRequiredFieldsAndOneResultPerStepAtTheShaderL
 }
 
 TEST_F(CiReportCliTest, SarifOfPlainFilesAndIntoAFile) {
-    const SplitResult r = RunTidepoolSplit(
+    const CommandResult r = RunTidepool(
             "validate s.vsh s.fsh -D B --format sarif --output-file out/log.sarif", dir_.Path());
     ASSERT_EQ(r.exit_code, 1) << r.err;
     EXPECT_EQ(r.out.find('{'), std::string::npos) << "the log goes to the file only: " << r.out;
@@ -191,7 +190,7 @@ TEST_F(CiReportCliTest, SarifOfPlainFilesAndIntoAFile) {
 }
 
 TEST_F(CiReportCliTest, SarifOfAValidMatrixHasNoResults) {
-    const SplitResult r = RunTidepoolSplit("validate --format sarif", TIDEPOOL_SOURCE_ROOT);
+    const CommandResult r = RunTidepool("validate --format sarif", TIDEPOOL_SOURCE_ROOT);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json log = nlohmann::json::parse(r.out);
     ExpectSarifShape(log);
@@ -199,10 +198,10 @@ TEST_F(CiReportCliTest, SarifOfAValidMatrixHasNoResults) {
 }
 
 TEST_F(CiReportCliTest, FormatAndOutputFileMisuseIsAUsageError) {
-    EXPECT_EQ(RunTidepoolSplit("validate --json --format sarif", dir_.Path()).exit_code, 2);
-    EXPECT_EQ(RunTidepoolSplit("validate --format xml", dir_.Path()).exit_code, 2);
-    const SplitResult text =
-            RunTidepoolSplit("validate --config v.yaml --output-file log.txt", dir_.Path());
+    EXPECT_EQ(RunTidepool("validate --json --format sarif", dir_.Path()).exit_code, 2);
+    EXPECT_EQ(RunTidepool("validate --format xml", dir_.Path()).exit_code, 2);
+    const CommandResult text =
+            RunTidepool("validate --config v.yaml --output-file log.txt", dir_.Path());
     EXPECT_EQ(text.exit_code, 2);
     EXPECT_NE(text.err.find("error: --output-file takes the json or sarif report"),
               std::string::npos)

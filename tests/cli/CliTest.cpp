@@ -25,8 +25,6 @@ using tidepool::testing::TempDir;
 
 using tidepool::testing::CommandResult;
 using tidepool::testing::RunTidepool;
-using tidepool::testing::RunTidepoolSplit;
-using tidepool::testing::SplitResult;
 
 constexpr const char* kVertex =
         "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n";
@@ -50,24 +48,26 @@ protected:
 
 TEST_F(CliTest, ValidateDefaultMatrixPrintsCountsAndExitsZero) {
     const CommandResult r = RunTidepool("validate");
-    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("variants ("), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("pruned combinations"), std::string::npos);
     EXPECT_NE(r.out.find("shared"), std::string::npos);
     EXPECT_NE(r.out.find("all valid"), std::string::npos);
+    EXPECT_EQ(r.err, "");
 }
 
 TEST_F(CliTest, ShaderErrorExitsOneWithGccStyleDiagnosticAndVariant) {
     dir_.Write("v.yaml",
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    features: [A, B]\n");
     const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_NE(r.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]"),
               std::string::npos)
-            << r.out;
-    EXPECT_NE(r.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:A,B]"),
+            << r.err;
+    EXPECT_NE(r.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier [p:A,B]"),
               std::string::npos);
-    EXPECT_NE(r.out.find("2 INVALID"), std::string::npos);
+    EXPECT_NE(r.out.find("2 INVALID"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find("error:"), std::string::npos) << r.out;
 }
 
 TEST_F(CliTest, ConfigurationErrorExitsTwoAndNamesFileLineColumn) {
@@ -75,17 +75,19 @@ TEST_F(CliTest, ConfigurationErrorExitsTwoAndNamesFileLineColumn) {
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    colour: 1\n");
     const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.out.find("v.yaml:5:5: error: unknown key 'colour' in program 'p'"),
-              std::string::npos)
-            << r.out;
+    EXPECT_EQ(r.err,
+              "v.yaml:5:5: error: unknown key 'colour' in program 'p'; allowed keys: vertex, "
+              "fragment, features, axes, rules, description\n");
+    EXPECT_EQ(r.out, "");
 }
 
 TEST_F(CliTest, MissingConfigurationExitsTwo) {
     const CommandResult r = RunTidepool("expand --config nowhere.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.out.find("nowhere.yaml: error: cannot read the configuration file"),
+    EXPECT_NE(r.err.find("nowhere.yaml: error: cannot read the configuration file"),
               std::string::npos)
-            << r.out;
+            << r.err;
+    EXPECT_EQ(r.out, "");
 }
 
 TEST_F(CliTest, MatrixOverTheLimitIsRefusedUnlessTheFlagRaisesIt) {
@@ -106,7 +108,8 @@ TEST_F(CliTest, MatrixOverTheLimitIsRefusedUnlessTheFlagRaisesIt) {
         const CommandResult refused =
                 RunTidepool(std::string("expand --config v.yaml") + c.flags, dir_.Path());
         EXPECT_EQ(refused.exit_code, 2);
-        EXPECT_EQ(refused.out, c.expected);
+        EXPECT_EQ(refused.err, c.expected);
+        EXPECT_EQ(refused.out, "");
     }
     EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 8", dir_.Path()).exit_code, 0);
 }
@@ -117,8 +120,8 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
                               "100000000000000000000000", "1e3", "4x"}) {
         const CommandResult r = RunTidepool(
                 std::string("expand --config v.yaml --max-variants=") + value, dir_.Path());
-        EXPECT_EQ(r.exit_code, 2) << value << r.out;
-        EXPECT_EQ(r.out, std::string("error: --max-variants must be a whole number from 1 to "
+        EXPECT_EQ(r.exit_code, 2) << value << r.err;
+        EXPECT_EQ(r.err, std::string("error: --max-variants must be a whole number from 1 to "
                                      "65536 (up to 16777216 with --allow-large-matrix), not '") +
                                  value + "'\n")
                 << value;
@@ -126,7 +129,7 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
     // Empty is not "not given" (which would silently mean the file's limit).
     const CommandResult empty = RunTidepool("expand --config v.yaml --max-variants=", dir_.Path());
     EXPECT_EQ(empty.exit_code, 2);
-    EXPECT_EQ(empty.out.rfind("--max-variants: 1 required TEXT missing", 0), 0U) << empty.out;
+    EXPECT_EQ(empty.err.rfind("--max-variants: 1 required TEXT missing", 0), 0U) << empty.err;
 }
 
 TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
@@ -138,7 +141,7 @@ TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
     const CommandResult r = RunTidepool(
             "expand --config v.yaml --max-variants 16777217 --allow-large-matrix", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.out,
+    EXPECT_EQ(r.err,
               "error: --max-variants must be a whole number from 1 to 16777216, not "
               "'16777217'\n");
 }
@@ -157,7 +160,8 @@ TEST_F(CliTest, FileLimitOutOfRangeOrAboveTheCeilingIsRefusedAtItsLine) {
         WriteConfig(std::string("max_variants: ") + limit + "\n");
         const CommandResult r = RunTidepool("validate --config v.yaml", dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << limit;
-        EXPECT_EQ(r.out, expected);
+        EXPECT_EQ(r.err, expected);
+        EXPECT_EQ(r.out, "");
     }
     WriteConfig("max_variants: 100000\n");
     EXPECT_EQ(RunTidepool("expand --config v.yaml --allow-large-matrix", dir_.Path()).exit_code, 0);
@@ -170,6 +174,7 @@ TEST_F(CliTest, ExpandCountsPrunedCombinationsPerRuleWithoutListingThem) {
     EXPECT_EQ(r.out,
               "p:\np:A\np:A,C\n1 pruned by p: C requires A  (v.yaml:6)\n"
               "3 variants, 1 pruned combinations\n");
+    EXPECT_EQ(r.err, "");
 }
 
 TEST_F(CliTest, ExpandPrunedListsPrunedCombinationsWithTheirRule) {
@@ -186,7 +191,7 @@ TEST_F(CliTest, ExpandPrunedLimitListsThatManyAndSaysHowManyAreLeft) {
                 "    rules: [{ if: B, requires: A }, { if: C, requires: A }]\n");
     const CommandResult r =
             RunTidepool("expand --config v.yaml --pruned --pruned-limit 1 --json", dir_.Path());
-    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json json = nlohmann::json::parse(r.out);
     ASSERT_EQ(json["pruned"].size(), 1U);
     EXPECT_EQ(json["pruned_unlisted"], 2);
@@ -203,7 +208,7 @@ TEST_F(CliTest, ExpandPrunedLimitListsThatManyAndSaysHowManyAreLeft) {
 TEST_F(CliTest, ManifestKeepsPrunedCountsPerRuleNotTheCombinations) {
     WriteConfig("", "    features: [A, C]\n    rules: [{ if: C, requires: A }]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml --json", dir_.Path());
-    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json json = nlohmann::json::parse(r.out);
     EXPECT_FALSE(json.contains("pruned"));
     EXPECT_EQ(json["pruned_by_rule"],
@@ -217,7 +222,7 @@ TEST_F(CliTest, PrunedLimitOutOfRangeIsAUsageError) {
     const CommandResult r =
             RunTidepool("expand --config v.yaml --pruned --pruned-limit=-1", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_EQ(r.out, "error: --pruned-limit must be a whole number from 1 to 65536, not '-1'\n");
+    EXPECT_EQ(r.err, "error: --pruned-limit must be a whole number from 1 to 65536, not '-1'\n");
 }
 
 TEST_F(CliTest, ExpandOutWritesDriverReadySourcesAndManifest) {
@@ -225,7 +230,7 @@ TEST_F(CliTest, ExpandOutWritesDriverReadySourcesAndManifest) {
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
                "    features: [A]\n");
     const CommandResult r = RunTidepool("expand --config v.yaml --out gen", dir_.Path());
-    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ASSERT_EQ(r.exit_code, 0) << r.err;
     std::ifstream in(dir_.Path() / "gen/100/p/p.A.frag");
     std::stringstream text;
     text << in.rdbuf();
@@ -242,30 +247,31 @@ TEST_F(CliTest, ExpandOutRefusesToOverwriteAForeignFolder) {
     const CommandResult r = RunTidepool("expand --config v.yaml --out mine", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "mine/notes.txt"));
-    EXPECT_NE(r.out.find("was not written by tidepool"), std::string::npos) << r.out;
+    EXPECT_NE(r.err.find("was not written by tidepool"), std::string::npos) << r.err;
 }
 
 TEST_F(CliTest, ValidatePlainFilesLinksVertexWithFragment) {
     const CommandResult ok = RunTidepool("validate s.vsh s.fsh", dir_.Path());
-    EXPECT_EQ(ok.exit_code, 0) << ok.out;
+    EXPECT_EQ(ok.exit_code, 0) << ok.err;
     const CommandResult bad = RunTidepool("validate s.vsh s.fsh -D B", dir_.Path());
     EXPECT_EQ(bad.exit_code, 1);
-    EXPECT_NE(bad.out.find("s.fsh:5:23: error: 'oops' : undeclared identifier"), std::string::npos)
-            << bad.out;
+    EXPECT_NE(bad.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier"), std::string::npos)
+            << bad.err;
 }
 
 TEST_F(CliTest, ValidatePlainFileWithUnknownExtensionAsksForStage) {
     dir_.Write("x.glsl", kVertex);
     const CommandResult r = RunTidepool("validate x.glsl", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.out.find("x.glsl: error: cannot tell the stage from the extension"),
-              std::string::npos);
+    EXPECT_NE(r.err.find("x.glsl: error: cannot tell the stage from the extension"),
+              std::string::npos)
+            << r.err;
     EXPECT_EQ(RunTidepool("validate x.glsl --stage vert", dir_.Path()).exit_code, 0);
 }
 
 TEST_F(CliTest, ValidateJsonIsAManifestWithVerdictsAndCosts) {
     const CommandResult r = RunTidepool("validate --json");
-    ASSERT_EQ(r.exit_code, 0);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json manifest = nlohmann::json::parse(r.out);
     EXPECT_EQ(manifest["version"], 1);
     EXPECT_GT(manifest["counts"]["shared_stage_slots"].get<int>(), 0);
@@ -276,7 +282,7 @@ TEST_F(CliTest, ValidateJsonIsAManifestWithVerdictsAndCosts) {
 
 TEST_F(CliTest, StatsShowsShortestAndLongestPathOfTheUniformProgram) {
     const CommandResult r = RunTidepool("stats --json");
-    ASSERT_EQ(r.exit_code, 0) << r.out;
+    ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json stats = nlohmann::json::parse(r.out);
     bool found = false;
     for (const nlohmann::json& entry : stats) {
@@ -302,8 +308,7 @@ TEST_F(CliTest, CyclicAliasInConfigExitsTwoWithItsPosition) {
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
                "    features: &loop [A, *loop]\n");
     for (const char* command : {"validate", "expand", "stats"}) {
-        const SplitResult r =
-                RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
+        const CommandResult r = RunTidepool(std::string(command) + " --config v.yaml", dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << command << r.err;
         EXPECT_EQ(r.err,
                   "v.yaml:5:25: error: alias '*loop' refers to the node that contains "
@@ -324,8 +329,8 @@ TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
         dir_.Write("v.yaml", program + presets);
         for (const char* command :
              {"expand --json", "validate --json --out out", "run --out out"}) {
-            const SplitResult r =
-                    RunTidepoolSplit(std::string(command) + " --config v.yaml", dir_.Path());
+            const CommandResult r =
+                    RunTidepool(std::string(command) + " --config v.yaml", dir_.Path());
             EXPECT_EQ(r.exit_code, 2) << command << ": " << r.err;
             EXPECT_EQ(r.err, place + ": error: this byte is not UTF-8; YAML files are Unicode "
                                      "text: save the file as UTF-8\n")
@@ -338,12 +343,12 @@ TEST_F(CliTest, LatinOneConfigExitsTwoAtTheByte) {
 
 TEST_F(CliTest, ConfigFileNameThatIsNotUtf8StillWritesJson) {
     dir_.Write("v\xE9.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
-    const SplitResult expand =
-            RunTidepoolSplit("expand --json --out out --config 'v\xE9.yaml'", dir_.Path());
+    const CommandResult expand =
+            RunTidepool("expand --json --out out --config 'v\xE9.yaml'", dir_.Path());
     EXPECT_EQ(expand.exit_code, 0) << expand.err;
     EXPECT_TRUE(nlohmann::json::accept(expand.out)) << expand.out;
-    const SplitResult validate =
-            RunTidepoolSplit("validate --json --out vout --config 'v\xE9.yaml'", dir_.Path());
+    const CommandResult validate =
+            RunTidepool("validate --json --out vout --config 'v\xE9.yaml'", dir_.Path());
     EXPECT_EQ(validate.exit_code, 0) << validate.err;
     EXPECT_TRUE(nlohmann::json::accept(validate.out));
 }
@@ -352,15 +357,15 @@ TEST_F(CliTest, ShaderDiagnosticQuotingANonUtf8ByteIsEscapedInJson) {
     dir_.Write("bad.fsh",
                "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
                "vec4(caf\xE9); }\n");
-    const SplitResult plain = RunTidepoolSplit("validate --json bad.fsh", dir_.Path());
+    const CommandResult plain = RunTidepool("validate --json bad.fsh", dir_.Path());
     EXPECT_EQ(plain.exit_code, 1) << plain.err;
     const nlohmann::json json = nlohmann::json::parse(plain.out);
     EXPECT_EQ(json[0]["valid"], false);
     EXPECT_NE(plain.err.find("bad.fsh:3:"), std::string::npos) << plain.err;
 
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: bad.fsh\n");
-    const SplitResult matrix =
-            RunTidepoolSplit("validate --json --out m --config v.yaml", dir_.Path());
+    const CommandResult matrix =
+            RunTidepool("validate --json --out m --config v.yaml", dir_.Path());
     EXPECT_EQ(matrix.exit_code, 1) << matrix.err;
     EXPECT_TRUE(nlohmann::json::accept(matrix.out));
     EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "m" / "manifest.json"));
@@ -381,7 +386,7 @@ TEST_F(CliTest, RunWithAShaderDiagnosticQuotingANonUtf8ByteEscapesIt) {
     dir_.Write("bad.fsh",
                "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = "
                "vec4(caf\xE9); }\n");
-    const SplitResult r = RunTidepoolSplit(
+    const CommandResult r = RunTidepool(
             "run --config v.yaml --out out --size 16x16 --coarse-frames 1 --warmup 0 "
             "--min-pairs 10 --max-pairs 10 --no-stability --no-plans",
             dir_.Path());
@@ -403,9 +408,9 @@ TEST_F(CliTest, ShaderWithAByteOrderMarkIsValidAndKeepsItsLineNumbers) {
     dir_.Write("bom.fsh",
                "\xEF\xBB\xBF#version 100\nprecision mediump float;\nvoid main() { "
                "gl_FragColor = vec4(oops); }\n");
-    const SplitResult ok = RunTidepoolSplit("validate bom.vsh s.fsh", dir_.Path());
+    const CommandResult ok = RunTidepool("validate bom.vsh s.fsh", dir_.Path());
     EXPECT_EQ(ok.exit_code, 0) << ok.err;
-    const SplitResult bad = RunTidepoolSplit("validate bom.fsh", dir_.Path());
+    const CommandResult bad = RunTidepool("validate bom.fsh", dir_.Path());
     EXPECT_EQ(bad.exit_code, 1);
     EXPECT_EQ(bad.err, "bom.fsh:3:35: error: 'oops' : undeclared identifier\n");
 }
@@ -414,7 +419,7 @@ TEST_F(CliTest, ShaderThatCrashesGlslangIsAnInternalCompilerErrorAndTheRunGoesOn
     // A public conformance case that makes glslang 12 dereference a null pointer.
     dir_.Write("crash.fsh", "#define m(a)\n#define a m((a)\na)\n");
     // Two fragment files are validated (and linked) one by one.
-    const SplitResult r = RunTidepoolSplit("validate --json crash.fsh s.fsh", dir_.Path());
+    const CommandResult r = RunTidepool("validate --json crash.fsh s.fsh", dir_.Path());
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_NE(r.err.find("crash.fsh: error: internal compiler error: glslang crashed ("),
               std::string::npos)
@@ -433,7 +438,7 @@ TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
     }
     bomb += "void main() { M0; }\n";
     dir_.Write("bomb.vsh", bomb);
-    const SplitResult r = RunTidepoolSplit("validate bomb.vsh", dir_.Path());
+    const CommandResult r = RunTidepool("validate bomb.vsh", dir_.Path());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_EQ(r.err,
               "bomb.vsh:32:15: error: macro 'M0' expands to more than 131072 tokens (a "
@@ -455,8 +460,8 @@ TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
     dir_.Write("s.fsh", fragment);
     WriteConfig("", "    features: [HANG]\n");
     const auto start = std::chrono::steady_clock::now();
-    const SplitResult r = RunTidepoolSplit("validate --config v.yaml", dir_.Path(),
-                                           "TIDEPOOL_TEST_GLSLANG_SECONDS=1");
+    const CommandResult r =
+            RunTidepool("validate --config v.yaml", dir_.Path(), "TIDEPOOL_TEST_GLSLANG_SECONDS=1");
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.exit_code, 1) << r.err;
@@ -480,7 +485,7 @@ TEST_F(CliTest, FunctionLikeMacroBombIsRefusedQuicklyWithItsPosition) {
     bomb += "attribute vec4 p;\nvoid main() { gl_Position = p * F29(1.0); }\n";
     dir_.Write("bomb.vsh", bomb);
     const auto start = std::chrono::steady_clock::now();
-    const SplitResult r = RunTidepoolSplit("validate bomb.vsh", dir_.Path());
+    const CommandResult r = RunTidepool("validate bomb.vsh", dir_.Path());
     const double seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     EXPECT_EQ(r.exit_code, 1);
@@ -492,12 +497,12 @@ TEST_F(CliTest, FunctionLikeMacroBombIsRefusedQuicklyWithItsPosition) {
 }
 
 TEST_F(CliTest, DefineTakesOneValueSoTheFileAfterItIsValidated) {
-    const SplitResult r = RunTidepoolSplit("validate -D B s.fsh", dir_.Path());
+    const CommandResult r = RunTidepool("validate -D B s.fsh", dir_.Path());
     EXPECT_EQ(r.exit_code, 1) << r.err;  // B selects the branch with the error
     EXPECT_NE(r.err.find("s.fsh:5:23: error: 'oops' : undeclared identifier"), std::string::npos)
             << r.err;
     EXPECT_EQ(r.out, "1 file(s): INVALID\n");
-    EXPECT_EQ(RunTidepoolSplit("validate -D B=1 s.vsh", dir_.Path()).exit_code, 0);
+    EXPECT_EQ(RunTidepool("validate -D B=1 s.vsh", dir_.Path()).exit_code, 0);
 }
 
 TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
@@ -521,7 +526,7 @@ TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
                       "error: -D applies to the shader FILEs given, and none was given; "
                       "the variants of a configuration get their defines from it\n"},
          }) {
-        const SplitResult r = RunTidepoolSplit(std::string("validate ") + c.args, dir_.Path());
+        const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << c.args;
         EXPECT_EQ(r.err, c.error) << c.args;
     }
@@ -544,7 +549,7 @@ TEST_P(RejectedShadersTest, ExitsOneWithTheExactDiagnostic) {
     for (const auto& [name, content] : c.files) {
         dir.Write(name, content);
     }
-    const SplitResult r = RunTidepoolSplit(std::string("validate ") + c.args, dir.Path());
+    const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir.Path());
     EXPECT_EQ(r.exit_code, 1) << c.why;
     EXPECT_EQ(r.err, c.err) << c.why;
 }
@@ -600,7 +605,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 TEST_F(CliTest, ConfigPathThatIsAFolderSaysSo) {
     std::filesystem::create_directories(dir_.Path() / "folder.yaml");
-    const SplitResult r = RunTidepoolSplit("validate --config folder.yaml", dir_.Path());
+    const CommandResult r = RunTidepool("validate --config folder.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_EQ(r.err,
               "folder.yaml: error: cannot read the configuration file: is a folder, not a "
@@ -610,10 +615,10 @@ TEST_F(CliTest, ConfigPathThatIsAFolderSaysSo) {
 TEST_F(CliTest, ShaderPathThatIsAFolderOrAFifoSaysSoWithoutHanging) {
     std::filesystem::create_directories(dir_.Path() / "dir.vsh");
     ASSERT_EQ(::mkfifo((dir_.Path() / "pipe.fsh").c_str(), 0600), 0);
-    const SplitResult folder = RunTidepoolSplit("validate dir.vsh", dir_.Path());
+    const CommandResult folder = RunTidepool("validate dir.vsh", dir_.Path());
     EXPECT_EQ(folder.exit_code, 2);
     EXPECT_EQ(folder.err, "dir.vsh: error: cannot read the shader file: is a folder, not a file\n");
-    const SplitResult fifo = RunTidepoolSplit("validate pipe.fsh", dir_.Path());
+    const CommandResult fifo = RunTidepool("validate pipe.fsh", dir_.Path());
     EXPECT_EQ(fifo.exit_code, 2);
     EXPECT_EQ(fifo.err,
               "pipe.fsh: error: cannot read the shader file: is a FIFO (named pipe), "
@@ -623,11 +628,11 @@ TEST_F(CliTest, ShaderPathThatIsAFolderOrAFifoSaysSoWithoutHanging) {
 TEST_F(CliTest, OutWithATrailingSlashWritesTheFolderAndReplacesItsOwnOutput) {
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
     for (int run = 0; run < 2; ++run) {
-        const SplitResult r = RunTidepoolSplit("expand --config v.yaml --out out/", dir_.Path());
+        const CommandResult r = RunTidepool("expand --config v.yaml --out out/", dir_.Path());
         EXPECT_EQ(r.exit_code, 0) << "run " << run << ": " << r.err;
         EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "out" / "manifest.json"));
     }
-    const SplitResult v = RunTidepoolSplit("validate --config v.yaml --out vout/", dir_.Path());
+    const CommandResult v = RunTidepool("validate --config v.yaml --out vout/", dir_.Path());
     EXPECT_EQ(v.exit_code, 0) << v.err;
     EXPECT_TRUE(std::filesystem::exists(dir_.Path() / "vout" / "manifest.json"));
 }

@@ -12,6 +12,7 @@ namespace {
 
 using tidepool::testing::CommandResult;
 using tidepool::testing::RunShell;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
 // Libraries of the GL stack (Mesa's EGL, GLES and OSMesa, its drivers, and what llvmpipe
@@ -43,8 +44,9 @@ TEST(FrontEndCliTest, ExpandAndValidateLoadNoGlLibraryAtRunTime) {
 }
 
 TEST(FrontEndCliTest, HelpListsEveryCommandTheGlOnesIncluded) {
-    const CommandResult r = RunShell("'" TIDEPOOL_BINARY "' --help 2>&1");
-    EXPECT_EQ(r.exit_code, 0) << r.out;
+    const CommandResult r = RunTidepool("--help");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err, "");
     for (const char* command :
          {"expand", "validate", "stats", "render", "bench", "report", "run", "stability", "plan"}) {
         EXPECT_NE(r.out.find(std::string("  ") + command + " "), std::string::npos)
@@ -54,24 +56,26 @@ TEST(FrontEndCliTest, HelpListsEveryCommandTheGlOnesIncluded) {
 }
 
 TEST(FrontEndCliTest, GlCommandFlagsAndErrorsComeFromTidepoolGl) {
-    const CommandResult help = RunShell("'" TIDEPOOL_BINARY "' render --help 2>&1");
-    EXPECT_EQ(help.exit_code, 0) << help.out;
+    const CommandResult help = RunTidepool("render --help");
+    EXPECT_EQ(help.exit_code, 0) << help.err;
     EXPECT_NE(help.out.find("--backend"), std::string::npos) << help.out;
-    const CommandResult bad = RunShell("'" TIDEPOOL_BINARY "' render --size 3 2>&1");
-    EXPECT_EQ(bad.exit_code, 2) << bad.out;
-    EXPECT_NE(bad.out.find("--size"), std::string::npos) << bad.out;
+    const CommandResult bad = RunTidepool("render --size 3");
+    EXPECT_EQ(bad.exit_code, 2) << bad.err;
+    EXPECT_NE(bad.err.find("--size"), std::string::npos) << bad.err;
+    EXPECT_EQ(bad.out, "");
 }
 
 TEST(FrontEndCliTest, GlCommandWithoutTidepoolGlIsAnEnvironmentErrorNamingIt) {
     TempDir dir;
     std::filesystem::copy_file(TIDEPOOL_BINARY, dir.Path() / "tidepool");
     const std::string alone = "cd '" + dir.Path().string() + "' && ./tidepool";
-    const CommandResult render = RunShell(alone + " render 2>&1");
-    EXPECT_EQ(render.exit_code, 3) << render.out;
-    EXPECT_NE(render.out.find("tidepool-gl"), std::string::npos) << render.out;
+    const CommandResult render = RunShell(alone + " render");
+    EXPECT_EQ(render.exit_code, 3) << render.err;
+    EXPECT_NE(render.err.find("tidepool-gl"), std::string::npos) << render.err;
+    EXPECT_EQ(render.out, "");
     // The commands that need no GL do not need it either.
-    const CommandResult version = RunShell(alone + " --version 2>&1");
-    EXPECT_EQ(version.exit_code, 0) << version.out;
+    const CommandResult version = RunShell(alone + " --version");
+    EXPECT_EQ(version.exit_code, 0) << version.err;
     EXPECT_NE(version.out.find("tidepool 0.1.0"), std::string::npos) << version.out;
 }
 

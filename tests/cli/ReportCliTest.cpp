@@ -7,13 +7,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <regex>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "FileContents.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
 #include <nlohmann/json.hpp>
@@ -24,23 +23,13 @@ namespace {
 using tidepool::testing::TempDir;
 
 using tidepool::testing::CommandResult;
+using tidepool::testing::ReadText;
+using tidepool::testing::RunShell;
 
-// Runs `command` with stdout and stderr together.
-CommandResult Shell(const std::string& command) {
-    return tidepool::testing::RunShell(command + " 2>&1");
-}
-
-// Runs the tidepool binary with `args` (a shell fragment) in the source root.
+// Runs the tidepool binary with `args` (a shell fragment) in the source root, on the two threads
+// Mesa's llvmpipe may use here.
 CommandResult RunTidepool(const std::string& args) {
-    return Shell("cd '" + std::string(TIDEPOOL_SOURCE_ROOT) + "' && LP_NUM_THREADS=2 '" +
-                 std::string(TIDEPOOL_BINARY) + "' " + args);
-}
-
-std::string ReadText(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
+    return tidepool::testing::RunTidepool(args, TIDEPOOL_SOURCE_ROOT, "LP_NUM_THREADS=2");
 }
 
 // One small `tidepool run` shared by every test of the suite (it is the slow part): 160x120,
@@ -56,7 +45,8 @@ protected:
             out_ = new std::filesystem::path(made);
             const std::string exit_code = ReadText(out_->string() + ".exit");
             run_->exit_code = exit_code.empty() ? -1 : std::stoi(exit_code);
-            run_->out = ReadText(out_->string() + ".log");
+            run_->out = ReadText(out_->string() + ".out");
+            run_->err = ReadText(out_->string() + ".err");
             return;
         }
         dir_ = new TempDir();
@@ -84,7 +74,7 @@ std::filesystem::path* ReportCliTest::out_ = nullptr;
 CommandResult* ReportCliTest::run_ = nullptr;
 
 TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
-    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "manifest/manifest.json"));
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "render/results.json"));
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "render/stability.json"));
@@ -105,23 +95,25 @@ TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
     EXPECT_EQ(data["scenes"]["present"], true);
     EXPECT_FALSE(data["scenes"]["plans"].empty());
     EXPECT_TRUE(data["stability"].contains("cases")) << data["stability"].dump().substr(0, 500);
+    // The whitepaper table is data, on stdout; progress and diagnostics are on stderr.
     EXPECT_NE(run_->out.find("reflection_refraction"), std::string::npos) << run_->out;
+    EXPECT_NE(run_->err.find("run: "), std::string::npos) << run_->err;
     // Well under the ~10 MB a page should weigh.
     EXPECT_LT(std::filesystem::file_size(Out() / "default/index.html"), 10u * 1000u * 1000u);
 }
 
 TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepaperRow) {
-    ASSERT_EQ(run_->exit_code, 0) << run_->out;
-    if (Shell("command -v chromium").exit_code != 0) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
+    if (RunShell("command -v chromium").exit_code != 0) {
         GTEST_SKIP() << "chromium is not installed (scripts/install-deps.sh installs it)";
     }
     TempDir profile;
-    const CommandResult dom =
-            Shell("timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
-                  "--no-first-run --disable-background-networking --disable-component-update "
-                  "--disable-sync --user-data-dir='" +
-                  profile.Path().string() + "' --virtual-time-budget=5000 --dump-dom 'file://" +
-                  (Out() / "default/index.html").string() + "' 2>/dev/null");
+    const CommandResult dom = RunShell(
+            "timeout 120 chromium --headless --no-sandbox --disable-gpu --disable-quic "
+            "--no-first-run --disable-background-networking --disable-component-update "
+            "--disable-sync --user-data-dir='" +
+            profile.Path().string() + "' --virtual-time-budget=5000 --dump-dom 'file://" +
+            (Out() / "default/index.html").string() + "' 2>/dev/null");
     ASSERT_EQ(dom.exit_code, 0) << dom.out.substr(0, 2000);
     std::smatch loaded;
     ASSERT_TRUE(std::regex_search(dom.out, loaded,
@@ -146,18 +138,19 @@ TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepa
 }
 
 TEST_F(ReportCliTest, ReportRebuildsFromSavedFilesWithoutRendering) {
-    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
     const CommandResult r =
             RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
                         "' --results '" + (Out() / "render/results.json").string() +
                         "' --name again --out '" + Out().string() + "'");
-    EXPECT_EQ(r.exit_code, 0) << r.out;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "again/index.html"));
-    EXPECT_EQ(r.out.find("render:"), std::string::npos) << "report must not render";
+    EXPECT_EQ(r.err.find("render:"), std::string::npos) << "report must not render";
+    EXPECT_NE(r.out.find("reflection_refraction"), std::string::npos) << r.out;
 }
 
 TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
-    ASSERT_EQ(run_->exit_code, 0) << run_->out;
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
     TempDir copy;
     std::filesystem::copy(Out() / "render", copy.Path() / "render",
                           std::filesystem::copy_options::recursive);
@@ -170,8 +163,9 @@ TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
             RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
                         "' --results '" + (copy.Path() / "render/results.json").string() +
                         "' --out '" + (copy.Path() / "out").string() + "'");
-    EXPECT_EQ(r.exit_code, 2) << r.out;
-    EXPECT_NE(r.out.find(missing.string()), std::string::npos) << r.out;
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
     EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out" / "default"));
 }
 
@@ -206,7 +200,7 @@ TEST_F(ReportCliTest, WronglyTypedFieldInAnyStageFileExitsTwoNamingTheFileAndFie
         nlohmann::json document = nlohmann::json::parse(ReadText(file));
         document[nlohmann::json::json_pointer(c.pointer)] = c.value;
         std::ofstream(file, std::ios::trunc) << document.dump();
-        const tidepool::testing::SplitResult r = tidepool::testing::RunTidepoolSplit(
+        const CommandResult r = tidepool::testing::RunTidepool(
                 "report --manifest '" + (copy.Path() / "manifest/manifest.json").string() +
                         "' --results '" + (copy.Path() / "render/results.json").string() +
                         "' --out '" + (copy.Path() / "out").string() + "'",
@@ -224,18 +218,19 @@ TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
     CommandResult r = RunTidepool("report --manifest '" + manifest.string() + "' --results '" +
                                   (dir.Path() / "results.json").string() + "' --out '" +
                                   (dir.Path() / "out").string() + "'");
-    EXPECT_EQ(r.exit_code, 2) << r.out;
-    EXPECT_NE(r.out.find(manifest.string() + ": not valid JSON"), std::string::npos) << r.out;
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(manifest.string() + ": not valid JSON"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
 
     if (run_->exit_code == 0) {
         r = RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
                         "' --results '" + (dir.Path() / "nope.json").string() + "' --out '" +
                         (dir.Path() / "out").string() + "'");
-        EXPECT_EQ(r.exit_code, 2) << r.out;
-        EXPECT_NE(r.out.find((dir.Path() / "nope.json").string() + ": no such file"),
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_NE(r.err.find((dir.Path() / "nope.json").string() + ": no such file"),
                   std::string::npos)
-                << r.out;
+                << r.err;
     }
 }
 

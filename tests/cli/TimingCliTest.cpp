@@ -2,59 +2,30 @@
 // stdout and stderr captured apart.
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <string>
 
 #include "TempDir.h"
+#include "TidepoolProcess.h"
 #include <nlohmann/json.hpp>
-#include <sys/wait.h>
 
 namespace {
 
+using tidepool::testing::CommandResult;
+using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
-
-struct Output {
-    int exit_code = -1;
-    std::string out;
-    std::string err;
-};
-
-// Runs the binary with `args` in the source root; stderr goes to a file read back afterwards.
-Output RunSeparately(const std::string& args, const TempDir& dir) {
-    const std::filesystem::path err = dir.Path() / "stderr.txt";
-    const std::string command = "cd '" + std::string(TIDEPOOL_SOURCE_ROOT) + "' && '" +
-                                std::string(TIDEPOOL_BINARY) + "' " + args + " 2>'" + err.string() +
-                                "'";
-    Output result;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return result;
-    }
-    char buffer[4096];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) {
-        result.out.append(buffer, n);
-    }
-    const int status = ::pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(err);
-    result.err.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return result;
-}
 
 TEST(TimingCliTest, OutOfRangeTimingFlagsAreUsageErrorsNamingTheFlag) {
     TempDir dir;
-    const Output resolution =
-            RunSeparately("render --resolution 0 --out " + (dir.Path() / "o").string(), dir);
+    const CommandResult resolution =
+            RunTidepool("render --resolution 0 --out " + (dir.Path() / "o").string());
     EXPECT_EQ(resolution.exit_code, 2);
     EXPECT_NE(resolution.err.find("error: --resolution must be above 0 and at most 50 percent "
                                   "points, not 0"),
               std::string::npos)
             << resolution.err;
-    const Output pairs =
-            RunSeparately("run --min-pairs 5 --out " + (dir.Path() / "o").string(), dir);
+    const CommandResult pairs =
+            RunTidepool("run --min-pairs 5 --out " + (dir.Path() / "o").string());
     EXPECT_EQ(pairs.exit_code, 2);
     EXPECT_NE(pairs.err.find("error: --min-pairs must be at least 10 and --max-pairs between "
                              "--min-pairs and 100000, not 5 and 400"),
@@ -65,12 +36,11 @@ TEST(TimingCliTest, OutOfRangeTimingFlagsAreUsageErrorsNamingTheFlag) {
 
 TEST(TimingCliTest, RenderTimesEveryComparedPresetPairOnTheThreadClock) {
     TempDir dir;
-    const Output r = RunSeparately(
+    const CommandResult r = RunTidepool(
             "render --preset full --preset full_no_fog --preset full_constant_mix "
             "--view three_quarter --size 64x48 --min-pairs 10 --max-pairs 10 "
             "--coarse-frames 2 --no-images --json --out " +
-                    (dir.Path() / "render").string(),
-            dir);
+            (dir.Path() / "render").string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json results = nlohmann::json::parse(r.out);
     EXPECT_EQ(results["timing"]["clock"], "thread_cpu");

@@ -41,9 +41,9 @@ TEST(ValidateTargetsCliTest, LimitsFileRaisesAMinimumForPlainFiles) {
     dir.Write("a.fsh", kFragmentWithTwentyVectors);
     dir.Write("phone.conf", "# our phone\nMaxFragmentUniformVectors 64\n");
     const CommandResult minimums = RunTidepool("validate a.fsh", dir.Path());
-    EXPECT_EQ(minimums.exit_code, 1) << minimums.out;
+    EXPECT_EQ(minimums.exit_code, 1) << minimums.err;
     const CommandResult phone = RunTidepool("validate --limits phone.conf a.fsh", dir.Path());
-    EXPECT_EQ(phone.exit_code, 0) << phone.out;
+    EXPECT_EQ(phone.exit_code, 0) << phone.err;
 }
 
 TEST(ValidateTargetsCliTest, BadLimitsFileExitsTwoNamingLineAndFix) {
@@ -51,11 +51,12 @@ TEST(ValidateTargetsCliTest, BadLimitsFileExitsTwoNamingLineAndFix) {
     dir.Write("a.fsh", kFragmentWithTwentyVectors);
     dir.Write("phone.conf", "MaxDrawBuffers 4\nMaxFragmentUniformVector 64\n");
     const CommandResult r = RunTidepool("validate --limits phone.conf a.fsh", dir.Path());
-    EXPECT_EQ(r.exit_code, 2) << r.out;
-    EXPECT_NE(r.out.find("phone.conf:2:1: error: unknown limit 'MaxFragmentUniformVector'; did "
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("phone.conf:2:1: error: unknown limit 'MaxFragmentUniformVector'; did "
                          "you mean 'MaxFragmentUniformVectors'?"),
               std::string::npos)
-            << r.out;
+            << r.err;
+    EXPECT_EQ(r.out, "");
 }
 
 TEST(ValidateTargetsCliTest, WebGl1TargetRefusesAWhileLoopThatGlslEsAllows) {
@@ -64,10 +65,11 @@ TEST(ValidateTargetsCliTest, WebGl1TargetRefusesAWhileLoopThatGlslEsAllows) {
     dir.Write("w.fsh", kFragmentWithWhile);
     EXPECT_EQ(RunTidepool("validate w.vsh w.fsh", dir.Path()).exit_code, 0);
     const CommandResult r = RunTidepool("validate --target webgl1 w.vsh w.fsh", dir.Path());
-    EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_NE(r.out.find("w.fsh:5: error: 'limitation' : while loops not available"),
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_NE(r.err.find("w.fsh:5: error: 'limitation' : while loops not available"),
               std::string::npos)
-            << r.out;
+            << r.err;
+    EXPECT_EQ(r.out.find("error:"), std::string::npos) << r.out;
 }
 
 TEST(ValidateTargetsCliTest, WebGlTargetsInConfigurationAndOnTheCommandLine) {
@@ -79,13 +81,13 @@ TEST(ValidateTargetsCliTest, WebGlTargetsInConfigurationAndOnTheCommandLine) {
     dir.Write("web.yaml", "targets: [100, webgl1]\n" + program);
     EXPECT_EQ(RunTidepool("validate --config plain.yaml", dir.Path()).exit_code, 0);
     const CommandResult web = RunTidepool("validate --config web.yaml", dir.Path());
-    EXPECT_EQ(web.exit_code, 1) << web.out;
-    EXPECT_NE(web.out.find("w.fsh:5: error: 'limitation' : while loops not available [p:]"),
+    EXPECT_EQ(web.exit_code, 1) << web.err;
+    EXPECT_NE(web.err.find("w.fsh:5: error: 'limitation' : while loops not available [p:]"),
               std::string::npos)
-            << web.out;
+            << web.err;
     const CommandResult flag =
             RunTidepool("validate --config plain.yaml --target webgl1", dir.Path());
-    EXPECT_EQ(flag.exit_code, 1) << flag.out;
+    EXPECT_EQ(flag.exit_code, 1) << flag.err;
     // WebGL 2 runs the sources as GLSL ES 3.00, where while loops are fine.
     EXPECT_EQ(RunTidepool("validate --config plain.yaml --target webgl2", dir.Path()).exit_code, 0);
 }

@@ -3,35 +3,53 @@
 
 #include <array>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 namespace tidepool::testing {
 
-/// What a command did: its exit code and output.
+/// What a command did: its exit code, and its stdout and stderr apart, so a test can tell
+/// diagnostics from data.
 struct CommandResult {
     int exit_code = -1;
-    std::string out;  // stdout (and stderr, where the command sends it there)
+    std::string out;  // stdout alone
+    std::string err;  // stderr alone
 };
 
-/// Runs a shell command and collects its stdout.
+/// Runs a shell command and collects its stdout and its stderr apart. stderr goes through a
+/// uniquely named temp file (read back and removed), so concurrent tests never share one and a
+/// diagnostic can never be mistaken for JSON on stdout. A command that wants its streams merged
+/// (a tool's log, not tidepool's output) says `2>&1` itself.
 inline CommandResult RunShell(const std::string& command) {
     CommandResult result;
-    FILE* pipe = ::popen(command.c_str(), "r");
-    if (pipe == nullptr) {
+    std::string err_path =
+            (std::filesystem::temp_directory_path() / "tidepool-stderr.XXXXXX").string();
+    const int err_fd = ::mkstemp(err_path.data());
+    if (err_fd < 0) {
         return result;
     }
-    std::array<char, 4096> buffer{};
-    std::size_t n = 0;
-    while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
-        result.out.append(buffer.data(), n);
+    ::close(err_fd);
+    FILE* pipe = ::popen(("{ " + command + "\n} 2>'" + err_path + "'").c_str(), "r");
+    if (pipe != nullptr) {
+        std::array<char, 4096> buffer{};
+        std::size_t n = 0;
+        while ((n = std::fread(buffer.data(), 1, buffer.size(), pipe)) > 0) {
+            result.out.append(buffer.data(), n);
+        }
+        const int status = ::pclose(pipe);
+        result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+        std::ifstream in(err_path, std::ios::binary);
+        std::ostringstream err;
+        err << in.rdbuf();
+        result.err = err.str();
     }
-    const int status = ::pclose(pipe);
-    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::filesystem::remove(err_path);
     return result;
 }
 
@@ -43,33 +61,12 @@ inline std::string TidepoolCommand(const std::string& args, const std::filesyste
            "' " + args;
 }
 
-/// Runs the tidepool binary with `args` (a shell fragment) in `cwd`.
+/// Runs the tidepool binary with `args` (a shell fragment) in `cwd`, with `environment` set for
+/// it alone, stdout and stderr apart.
 inline CommandResult RunTidepool(const std::string& args,
-                                 const std::filesystem::path& cwd = TIDEPOOL_SOURCE_ROOT) {
-    return RunShell(TidepoolCommand(args, cwd) + " 2>&1");
-}
-
-/// What a command did, stdout and stderr apart.
-struct SplitResult {
-    int exit_code = -1;
-    std::string out;  // stdout alone
-    std::string err;  // stderr alone
-};
-
-/// Runs the tidepool binary with `args` in `cwd`, keeping stdout and stderr apart (stderr goes
-/// through a file, so a diagnostic can never be mistaken for JSON on stdout).
-inline SplitResult RunTidepoolSplit(const std::string& args, const std::filesystem::path& cwd,
-                                    const std::string& environment = "") {
-    const std::filesystem::path err_file = cwd / ".tidepool-stderr";
-    const CommandResult r =
-            RunShell(TidepoolCommand(args, cwd, environment) + " 2>'" + err_file.string() + "'");
-    SplitResult split{r.exit_code, r.out, {}};
-    std::ifstream in(err_file, std::ios::binary);
-    std::ostringstream err;
-    err << in.rdbuf();
-    split.err = err.str();
-    std::filesystem::remove(err_file);
-    return split;
+                                 const std::filesystem::path& cwd = TIDEPOOL_SOURCE_ROOT,
+                                 const std::string& environment = "") {
+    return RunShell(TidepoolCommand(args, cwd, environment));
 }
 
 }  // namespace tidepool::testing

@@ -1,7 +1,6 @@
 // The paired estimate, its interval's coverage and the sequential stopping rule
 // (base/include/tidepool/base/PairedEstimate.h).
 #include "tidepool/base/PairedEstimate.h"
-#include "tidepool/base/SampleStatistics.h"
 
 #include <gtest/gtest.h>
 
@@ -303,14 +302,6 @@ TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     EXPECT_EQ(PairsExpectedAtStop(PairedEstimate{}, rule, 60), 62);
     // Already narrow enough: the pairs so far.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(62, 4.0, 5.0), rule, 60), 62);
-}
-
-TEST(SampleStatisticsTest, MedianAndQuantileAgreeOnEmptyInput) {
-    EXPECT_TRUE(std::isnan(Median({})));
-    EXPECT_TRUE(std::isnan(Quantile({}, 0.5)));
-    EXPECT_DOUBLE_EQ(Median({3, 1, 2, 10}), 2.5);
-    EXPECT_DOUBLE_EQ(Quantile({1, 2, 3, 4, 5}, 0.25), 2.0);
-    EXPECT_TRUE(std::isnan(Quantile({1, 2}, 1.5)));
 }
 
 }  // namespace

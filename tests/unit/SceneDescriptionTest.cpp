@@ -204,6 +204,22 @@ INSTANTIATE_TEST_SUITE_P(
                          "reads version 1\n"},
                 BadScene{"malformed YAML", "target: {min_psnr_db: 30\n",
                          "s.yaml:2:1: error: malformed YAML: end of map flow not found\n"},
+                BadScene{"above not a list", std::string(kTarget) + "above: sky\n",
+                         "s.yaml:2:8: error: above must be a list such as [sky, terrain, "
+                         "objects]\n"
+                         "s.yaml:2:8: error: the embedded renderer always draws the sky "
+                         "above the water; add sky to above\n"},
+                BadScene{"a list inside a list", std::string(kTarget) + "above: [[sky]]\n",
+                         "s.yaml:2:9: error: above lists names, not lists or mappings\n"
+                         "s.yaml:2:8: error: the embedded renderer always draws the sky "
+                         "above the water; add sky to above\n"},
+                BadScene{"description not one line of text",
+                         std::string(kTarget) + "description: [a, pond]\n",
+                         "s.yaml:2:14: error: description must be a single line of text\n"},
+                BadScene{"water not a mapping", std::string(kTarget) + "water: 3\n",
+                         "s.yaml:2:8: error: water must be a mapping of keys to values\n"},
+                BadScene{"camera value a list", std::string(kTarget) + "camera: {height: [1, 2]}\n",
+                         "s.yaml:2:18: error: camera.height must be a number\n"},
                 BadScene{"not a mapping", "- 1\n",
                          "s.yaml:1:1: error: a scene must be a mapping with water, above, "
                          "below, camera and target (see docs/SCENES.md)\n"}));

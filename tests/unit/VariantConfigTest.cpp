@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "TempDir.h"
+#include <sys/stat.h>
 
 namespace tidepool {
 namespace {
@@ -319,6 +320,97 @@ INSTANTIATE_TEST_SUITE_P(
                                                          "  bad: { program: p, defines: [A] }\n",
                              "v.yaml:9:3: error: preset 'bad' must choose exactly one value of "
                              "axis 'QUALITY' (it chose 0)\n"},
+                BadInputCase{"TopLevelIsNotAMapping", "- programs\n",
+                             "v.yaml:1:1: error: the top level must be a mapping with keys such "
+                             "as `programs:`\n"},
+                BadInputCase{"UnsupportedSchemaVersion", "version: 2\n" + std::string(kProgramHead),
+                             "v.yaml:1:10: error: unsupported schema version 2; this tidepool "
+                             "reads version 1\n"},
+                BadInputCase{"VersionIsNotAnInteger", "version: one\n" + std::string(kProgramHead),
+                             "v.yaml:1:10: error: version must be an integer\n"},
+                BadInputCase{"NoProgramsSection", "targets: [100]\n",
+                             "v.yaml:1:1: error: no `programs:` section; declare at least one "
+                             "program with its vertex and fragment files\n"},
+                BadInputCase{"ProgramsIsEmpty", "programs: {}\n",
+                             "v.yaml:1:11: error: `programs:` is empty; declare at least one "
+                             "program\n"},
+                BadInputCase{"ProgramsIsNotAMapping", "programs: [p]\n",
+                             "v.yaml:1:11: error: programs must be a mapping of keys to values\n"},
+                BadInputCase{"ProgramNameIsNotAnIdentifier",
+                             "programs:\n  my-water:\n    vertex: s.vsh\n    fragment: s.fsh\n",
+                             "v.yaml:2:3: error: program name 'my-water' must be an identifier "
+                             "(letters, digits, _)\n"},
+                BadInputCase{"ProgramWithoutAFragmentShader",
+                             "programs:\n  p:\n    vertex: s.vsh\n",
+                             "v.yaml:2:3: error: program 'p' has no 'fragment' shader file; add "
+                             "`fragment: shaders/FILE`\n"},
+                BadInputCase{"ShaderPathIsAList",
+                             "programs:\n  p:\n    vertex: [s.vsh]\n    fragment: s.fsh\n",
+                             "v.yaml:3:13: error: program 'p' 'vertex' must be a single value, "
+                             "not a list or mapping\n"},
+                BadInputCase{"FeaturesAreNotAList", std::string(kProgramHead) + "    features: A\n",
+                             "v.yaml:5:15: error: features must be a list of define names\n"},
+                BadInputCase{
+                        "AxisListsAValueTwice",
+                        std::string(kProgramHead) + "    axes:\n      MODE: [fast, fast, exact]\n",
+                        "v.yaml:6:13: error: axis 'MODE' lists value 'fast' twice\n"},
+                BadInputCase{"RulesAreNotAList",
+                             std::string(kProgramHead) +
+                                     "    features: [A, B]\n    rules: { if: A, requires: B }\n",
+                             "v.yaml:6:12: error: rules must be a list\n"},
+                BadInputCase{"ExcludeCombinationOfOneDefine",
+                             std::string(kProgramHead) +
+                                     "    features: [A]\n    rules: [{ exclude: [A] }]\n",
+                             "v.yaml:6:13: error: an `exclude:` combination needs at least two "
+                             "defines; to forbid one define, remove it from the features\n"},
+                BadInputCase{
+                        "PresetWithoutProgram",
+                        std::string(kProgramHead) + "presets:\n  x: { description: no program }\n",
+                        "v.yaml:6:3: error: preset 'x' has no 'program'\n"},
+                BadInputCase{"PresetNamesUnknownProgram",
+                             std::string(kProgramHead) + "presets:\n  x: { program: q }\n",
+                             "v.yaml:6:3: error: preset 'x' names unknown program 'q'\n"},
+                BadInputCase{
+                        "PresetUsesUnknownDefine",
+                        std::string(kProgramHead) +
+                                "    features: [A]\npresets:\n  x: { program: p, defines: [B] }\n",
+                        "v.yaml:7:3: error: preset 'x' uses unknown define 'B' of program "
+                        "'p'; known: A\n"},
+                BadInputCase{"PresetDefinesAreNotNames",
+                             std::string(kProgramHead) + "    features: [A]\npresets:\n  x: { "
+                                                         "program: p, defines: { A: 1 } }\n",
+                             "v.yaml:7:29: error: defines must be a name or a list of names\n"},
+                BadInputCase{
+                        "RuntimeFeatureIsNotAName",
+                        std::string(kProgramHead) +
+                                "presets:\n  x: { program: p, runtime_features: [half-res] }\n",
+                        "v.yaml:6:38: error: 'half-res' is not a valid feature name in "
+                        "runtime_features\n"},
+                BadInputCase{"PassesAreNotAMapping",
+                             std::string(kProgramHead) +
+                                     "presets:\n  x: { program: p, passes: [clip] }\n",
+                             "v.yaml:6:28: error: passes must be a mapping of keys to values\n"},
+                BadInputCase{
+                        "PassSizeIsNotAPowerOfTwo",
+                        std::string(kProgramHead) +
+                                "presets:\n  x: { program: p, passes: { reflection_size: 300 } }\n",
+                        "v.yaml:6:47: error: reflection_size must be a power of two from 1 "
+                        "to 4096\n"},
+                BadInputCase{
+                        "PassSizeIsNotAnInteger",
+                        std::string(kProgramHead) +
+                                "presets:\n  x: { program: p, passes: { refraction_size: big } }\n",
+                        "v.yaml:6:47: error: refraction_size must be an integer\n"},
+                BadInputCase{
+                        "PassSwitchIsNotTrueOrFalse",
+                        std::string(kProgramHead) +
+                                "presets:\n  x: { program: p, passes: { low_res_water: maybe } }\n",
+                        "v.yaml:6:45: error: low_res_water must be true or false\n"},
+                BadInputCase{"ClipIsNeitherObliqueNorDiscard",
+                             std::string(kProgramHead) +
+                                     "presets:\n  x: { program: p, passes: { clip: sideways } }\n",
+                             "v.yaml:6:36: error: clip must be 'oblique' or 'discard', not "
+                             "'sideways'\n"},
                 BadInputCase{
                         "DesktopOnlyTargets", "targets: [330]\n" + std::string(kProgramHead),
                         "v.yaml:1:10: error: unknown GLSL ES target '330'; use 100, 300, webgl1 or "
@@ -359,6 +451,14 @@ TEST_F(VariantConfigTest, ShaderPathThatIsAFolderSaysSo) {
     EXPECT_EQ(Errors("programs:\n  p:\n    vertex: d.vsh\n    fragment: s.fsh\n"),
               "v.yaml:3:13: error: vertex shader file 'd.vsh' is a folder (" +
                       (dir_.Path() / "d.vsh").string() + "), not a file\n");
+}
+
+TEST_F(VariantConfigTest, ShaderPathThatIsAFifoSaysSoWithoutOpeningIt) {
+    ASSERT_EQ(::mkfifo((dir_.Path() / "pipe.fsh").c_str(), 0600), 0);
+    EXPECT_EQ(Errors("programs:\n  p:\n    vertex: s.vsh\n    fragment: pipe.fsh\n"),
+              "v.yaml:4:15: error: fragment shader file 'pipe.fsh' is not a regular file (" +
+                      (dir_.Path() / "pipe.fsh").string() +
+                      "); a FIFO or device cannot be validated\n");
 }
 
 TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {

@@ -8,8 +8,8 @@
 
 #include "tidepool/base/PairedEstimate.h"
 #include "tidepool/base/RgbaImage.h"
+#include "tidepool/report/ConfigurationComparison.h"
 #include "tidepool/report/ReportInputs.h"
-#include "tidepool/report/Statistics.h"
 #include "tidepool/report/WhitepaperTable.h"
 
 #include <cstdint>

@@ -5,12 +5,12 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/PairedEstimate.h"
+#include "tidepool/base/SampleStatistics.h"
 #include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
-#include "tidepool/runner/Statistics.h"
 
 #include <filesystem>
 #include <functional>
@@ -91,10 +91,10 @@ struct ConfigurationResult {
     // The coarse frames' wall-clock times, one "round" of one frame each (the v1 layout, which
     // readers pair by round when a results file has no comparisons).
     std::vector<std::vector<double>> samples_ms;
-    SampleStatistics statistics;
+    base::SampleStatistics statistics;
     // The same frames on the run's clock (RunResults::clock): CPU time on a software renderer.
     std::vector<std::vector<double>> cpu_samples_ms;
-    SampleStatistics cpu_statistics;
+    base::SampleStatistics cpu_statistics;
     // Per-pass medians on the run's clock over RunOptions::pass_frames instrumented frames
     // (compared configurations only), and the median of those frames as a whole.
     std::map<std::string, double> pass_ms;

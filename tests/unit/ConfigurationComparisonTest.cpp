@@ -1,5 +1,6 @@
-// Paired frame-time ratios, whitepaper conversions and verdicts, ranks and the Pareto frontier.
-#include "tidepool/report/Statistics.h"
+// Paired frame-time ratios, whitepaper conversions, split halves and the Pareto frontier
+// (reports/include/tidepool/report/ConfigurationComparison.h).
+#include "tidepool/report/ConfigurationComparison.h"
 
 #include <gtest/gtest.h>
 
@@ -15,40 +16,9 @@ namespace {
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// --- Median and Quantile ---------------------------------------------------------------------
-
-TEST(ReportStatisticsTest, MedianOfOddCountIsTheMiddleValue) {
-    EXPECT_DOUBLE_EQ(Median({5, 1, 4, 2, 3}), 3);
-}
-
-TEST(ReportStatisticsTest, MedianOfEvenCountIsTheMeanOfTheMiddleTwo) {
-    EXPECT_DOUBLE_EQ(Median({1, 10, 3, 2}), 2.5);
-}
-
-TEST(ReportStatisticsTest, MedianOfEmptyOrNaNSamplesIsNaN) {
-    EXPECT_TRUE(std::isnan(Median({})));
-    EXPECT_TRUE(std::isnan(Median({1, kNaN, 2})));
-}
-
-TEST(ReportStatisticsTest, QuantileInterpolatesBetweenOrderStatisticsAsType7) {
-    const std::vector<double> sorted = {1, 2, 3, 10};
-    EXPECT_DOUBLE_EQ(Quantile(sorted, 0), 1);
-    EXPECT_DOUBLE_EQ(Quantile(sorted, 0.25), 1.75);  // position 0.75 between 1 and 2
-    EXPECT_DOUBLE_EQ(Quantile(sorted, 0.5), 2.5);
-    EXPECT_DOUBLE_EQ(Quantile(sorted, 0.75), 4.75);  // position 2.25 between 3 and 10
-    EXPECT_DOUBLE_EQ(Quantile(sorted, 1), 10);
-}
-
-TEST(ReportStatisticsTest, QuantileOfEmptySamplesOrOutOfRangeLevelIsNaN) {
-    EXPECT_TRUE(std::isnan(Quantile({}, 0.5)));
-    EXPECT_TRUE(std::isnan(Quantile({1, 2}, -0.1)));
-    EXPECT_TRUE(std::isnan(Quantile({1, 2}, 1.1)));
-    EXPECT_TRUE(std::isnan(Quantile({1, 2}, kNaN)));
-}
-
 // --- ComparePaired ---------------------------------------------------------------------------
 
-TEST(ReportStatisticsTest, CandidateExactlyOneAndAHalfTimesSlowerGivesRatioOnePointFive) {
+TEST(ConfigurationComparisonTest, CandidateExactlyOneAndAHalfTimesSlowerGivesRatioOnePointFive) {
     std::vector<double> a;
     std::vector<double> b;
     for (int i = 0; i < 20; ++i) {
@@ -63,14 +33,14 @@ TEST(ReportStatisticsTest, CandidateExactlyOneAndAHalfTimesSlowerGivesRatioOnePo
     EXPECT_GE(r.ci.high, r.ratio);
 }
 
-TEST(ReportStatisticsTest, TooFewPairsGiveNoRatio) {
+TEST(ConfigurationComparisonTest, TooFewPairsGiveNoRatio) {
     const PairedRatio r = ComparePairs({1, 2, 3}, {1, 2, 3});
     EXPECT_TRUE(std::isnan(r.ratio));
     EXPECT_EQ(r.pairs, 0);
     EXPECT_EQ(r.error, "fewer than 10 pairs give no interval");
 }
 
-TEST(ReportStatisticsTest, RoundsBecomeOnePairEachFromTheirMedians) {
+TEST(ConfigurationComparisonTest, RoundsBecomeOnePairEachFromTheirMedians) {
     std::vector<double> a;
     std::vector<double> b;
     EXPECT_EQ(PairsFromRounds({{1, 2, 30}, {4, 5, 6}}, {{2, 2, 2}, {8}}, &a, &b), "");
@@ -86,7 +56,7 @@ struct WhitepaperFigure {
     double frame_time_ratio;
 };
 
-TEST(ReportStatisticsTest, WhitepaperFiguresRoundTripThroughFrameTimeRatios) {
+TEST(ConfigurationComparisonTest, WhitepaperFiguresRoundTripThroughFrameTimeRatios) {
     const WhitepaperFigure table[] = {
             {-60, 2.5},   // "performance reduced by 60%"
             {-50, 2.0},   // halved frame rate: twice the frame time
@@ -105,11 +75,11 @@ TEST(ReportStatisticsTest, WhitepaperFiguresRoundTripThroughFrameTimeRatios) {
     }
 }
 
-TEST(ReportStatisticsTest, FrameRateAtFortyPercentIsSixtyPercentReduction) {
+TEST(ConfigurationComparisonTest, FrameRateAtFortyPercentIsSixtyPercentReduction) {
     EXPECT_NEAR(PerformanceChangePercent(1 / 0.4), -60, 1e-12);
 }
 
-TEST(ReportStatisticsTest, InvalidRatiosAndPercentagesConvertToNaN) {
+TEST(ConfigurationComparisonTest, InvalidRatiosAndPercentagesConvertToNaN) {
     EXPECT_TRUE(std::isnan(PerformanceChangePercent(0)));
     EXPECT_TRUE(std::isnan(PerformanceChangePercent(-1)));
     EXPECT_TRUE(std::isnan(PerformanceChangePercent(kInfinity)));
@@ -121,7 +91,7 @@ TEST(ReportStatisticsTest, InvalidRatiosAndPercentagesConvertToNaN) {
 
 // --- Split-half reliability ------------------------------------------------------------------
 
-TEST(ReportStatisticsTest, IdenticalHalvesDisagreeByZeroPoints) {
+TEST(ConfigurationComparisonTest, IdenticalHalvesDisagreeByZeroPoints) {
     std::vector<double> a(40, 10.0);
     std::vector<double> b;
     for (int i = 0; i < 40; ++i) {
@@ -134,7 +104,7 @@ TEST(ReportStatisticsTest, IdenticalHalvesDisagreeByZeroPoints) {
     EXPECT_NEAR(split.disagreement_percent_points, 0.0, 1e-9);
 }
 
-TEST(ReportStatisticsTest, SplitHalvesSeparateWhoRenderedFirst) {
+TEST(ConfigurationComparisonTest, SplitHalvesSeparateWhoRenderedFirst) {
     // Even pairs (baseline first) 20% slower, odd pairs (candidate first) 25% slower.
     std::vector<double> a(40, 10.0);
     std::vector<double> b;
@@ -147,53 +117,16 @@ TEST(ReportStatisticsTest, SplitHalvesSeparateWhoRenderedFirst) {
     EXPECT_NEAR(split.disagreement_percent_points, (1 / 1.2 - 1 / 1.25) * 100, 1e-9);
 }
 
-TEST(ReportStatisticsTest, SplitHalfOfTooFewPairsFails) {
+TEST(ConfigurationComparisonTest, SplitHalfOfTooFewPairsFails) {
     const SplitHalf split =
             CompareSplitPairs(std::vector<double>(12, 1.0), std::vector<double>(12, 2.0));
     EXPECT_TRUE(std::isnan(split.disagreement_percent_points));
     EXPECT_FALSE(split.odd.error.empty());
 }
 
-TEST(ReportStatisticsTest, SpearmanOfAnyIncreasingRelationIsOne) {
-    EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {1, 8, 27, 64, 125}), 1.0);
-}
-
-TEST(ReportStatisticsTest, SpearmanOfAReversedOrderIsMinusOne) {
-    EXPECT_DOUBLE_EQ(SpearmanRho({1, 2, 3, 4, 5}, {50, 40, 30, 20, 10}), -1.0);
-}
-
-TEST(ReportStatisticsTest, SpearmanGivesTiesTheirAverageRank) {
-    // x ranks 1, 2.5, 2.5, 4, 5; y ranks 1, 3, 2, 5, 4. Around the mean rank 3 the sums are
-    // sum dx dy = 8.5, sum dx^2 = 9.5, sum dy^2 = 10, so rho = 8.5 / sqrt(95) = 0.872082...
-    // (scipy.stats.spearmanr gives the same).
-    EXPECT_NEAR(SpearmanRho({10, 20, 20, 30, 40}, {1, 3, 2, 5, 4}), 8.5 / std::sqrt(95.0), 1e-12);
-}
-
-TEST(ReportStatisticsTest, SpearmanOfTextbookMarksMatchesTheClassicFormula) {
-    // Laerd Statistics' worked example (English and maths marks of ten students, no ties):
-    // sum d^2 = 54, so rho = 1 - 6 * 54 / (10 * (10^2 - 1)) = 0.6727...
-    const std::vector<double> english = {56, 75, 45, 71, 62, 64, 58, 80, 76, 61};
-    const std::vector<double> maths = {66, 70, 40, 60, 65, 56, 59, 77, 67, 63};
-    EXPECT_NEAR(SpearmanRho(english, maths), 1.0 - 6.0 * 54.0 / (10.0 * 99.0), 1e-12);
-}
-
-TEST(ReportStatisticsTest, SpearmanWithTiesOnBothSidesIsThePearsonCorrelationOfAverageRanks) {
-    // x ranks 1, 3, 3, 3, 5; y ranks 1.5, 1.5, 3, 4.5, 4.5. Around 3: sum dx dy = 6,
-    // sum dx^2 = 8, sum dy^2 = 9, so rho = 6 / sqrt(72) = 0.707107... (scipy agrees), where the
-    // no-ties shortcut 1 - 6 sum d^2 / (n (n^2 - 1)) would give 0.75.
-    EXPECT_NEAR(SpearmanRho({1, 2, 2, 2, 3}, {1, 1, 2, 3, 3}), 6.0 / std::sqrt(72.0), 1e-12);
-}
-
-TEST(ReportStatisticsTest, SpearmanFailsOnMismatchedConstantOrTooShortInput) {
-    EXPECT_TRUE(std::isnan(SpearmanRho({1, 2, 3}, {1, 2})));
-    EXPECT_TRUE(std::isnan(SpearmanRho({1, 2, 3}, {4, 4, 4})));
-    EXPECT_TRUE(std::isnan(SpearmanRho({1}, {1})));
-    EXPECT_TRUE(std::isnan(SpearmanRho({1, kNaN, 3}, {1, 2, 3})));
-}
-
 // --- Pareto frontier -------------------------------------------------------------------------
 
-TEST(ReportStatisticsTest, ParetoFrontierKeepsUndominatedPointsSortedByTime) {
+TEST(ConfigurationComparisonTest, ParetoFrontierKeepsUndominatedPointsSortedByTime) {
     //                                 0    1    2    3    4    5    6
     const std::vector<double> time = {4.0, 1.0, 3.0, 2.0, 5.0, 2.0, 6.0};
     const std::vector<double> error = {1.0, 5.0, 4.0, 3.0, 1.0, 3.0, 0.5};
@@ -202,14 +135,14 @@ TEST(ReportStatisticsTest, ParetoFrontierKeepsUndominatedPointsSortedByTime) {
     EXPECT_EQ(ParetoFrontier(time, error), expected);
 }
 
-TEST(ReportStatisticsTest, ParetoFrontierSkipsPointsWithNaN) {
+TEST(ConfigurationComparisonTest, ParetoFrontierSkipsPointsWithNaN) {
     const std::vector<double> time = {1.0, kNaN, 0.5};
     const std::vector<double> error = {1.0, 0.0, kNaN};
     const std::vector<std::size_t> expected = {0};
     EXPECT_EQ(ParetoFrontier(time, error), expected);
 }
 
-TEST(ReportStatisticsTest, ParetoFrontierOfMismatchedOrEmptyInputIsEmpty) {
+TEST(ConfigurationComparisonTest, ParetoFrontierOfMismatchedOrEmptyInputIsEmpty) {
     EXPECT_TRUE(ParetoFrontier({1.0, 2.0}, {1.0}).empty());
     EXPECT_TRUE(ParetoFrontier({}, {}).empty());
 }

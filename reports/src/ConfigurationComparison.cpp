@@ -1,11 +1,11 @@
-// Paired comparisons (the base estimator as the report shows it), whitepaper conversions, ranks and
-// the Pareto frontier.
-#include "tidepool/report/Statistics.h"
+// Paired comparisons (the base estimator as the report shows it), whitepaper conversions and the
+// time/error Pareto frontier.
+#include "tidepool/report/ConfigurationComparison.h"
+
+#include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
-#include <random>
 #include <tuple>
 #include <utility>
 
@@ -15,29 +15,6 @@ namespace tidepool::report {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-
-// Pearson-ready ranks: 1-based positions in ascending order, ties sharing their average rank.
-std::vector<double> AverageRanks(const std::vector<double>& values) {
-    std::vector<std::size_t> order(values.size());
-    std::iota(order.begin(), order.end(), std::size_t{0});
-    std::stable_sort(order.begin(), order.end(),
-                     [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
-    std::vector<double> ranks(values.size());
-    std::size_t start = 0;
-    while (start < order.size()) {
-        std::size_t end = start + 1;
-        while (end < order.size() && values[order[end]] == values[order[start]]) {
-            ++end;
-        }
-        // Positions start+1 .. end (1-based) share their mean.
-        const double rank = (static_cast<double>(start + 1) + static_cast<double>(end)) / 2;
-        for (std::size_t k = start; k < end; ++k) {
-            ranks[order[k]] = rank;
-        }
-        start = end;
-    }
-    return ranks;
-}
 
 }  // namespace
 
@@ -68,8 +45,8 @@ std::string PairsFromRounds(const std::vector<std::vector<double>>& baseline_rou
         if (baseline_rounds[r].empty() || candidate_rounds[r].empty()) {
             return fmt::format("round {} has no samples", r + 1);
         }
-        baseline_ms->push_back(Median(baseline_rounds[r]));
-        candidate_ms->push_back(Median(candidate_rounds[r]));
+        baseline_ms->push_back(base::Median(baseline_rounds[r]));
+        candidate_ms->push_back(base::Median(candidate_rounds[r]));
     }
     return "";
 }
@@ -101,33 +78,6 @@ SplitHalf CompareSplitPairs(const std::vector<double>& baseline_ms,
                                                       PerformanceChangePercent(split.even.ratio));
     }
     return split;
-}
-
-double SpearmanRho(const std::vector<double>& x, const std::vector<double>& y) {
-    const auto has_nan = [](const std::vector<double>& v) {
-        return std::any_of(v.begin(), v.end(), [](double value) { return std::isnan(value); });
-    };
-    if (x.size() != y.size() || x.size() < 2 || has_nan(x) || has_nan(y)) {
-        return kNaN;
-    }
-    const std::vector<double> rank_x = AverageRanks(x);
-    const std::vector<double> rank_y = AverageRanks(y);
-    // Both rank vectors have the same mean, (n + 1) / 2.
-    const double mean = (static_cast<double>(x.size()) + 1) / 2;
-    double sum_xy = 0;
-    double sum_xx = 0;
-    double sum_yy = 0;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        const double dx = rank_x[i] - mean;
-        const double dy = rank_y[i] - mean;
-        sum_xy += dx * dy;
-        sum_xx += dx * dx;
-        sum_yy += dy * dy;
-    }
-    if (sum_xx == 0 || sum_yy == 0) {
-        return kNaN;  // a constant side has no order to correlate
-    }
-    return sum_xy / std::sqrt(sum_xx * sum_yy);
 }
 
 std::vector<std::size_t> ParetoFrontier(const std::vector<double>& time,

@@ -1,7 +1,7 @@
-// Statistics for comparing render configurations the way the whitepaper does: paired frame-time
-// ratios over pairs of frames with a signed-rank confidence interval, conversion to the
-// whitepaper's "performance increased/reduced by p%", a split-half reliability check, a verdict
-// against a quoted figure, rank correlation and the time/error Pareto frontier.
+// Comparing render configurations the way the whitepaper does: paired frame-time ratios over
+// pairs of frames with a signed-rank confidence interval, conversion to the whitepaper's
+// "performance increased/reduced by p%", a split-half reliability check and the time/error
+// Pareto frontier. The statistics they rest on are base's (PairedEstimate, SampleStatistics).
 //
 // Units and sign conventions:
 //  * A frame-time ratio is candidate frame time / baseline frame time: 2.5 means the candidate
@@ -15,7 +15,6 @@
 #pragma once
 
 #include "tidepool/base/PairedEstimate.h"
-#include "tidepool/base/SampleStatistics.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -28,9 +27,6 @@ namespace tidepool::report {
 
 /// Coverage of every interval the report shows (two-sided).
 inline constexpr double kConfidenceLevel = base::kConfidenceLevel;
-
-using base::Median;
-using base::Quantile;
 
 /// A closed interval [low, high]; NaN bounds mean "not computed".
 struct Interval {
@@ -85,11 +81,6 @@ struct SplitHalf {
 /// half's `error` set) when either half has too few pairs for an interval.
 SplitHalf CompareSplitPairs(const std::vector<double>& baseline_ms,
                             const std::vector<double>& candidate_ms);
-
-/// Spearman's rank correlation of paired samples, tied values getting the average of their
-/// ranks (the Pearson correlation of the ranks). Fails (returns NaN) when the sizes differ,
-/// there are fewer than two pairs, a value is NaN, or either side is constant.
-double SpearmanRho(const std::vector<double>& x, const std::vector<double>& y);
 
 /// Returns the indices of the points not dominated in (time, error), lower being better in
 /// both: a point is dominated when another is <= in both and < in at least one, so identical
