@@ -23,10 +23,10 @@ enum class StageFile { kManifest, kResults, kStability, kPlans };
 std::string CheckStageFileShape(StageFile file, const nlohmann::json& document);
 
 /// Checks `document` against `shape`, a JSON template: a string names a type ("number",
-/// "string", "bool", "any"; a trailing "?" also allows null); `[S]` is an array whose every item has shape S (`[]`: any array);
-/// an object lists its fields' shapes, or is `{"*": S}` for a map whose every value has shape S.
-/// Returns "" or the first mismatch as CheckStageFileShape does; `path` prefixes the paths.
-/// Never throws.
+/// "string", "bool", "any"; a trailing "?" also allows null); `[S]` is an array whose every item
+/// has shape S (`[]`: any array); an object lists its fields' shapes, or is `{"*": S}` for a map
+/// whose every value has shape S. Returns "" or the first mismatch as CheckStageFileShape does;
+/// `path` prefixes the paths. Never throws.
 std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json& shape,
                            const std::string& path = "");
 
