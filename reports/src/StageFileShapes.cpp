@@ -8,6 +8,23 @@ namespace {
 // Each writer's fields and their types. A writer that adds a field need not change its shape
 // (unknown fields pass); one that changes a field's type must, or every report of its files
 // fails: the CLI tests build reports from files the real writers wrote, so they catch it.
+// A stage's static cost (compiler/src/StaticCost.cpp), in the manifest three times: "$cost".
+constexpr const char* kStageCostShape = R"json(
+{
+  "arithmetic_ops": "number",
+  "branches": "number",
+  "builtin_calls": {"*": "number"},
+  "longest_path_ops": "number",
+  "loops": "number",
+  "samplers": "number",
+  "shortest_path_ops": "number",
+  "texture_samples": "number",
+  "total_ops": "number",
+  "uniforms": "number",
+  "varyings": "number"
+}
+)json";
+
 // Written by compiler/src/Manifest.cpp (`tidepool validate --out`).
 constexpr const char* kManifestShape = R"json(
 {
@@ -50,19 +67,7 @@ constexpr const char* kManifestShape = R"json(
   "schema": "string",
   "stage_programs": [
     {
-      "cost": {
-        "arithmetic_ops": "number",
-        "branches": "number",
-        "builtin_calls": {"*": "number"},
-        "longest_path_ops": "number",
-        "loops": "number",
-        "samplers": "number",
-        "shortest_path_ops": "number",
-        "texture_samples": "number",
-        "total_ops": "number",
-        "uniforms": "number",
-        "varyings": "number"
-      },
+      "cost": "$cost",
       "defines": ["string"],
       "file": "string",
       "hash": "string",
@@ -91,40 +96,8 @@ constexpr const char* kManifestShape = R"json(
       "id": "string",
       "program": "string",
       "stages": {
-        "fragment": {
-          "cost": {
-            "arithmetic_ops": "number",
-            "branches": "number",
-            "builtin_calls": {"*": "number"},
-            "longest_path_ops": "number",
-            "loops": "number",
-            "samplers": "number",
-            "shortest_path_ops": "number",
-            "texture_samples": "number",
-            "total_ops": "number",
-            "uniforms": "number",
-            "varyings": "number"
-          },
-          "file": "string",
-          "hash": "string"
-        },
-        "vertex": {
-          "cost": {
-            "arithmetic_ops": "number",
-            "branches": "number",
-            "builtin_calls": {"*": "number"},
-            "longest_path_ops": "number",
-            "loops": "number",
-            "samplers": "number",
-            "shortest_path_ops": "number",
-            "texture_samples": "number",
-            "total_ops": "number",
-            "uniforms": "number",
-            "varyings": "number"
-          },
-          "file": "string",
-          "hash": "string"
-        }
+        "fragment": {"cost": "$cost", "file": "string", "hash": "string"},
+        "vertex": {"cost": "$cost", "file": "string", "hash": "string"}
       },
       "steps": {"*": "string"},
       "target": "string",
@@ -574,7 +547,15 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
 
 std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) {
     // Parsed once: the shapes are constants of this build.
-    static const nlohmann::json manifest = nlohmann::json::parse(kManifestShape);
+    static const nlohmann::json manifest = [] {
+        nlohmann::json shape = nlohmann::json::parse(kManifestShape);
+        const nlohmann::json cost = nlohmann::json::parse(kStageCostShape);
+        for (const char* pointer : {"/stage_programs/0/cost", "/variants/0/stages/vertex/cost",
+                                    "/variants/0/stages/fragment/cost"}) {
+            shape[nlohmann::json::json_pointer(pointer)] = cost;
+        }
+        return shape;
+    }();
     static const nlohmann::json results = nlohmann::json::parse(kResultsShape);
     static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
     static const nlohmann::json plans = nlohmann::json::parse(kPlansShape);
