@@ -603,7 +603,53 @@ bool MentionsEmptyLastCase(const std::vector<Diagnostic>& diagnostics) {
                        [](const Diagnostic& d) { return Mentions(d, kEmptyLastCase); });
 }
 
+namespace {
+
+// True when every '+' in `text` is plainly binary or part of `++`/`+=`: the nearest non-blank
+// character before it ends an operand (a word other than `return`, `case`, `else` or `do`, a
+// number, ')', ']' or '.'). A cheap test on
+// the raw text that lets most shaders, which have only binary '+', skip the token scan; anything
+// else (a '+' after an operator, a comment or a line break into a directive) goes to the scan.
+bool EveryPlusIsPlainlyBinary(std::string_view text) {
+    for (std::size_t at = text.find('+'); at != std::string_view::npos;
+         at = text.find('+', at + 1)) {
+        if ((at + 1 < text.size() && (text[at + 1] == '+' || text[at + 1] == '=')) ||
+            (at > 0 && text[at - 1] == '+')) {
+            continue;
+        }
+        std::size_t before = at;
+        while (before > 0 && (text[before - 1] == ' ' || text[before - 1] == '\t')) {
+            --before;
+        }
+        if (before == 0) {
+            return false;
+        }
+        const char c = text[before - 1];
+        const auto word_char = [](char ch) {
+            return std::isalnum(static_cast<unsigned char>(ch)) != 0 || ch == '_';
+        };
+        if (!(word_char(c) || c == ')' || c == ']' || c == '.')) {
+            return false;
+        }
+        // A word before it is an operand unless it is a keyword an expression may follow.
+        std::size_t word = before;
+        while (word > 0 && word_char(text[word - 1])) {
+            --word;
+        }
+        const std::string_view previous = text.substr(word, before - word);
+        if (previous == "return" || previous == "case" || previous == "else" || previous == "do") {
+            return false;
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
 std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
+    if (EveryPlusIsPlainlyBinary(text)) {
+        return {};
+    }
     const std::vector<SourceToken> tokens = CodeTokens(text);
     std::vector<UnaryPlus> pluses;
     // Whether tokens[i - 1] ends an operand, so that a `+` after it is binary.

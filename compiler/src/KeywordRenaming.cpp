@@ -133,12 +133,19 @@ std::vector<LengthMember> LengthMembers(std::string_view text) {
 bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts) {
     bool declared = false;
     for (std::string_view text : texts) {
+        // Substring tests first: an identifier can only be what the text contains, and most
+        // shaders mention neither word, so they skip the token scans (run for every variant).
         bool spelled = false;
-        ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
-            spelled = spelled || text.substr(start, length) == kLengthMemberStandIn;
-        });
+        if (text.find(kLengthMemberStandIn) != std::string_view::npos) {
+            ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
+                spelled = spelled || text.substr(start, length) == kLengthMemberStandIn;
+            });
+        }
         if (spelled) {
             return false;
+        }
+        if (text.find("length") == std::string_view::npos) {
+            continue;
         }
         for (const LengthMember& member : LengthMembers(text)) {
             declared = declared || member.declared;

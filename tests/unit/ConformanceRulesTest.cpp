@@ -480,6 +480,20 @@ INSTANTIATE_TEST_SUITE_P(
                          "or "
                          "floating-point scalar, vector or matrix, not 'uniform bool' (GLSL ES "
                          "1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                // After `return` the '+' is unary although a word stands before it, and a
+                // shader whose other '+'s are all binary must still be scanned for it.
+                RuleCase{"unary + on a struct after return", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "Wave Lift(Wave w) { return +w; }\n"
+                         "void main() {\n"
+                         "    float h = 0.5 + 0.25;\n"
+                         "    gl_FragColor = vec4(Lift(Wave(h)).height);\n"
+                         "}\n",
+                         "a.fsh:4:28: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or floating-point scalar, vector or matrix, not 'in structure{ global "
+                         "mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
                 RuleCase{"unary + on numbers, vectors, matrices and after operators", nullptr,
                          "#version 100\n"
                          "precision mediump float;\n"
