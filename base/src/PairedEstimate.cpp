@@ -165,8 +165,8 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
             // Near the margin the rule stops as soon as the end clears it by
             // boundary_standard_errors standard errors (half-width / z each): with the centre d
             // points beyond the margin that is at half-width z d / (z + boundary), if the centre
-            // holds; never later than half the resolution, where it stops wherever it lies.
-            // Guessing half the resolution for every such comparison overestimated most of them.
+            // holds; never later than FinestHalfWidthPoints, where it stops wherever it lies.
+            // Guessing that finest half-width for every such comparison overestimated most.
             const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
             const double centre = (estimate.change_low + estimate.change_high) / 2.0;
             const double beyond = std::fabs(centre) - kDirectionMarginPoints;

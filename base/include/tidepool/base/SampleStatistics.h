@@ -1,7 +1,6 @@
 // The statistics of samples, one home for the whole project: Median, Quantile, the standard
 // deviation, the summary of a configuration's frame times (SampleStatistics) and Spearman's rank
-// correlation. The paired
-// comparison of two configurations is PairedEstimate.h's.
+// correlation. The paired comparison of two configurations is PairedEstimate.h's.
 //
 // Failures are values: a function that cannot answer says so as its comment tells (NaN, or a
 // count of 0), never throws and never prints. Empty input is such a failure everywhere: Median,
