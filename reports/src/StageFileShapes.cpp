@@ -1,5 +1,8 @@
 #include "tidepool/report/StageFileShapes.h"
 
+#include <map>
+#include <string>
+
 #include <fmt/format.h>
 
 namespace tidepool::report {
@@ -8,7 +11,38 @@ namespace {
 // Each writer's fields and their types. A writer that adds a field need not change its shape
 // (unknown fields pass); one that changes a field's type must, or every report of its files
 // fails: the CLI tests build reports from files the real writers wrote, so they catch it.
-// A stage's static cost (compiler/src/StaticCost.cpp), in the manifest three times: "$cost".
+// Shapes used at several places, named there as "$name": a stage's static cost
+// (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json)
+// and the summary of a configuration's frame times (base/SampleStatistics.h).
+constexpr const char* kStatisticsShape = R"json(
+{
+  "ci_coverage": "number",
+  "ci_high_ms": "number",
+  "ci_low_ms": "number",
+  "ci_method": "string",
+  "count": "number",
+  "iqr_ms": "number",
+  "max_ms": "number",
+  "mean_ms": "number",
+  "median_ms": "number",
+  "min_ms": "number",
+  "q1_ms": "number",
+  "q3_ms": "number"
+}
+)json";
+
+constexpr const char* kDiagnosticShape = R"json(
+{
+  "severity": "string",
+  "file": "string",
+  "line": "number",
+  "column": "number",
+  "message": "string",
+  "variant": "string",
+  "text": "string"
+}
+)json";
+
 constexpr const char* kStageCostShape = R"json(
 {
   "arithmetic_ops": "number",
@@ -81,17 +115,7 @@ constexpr const char* kManifestShape = R"json(
   "variants": [
     {
       "defines": ["string"],
-      "diagnostics": [
-        {
-          "severity": "string",
-          "file": "string",
-          "line": "number",
-          "column": "number",
-          "message": "string",
-          "variant": "string",
-          "text": "string"
-        }
-      ],
+      "diagnostics": ["$diagnostic"],
       "failed_steps": ["string"],
       "id": "string",
       "program": "string",
@@ -134,33 +158,10 @@ constexpr const char* kResultsShape = R"json(
   "configurations": [
     {
       "cpu_samples_ms": [["number"]],
-      "cpu_statistics": {
-        "ci_coverage": "number",
-        "ci_high_ms": "number",
-        "ci_low_ms": "number",
-        "ci_method": "string",
-        "count": "number",
-        "iqr_ms": "number",
-        "max_ms": "number",
-        "mean_ms": "number",
-        "median_ms": "number",
-        "min_ms": "number",
-        "q1_ms": "number",
-        "q3_ms": "number"
-      },
+      "cpu_statistics": "$statistics",
       "defines": ["string"],
       "driver": {
-        "diagnostics": [
-          {
-            "severity": "string",
-            "file": "string",
-            "line": "number",
-            "column": "number",
-            "message": "string",
-            "variant": "string",
-            "text": "string"
-          }
-        ],
+        "diagnostics": ["$diagnostic"],
         "fragment_compiled": "bool",
         "fragment_log": "string",
         "link_log": "string",
@@ -190,20 +191,7 @@ constexpr const char* kResultsShape = R"json(
       "presets": ["string"],
       "program": "string",
       "samples_ms": [["number"]],
-      "statistics": {
-        "ci_coverage": "number",
-        "ci_high_ms": "number",
-        "ci_low_ms": "number",
-        "ci_method": "string",
-        "count": "number",
-        "iqr_ms": "number",
-        "max_ms": "number",
-        "mean_ms": "number",
-        "median_ms": "number",
-        "min_ms": "number",
-        "q1_ms": "number",
-        "q3_ms": "number"
-      },
+      "statistics": "$statistics",
       "uniform_bools": "bool",
       "variant": "string",
       "views": [
@@ -219,17 +207,7 @@ constexpr const char* kResultsShape = R"json(
       ]
     }
   ],
-  "diagnostics": [
-    {
-      "severity": "string",
-      "file": "string",
-      "line": "number",
-      "column": "number",
-      "message": "string",
-      "variant": "string",
-      "text": "string"
-    }
-  ],
+  "diagnostics": ["$diagnostic"],
   "disagreements": [{"variant": "string", "glslang_valid": "bool", "mesa_valid": "bool"}],
   "environment": {
     "backend": "string",
@@ -457,6 +435,23 @@ constexpr const char* kPlansShape = R"json(
 }
 )json";
 
+// `shape` with every "$name" leaf replaced by the named shape it stands for.
+nlohmann::json Resolve(nlohmann::json shape) {
+    static const std::map<std::string, nlohmann::json, std::less<>> named = {
+            {"$cost", nlohmann::json::parse(kStageCostShape)},
+            {"$diagnostic", nlohmann::json::parse(kDiagnosticShape)},
+            {"$statistics", nlohmann::json::parse(kStatisticsShape)},
+    };
+    if (shape.is_string()) {
+        const auto found = named.find(shape.get_ref<const std::string&>());
+        return found != named.end() ? found->second : shape;
+    }
+    for (nlohmann::json& part : shape) {
+        part = Resolve(std::move(part));
+    }
+    return shape;
+}
+
 const char* TypeName(const nlohmann::json& value) {
     switch (value.type()) {
         case nlohmann::json::value_t::null:
@@ -547,16 +542,8 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
 
 std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) {
     // Parsed once: the shapes are constants of this build.
-    static const nlohmann::json manifest = [] {
-        nlohmann::json shape = nlohmann::json::parse(kManifestShape);
-        const nlohmann::json cost = nlohmann::json::parse(kStageCostShape);
-        for (const char* pointer : {"/stage_programs/0/cost", "/variants/0/stages/vertex/cost",
-                                    "/variants/0/stages/fragment/cost"}) {
-            shape[nlohmann::json::json_pointer(pointer)] = cost;
-        }
-        return shape;
-    }();
-    static const nlohmann::json results = nlohmann::json::parse(kResultsShape);
+    static const nlohmann::json manifest = Resolve(nlohmann::json::parse(kManifestShape));
+    static const nlohmann::json results = Resolve(nlohmann::json::parse(kResultsShape));
     static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
     static const nlohmann::json plans = nlohmann::json::parse(kPlansShape);
     switch (file) {

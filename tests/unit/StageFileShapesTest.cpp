@@ -75,6 +75,14 @@ TEST(StageFileShapeTest, AWronglyTypedFieldInEveryStageFileIsNamed) {
              "string)"},
             {StageFile::kResults, R"({"configurations": [{"pass_ms": {"main": false}}]})",
              "'configurations[0].pass_ms.main' has the wrong type (expected number, found bool)"},
+            {StageFile::kResults, R"({"configurations": [{"statistics": {"median_ms": "5"}}]})",
+             "'configurations[0].statistics.median_ms' has the wrong type (expected number, "
+             "found string)"},
+            {StageFile::kResults, R"({"diagnostics": [{"line": "7"}]})",
+             "'diagnostics[0].line' has the wrong type (expected number, found string)"},
+            {StageFile::kManifest, R"({"stage_programs": [{"cost": {"total_ops": false}}]})",
+             "'stage_programs[0].cost.total_ops' has the wrong type (expected number, found "
+             "bool)"},
             {StageFile::kResults, R"({"environment": [1]})",
              "'environment' has the wrong type (expected object, found array)"},
             {StageFile::kStability, R"({"cases": [{"passed": "yes"}]})",
