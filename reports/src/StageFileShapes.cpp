@@ -11,9 +11,11 @@ namespace {
 // Each writer's fields and their types. A writer that adds a field need not change its shape
 // (unknown fields pass); one that changes a field's type must, or every report of its files
 // fails: the CLI tests build reports from files the real writers wrote, so they catch it.
-// Shapes used at several places, named there as "$name": a stage's static cost
-// (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json)
-// and the summary of a configuration's frame times (base/SampleStatistics.h).
+// Shapes used at several places, named there as "$name" (Resolve): a stage's static cost
+// (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json),
+// the summary of a configuration's frame times (base/SampleStatistics.h), a configuration's
+// pass options and, in plans.json,
+// a plan's configuration and an effect it dropped or kept.
 constexpr const char* kStatisticsShape = R"json(
 {
   "ci_coverage": "number",
@@ -40,6 +42,41 @@ constexpr const char* kDiagnosticShape = R"json(
   "message": "string",
   "variant": "string",
   "text": "string"
+}
+)json";
+
+// A plan's chosen and full configurations, and its dropped and kept effects (plans.json).
+constexpr const char* kPlanConfigurationShape = R"json(
+{
+  "draw_calls": "number",
+  "id": "string",
+  "image": "string",
+  "pass_draw_calls": ["number"],
+  "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
+  "passes": ["string"],
+  "pixels_shaded_estimate": "number",
+  "variant": "string"
+}
+)json";
+
+constexpr const char* kEffectShape = R"json(
+{
+  "effect": "string",
+  "psnr_change_db": "number",
+  "reason": "string",
+  "time_change_percent": "number"
+}
+)json";
+
+// A configuration's pass options (manifest presets, results configurations).
+constexpr const char* kPassOptionsShape = R"json(
+{
+  "clip": "string",
+  "culling": "bool",
+  "depth_fog": "bool",
+  "low_res_water": "bool",
+  "reflection_size": "number",
+  "refraction_size": "number"
 }
 )json";
 
@@ -76,14 +113,7 @@ constexpr const char* kManifestShape = R"json(
     {
       "description": "string",
       "name": "string",
-      "passes": {
-        "clip": "string",
-        "culling": "bool",
-        "depth_fog": "bool",
-        "low_res_water": "bool",
-        "reflection_size": "number",
-        "refraction_size": "number"
-      },
+      "passes": "$pass_options",
       "runtime_features": ["string"],
       "variant": "string"
     }
@@ -179,14 +209,7 @@ constexpr const char* kResultsShape = R"json(
       "instrumented_frame_ms": "number",
       "ok": "bool",
       "pass_ms": {"*": "number"},
-      "passes": {
-        "clip": "string",
-        "culling": "bool",
-        "depth_fog": "bool",
-        "low_res_water": "bool",
-        "reflection_size": "number",
-        "refraction_size": "number"
-      },
+      "passes": "$pass_options",
       "plan_ms_median": "number",
       "presets": ["string"],
       "program": "string",
@@ -376,46 +399,14 @@ constexpr const char* kPlansShape = R"json(
         }
       ],
       "choice_reason": "string",
-      "chosen": {
-        "draw_calls": "number",
-        "id": "string",
-        "image": "string",
-        "pass_draw_calls": ["number"],
-        "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-        "passes": ["string"],
-        "pixels_shaded_estimate": "number",
-        "variant": "string"
-      },
+      "chosen": "$plan_configuration",
       "description": "string",
       "draws_saved": "number",
-      "dropped": [
-        {
-          "effect": "string",
-          "psnr_change_db": "number",
-          "reason": "string",
-          "time_change_percent": "number"
-        }
-      ],
+      "dropped": ["$effect"],
       "error": {"psnr_db": "number", "share_visible": "number", "ssim": "number"},
       "errors": ["string"],
-      "full": {
-        "draw_calls": "number",
-        "id": "string",
-        "image": "string",
-        "pass_draw_calls": ["number"],
-        "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-        "passes": ["string"],
-        "pixels_shaded_estimate": "number",
-        "variant": "string"
-      },
-      "kept": [
-        {
-          "effect": "string",
-          "psnr_change_db": "number",
-          "reason": "string",
-          "time_change_percent": "number"
-        }
-      ],
+      "full": "$plan_configuration",
+      "kept": ["$effect"],
       "met": "bool",
       "needed": ["string"],
       "passes_saved": "number",
@@ -441,6 +432,9 @@ nlohmann::json Resolve(nlohmann::json shape) {
             {"$cost", nlohmann::json::parse(kStageCostShape)},
             {"$diagnostic", nlohmann::json::parse(kDiagnosticShape)},
             {"$statistics", nlohmann::json::parse(kStatisticsShape)},
+            {"$plan_configuration", nlohmann::json::parse(kPlanConfigurationShape)},
+            {"$effect", nlohmann::json::parse(kEffectShape)},
+            {"$pass_options", nlohmann::json::parse(kPassOptionsShape)},
     };
     if (shape.is_string()) {
         const auto found = named.find(shape.get_ref<const std::string&>());
@@ -545,7 +539,7 @@ std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) 
     static const nlohmann::json manifest = Resolve(nlohmann::json::parse(kManifestShape));
     static const nlohmann::json results = Resolve(nlohmann::json::parse(kResultsShape));
     static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
-    static const nlohmann::json plans = nlohmann::json::parse(kPlansShape);
+    static const nlohmann::json plans = Resolve(nlohmann::json::parse(kPlansShape));
     switch (file) {
         case StageFile::kManifest:
             return CheckJsonShape(document, manifest);

@@ -83,6 +83,8 @@ TEST(StageFileShapeTest, AWronglyTypedFieldInEveryStageFileIsNamed) {
             {StageFile::kManifest, R"({"stage_programs": [{"cost": {"total_ops": false}}]})",
              "'stage_programs[0].cost.total_ops' has the wrong type (expected number, found "
              "bool)"},
+            {StageFile::kManifest, R"({"presets": [{"passes": {"culling": "no"}}]})",
+             "'presets[0].passes.culling' has the wrong type (expected bool, found string)"},
             {StageFile::kResults, R"({"environment": [1]})",
              "'environment' has the wrong type (expected object, found array)"},
             {StageFile::kStability, R"({"cases": [{"passed": "yes"}]})",
@@ -91,6 +93,10 @@ TEST(StageFileShapeTest, AWronglyTypedFieldInEveryStageFileIsNamed) {
              "'version' has the wrong type (expected number, found string)"},
             {StageFile::kPlans, R"({"plans": [{"candidates": "none"}]})",
              "'plans[0].candidates' has the wrong type (expected array, found string)"},
+            {StageFile::kPlans, R"({"plans": [{"full": {"passes": [3]}}]})",
+             "'plans[0].full.passes[0]' has the wrong type (expected string, found number)"},
+            {StageFile::kPlans, R"({"plans": [{"kept": [{"reason": 1}]}]})",
+             "'plans[0].kept[0].reason' has the wrong type (expected string, found number)"},
             {StageFile::kPlans, R"({"plans": [{"chosen": 5}]})",
              "'plans[0].chosen' has the wrong type (expected object, found number)"},
     };
