@@ -152,6 +152,16 @@ void ChooseClock(ReportInputs* inputs) {
     }
 }
 
+// A stage file's schema and version, then the type of every field it holds; "" or the problem.
+std::string CheckStageFile(const nlohmann::json& document, std::string_view schema,
+                           const char* version_key, int version, StageFile kind) {
+    if (std::string problem = CheckSchema(document, schema, version_key, version);
+        !problem.empty()) {
+        return problem;
+    }
+    return CheckStageFileShape(kind, document);
+}
+
 // Reads an optional JSON file beside the results: absent leaves both outputs untouched; present
 // but unreadable, not JSON or not of `schema` (version `version`, when `version` > 0) sets
 // `error` naming the file.
@@ -520,13 +530,8 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (!manifest) {
         return out;
     }
-    if (std::string problem =
-                CheckSchema(*manifest, kManifestSchemaName, "version", kManifestVersion);
-        !problem.empty()) {
-        out.error = fmt::format("{}: {}", manifest_path.string(), problem);
-        return out;
-    }
-    if (std::string problem = CheckStageFileShape(StageFile::kManifest, *manifest);
+    if (std::string problem = CheckStageFile(*manifest, kManifestSchemaName, "version",
+                                             kManifestVersion, StageFile::kManifest);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", manifest_path.string(), problem);
         return out;
@@ -549,13 +554,8 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (!results) {
         return out;
     }
-    if (std::string problem =
-                CheckSchema(*results, kResultsSchemaName, "schema_version", kResultsVersion);
-        !problem.empty()) {
-        out.error = fmt::format("{}: {}", results_path.string(), problem);
-        return out;
-    }
-    if (std::string problem = CheckStageFileShape(StageFile::kResults, *results);
+    if (std::string problem = CheckStageFile(*results, kResultsSchemaName, "schema_version",
+                                             kResultsVersion, StageFile::kResults);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", results_path.string(), problem);
         return out;
