@@ -6,6 +6,7 @@
 #include "tidepool/TextFile.h"
 #include "tidepool/base/CacheBundle.h"
 #include "tidepool/base/Sha256.h"
+#include "tidepool/base/WorkerProcessPool.h"
 
 #include <algorithm>
 #include <cctype>
@@ -23,10 +24,15 @@
 #include "GlslEsRules.h"
 #include "GlslangSession.h"
 #include "StaticCostAnalyzer.h"
-#include "WorkerProcessPool.h"
 #include <fmt/format.h>
 
 namespace tidepool {
+
+using base::ProgressNote;
+using base::RunInWorkerProcesses;
+using base::WorkerFailure;
+using base::WorkerItemResult;
+using base::WorkerLimits;
 
 int ValidationReport::InvalidCount() const {
     return static_cast<int>(std::count_if(verdicts.begin(), verdicts.end(),

@@ -1,3 +1,5 @@
+#include "tidepool/base/WorkerProcessPool.h"
+
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -8,9 +10,7 @@
 #include <thread>
 #include <vector>
 
-#include "WorkerProcessPool.h"
-
-namespace tidepool {
+namespace tidepool::base {
 namespace {
 
 TEST(WorkerProcessPoolTest, ResultsComeBackInItemOrderFromSeveralWorkers) {
@@ -111,4 +111,4 @@ TEST(WorkerProcessPoolTest, SkippedItemsAreNotRunAndEveryEndIsReported) {
 }
 
 }  // namespace
-}  // namespace tidepool
+}  // namespace tidepool::base

@@ -1,7 +1,7 @@
 // Runs work items in forked worker processes, so that a crash, a hang or an allocation failure
 // inside a third-party library (glslang) becomes the failure of one item instead of the end of
-// tidepool. Browsers run their shader translators out of process for the same reason. Private to
-// the compiler library.
+// tidepool. Browsers run their shader translators out of process for the same reason. The
+// validator runs glslang this way, and `run` its render beside the stability and plan stages.
 #pragma once
 
 #include <cstddef>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-namespace tidepool {
+namespace tidepool::base {
 
 /// What one worker may use.
 struct WorkerLimits {
@@ -53,4 +53,4 @@ std::vector<WorkerItemResult> RunInWorkerProcesses(
         const std::function<bool(std::size_t)>& should_run = {},
         const std::function<void(std::size_t, const WorkerItemResult&)>& on_result = {});
 
-}  // namespace tidepool
+}  // namespace tidepool::base

@@ -1,4 +1,4 @@
-#include "WorkerProcessPool.h"
+#include "tidepool/base/WorkerProcessPool.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -35,7 +35,7 @@ std::size_t __sanitizer_get_allocated_size(const volatile void* pointer);
 }
 #endif
 
-namespace tidepool {
+namespace tidepool::base {
 namespace {
 
 // A worker that hits its memory limit leaves with this status, from the new-handler, before
@@ -406,4 +406,4 @@ std::vector<WorkerItemResult> RunInWorkerProcesses(
             std::min<std::size_t>(count, static_cast<std::size_t>(std::max(workers, 1)))));
 }
 
-}  // namespace tidepool
+}  // namespace tidepool::base
