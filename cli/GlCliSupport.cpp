@@ -62,7 +62,9 @@ void AddTimingFlags(CLI::App* command, TimingFlags* flags) {
                         "untimed frames before a compared configuration is timed, per thread")
             ->capture_default_str();
     command->add_option("--workers", flags->workers,
-                        "rendering threads, each with its own GL context (0: one per core)")
+                        "rendering threads, each with its own GL context (0: one per core; "
+                        "llvmpipe's contexts in one process share one rasteriser lock, so more "
+                        "than one rarely renders faster)")
             ->capture_default_str();
     command->add_option("--threads", flags->threads,
                         "llvmpipe threads (LP_NUM_THREADS; 0 renders on each worker's thread, "

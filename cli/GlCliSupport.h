@@ -32,7 +32,7 @@ struct TimingFlags {
     int max_pairs = 400;
     int coarse_frames = 3;
     int warmup = 2;
-    int workers = 0;  // rendering threads; 0: one per core
+    int workers = 1;  // rendering threads; 0: one per core
     int threads = 0;  // LP_NUM_THREADS: 0 renders on each worker's own thread
 };
 

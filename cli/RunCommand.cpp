@@ -6,6 +6,7 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/base/AtomicFile.h"
+#include "tidepool/base/WorkerProcessPool.h"
 #include "tidepool/lab/ScenePlanner.h"
 #include "tidepool/lab/StabilityReport.h"
 #include "tidepool/report/ReportModel.h"
@@ -15,7 +16,6 @@
 #include "tidepool/runner/Results.h"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -218,6 +218,138 @@ private:
     StageOutcome outcome_;
 };
 
+// What the stages beside the render do: sizes and the plans' stopping rule.
+struct SideStages {
+    bool stability = true;
+    bool plans = true;
+    int stability_width = 0;
+    int stability_height = 0;
+    int plan_width = 0;
+    int plan_height = 0;
+    base::StoppingRule plan_rule;
+};
+
+// How the render (failures: configurations that failed) and the stages beside it ended.
+struct StageEnds {
+    StageOutcome render;
+    StageOutcome side;
+};
+
+// 2. The render: images at every view, each configuration's coarse time and the comparisons,
+// into run.out_dir/results.json.
+StageOutcome RenderStage(const VariantConfig& config, const runner::RunOptions& run,
+                         runner::BackendKind backend, const std::filesystem::path& results_path) {
+    using namespace tidepool::runner;
+    StageOutcome outcome;
+    GlContextResult context = CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: %s\n", context.error.c_str());
+        outcome.environment_error = true;
+        return outcome;
+    }
+    std::fprintf(stderr,
+                 "render: %zu configurations x %zu views at %dx%d on %s, "
+                 "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
+                 run.configurations.size(), run.views.size(), run.settings.width,
+                 run.settings.height, context.context->Environment().renderer.c_str(),
+                 run.host.lp_num_threads.c_str(), run.workers, run.comparisons.size(),
+                 run.rule.resolution_points);
+    const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
+    FinishProgress();
+    PrintDiagnostics(results.diagnostics);
+    for (const std::string& e : results.write_errors) {
+        std::fprintf(stderr, "error: %s\n", e.c_str());
+    }
+    if (std::string error = base::WriteFileAtomically(run.out_dir / "results.json",
+                                                      JsonText(ResultsToJson(results), 2) + "\n");
+        !error.empty() || !results.write_errors.empty()) {
+        if (!error.empty()) {
+            std::fprintf(stderr, "error: %s\n", error.c_str());
+        }
+        outcome.environment_error = true;
+        return outcome;
+    }
+    for (const ConfigurationResult& r : results.configurations) {
+        outcome.failures += r.Ok() ? 0 : 1;
+    }
+    std::fprintf(stderr, "render: %zu configurations, %d failed, %.0f s; results in %s\n",
+                 results.configurations.size(), outcome.failures, results.wall_seconds,
+                 results_path.c_str());
+    return outcome;
+}
+
+// 3. The stability catalogue and 4. the scene plans, one after the other on one context.
+StageOutcome SideStage(const VariantConfig& config, const std::vector<Variant>& variants,
+                       const SideStages& side, runner::BackendKind backend,
+                       const std::string& threads, const std::string& config_path,
+                       const std::filesystem::path& render_dir) {
+    const auto start = std::chrono::steady_clock::now();
+    StageOutcome outcome;
+    runner::GlContextResult context = runner::CreateGlContext(backend);
+    if (!context.context) {
+        std::fprintf(stderr, "error: stability and plans: %s\n", context.error.c_str());
+        outcome.environment_error = true;
+        return outcome;
+    }
+    if (side.stability) {
+        outcome = RunStabilityStage(*context.context, config, variants, side.stability_width,
+                                    side.stability_height, threads, config_path, render_dir);
+    }
+    if (side.plans) {
+        PlanStage plans(config, context.context->Environment(), side.plan_width, side.plan_height,
+                        side.plan_rule, render_dir);
+        for (std::size_t i = 0; i < plans.SceneCount(); ++i) {
+            plans.Plan(*context.context, i);
+        }
+        const StageOutcome planned = plans.Finish();
+        outcome.environment_error = outcome.environment_error || planned.environment_error;
+        outcome.failures += planned.failures;
+    }
+    std::fprintf(stderr, "stability and plans: %.0f s in a second process, beside the render\n",
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    return outcome;
+}
+
+// Runs the render and, when asked for, the stability and plan stages at the same time, each in a
+// process of its own. Processes rather than threads: llvmpipe's contexts in one process share
+// one rasteriser lock, so a second rendering thread bought no throughput (one thread rendered
+// the default matrix in 83 s, two in 122 s) and frames timed beside it moved by more than their
+// interval (the low-resolution water row read -4% quiet and 0% loaded). A second process has a
+// rasteriser of its own. Must be called while the process has one thread (fork).
+StageEnds RenderBesideSideStages(const VariantConfig& config, const std::vector<Variant>& variants,
+                                 const runner::RunOptions& run, runner::BackendKind backend,
+                                 const SideStages& side, const std::string& config_path,
+                                 const std::filesystem::path& results_path) {
+    std::vector<std::function<StageOutcome()>> stages;
+    stages.emplace_back([&] { return RenderStage(config, run, backend, results_path); });
+    if (side.stability || side.plans) {
+        stages.emplace_back([&] {
+            return SideStage(config, variants, side, backend, run.host.lp_num_threads, config_path,
+                             run.out_dir);
+        });
+    }
+    const std::vector<base::WorkerItemResult> ended = base::RunInWorkerProcesses(
+            stages.size(), static_cast<int>(stages.size()), base::WorkerLimits{},
+            [&](std::size_t i, const base::ProgressNote&) {
+                const StageOutcome outcome = stages[i]();
+                std::fflush(nullptr);  // the worker process ends with _exit
+                return fmt::format("{} {}", outcome.environment_error ? 1 : 0, outcome.failures);
+            });
+    StageEnds ends;
+    for (std::size_t i = 0; i < ended.size(); ++i) {
+        StageOutcome& outcome = i == 0 ? ends.render : ends.side;
+        int environment_error = 1;
+        if (ended[i].failure != base::WorkerFailure::kNone ||
+            std::sscanf(ended[i].payload.c_str(), "%d %d", &environment_error, &outcome.failures) !=
+                    2) {
+            std::fprintf(stderr, "error: the %s process ended without a result: %s\n",
+                         i == 0 ? "render" : "stability and plans", ended[i].detail.c_str());
+        }
+        outcome.environment_error = environment_error != 0;
+    }
+    return ends;
+}
+
 int RunAll(const RunCommandOptions& options) {
     using namespace tidepool::runner;
     const auto start = std::chrono::steady_clock::now();
@@ -310,7 +442,8 @@ int RunAll(const RunCommandOptions& options) {
                  expansion.variants.size(), static_cast<unsigned long long>(expansion.pruned_total),
                  validation.InvalidCount(), manifest_path.c_str());
 
-    // 2. Render: images at every view and interleaved timing rounds.
+    // 2. Render, and beside it 3. numerical stability and 4. scene plans, each in a process of
+    // its own with its own GL context, both writing into the staging folder.
     const ConfigurationSet configurations = BuildDefaultConfigurations(config, expansion.variants);
     PrintDiagnostics(configurations.diagnostics);
     if (HasErrors(configurations.diagnostics) || configurations.configurations.empty()) {
@@ -326,74 +459,20 @@ int RunAll(const RunCommandOptions& options) {
     run.config_path = options.config;
     run.host = DescribeHost("run", options.config);
     ApplyTimingFlags(options.timing, backend, &run);
-    const std::string threads = run.host.lp_num_threads;
-    GlContextResult context = CreateGlContext(backend);
-    if (!context.context) {
-        std::fprintf(stderr, "error: %s\n", context.error.c_str());
-        return kExitEnvironment;
-    }
-    const GlEnvironment& gl = context.context->Environment();
-    std::fprintf(stderr,
-                 "render: %zu configurations x %zu views at %dx%d on %s, "
-                 "LP_NUM_THREADS=%s, %d workers, %zu comparisons to +/-%.1f points\n",
-                 run.configurations.size(), run.views.size(), width, height, gl.renderer.c_str(),
-                 threads.c_str(), run.workers, run.comparisons.size(), run.rule.resolution_points);
-    const RunResults results = RunRender(*context.context, config, run, MakeProgressPrinter());
-    FinishProgress();
-    PrintDiagnostics(results.diagnostics);
+    SideStages side;
+    side.stability = !options.no_stability;
+    side.plans = !options.no_plans;
+    side.stability_width = stability_width;
+    side.stability_height = stability_height;
+    side.plan_width = plan_width;
+    side.plan_height = plan_height;
+    side.plan_rule = run.rule;
+    side.plan_rule.resolution_points = options.plan_resolution;
     const std::filesystem::path results_path = render_dir / "results.json";
-    for (const std::string& e : results.write_errors) {
-        std::fprintf(stderr, "error: %s\n", e.c_str());
-    }
-    if (std::string error = base::WriteFileAtomically(staging / "results.json",
-                                                      JsonText(ResultsToJson(results), 2) + "\n");
-        !error.empty() || !results.write_errors.empty()) {
-        if (!error.empty()) {
-            std::fprintf(stderr, "error: %s\n", error.c_str());
-        }
+    const StageEnds ends = RenderBesideSideStages(config, expansion.variants, run, backend, side,
+                                                  options.config, results_path);
+    if (ends.render.environment_error) {
         return kExitEnvironment;
-    }
-    int failed = 0;
-    for (const ConfigurationResult& r : results.configurations) {
-        failed += r.Ok() ? 0 : 1;
-    }
-    std::fprintf(stderr, "render: %zu configurations, %d failed, %.0f s; results in %s\n",
-                 results.configurations.size(), failed, results.wall_seconds, results_path.c_str());
-
-    // 3. Numerical stability and 4. scene plans, beside results.json where the report looks.
-    // They share the render's threads: the catalogue is one job and each scene another, and
-    // each thread takes the next job, so the two stages overlap.
-    const auto after_render = std::chrono::steady_clock::now();
-    StageOutcome stability;
-    base::StoppingRule plan_rule = run.rule;
-    plan_rule.resolution_points = options.plan_resolution;
-    std::optional<PlanStage> plan_stage;
-    if (!options.no_plans) {
-        plan_stage.emplace(config, gl, plan_width, plan_height, plan_rule, staging);
-    }
-    std::vector<std::function<void(GlContext&)>> jobs;
-    if (!options.no_stability) {
-        jobs.emplace_back([&](GlContext& c) {
-            stability = RunStabilityStage(c, config, expansion.variants, stability_width,
-                                          stability_height, threads, options.config, staging);
-        });
-    }
-    for (std::size_t i = 0; plan_stage && i < plan_stage->SceneCount(); ++i) {
-        jobs.emplace_back([&plan_stage, i](GlContext& c) { plan_stage->Plan(c, i); });
-    }
-    std::atomic<std::size_t> next_job{0};
-    const int job_threads = RunOnRenderingThreads(
-            *context.context, run.make_context, run.workers, [&](GlContext& c) {
-                for (std::size_t j = next_job++; j < jobs.size(); j = next_job++) {
-                    jobs[j](c);
-                }
-            });
-    const StageOutcome plans = plan_stage ? plan_stage->Finish() : StageOutcome{};
-    if (!jobs.empty()) {
-        std::fprintf(stderr, "stability and plans: %.0f s on %d threads\n",
-                     std::chrono::duration<double>(std::chrono::steady_clock::now() - after_render)
-                             .count(),
-                     job_threads);
     }
     if (const base::PublishError e = publisher->Publish(); e.Failed()) {
         std::fprintf(stderr, "error: %s\n", e.message.c_str());
@@ -408,11 +487,11 @@ int RunAll(const RunCommandOptions& options) {
     if (report_code == kExitUsage || report_code == kExitEnvironment) {
         return report_code;
     }
-    if (stability.environment_error || plans.environment_error) {
+    if (ends.side.environment_error) {
         return kExitEnvironment;
     }
-    return failed > 0 || validation.InvalidCount() > 0 || report_code == kExitShaderErrors ||
-                           stability.failures > 0 || plans.failures > 0
+    return ends.render.failures > 0 || validation.InvalidCount() > 0 ||
+                           report_code == kExitShaderErrors || ends.side.failures > 0
                    ? kExitShaderErrors
                    : kExitOk;
 }

@@ -102,6 +102,18 @@ TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
     EXPECT_LT(std::filesystem::file_size(Out() / "default/index.html"), 10u * 1000u * 1000u);
 }
 
+// One rendering thread by default (llvmpipe's contexts in one process share one rasteriser
+// lock), and the stability and plan stages in a second process of their own beside it.
+TEST_F(ReportCliTest, RunRendersOnOneThreadWithStabilityAndPlansInASecondProcess) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
+    const nlohmann::json results = nlohmann::json::parse(ReadText(Out() / "render/results.json"));
+    EXPECT_EQ(results["settings"]["workers"], 1);
+    EXPECT_NE(run_->err.find(", 1 workers, "), std::string::npos) << run_->err;
+    EXPECT_NE(run_->err.find("\nstability and plans: "), std::string::npos) << run_->err;
+    EXPECT_NE(run_->err.find(" s in a second process, beside the render\n"), std::string::npos)
+            << run_->err;
+}
+
 TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepaperRow) {
     ASSERT_EQ(run_->exit_code, 0) << run_->err;
     if (RunShell("command -v chromium").exit_code != 0) {
