@@ -8,7 +8,6 @@
 #include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
-#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -16,12 +15,11 @@
 #include <fstream>
 #include <map>
 #include <mutex>
-#include <numeric>
-#include <random>
 #include <set>
 #include <system_error>
 #include <thread>
 
+#include "RenderProgress.h"
 #include <fmt/format.h>
 
 namespace tidepool::runner {
@@ -79,150 +77,11 @@ bool RunResults::AllOk() const {
 
 namespace {
 
-// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
-// comparisons, and the images and coarse frames of the configurations. A comparison's expected
-// frames follow its interval (pairs needed ~ pairs so far x (half-width / resolution)^2, the
-// square-root law of an interval's width). Frames of the two kinds cost very differently (an
-// image frame compiles on first use and encodes a PNG), so the share done and the ETA weigh
-// each kind by its measured thread-seconds per frame (SecondsPerFrame).
-class ProgressMeter {
-public:
-    enum Kind : std::size_t { kComparison = 0, kImage = 1 };
-
-    ProgressMeter(const ProgressCallback& callback, Clock::time_point start)
-        : callback_(callback), start_(start) {}
-
-    void AddExpected(Kind kind, long frames) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        kinds_[kind].total += frames;
-    }
-
-    // `count` comparisons, each expected to take `guess` frames until it says otherwise.
-    void AddComparisons(std::size_t count, long guess) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        comparison_guess_ = guess;
-        comparison_frames_.assign(count, guess);
-        comparison_state_.assign(count, ComparisonState::kWaiting);
-        SumComparisons();
-    }
-
-    // Comparison `k` now expects `frames` in all (a running comparison's guess, from its
-    // interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
-    // still waiting then expect what the finished ones took on average, the first guess counting as
-    // one of them: a run whose comparisons resolve at the minimum should not expect the guess of
-    // every later one.
-    void ComparisonExpects(std::size_t k, long frames, bool finished) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        comparison_frames_[k] = frames;
-        comparison_state_[k] = finished ? ComparisonState::kFinished : ComparisonState::kRunning;
-        long finished_frames = comparison_guess_;
-        long finished_count = 1;
-        for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
-            if (comparison_state_[i] == ComparisonState::kFinished && comparison_frames_[i] > 0) {
-                finished_frames += comparison_frames_[i];
-                ++finished_count;
-            }
-        }
-        for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
-            if (comparison_state_[i] == ComparisonState::kWaiting) {
-                comparison_frames_[i] = finished_frames / finished_count;
-            }
-        }
-        SumComparisons();
-    }
-
-    // `frames` of `kind` finished on the calling thread since its last step.
-    void Step(Kind kind, const std::string& what, long frames) {
-        std::lock_guard<std::mutex> lock(mutex_);
-        const Clock::time_point now = Clock::now();
-        Clock::time_point& last =
-                last_step_.try_emplace(std::this_thread::get_id(), start_).first->second;
-        KindState& k = kinds_[kind];
-        k.busy_seconds += Seconds(now - last);
-        last = now;
-        k.done += frames;
-        k.total = std::max(k.total, k.done);
-        state_.stage = kind == kComparison ? "comparisons" : "images";
-        state_.configuration = what;
-        state_.done = kinds_[0].done + kinds_[1].done;
-        state_.total = kinds_[0].total + kinds_[1].total;
-        state_.elapsed_seconds = Seconds(now - start_);
-        double done_seconds = 0;
-        double remaining_seconds = 0;
-        for (std::size_t i = 0; i < kinds_.size(); ++i) {
-            const double rate = SecondsPerFrame(i);
-            done_seconds += rate * static_cast<double>(kinds_[i].done);
-            remaining_seconds += rate * static_cast<double>(kinds_[i].total - kinds_[i].done);
-        }
-        const double threads = static_cast<double>(last_step_.size());
-        state_.eta_seconds = remaining_seconds / threads;
-        state_.percent = done_seconds + remaining_seconds > 0
-                                 ? 100.0 * done_seconds / (done_seconds + remaining_seconds)
-                                 : 100.0;
-        if (callback_) {
-            callback_(state_);
-        }
-    }
-
-private:
-    // How many frames' worth of evidence the prior counts for: about 20 configurations' images.
-    static constexpr double kPriorFrames = 150.0;
-
-    struct KindState {
-        long done = 0;
-        long total = 0;
-        double busy_seconds = 0;
-    };
-
-    // A kind's seconds per frame: its measurement, shrunk towards the other kind's rate as if
-    // that prior were kPriorFrames frames already measured (with PNGs encoded fast, an image
-    // frame costs about a timed frame on the default matrix). The first frames of a kind are few
-    // and uneven (a Fourier variant costs several light ones), so alone they would throw the ETA
-    // about; the prior's weight fades as frames are measured.
-    double SecondsPerFrame(std::size_t kind) const {
-        const KindState& k = kinds_[kind];
-        const KindState& other = kinds_[1 - kind];
-        if (other.done == 0) {
-            return k.done > 0 ? k.busy_seconds / static_cast<double>(k.done) : 0.0;
-        }
-        const double prior = other.busy_seconds / static_cast<double>(other.done);
-        return (k.busy_seconds + prior * kPriorFrames) /
-               (static_cast<double>(k.done) + kPriorFrames);
-    }
-
-    enum class ComparisonState { kWaiting, kRunning, kFinished };
-
-    // The comparison kind's total: the frames every comparison expects (mutex_ held).
-    void SumComparisons() {
-        long total = 0;
-        for (long frames : comparison_frames_) {
-            total += frames;
-        }
-        kinds_[kComparison].total = std::max(total, kinds_[kComparison].done);
-    }
-
-    const ProgressCallback& callback_;
-    Clock::time_point start_;
-    std::mutex mutex_;
-    std::array<KindState, 2> kinds_;
-    long comparison_guess_ = 0;
-    std::vector<long> comparison_frames_;
-    std::vector<ComparisonState> comparison_state_;
-    std::map<std::thread::id, Clock::time_point> last_step_;
-    RunProgress state_;
-};
-
 // One rendering thread's context, renderer and timer, and what it has compiled.
 struct RenderWorker {
     std::unique_ptr<WaterRenderer> renderer;
     std::unique_ptr<FrameTimer> timer;
     std::map<std::size_t, DriverVerdict> prepared;  // by configuration index
-};
-
-// A unit of work: one configuration's images and coarse time, or one comparison.
-struct WorkUnit {
-    bool comparison = false;
-    std::size_t index = 0;
 };
 
 constexpr long kInitialPairGuess = 60;  // until a comparison's first look says otherwise
@@ -284,21 +143,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                       per_configuration * static_cast<long>(options.configurations.size()));
     meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
 
-    // Comparisons first: they are the long units, and a queue that ends on short ones keeps
-    // both threads busy to the end.
-    std::vector<WorkUnit> units;
-    for (std::size_t i = 0; i < results.comparisons.size(); ++i) {
-        units.push_back({true, i});
-    }
-    // The configurations in a fixed shuffled order: the matrix runs from heavy variants to
-    // light ones, and a representative mix keeps the measured cost per frame, and so the
-    // progress line's ETA, true from the first images on. Results keep the matrix's order.
-    std::vector<std::size_t> order(results.configurations.size());
-    std::iota(order.begin(), order.end(), 0);
-    std::shuffle(order.begin(), order.end(), std::mt19937(20161));
-    for (std::size_t i : order) {
-        units.push_back({false, i});
-    }
+    const std::vector<WorkUnit> units =
+            RenderWorkOrder(results.comparisons.size(), results.configurations.size());
     std::atomic<std::size_t> next_unit{0};
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());

@@ -1,0 +1,152 @@
+// The render's order of work and its progress line (RenderProgress.h).
+#include "RenderProgress.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <random>
+
+namespace tidepool::runner {
+namespace {
+
+double Seconds(ProgressMeter::Clock::duration duration) {
+    return std::chrono::duration<double>(duration).count();
+}
+
+// How many frames' worth of evidence the other kind's rate counts for while a kind has measured
+// none: about 20 configurations' images. It fades as the kind's own frames are measured.
+constexpr double kPriorFrames = 150.0;
+
+}  // namespace
+
+std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations) {
+    std::vector<std::size_t> order(configurations);
+    std::iota(order.begin(), order.end(), 0);
+    std::shuffle(order.begin(), order.end(), std::mt19937(20161));
+    std::vector<WorkUnit> units;
+    units.reserve(comparisons + configurations);
+    std::size_t next = 0;
+    for (std::size_t k = 0; k < comparisons; ++k) {
+        units.push_back({true, k});
+        // Comparison k is followed by configurations up to its share of the whole, (k + 1) / n;
+        // the last comparison's share ends the queue.
+        const std::size_t until = (k + 1) * configurations / comparisons;
+        for (; next < until; ++next) {
+            units.push_back({false, order[next]});
+        }
+    }
+    for (; next < configurations; ++next) {
+        units.push_back({false, order[next]});
+    }
+    return units;
+}
+
+void ProgressMeter::AddExpected(Kind kind, long frames) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    kinds_[kind].total += frames;
+}
+
+void ProgressMeter::AddComparisons(std::size_t count, long guess) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    comparison_guess_ = guess;
+    comparison_frames_.assign(count, guess);
+    comparison_state_.assign(count, ComparisonState::kWaiting);
+    SumComparisons();
+}
+
+void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    comparison_frames_[k] = frames;
+    comparison_state_[k] = finished ? ComparisonState::kFinished : ComparisonState::kRunning;
+    long finished_frames = comparison_guess_;
+    long finished_count = 1;
+    for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
+        if (comparison_state_[i] == ComparisonState::kFinished && comparison_frames_[i] > 0) {
+            finished_frames += comparison_frames_[i];
+            ++finished_count;
+        }
+    }
+    for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
+        if (comparison_state_[i] == ComparisonState::kWaiting) {
+            comparison_frames_[i] = finished_frames / finished_count;
+        }
+    }
+    SumComparisons();
+}
+
+void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock::time_point now) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (decayed_to_ == Clock::time_point{}) {
+        decayed_to_ = start_;
+    }
+    // Age what was measured so far, then add this step at full weight.
+    const double age = std::max(0.0, Seconds(now - decayed_to_));
+    const double keep = std::exp2(-age / kRateHalfLifeSeconds);
+    for (KindState& k : kinds_) {
+        k.recent_seconds *= keep;
+        k.recent_frames *= keep;
+    }
+    decayed_to_ = std::max(decayed_to_, now);
+    Clock::time_point& last =
+            last_step_.try_emplace(std::this_thread::get_id(), start_).first->second;
+    KindState& k = kinds_[kind];
+    k.recent_seconds += std::max(0.0, Seconds(now - last));
+    k.recent_frames += static_cast<double>(frames);
+    last = now;
+    k.done += frames;
+    k.total = std::max(k.total, k.done);
+    state_.stage = kind == kComparison ? "comparisons" : "images";
+    state_.configuration = what;
+    state_.done = kinds_[0].done + kinds_[1].done;
+    state_.total = kinds_[0].total + kinds_[1].total;
+    state_.elapsed_seconds = Seconds(now - start_);
+    double done_seconds = 0;
+    double remaining_seconds = 0;
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        const double rate = SecondsPerFrame(i);
+        done_seconds += rate * static_cast<double>(kinds_[i].done);
+        remaining_seconds += rate * static_cast<double>(kinds_[i].total - kinds_[i].done);
+    }
+    const double threads = static_cast<double>(last_step_.size());
+    state_.eta_seconds = remaining_seconds / threads;
+    state_.percent = done_seconds + remaining_seconds > 0
+                             ? 100.0 * done_seconds / (done_seconds + remaining_seconds)
+                             : 100.0;
+    if (callback_) {
+        callback_(state_);
+    }
+}
+
+RunProgress ProgressMeter::Last() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return state_;
+}
+
+// A kind's seconds per frame over its recent frames, shrunk towards the other kind's recent rate
+// as if that prior were some frames already measured (with PNGs encoded fast, an image frame
+// costs about a timed frame on the default matrix). The first frames of a kind are few and
+// uneven (a Fourier variant costs several light ones), so alone they would throw the ETA about;
+// the prior's weight fades as the kind's own frames are measured.
+double ProgressMeter::SecondsPerFrame(std::size_t kind) const {
+    const KindState& k = kinds_[kind];
+    const KindState& other = kinds_[1 - kind];
+    const double own = k.recent_frames > 0 ? k.recent_seconds / k.recent_frames : 0.0;
+    if (other.recent_frames <= 0) {
+        return own;
+    }
+    const double prior = other.recent_seconds / other.recent_frames;
+    const double weight =
+            kPriorFrames * kPriorFrames / (kPriorFrames + static_cast<double>(k.done));
+    return (k.recent_seconds + prior * weight) / (k.recent_frames + weight);
+}
+
+// The comparison kind's total: the frames every comparison expects (mutex_ held).
+void ProgressMeter::SumComparisons() {
+    long total = 0;
+    for (long frames : comparison_frames_) {
+        total += frames;
+    }
+    kinds_[kComparison].total = std::max(total, kinds_[kComparison].done);
+}
+
+}  // namespace tidepool::runner

@@ -1,0 +1,98 @@
+// The render's order of work and its progress line: which unit a rendering thread takes next,
+// and how much of the run is done and how long the rest will take. Private to the runner
+// library; tested on its own (tests/unit/RenderProgressTest.cpp).
+#pragma once
+
+#include "tidepool/runner/Results.h"
+
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace tidepool::runner {
+
+/// A unit of work: one configuration's images and coarse time, or one comparison.
+struct WorkUnit {
+    bool comparison = false;
+    std::size_t index = 0;
+};
+
+/// The order the rendering threads take units in: each comparison followed by its share of the
+/// configurations, in a fixed shuffled order (the matrix runs from heavy variants to light
+/// ones). Both kinds of frame are then measured from the first seconds on, so the ETA knows
+/// what an image frame costs long before the comparisons are done, and the queue still ends on
+/// short units, which keeps several threads busy to the end.
+std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations);
+
+/// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
+/// comparisons, and the images and coarse frames of the configurations. A comparison's expected
+/// frames follow its interval (pairs needed ~ pairs so far x (half-width / resolution)^2, the
+/// square-root law of an interval's width). Frames of the two kinds cost very differently (an
+/// image frame compiles on first use and encodes a PNG), so the share done and the ETA weigh
+/// each kind by its measured seconds per frame (SecondsPerFrame), which follows the recent rate:
+/// a process that shares the machine (`run`'s stability and plan stages, another user's job)
+/// may end or start halfway, and the rate before it says little about the rate after.
+class ProgressMeter {
+public:
+    using Clock = std::chrono::steady_clock;
+    enum Kind : std::size_t { kComparison = 0, kImage = 1 };
+
+    /// How long ago a frame may have been measured and still count for half of a new one.
+    static constexpr double kRateHalfLifeSeconds = 15.0;
+
+    ProgressMeter(const ProgressCallback& callback, Clock::time_point start)
+        : callback_(callback), start_(start) {}
+
+    void AddExpected(Kind kind, long frames);
+
+    /// `count` comparisons, each expected to take `guess` frames until it says otherwise.
+    void AddComparisons(std::size_t count, long guess);
+
+    /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
+    /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
+    /// still waiting then expect what the finished ones took on average, the first guess
+    /// counting as one of them: a run whose comparisons resolve at the minimum should not
+    /// expect the guess of every later one.
+    void ComparisonExpects(std::size_t k, long frames, bool finished);
+
+    /// `frames` of `kind` finished on the calling thread since its last step, at `now`.
+    void Step(Kind kind, const std::string& what, long frames, Clock::time_point now);
+    void Step(Kind kind, const std::string& what, long frames) {
+        Step(kind, what, frames, Clock::now());
+    }
+
+    /// The last state passed to the callback.
+    RunProgress Last() const;
+
+private:
+    struct KindState {
+        long done = 0;
+        long total = 0;
+        // Seconds and frames measured, each weighed by 2^(-age / kRateHalfLifeSeconds).
+        double recent_seconds = 0;
+        double recent_frames = 0;
+    };
+
+    enum class ComparisonState { kWaiting, kRunning, kFinished };
+
+    double SecondsPerFrame(std::size_t kind) const;
+    void SumComparisons();
+
+    const ProgressCallback& callback_;
+    Clock::time_point start_;
+    Clock::time_point decayed_to_;  // when the recent sums were last aged
+    mutable std::mutex mutex_;
+    std::array<KindState, 2> kinds_;
+    long comparison_guess_ = 0;
+    std::vector<long> comparison_frames_;
+    std::vector<ComparisonState> comparison_state_;
+    std::map<std::thread::id, Clock::time_point> last_step_;
+    RunProgress state_;
+};
+
+}  // namespace tidepool::runner

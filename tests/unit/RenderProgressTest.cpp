@@ -1,0 +1,103 @@
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstddef>
+#include <set>
+#include <vector>
+
+#include "RenderProgress.h"
+
+namespace tidepool::runner {
+namespace {
+
+using Clock = ProgressMeter::Clock;
+
+TEST(RenderWorkOrderTest, EachComparisonIsFollowedByItsShareOfTheConfigurations) {
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147);
+    ASSERT_EQ(units.size(), 16U + 147U);
+    std::set<std::size_t> comparisons;
+    std::set<std::size_t> configurations;
+    std::vector<std::size_t> run_lengths;  // configurations after each comparison
+    for (const WorkUnit& unit : units) {
+        if (unit.comparison) {
+            comparisons.insert(unit.index);
+            run_lengths.push_back(0);
+        } else {
+            configurations.insert(unit.index);
+            ASSERT_FALSE(run_lengths.empty()) << "a comparison goes first";
+            ++run_lengths.back();
+        }
+    }
+    EXPECT_EQ(comparisons.size(), 16U);
+    EXPECT_EQ(configurations.size(), 147U);
+    for (std::size_t length : run_lengths) {
+        EXPECT_TRUE(length == 9 || length == 10) << length;  // 147 / 16 = 9.2
+    }
+    EXPECT_FALSE(units.back().comparison);  // the queue ends on short units
+}
+
+TEST(RenderWorkOrderTest, WithoutComparisonsEveryConfigurationIsStillThere) {
+    const std::vector<WorkUnit> units = RenderWorkOrder(0, 5);
+    ASSERT_EQ(units.size(), 5U);
+    std::set<std::size_t> seen;
+    for (const WorkUnit& unit : units) {
+        EXPECT_FALSE(unit.comparison);
+        seen.insert(unit.index);
+    }
+    EXPECT_EQ(seen.size(), 5U);
+    EXPECT_EQ(RenderWorkOrder(3, 1).size(), 4U);
+}
+
+// One thread renders 100 ms frames for a minute, then the machine frees up and frames take
+// 50 ms. Half a minute later the ETA must reflect the new rate: the average over the whole run
+// (75 ms) would put it 50% late.
+TEST(ProgressMeterTest, EtaFollowsTheRecentRateAfterTheMachineFreesUp) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    constexpr long kTotal = 3000;
+    meter.AddExpected(ProgressMeter::kImage, kTotal);
+    Clock::time_point now = start;
+    long done = 0;
+    for (int i = 0; i < 600; ++i, ++done) {
+        now += std::chrono::milliseconds(100);
+        meter.Step(ProgressMeter::kImage, "slow", 1, now);
+    }
+    for (int i = 0; i < 600; ++i, ++done) {
+        now += std::chrono::milliseconds(50);
+        meter.Step(ProgressMeter::kImage, "fast", 1, now);
+    }
+    const double truth = 0.050 * static_cast<double>(kTotal - done);
+    const RunProgress progress = meter.Last();
+    EXPECT_NEAR(progress.eta_seconds, truth, 0.2 * truth);
+    EXPECT_EQ(progress.done, done);
+    EXPECT_NEAR(progress.elapsed_seconds, 90.0, 1e-6);
+}
+
+// Before any image is measured, images cost what a timed frame costs; once images are measured,
+// their own rate takes over.
+TEST(ProgressMeterTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddExpected(ProgressMeter::kImage, 1000);
+    meter.AddComparisons(1, 100);
+    Clock::time_point now = start;
+    for (int i = 0; i < 50; ++i) {
+        now += std::chrono::milliseconds(40);
+        meter.Step(ProgressMeter::kComparison, "row", 1, now);
+    }
+    // 50 comparison frames and 1000 image frames left, all at 40 ms.
+    EXPECT_NEAR(meter.Last().eta_seconds, 0.040 * 1050, 0.01 * 0.040 * 1050);
+    for (int i = 0; i < 400; ++i) {
+        now += std::chrono::milliseconds(120);
+        meter.Step(ProgressMeter::kImage, "image", 1, now);
+    }
+    // 600 image frames left at about 120 ms, 50 comparison frames at about 40 ms (both shrunk a
+    // little towards each other).
+    const double truth = 0.120 * 600 + 0.040 * 50;
+    EXPECT_NEAR(meter.Last().eta_seconds, truth, 0.1 * truth);
+}
+
+}  // namespace
+}  // namespace tidepool::runner
