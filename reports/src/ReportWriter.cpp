@@ -5,6 +5,7 @@
 #include "tidepool/base/FolderPublisher.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
+#include "tidepool/report/ReportCharts.h"
 #include "tidepool/report/WhitepaperTable.h"
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include <memory>
 #include <sstream>
 
+#include "ReportText.h"
 #include <fmt/format.h>
 
 namespace tidepool::report {
@@ -24,34 +26,8 @@ namespace {
 using base::kVisibleDifferenceThreshold;
 using base::RgbaImage;
 
-constexpr double kInf = std::numeric_limits<double>::infinity();
-
 nlohmann::json Num(double value) {
     return std::isfinite(value) ? nlohmann::json(value) : nlohmann::json(nullptr);
-}
-
-std::string Html(std::string_view text) {
-    std::string out;
-    out.reserve(text.size());
-    for (char c : text) {
-        switch (c) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += c;
-        }
-    }
-    return out;
 }
 
 // A Markdown table cell: pipes would end the cell, newlines the row.
@@ -69,43 +45,11 @@ std::string Cell(std::string_view text) {
     return out;
 }
 
-std::string Fixed(double value, int digits, std::string_view unit = "") {
-    if (std::isinf(value)) {
-        return value > 0 ? "inf" : "-inf";
-    }
-    if (!std::isfinite(value)) {
-        return "–";
-    }
-    return fmt::format("{:.{}f}{}", value, digits, unit);
-}
-
-std::string Signed(double value, int digits, std::string_view unit = "") {
-    if (!std::isfinite(value)) {
-        return std::isinf(value) ? (value > 0 ? "+inf" : "-inf") : "–";
-    }
-    return fmt::format("{:+.{}f}{}", value, digits, unit);
-}
-
-std::string IntervalText(const Interval& ci, int digits, std::string_view unit) {
-    if (std::isnan(ci.low) || std::isnan(ci.high)) {
-        return "–";
-    }
-    return fmt::format("[{}, {}]", Signed(ci.low, digits, unit), Signed(ci.high, digits, unit));
-}
-
 std::string ConfigurationLabel(const ComparisonSide& side) {
     if (side.configuration == nullptr) {
         return fmt::format("{} (missing)", side.preset);
     }
     return fmt::format("{}{}", side.configuration->id, side.configuration->ok ? "" : " FAILED");
-}
-
-std::string ClockName(TimingClock clock) {
-    return clock == TimingClock::kCpu ? "CPU" : "wall";
-}
-
-std::string DirectionText(int sign) {
-    return sign > 0 ? "faster" : "slower";
 }
 
 std::string FigureKindName(FigureKind kind) {
@@ -192,244 +136,6 @@ RgbaImage Downscale(const RgbaImage& image, int factor) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// SVG
-
-struct Axis {
-    double low = 0;
-    double high = 1;
-};
-
-Axis NiceAxis(double low, double high) {
-    if (!std::isfinite(low) || !std::isfinite(high)) {
-        return {};
-    }
-    if (high <= low) {
-        const double pad = low == 0 ? 1.0 : std::abs(low) * 0.1;
-        return {low - pad, high + pad};
-    }
-    const double pad = (high - low) * 0.06;
-    // Times and error measures are never negative: keep the axis from suggesting they could be.
-    return {low >= 0 ? std::max(0.0, low - pad) : low - pad, high + pad};
-}
-
-std::string TickLabel(double value, double span) {
-    const int digits = span >= 20 ? 0 : span >= 2 ? 1 : span >= 0.2 ? 2 : span >= 0.02 ? 3 : 4;
-    return fmt::format("{:.{}f}", value, digits);
-}
-
-}  // namespace
-
-std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::string& title) {
-    constexpr double kWidth = 760;
-    constexpr double kHeight = 420;
-    constexpr double kLeft = 70;
-    constexpr double kRight = 20;
-    constexpr double kTop = 30;
-    constexpr double kBottom = 50;
-    double x_min = kInf, x_max = -kInf, y_min = kInf, y_max = -kInf;
-    for (const ChartPoint& p : points) {
-        if (std::isfinite(p.x) && std::isfinite(p.y)) {
-            x_min = std::min(x_min, p.x);
-            x_max = std::max(x_max, p.x);
-            y_min = std::min(y_min, p.y);
-            y_max = std::max(y_max, p.y);
-        }
-    }
-    const Axis xa = NiceAxis(x_min, x_max);
-    const Axis ya = NiceAxis(y_min, y_max);
-    auto sx = [&](double x) {
-        return kLeft + (x - xa.low) / (xa.high - xa.low) * (kWidth - kLeft - kRight);
-    };
-    auto sy = [&](double y) {
-        return kHeight - kBottom - (y - ya.low) / (ya.high - ya.low) * (kHeight - kTop - kBottom);
-    };
-    std::string svg = fmt::format(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
-            "height=\"{1}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">"
-            "<title>{2}</title><rect width=\"100%\" height=\"100%\" fill=\"white\"/>",
-            kWidth, kHeight, Html(title));
-    svg += fmt::format("<text x=\"{}\" y=\"18\" font-size=\"13\" font-weight=\"bold\">{}</text>",
-                       kLeft, Html(title));
-    for (int i = 0; i <= 5; ++i) {
-        const double xv = xa.low + (xa.high - xa.low) * i / 5.0;
-        const double yv = ya.low + (ya.high - ya.low) * i / 5.0;
-        svg += fmt::format(
-                "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"#ddd\"/>"
-                "<text x=\"{0:.1f}\" y=\"{3}\" text-anchor=\"middle\">{4}</text>",
-                sx(xv), kTop, kHeight - kBottom, kHeight - kBottom + 15,
-                TickLabel(xv, xa.high - xa.low));
-        svg += fmt::format(
-                "<line x1=\"{0}\" y1=\"{1:.1f}\" x2=\"{2}\" y2=\"{1:.1f}\" stroke=\"#ddd\"/>"
-                "<text x=\"{3}\" y=\"{4:.1f}\" text-anchor=\"end\">{5}</text>",
-                kLeft, sy(yv), kWidth - kRight, kLeft - 5, sy(yv) + 4,
-                TickLabel(yv, ya.high - ya.low));
-    }
-    svg += fmt::format("<text x=\"{}\" y=\"{}\" text-anchor=\"middle\">{}</text>",
-                       (kLeft + kWidth - kRight) / 2, kHeight - 12, Html(x_label));
-    svg += fmt::format(
-            "<text transform=\"translate(16 {}) rotate(-90)\" text-anchor=\"middle\">{}</text>",
-            (kTop + kHeight - kBottom) / 2, Html(y_label));
-    // The frontier as a step line: from each point right along its error, then down to the next.
-    std::string path;
-    for (std::size_t k = 0; k < line.size(); ++k) {
-        if (line[k] >= points.size()) {
-            continue;
-        }
-        const ChartPoint& p = points[line[k]];
-        if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
-            continue;
-        }
-        if (path.empty()) {
-            path = fmt::format("M{:.1f},{:.1f}", sx(p.x), sy(p.y));
-        } else {
-            path += fmt::format(" H{:.1f} V{:.1f}", sx(p.x), sy(p.y));
-        }
-    }
-    if (!path.empty()) {
-        svg += fmt::format(
-                "<path d=\"{}\" fill=\"none\" stroke=\"#c0392b\" stroke-width=\"1.5\" "
-                "stroke-dasharray=\"4 3\"/>",
-                path);
-    }
-    for (const ChartPoint& p : points) {
-        if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
-            continue;
-        }
-        svg += fmt::format(
-                "<circle cx=\"{:.1f}\" cy=\"{:.1f}\" r=\"{}\" fill=\"{}\" "
-                "fill-opacity=\"0.8\"><title>{}</title></circle>",
-                sx(p.x), sy(p.y), p.highlight ? 5 : 3.5, p.highlight ? "#c0392b" : "#5d6d7e",
-                Html(p.tooltip));
-        if (!p.label.empty()) {
-            svg += fmt::format(
-                    "<text x=\"{:.1f}\" y=\"{:.1f}\" font-size=\"10\" fill=\"#333\">{}</text>",
-                    sx(p.x) + 6, sy(p.y) - 4, Html(p.label));
-        }
-    }
-    svg += "</svg>";
-    return svg;
-}
-
-namespace {
-
-// Horizontal bars: measured change with its interval per row, the whitepaper's figure marked.
-std::string WhitepaperChartSvg(const ReportModel& model) {
-    constexpr double kWidth = 760;
-    constexpr double kRowHeight = 26;
-    constexpr double kLeft = 200;
-    constexpr double kRight = 20;
-    constexpr double kTop = 40;
-    const double height = kTop + kRowHeight * static_cast<double>(model.rows.size()) + 40;
-    double low = -10, high = 10;
-    for (const RowComparison& r : model.rows) {
-        for (double v :
-             {r.change_percent, r.change_ci.low, r.change_ci.high, r.row.whitepaper_percent}) {
-            if (std::isfinite(v)) {
-                low = std::min(low, v);
-                high = std::max(high, v);
-            }
-        }
-    }
-    // Frame-rate changes below -100% cannot happen; above +150% the chart would squash the rest.
-    low = std::max(low - 5, -100.0);
-    high = std::min(high + 5, 150.0);
-    auto sx = [&](double v) {
-        return kLeft + (std::clamp(v, low, high) - low) / (high - low) * (kWidth - kLeft - kRight);
-    };
-    std::string svg = fmt::format(
-            "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {0} {1}\" width=\"{0}\" "
-            "height=\"{1}\" font-family=\"sans-serif\" font-size=\"11\" role=\"img\">"
-            "<title>Performance change per whitepaper row</title>"
-            "<rect width=\"100%\" height=\"100%\" fill=\"white\"/>"
-            "<text x=\"10\" y=\"18\" font-size=\"12\" font-weight=\"bold\">Performance change "
-            "(frame rate, + = faster): bar = measured, line = 95% interval, &#9670; = "
-            "whitepaper</text>",
-            kWidth, height);
-    for (int t = static_cast<int>(std::ceil(low / 20.0)) * 20; t <= high; t += 20) {
-        svg += fmt::format(
-                "<line x1=\"{0:.1f}\" y1=\"{1}\" x2=\"{0:.1f}\" y2=\"{2}\" stroke=\"{3}\"/>"
-                "<text x=\"{0:.1f}\" y=\"{4}\" text-anchor=\"middle\">{5:+d}%</text>",
-                sx(t), kTop - 8, height - 30, t == 0 ? "#333" : "#ddd", height - 15, t);
-    }
-    for (std::size_t i = 0; i < model.rows.size(); ++i) {
-        const RowComparison& r = model.rows[i];
-        const double y = kTop + kRowHeight * static_cast<double>(i);
-        svg += fmt::format("<text x=\"{}\" y=\"{:.1f}\" text-anchor=\"end\">{}. {}</text>",
-                           kLeft - 8, y + 15, r.row.number, Html(r.candidate.preset));
-        if (std::isfinite(r.change_percent)) {
-            const double x0 = sx(0);
-            const double x1 = sx(r.change_percent);
-            const char* colour = r.verdict == Verdict::kSameDirectionAndMagnitude ? "#27ae60"
-                                 : r.verdict == Verdict::kSameDirectionOnly       ? "#2e86c1"
-                                 : r.verdict == Verdict::kOpposite                ? "#c0392b"
-                                                                                  : "#95a5a6";
-            svg += fmt::format(
-                    "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"12\" "
-                    "fill=\"{}\"><title>row {}: {} ({})</title></rect>",
-                    std::min(x0, x1), y + 5, std::max(1.0, std::abs(x1 - x0)), colour, r.row.number,
-                    Signed(r.change_percent, 1, "%"), VerdictName(r.verdict));
-            if (std::isfinite(r.change_ci.low)) {
-                svg += fmt::format(
-                        "<line x1=\"{:.1f}\" y1=\"{:.1f}\" x2=\"{:.1f}\" y2=\"{:.1f}\" "
-                        "stroke=\"#111\" stroke-width=\"1.5\"/>",
-                        sx(r.change_ci.low), y + 11, sx(r.change_ci.high), y + 11);
-            }
-        } else {
-            svg += fmt::format("<text x=\"{:.1f}\" y=\"{:.1f}\" fill=\"#c0392b\">{}</text>",
-                               sx(0) + 4, y + 15, VerdictName(r.verdict));
-        }
-        if (r.row.kind == FigureKind::kPercent && std::isfinite(r.row.whitepaper_percent)) {
-            const double wx = sx(r.row.whitepaper_percent);
-            svg += fmt::format(
-                    "<path d=\"M{0:.1f},{1:.1f} l5,6 l-5,6 l-5,-6 z\" fill=\"#f39c12\" "
-                    "stroke=\"#7e5109\"><title>whitepaper: {2}</title></path>",
-                    wx, y + 5, Html(r.row.whitepaper_text));
-        }
-    }
-    svg += "</svg>";
-    return svg;
-}
-
-std::vector<ChartPoint> AccuracyPoints(const ReportModel& model) {
-    std::vector<ChartPoint> points;
-    for (const AccuracyEntry& e : model.accuracy) {
-        ChartPoint p;
-        p.x = e.measured ? e.median_ms : std::numeric_limits<double>::quiet_NaN();
-        p.y = e.measured ? e.SsimLoss() : std::numeric_limits<double>::quiet_NaN();
-        p.highlight = e.on_frontier;
-        if (!e.configuration->presets.empty()) {
-            p.label = e.configuration->presets.front();
-        }
-        p.tooltip = fmt::format("{}: {} ms, 1-SSIM {}, PSNR {} dB", e.configuration->id,
-                                Fixed(e.median_ms, 2), Fixed(e.SsimLoss(), 4), Fixed(e.psnr_db, 1));
-        points.push_back(std::move(p));
-    }
-    return points;
-}
-
-std::vector<ChartPoint> StaticPoints(const ReportModel& model) {
-    std::vector<ChartPoint> points;
-    for (std::size_t i = 0; i < model.static_cost.entries.size(); ++i) {
-        const StaticCostEntry& e = model.static_cost.entries[i];
-        ChartPoint p;
-        p.x = e.total_ops;
-        p.y = e.median_ms;
-        p.highlight =
-                std::find(model.static_cost.misleading.begin(), model.static_cost.misleading.end(),
-                          i) != model.static_cost.misleading.end();
-        if (p.highlight && !e.configuration->presets.empty()) {
-            p.label = e.configuration->presets.front();
-        }
-        p.tooltip = fmt::format("{}: {} ops, {} ms", e.configuration->id, e.total_ops,
-                                Fixed(e.median_ms, 2));
-        points.push_back(std::move(p));
-    }
-    return points;
-}
-
-// ---------------------------------------------------------------------------------------------
 // Environment and settings in display order.
 
 std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& model) {
@@ -478,24 +184,6 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
             {"Config", text(settings, "config")},
     };
     return facts;
-}
-
-std::string StabilityHowTo() {
-    return "No numerical-stability catalogue was found next to results.json. Produce one with "
-           "`tidepool stability` (it writes stability.json, schema \"tidepool.stability\", beside "
-           "the results), then rebuild this report with `tidepool report`.";
-}
-
-std::string PlansHowTo() {
-    return "No scene plans were found next to results.json. Produce them with `tidepool plan "
-           "--all --out DIR` (DIR = the folder of results.json; it writes plans.json, schema "
-           "\"tidepool.plans\"), or let `tidepool run` make them (unless --no-plans), then "
-           "rebuild this report with `tidepool report`.";
-}
-
-// The time axis of the charts and the single-clock columns, naming the clock compared on.
-std::string TimeAxisLabel(const ReportModel& model) {
-    return fmt::format("median frame time (ms, {} time)", ClockName(model.clock));
 }
 
 // How frames were timed and compared, and why: the Method section's account of the method as
@@ -781,11 +469,6 @@ std::string PanelStem(const ImagePanel& panel) {
         }
     }
     return stem;
-}
-
-// The configuration id a panel shows, or "(missing)" when no configuration carries its preset.
-std::string PanelId(const ImagePanel& panel) {
-    return panel.configuration != nullptr ? panel.configuration->id : std::string("(missing)");
 }
 
 // The Reflection techniques section's panels follow the image section's in every per-panel
@@ -1301,7 +984,7 @@ std::string HtmlTable(const std::vector<std::string>& header,
                       const std::vector<std::string>& row_classes = {}) {
     std::string out = "<table class=\"wide\"><thead><tr>";
     for (const std::string& h : header) {
-        out += "<th>" + Html(h) + "</th>";
+        out += "<th>" + HtmlEscaped(h) + "</th>";
     }
     out += "</tr></thead><tbody>";
     for (std::size_t r = 0; r < rows.size(); ++r) {
@@ -1309,7 +992,7 @@ std::string HtmlTable(const std::vector<std::string>& header,
         out += css.empty() ? "<tr>" : "<tr class=\"" + css + "\">";
         for (const std::string& c : rows[r]) {
             // Variant ids are long comma-joined define lists: let them wrap after a comma.
-            std::string cell = Html(c);
+            std::string cell = HtmlEscaped(c);
             for (std::size_t at = cell.find(','); at != std::string::npos;
                  at = cell.find(',', at + 6)) {
                 cell.insert(at + 1, "<wbr>");
@@ -1745,7 +1428,7 @@ constexpr const char* kImageCheckScript =
 
 // Escapes `text` for HTML and shows `quoted` spans (Markdown inline code) as <code>.
 std::string HtmlNote(std::string_view text) {
-    const std::string escaped = Html(text);
+    const std::string escaped = HtmlEscaped(text);
     std::string out;
     bool open = false;
     for (char c : escaped) {
@@ -1764,9 +1447,9 @@ std::string PanelHtml(const ImagePanel& p, const PanelFiles& files,
                       const std::array<std::string, 3>& uri) {
     std::string h =
             fmt::format("<div class=\"panel\"><h3>{} <small>— view {}</small></h3><code>{}</code>",
-                        Html(p.title), Html(p.view), Html(PanelId(p)));
+                        HtmlEscaped(p.title), HtmlEscaped(p.view), HtmlEscaped(PanelId(p)));
     if (!p.note.empty()) {
-        return h + "<p class=\"warn\">" + Html(p.note) + "</p></div>";
+        return h + "<p class=\"warn\">" + HtmlEscaped(p.note) + "</p></div>";
     }
     h += fmt::format("<p class=\"note\">PSNR {} dB, SSIM {}, {} of pixels visibly different</p>",
                      std::isinf(p.psnr_db) ? "inf" : Fixed(p.psnr_db, 1), Fixed(p.ssim, 4),
@@ -1778,7 +1461,8 @@ std::string PanelHtml(const ImagePanel& p, const PanelFiles& files,
         h += fmt::format(
                 "<figure><a href=\"{}\"><img src=\"{}\" alt=\"{} {}\"></a>"
                 "<figcaption>{}</figcaption></figure>",
-                Html(links[k]), uri[k], Html(p.title), Html(captions[k]), Html(captions[k]));
+                HtmlEscaped(links[k]), uri[k], HtmlEscaped(p.title), HtmlEscaped(captions[k]),
+                HtmlEscaped(captions[k]));
     }
     return h + "</div>";
 }
@@ -1788,15 +1472,16 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
             "<!DOCTYPE html><html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
     h += fmt::format("<title>tidepool report: {}</title><style>{}</style>{}</head><body>",
-                     Html(model.options.name), kCss, kImageCheckScript);
-    h += fmt::format("<h1>tidepool report: {}</h1>", Html(model.options.name));
+                     HtmlEscaped(model.options.name), kCss, kImageCheckScript);
+    h += fmt::format("<h1>tidepool report: {}</h1>", HtmlEscaped(model.options.name));
     h += fmt::format(
             "<p class=\"note\">Generated {} from <code>{}</code> and <code>{}</code>. "
             "Figures labelled <b>whitepaper</b> are quoted from Imagination's \"Shader "
             "Based Water Effects\" (measured on a PowerVR SGX-class GPU); everything "
             "else was measured here on Mesa llvmpipe.</p>",
-            Html(model.options.generated_utc), Html(model.inputs->manifest_path.string()),
-            Html(model.inputs->results_path.string()));
+            HtmlEscaped(model.options.generated_utc),
+            HtmlEscaped(model.inputs->manifest_path.string()),
+            HtmlEscaped(model.inputs->results_path.string()));
     h += "<nav><a href=\"#whitepaper\">Whitepaper table</a><a href=\"#accuracy\">Accuracy vs "
          "time</a><a href=\"#static\">Static cost</a><a href=\"#validation\">Validation</a><a "
          "href=\"#images\">Images</a><a href=\"#method\">Method and noise</a><a "
@@ -1817,9 +1502,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
 
     h += "<h2 id=\"accuracy\">2. What accuracy costs in time</h2><p class=\"note\">" +
          HtmlNote(AccuracyIntro()) + "</p>";
-    h += ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),
-                    "mean SSIM loss vs reference (1 - SSIM)",
-                    "Accuracy versus time (red: Pareto frontier)");
+    h += AccuracyChartSvg(model);
     h += "<h3>Pareto frontier</h3>" + HtmlTable(t.frontier_header, t.frontier);
     h += "<h3>Each whitepaper optimisation: time saved, error added</h3>" +
          HtmlTable({"#", "change", "baseline → candidate", "Δ median frame time",
@@ -1838,16 +1521,15 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
             "the passes a feature adds (refraction renders the scene once more), nor "
             "that llvmpipe samples textures in software.</p>",
             Fixed(model.static_cost.spearman_rho, 3),
-            Html(model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")"));
-    h += ScatterSvg(StaticPoints(model), {}, "static operations (vertex + fragment total_ops)",
-                    TimeAxisLabel(model), "Static cost versus measured time");
+            HtmlEscaped(model.static_cost.note.empty() ? "" : " (" + model.static_cost.note + ")"));
+    h += StaticCostChartSvg(model);
     h += "<h3>Where the static count misleads (largest rank disagreements)</h3>" +
          HtmlTable(t.misleading_header, t.misleading);
     h += "<details><summary>All</summary>" + HtmlTable(t.static_header, t.static_rows) +
          "</details>";
 
-    h += "<h2 id=\"validation\">4. Validation summary</h2><p>" + Html(ValidationLine(model)) +
-         "</p>";
+    h += "<h2 id=\"validation\">4. Validation summary</h2><p>" +
+         HtmlEscaped(ValidationLine(model)) + "</p>";
     if (!model.validation.failed.empty()) {
         std::vector<std::vector<std::string>> rows;
         std::vector<std::string> css;
@@ -1887,7 +1569,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
     }
 
     h += "<h2 id=\"method\">6. Method and noise</h2><p class=\"note\">" +
-         HtmlNote(ClockText(model)) + "</p><p>" + Html(TimingMethodText(model)) + "</p>" +
+         HtmlNote(ClockText(model)) + "</p><p>" + HtmlEscaped(TimingMethodText(model)) + "</p>" +
          HtmlTable(ClockNoiseHeader(), ClockNoiseTable(model)) +
          HtmlTable({"setting", "value"}, t.method);
     h += fmt::format(
@@ -1928,7 +1610,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
                     rows.push_back(std::move(row));
                 }
             }
-            h += "<h3>" + Html(key) + "</h3>" +
+            h += "<h3>" + HtmlEscaped(key) + "</h3>" +
                  (rows.empty() ? std::string("<p>(none)</p>") : HtmlTable(columns, rows, css));
         }
     }
@@ -1948,7 +1630,7 @@ std::string HtmlPage(const ReportModel& model, const Tables& t, const Page& page
         }
         h += HtmlTable(SceneSummaryHeader(), scenes.summary, scenes.summary_css);
         for (const auto& [scene, rows] : scenes.effects) {
-            h += "<h3>" + Html(scene) + "</h3>" +
+            h += "<h3>" + HtmlEscaped(scene) + "</h3>" +
                  (rows.empty() ? std::string("<p>No effect was offered for dropping.</p>")
                                : HtmlTable(SceneEffectHeader(), rows));
         }
@@ -2122,13 +1804,8 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
           {"report.md", Markdown(model, tables, files)},
           {"data.json", tidepool::JsonText(ReportToJson(model), 2) + "\n"},
           {"charts/whitepaper.svg", WhitepaperChartSvg(model)},
-          {"charts/accuracy.svg",
-           ScatterSvg(AccuracyPoints(model), model.frontier, TimeAxisLabel(model),
-                      "mean SSIM loss vs reference (1 - SSIM)",
-                      "Accuracy versus time (red: Pareto frontier)")},
-          {"charts/static_cost.svg",
-           ScatterSvg(StaticPoints(model), {}, "static operations (vertex + fragment total_ops)",
-                      TimeAxisLabel(model), "Static cost versus measured time")}}) {
+          {"charts/accuracy.svg", AccuracyChartSvg(model)},
+          {"charts/static_cost.svg", StaticCostChartSvg(model)}}) {
         if (std::string e = write(relative, content); !e.empty()) {
             return fail(e);
         }

@@ -23,22 +23,6 @@ inline constexpr int kReportSchemaVersion = 1;
 /// quickly from disk.
 inline constexpr std::uintmax_t kHtmlImageBudgetBytes = 6u * 1024u * 1024u;
 
-/// One point of a scatter chart.
-struct ChartPoint {
-    double x = 0;
-    double y = 0;
-    std::string label;    // drawn beside the point when not empty
-    std::string tooltip;  // the SVG <title>
-    bool highlight = false;
-};
-
-/// A scatter chart as standalone SVG; `line` (indices into points, in drawing order) is drawn
-/// as a step line (the Pareto frontier). Points with a non-finite coordinate are left out.
-/// Never fails: with no drawable point it draws empty axes.
-std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::string& title);
-
 /// Every figure of the report as JSON (schema kReportSchema, version kReportSchemaVersion);
 /// NaN and infinite numbers are written as null. Never fails.
 nlohmann::json ReportToJson(const ReportModel& model);
