@@ -1,6 +1,7 @@
-// Formats a ReportModel as one self-contained HTML page (tables, SVG charts, images embedded as
-// data: URIs), a Markdown page for repository viewers (PNG and SVG files beside it) and
-// data.json (schema "tidepool.report" v1), and publishes them atomically as one folder.
+// Writes a ReportModel as one self-contained HTML page (tables, SVG charts, images embedded as
+// data: URIs) and a Markdown page for repository viewers (PNG and SVG files beside it), both
+// rendered from one report document (ReportDocument.h), plus data.json (schema
+// "tidepool.report" v1), and publishes them atomically as one folder.
 #pragma once
 
 #include "tidepool/report/ReportModel.h"
