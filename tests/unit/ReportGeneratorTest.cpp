@@ -20,6 +20,7 @@
 #include <sstream>
 #include <string>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "TempDir.h"
@@ -456,6 +457,66 @@ TEST(ReportModelTest, FailedConfigurationIsShownAsFailedNotDropped) {
     EXPECT_EQ(data["whitepaper_rows"][1]["verdict"], "failed");
     EXPECT_EQ(data["validation"]["failed_configurations"][0]["configuration"],
               "water:ENABLE_WATER_COLOUR");
+}
+
+// The HTML tags of a heading removed and its entities decoded: the text a reader sees.
+std::string HeadingText(std::string html) {
+    std::string text;
+    bool in_tag = false;
+    for (char c : html) {
+        if (c == '<' || c == '>') {
+            in_tag = c == '<';
+        } else if (!in_tag) {
+            text += c;
+        }
+    }
+    for (const auto& [entity, plain] : {std::pair<std::string, std::string>{"&lt;", "<"},
+                                        {"&gt;", ">"},
+                                        {"&quot;", "\""},
+                                        {"&amp;", "&"}}) {
+        for (std::size_t at = text.find(entity); at != std::string::npos;
+             at = text.find(entity, at + plain.size())) {
+            text.replace(at, entity.size(), plain);
+        }
+    }
+    return text;
+}
+
+// Both pages are rendered from one document, so every heading of index.html (section, sub-
+// heading, image panel, folded table) is a heading of report.md too. Before the document model
+// the Markdown lacked the failed-configuration and pruned-rule headings.
+TEST(ReportWriterTest, MarkdownHasEveryHeadingTheHtmlHas) {
+    TempDir dir;
+    std::vector<FakeConfiguration> configurations = WhitepaperConfigurations();
+    configurations[2].ok = false;  // a failed configuration adds its table and heading
+    const FakeRun run = WriteFakeRun(dir, configurations);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const std::string html = ReadText(written.folder / "index.html");
+    const std::string md = ReadText(written.folder / "report.md");
+    int headings = 0;
+    for (const auto& [open, close, prefix] :
+         {std::tuple<std::string, std::string, std::string>{"<h2", "</h2>", "## "},
+          {"<h3", "</h3>", "### "},
+          {"<summary>", "</summary>", "### "}}) {
+        for (std::size_t at = html.find(open); at != std::string::npos;
+             at = html.find(open, at + 1)) {
+            const std::size_t start = html.find('>', at) + 1;
+            const std::size_t end = html.find(close, start);
+            ASSERT_NE(end, std::string::npos);
+            const std::string text = HeadingText(html.substr(start, end - start));
+            EXPECT_NE(md.find("\n" + prefix + text + "\n\n"), std::string::npos) << text;
+            ++headings;
+        }
+    }
+    EXPECT_GT(headings, 20);
+    EXPECT_NE(md.find("### Failed configurations\n\n| configuration | status | why |"),
+              std::string::npos)
+            << md;
 }
 
 // The manifest holds pruned counts per rule; the report summarises them, one row per rule, and

@@ -2,8 +2,8 @@
 // verdicts, accuracy against the reference versus time with its Pareto frontier, static cost
 // versus measured time, the validation summary, image panels, method and noise, and the
 // reflection techniques (cube map, Fourier) against planar reflection with the depth optics.
-// The writers (ReportWriter.h) only format this model, so HTML, Markdown and data.json always
-// agree.
+// The report document (ReportDocument.h) and data.json (ReportWriter.h) are built from this
+// model alone, so HTML, Markdown and data.json always agree.
 #pragma once
 
 #include "tidepool/base/PairedEstimate.h"

@@ -1,6 +1,7 @@
-// Formats a ReportModel as one self-contained HTML page (tables, SVG charts, images embedded as
-// data: URIs), a Markdown page for repository viewers (PNG and SVG files beside it) and
-// data.json (schema "tidepool.report" v1), and publishes them atomically as one folder.
+// Writes a ReportModel as one self-contained HTML page (tables, SVG charts, images embedded as
+// data: URIs) and a Markdown page for repository viewers (PNG and SVG files beside it), both
+// rendered from one report document (ReportDocument.h), plus data.json (schema
+// "tidepool.report" v1), and publishes them atomically as one folder.
 #pragma once
 
 #include "tidepool/report/ReportModel.h"
@@ -22,22 +23,6 @@ inline constexpr int kReportSchemaVersion = 1;
 /// ... until they fit, so the page stays under about 10 MB (base64 adds a third) and opens
 /// quickly from disk.
 inline constexpr std::uintmax_t kHtmlImageBudgetBytes = 6u * 1024u * 1024u;
-
-/// One point of a scatter chart.
-struct ChartPoint {
-    double x = 0;
-    double y = 0;
-    std::string label;    // drawn beside the point when not empty
-    std::string tooltip;  // the SVG <title>
-    bool highlight = false;
-};
-
-/// A scatter chart as standalone SVG; `line` (indices into points, in drawing order) is drawn
-/// as a step line (the Pareto frontier). Points with a non-finite coordinate are left out.
-/// Never fails: with no drawable point it draws empty axes.
-std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
-                       const std::string& x_label, const std::string& y_label,
-                       const std::string& title);
 
 /// Every figure of the report as JSON (schema kReportSchema, version kReportSchemaVersion);
 /// NaN and infinite numbers are written as null. Never fails.
