@@ -7,7 +7,9 @@
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/base/SampleStatistics.h"
+#include "tidepool/runner/FramePlan.h"
 #include "tidepool/runner/FrameTimer.h"
+#include "tidepool/runner/ShaderFeatures.h"
 
 #include <algorithm>
 #include <chrono>
@@ -43,21 +45,41 @@ bool BelowVisible(const SceneDescription& scene) {
 }
 
 std::vector<std::string> Without(std::vector<std::string> defines,
-                                 std::initializer_list<const char*> drop) {
-    for (const char* name : drop) {
-        defines.erase(std::remove(defines.begin(), defines.end(), name), defines.end());
+                                 std::initializer_list<ShaderFeature> drop) {
+    for (ShaderFeature feature : drop) {
+        defines.erase(std::remove(defines.begin(), defines.end(), DefineName(feature)),
+                      defines.end());
     }
     return defines;
 }
 
 std::vector<std::string> With(std::vector<std::string> defines,
-                              std::initializer_list<const char*> add) {
-    for (const char* name : add) {
-        if (std::find(defines.begin(), defines.end(), name) == defines.end()) {
-            defines.emplace_back(name);
+                              std::initializer_list<ShaderFeature> add) {
+    for (ShaderFeature feature : add) {
+        if (std::find(defines.begin(), defines.end(), DefineName(feature)) == defines.end()) {
+            defines.emplace_back(DefineName(feature));
         }
     }
     return defines;
+}
+
+// Without the Fresnel term and the two features that refine it (variants.yaml's rules: both
+// require ENABLE_FRESNEL).
+std::vector<std::string> WithoutFresnel(std::vector<std::string> defines) {
+    using enum ShaderFeature;
+    return Without(std::move(defines), {kFresnel, kNormaliseCubemap, kFresnelExact});
+}
+
+// Without refraction and the Fresnel mix that needs it (variants.yaml: Fresnel mixes reflection
+// with refraction).
+std::vector<std::string> WithoutRefraction(std::vector<std::string> defines) {
+    return WithoutFresnel(Without(std::move(defines), {ShaderFeature::kRefraction}));
+}
+
+// Flat water: without the distortion and its scaling.
+std::vector<std::string> WithoutDistortion(std::vector<std::string> defines) {
+    using enum ShaderFeature;
+    return Without(std::move(defines), {kDistortion, kScaleDistortion});
 }
 
 bool MeetsQuality(const QualityTarget& target, const ImageError& error) {
@@ -108,7 +130,7 @@ bool MakeCandidate(const ProgramConfig& water, const SceneDescription& scene,
     candidate->configuration.effects = variant.defines;
     candidate->configuration.passes = passes;
     candidate->configuration.id = ConfigurationId(variant, passes);
-    if (candidate->configuration.Has("ENABLE_WATER_COLOUR")) {
+    if (candidate->configuration.Has(ShaderFeature::kWaterColour)) {
         candidate->water_colour_alpha = 1.0F - CentreReflectance(scene);
     }
     return true;
@@ -123,20 +145,19 @@ int HalfReflectionSize(const PassOptions& passes, const RenderSettings& settings
 // `settings`.
 void ApplyDrop(const std::string& effect, const RenderSettings& settings,
                std::vector<std::string>* defines, PassOptions* passes) {
+    using enum ShaderFeature;
     if (effect == "refraction") {
-        *defines = With(Without(*defines, {"ENABLE_REFRACTION", "ENABLE_FRESNEL",
-                                           "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
-                        {"ENABLE_WATER_COLOUR"});
+        *defines = With(WithoutRefraction(*defines), {kWaterColour});
     } else if (effect == "fresnel") {
-        *defines = Without(*defines, {"ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"});
+        *defines = WithoutFresnel(*defines);
     } else if (effect == "distortion") {
-        *defines = Without(*defines, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"});
+        *defines = WithoutDistortion(*defines);
     } else if (effect == "distortion_scaling") {
-        *defines = Without(*defines, {"ENABLE_SCALE_DISTORTION"});
+        *defines = Without(*defines, {kScaleDistortion});
     } else if (effect == "fog") {
-        *defines = Without(*defines, {"ENABLE_FOG"});
+        *defines = Without(*defines, {kFog});
     } else if (effect == "planar_reflection") {
-        *defines = With(Without(*defines, {"REFLECTION_FOURIER"}), {"REFLECTION_CUBEMAP"});
+        *defines = With(Without(*defines, {kReflectionFourier}), {kReflectionCubemap});
     } else if (effect == "reflection_resolution") {
         passes->reflection_size = HalfReflectionSize(*passes, settings);
     } else if (effect == "full_resolution_water") {
@@ -148,23 +169,24 @@ void ApplyDrop(const std::string& effect, const RenderSettings& settings,
 // rendered with `settings`.
 bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
            const std::string& effect, const RenderSettings& settings) {
+    using enum ShaderFeature;
     if (effect == "refraction") {
-        return chosen.Has("ENABLE_REFRACTION");
+        return chosen.Has(kRefraction);
     }
     if (effect == "fresnel") {
-        return chosen.Has("ENABLE_FRESNEL");
+        return chosen.Has(kFresnel);
     }
     if (effect == "distortion") {
-        return chosen.Has("ENABLE_DISTORTION");
+        return chosen.Has(kDistortion);
     }
     if (effect == "distortion_scaling") {
-        return chosen.Has("ENABLE_SCALE_DISTORTION");
+        return chosen.Has(kScaleDistortion);
     }
     if (effect == "fog") {
-        return chosen.Has("ENABLE_FOG");
+        return chosen.Has(kFog);
     }
     if (effect == "planar_reflection") {
-        return !chosen.Has("REFLECTION_CUBEMAP") && !chosen.Has("REFLECTION_FOURIER");
+        return UsesPlanarReflection(chosen);
     }
     if (effect == "reflection_resolution") {
         return ReflectionSize(chosen.passes, settings.width, settings.height) >=
@@ -217,9 +239,10 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     // The scene's reference: every effect of the preset the description does not turn off;
     // mirror-calm water (waves 0) has no distortion to show, and its bump normals would only
     // add Fresnel sparkle the scene does not have.
+    using enum ShaderFeature;
     std::vector<std::string> f = full->defines;
     if (scene.wave_strength <= 0.0F) {
-        f = Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"});
+        f = WithoutDistortion(f);
     }
     const PassOptions p = full->passes;
     PassOptions refl128 = p;
@@ -233,24 +256,20 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
         "");
     // Each effect dropped alone, so every drop in the plan has its own measurement.
     const bool below = BelowVisible(scene);
-    add(With(Without(f,
-                     {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
-             {"ENABLE_WATER_COLOUR"}),
-        p,
+    add(With(WithoutRefraction(f), {kWaterColour}), p,
         below ? "refraction replaced by the water colour (the rules expect it to show)"
               : "refraction replaced by the water colour: nothing below the water is in sight",
         "refraction");
-    add(Without(f, {"ENABLE_FRESNEL", "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}), p,
-        "a constant reflection/refraction mix instead of Fresnel", "fresnel");
-    add(Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), p,
+    add(WithoutFresnel(f), p, "a constant reflection/refraction mix instead of Fresnel", "fresnel");
+    add(WithoutDistortion(f), p,
         scene.wave_strength <= kCalmWaves ? "flat water: the waves are calm"
                                           : "flat water (the rules expect the waves to show)",
         "distortion");
-    add(Without(f, {"ENABLE_SCALE_DISTORTION"}), p, "distortion not scaled by distance",
+    add(Without(f, {kScaleDistortion}), p, "distortion not scaled by distance",
         "distortion_scaling");
-    add(Without(f, {"ENABLE_FOG"}), p, "no distance fog", "fog");
+    add(Without(f, {kFog}), p, "no distance fog", "fog");
     const bool only_sky_above = !scene.above_terrain && !scene.above_objects;
-    add(With(f, {"REFLECTION_CUBEMAP"}), p,
+    add(With(f, {kReflectionCubemap}), p,
         only_sky_above ? "the sky cube map instead of a reflection pass: only sky is above"
                        : "the sky cube map instead of a reflection pass (the rules expect the "
                          "island and objects to show in the reflection)",
@@ -259,41 +278,32 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     add(f, low_res, "the water rendered at low resolution", "full_resolution_water");
 
     // Combinations the scene's properties suggest.
-    const std::vector<std::string> colour = With(Without(f, {"ENABLE_REFRACTION", "ENABLE_FRESNEL",
-                                                             "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
-                                                 {"ENABLE_WATER_COLOUR"});
+    const std::vector<std::string> colour = With(WithoutRefraction(f), {kWaterColour});
     if (!below) {
         add(colour, refl128, "no refraction and a half-size reflection: nothing below shows", "");
     }
     if (scene.wave_strength <= kCalmWaves) {
-        add(Without(colour, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), p,
-            "no refraction, flat water", "");
-        add(Without(f, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), refl128,
-            "flat water with a half-size reflection", "");
+        add(WithoutDistortion(colour), p, "no refraction, flat water", "");
+        add(WithoutDistortion(f), refl128, "flat water with a half-size reflection", "");
     }
     if (scene.camera.height >= kHighCamera) {
-        add(Without(f, {"ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION",
-                        "NORMALISE_CUBEMAP", "FRESNEL_EXACT"}),
-            p, "seen from high up: constant mix, waves too small to see", "");
+        add(WithoutDistortion(WithoutFresnel(f)), p,
+            "seen from high up: constant mix, waves too small to see", "");
     }
     if (only_sky_above && !below) {
-        add(With(colour, {"REFLECTION_CUBEMAP"}), p,
+        add(With(colour, {kReflectionCubemap}), p,
             "only sky above and nothing below: the sky cube map, no refraction", "");
     }
     if (!scene.above_terrain) {
         add(colour, refl128, "only sky above: the reflection is the smooth sky", "");
-        add(Without(colour, {"ENABLE_DISTORTION", "ENABLE_SCALE_DISTORTION"}), refl128,
-            "only sky above, flat water", "");
+        add(WithoutDistortion(colour), refl128, "only sky above, flat water", "");
     }
     if (!below) {
-        add(With(Without(f, {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "NORMALISE_CUBEMAP",
-                             "FRESNEL_EXACT"}),
-                 {"ENABLE_ALPHA_BLEND"}),
-            p, "the scene below blended instead of a refraction pass", "");
+        add(With(WithoutRefraction(f), {kAlphaBlend}), p,
+            "the scene below blended instead of a refraction pass", "");
     }
-    add(Without(f, {"ENABLE_FRESNEL", "ENABLE_SCALE_DISTORTION", "NORMALISE_CUBEMAP",
-                    "FRESNEL_EXACT"}),
-        refl128, "constant mix, unscaled distortion, half-size reflection", "");
+    add(Without(WithoutFresnel(f), {kScaleDistortion}), refl128,
+        "constant mix, unscaled distortion, half-size reflection", "");
     return candidates;
 }
 
@@ -646,7 +656,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     const RenderConfiguration& cc = chosen.configuration;
     const RenderConfiguration& fc = full.configuration;
     std::vector<std::pair<std::string, std::string>> drops;  // effect, scene property
-    if (fc.Has("ENABLE_REFRACTION") && !cc.Has("ENABLE_REFRACTION")) {
+    using enum ShaderFeature;
+    if (fc.Has(kRefraction) && !cc.Has(kRefraction)) {
         drops.emplace_back(
                 "refraction",
                 FloorVisible(scene)
@@ -659,27 +670,25 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                                       scene.below_objects ? ""
                                                           : " and nothing else "
                                                             "lies below",
-                                      fc.Has("ENABLE_FRESNEL") ? " and the Fresnel mix goes with it"
-                                                               : ""));
+                                      fc.Has(kFresnel) ? " and the Fresnel mix goes with it" : ""));
     }
-    if (fc.Has("ENABLE_FRESNEL") && !cc.Has("ENABLE_FRESNEL") && cc.Has("ENABLE_REFRACTION")) {
+    if (fc.Has(kFresnel) && !cc.Has(kFresnel) && cc.Has(kRefraction)) {
         drops.emplace_back("fresnel", fmt::format("camera {} above the water: the mix barely "
                                                   "varies over the visible water",
                                                   scene.camera.height));
     }
-    if (fc.Has("ENABLE_DISTORTION") && !cc.Has("ENABLE_DISTORTION")) {
+    if (fc.Has(kDistortion) && !cc.Has(kDistortion)) {
         drops.emplace_back(
                 "distortion",
                 fmt::format("wave strength {} shifts the image by {:.0f} px per unit of wave slope",
                             scene.wave_strength,
                             options.settings.wave_distortion * scene.wave_strength));
     }
-    if (fc.Has("ENABLE_SCALE_DISTORTION") && !cc.Has("ENABLE_SCALE_DISTORTION") &&
-        cc.Has("ENABLE_DISTORTION")) {
+    if (fc.Has(kScaleDistortion) && !cc.Has(kScaleDistortion) && cc.Has(kDistortion)) {
         drops.emplace_back("distortion_scaling",
                            fmt::format("view range {}", scene.camera.view_range));
     }
-    if (fc.Has("ENABLE_FOG") && !cc.Has("ENABLE_FOG")) {
+    if (fc.Has(kFog) && !cc.Has(kFog)) {
         drops.emplace_back("fog", fmt::format("view range {}: little water lies far enough away "
                                               "to fog",
                                               scene.camera.view_range));

@@ -3,6 +3,7 @@
 #include "tidepool/Manifest.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/ShaderFeatures.h"
 #include "tidepool/runner/WaterMath.h"
 
 #include <algorithm>
@@ -634,10 +635,11 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
     };
     // The variants every guard is live in: the full effect with Schlick and with exact Fresnel.
     const std::vector<std::vector<std::string>> variants = {
-            {"ENABLE_DISTORTION", "ENABLE_FOG", "ENABLE_FRESNEL", "ENABLE_REFRACTION",
-             "ENABLE_SCALE_DISTORTION"},
-            {"ENABLE_DISTORTION", "ENABLE_FOG", "ENABLE_FRESNEL", "ENABLE_REFRACTION",
-             "ENABLE_SCALE_DISTORTION", "FRESNEL_EXACT"},
+            DefineNames({ShaderFeature::kDistortion, ShaderFeature::kFog, ShaderFeature::kFresnel,
+                         ShaderFeature::kRefraction, ShaderFeature::kScaleDistortion}),
+            DefineNames({ShaderFeature::kDistortion, ShaderFeature::kFog, ShaderFeature::kFresnel,
+                         ShaderFeature::kRefraction, ShaderFeature::kScaleDistortion,
+                         ShaderFeature::kFresnelExact}),
     };
     auto render = [&](const std::vector<std::string>& defines, const CameraView& view,
                       std::vector<float>* pixels) {

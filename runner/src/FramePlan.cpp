@@ -2,6 +2,7 @@
 // asks for. No GL here; runner/src/gl/WaterRenderer.cpp executes the plan.
 #include "tidepool/runner/FramePlan.h"
 
+#include "tidepool/runner/ShaderFeatures.h"
 #include "tidepool/runner/WaterMath.h"
 
 #include <algorithm>
@@ -12,34 +13,35 @@ namespace {
 
 // The depth-based optics read the water depth the refraction pass stores in alpha.
 bool NeedsWaterDepth(const RenderConfiguration& c) {
-    return c.Has("ENABLE_REFRACTION") &&
-           (c.Has("ENABLE_EXTINCTION") || c.Has("ENABLE_SHORE_FOAM") || c.Has("ENABLE_SOFT_SHORE"));
+    return c.Has(ShaderFeature::kRefraction) &&
+           (c.Has(ShaderFeature::kExtinction) || c.Has(ShaderFeature::kShoreFoam) ||
+            c.Has(ShaderFeature::kSoftShore));
 }
 
 // The underwater depth fog of the refraction pass's models (whitepaper 2.4.1). Extinction
 // replaces it: the same effect, done per channel in the water shader from the depth in alpha.
 bool UsesDepthFog(const RenderConfiguration& c) {
-    return c.Has("ENABLE_FOG") && c.passes.depth_fog && !c.Has("ENABLE_EXTINCTION");
+    return c.Has(ShaderFeature::kFog) && c.passes.depth_fog && !c.Has(ShaderFeature::kExtinction);
 }
 
 // The sky is drawn as the demo drew it, never clipped by discard: the mirrored sky below the
 // water plane is never sampled by an undistorted lookup, and the discard arm of row 10 must
 // differ from the oblique arm in the models' clipping only.
 Variant SkyProgram(const RenderConfiguration& c) {
-    return MakeVariant("skybox", c.Has("ENABLE_FOG") ? std::vector<std::string>{"ENABLE_FOG"}
-                                                     : std::vector<std::string>{});
+    return MakeVariant("skybox", c.Has(ShaderFeature::kFog) ? DefineNames({ShaderFeature::kFog})
+                                                            : std::vector<std::string>{});
 }
 
 Variant ModelProgram(const RenderConfiguration& c, PassKind kind, bool discard) {
-    std::vector<std::string> defines = {"ENABLE_LIGHTING"};
+    std::vector<std::string> defines = DefineNames({ShaderFeature::kLighting});
     if (kind == PassKind::kRefraction && UsesDepthFog(c)) {
-        defines.emplace_back("ENABLE_FOG_DEPTH");
+        defines.emplace_back(DefineName(ShaderFeature::kFogDepth));
     }
     if (kind == PassKind::kRefraction && NeedsWaterDepth(c)) {
-        defines.emplace_back("ENABLE_DEPTH_ALPHA");
+        defines.emplace_back(DefineName(ShaderFeature::kDepthAlpha));
     }
     if (discard && (kind == PassKind::kReflection || kind == PassKind::kRefraction)) {
-        defines.emplace_back("CLIP_DISCARD");
+        defines.emplace_back(DefineName(ShaderFeature::kClipDiscard));
     }
     return MakeVariant("model", defines);
 }
@@ -66,7 +68,7 @@ int LowResWaterSize(const RenderSettings& settings) {
 }
 
 bool UsesPlanarReflection(const RenderConfiguration& c) {
-    return !c.Has("REFLECTION_CUBEMAP") && !c.Has("REFLECTION_FOURIER");
+    return !c.Has(ShaderFeature::kReflectionCubemap) && !c.Has(ShaderFeature::kReflectionFourier);
 }
 
 float TypicalWaterDistance(const CameraView& view, float water_height) {
@@ -83,7 +85,7 @@ float TypicalWaterDistance(const CameraView& view, float water_height) {
 
 float DistortionConstant(const RenderConfiguration& c, const RenderSettings& settings,
                          const Scene& scene, const CameraView& view) {
-    if (c.Has("ENABLE_SCALE_DISTORTION")) {
+    if (c.Has(ShaderFeature::kScaleDistortion)) {
         return settings.wave_distortion;
     }
     // The near plane keeps the divisor positive for an eye on the water looking at it.
@@ -96,7 +98,7 @@ std::vector<Variant> HelperPrograms(const RenderConfiguration& c) {
     std::vector<Variant> helpers;
     const bool discard = c.passes.clip == "discard";
     for (PassKind kind : {PassKind::kReflection, PassKind::kRefraction, PassKind::kMain}) {
-        if ((kind == PassKind::kRefraction && !c.Has("ENABLE_REFRACTION")) ||
+        if ((kind == PassKind::kRefraction && !c.Has(ShaderFeature::kRefraction)) ||
             (kind == PassKind::kReflection && !UsesPlanarReflection(c))) {
             continue;
         }
@@ -136,7 +138,7 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
             static_cast<double>(settings.animation_time), settings.wrap_bump_translation));
     plan.wave_distortion = DistortionConstant(c, settings, scene, view);
     const bool water_visible = !plan.polygon.empty();
-    const bool fog = c.Has("ENABLE_FOG");
+    const bool fog = c.Has(ShaderFeature::kFog);
     const bool discard = c.passes.clip == "discard";
     const bool culling = c.passes.culling;
     const int object_count = static_cast<int>(scene.objects.size());
@@ -178,7 +180,7 @@ FramePlan PlanFrame(const RenderConfiguration& c, const RenderSettings& settings
         }
         plan.passes.push_back(std::move(mirror));
     }
-    if (water_visible && c.Has("ENABLE_REFRACTION")) {
+    if (water_visible && c.Has(ShaderFeature::kRefraction)) {
         PassPlan pass;
         pass.kind = PassKind::kRefraction;
         pass.width = pass.height = RefractionSize(c.passes, settings.width, settings.height);

@@ -5,6 +5,7 @@
 #include "tidepool/runner/FramePlan.h"
 #include "tidepool/runner/MesaInfoLog.h"
 #include "tidepool/runner/Renderer.h"
+#include "tidepool/runner/ShaderFeatures.h"
 #include "tidepool/runner/WaterMath.h"
 
 #include <algorithm>
@@ -39,12 +40,6 @@ constexpr GLint kUnitNormalMap = 2;
 constexpr GLint kUnitNormalisation = 3;
 constexpr GLint kUnitSky = 4;
 constexpr GLint kUnitLowRes = 5;
-
-// The water effects that water_uniform reads as uniform bools (INTERFACE.md).
-constexpr std::array<const char*, 9> kWaterEffects = {
-        "ENABLE_DISTORTION",   "ENABLE_SCALE_DISTORTION", "ENABLE_REFRACTION",
-        "ENABLE_FRESNEL",      "FRESNEL_EXACT",           "NORMALISE_CUBEMAP",
-        "ENABLE_WATER_COLOUR", "ENABLE_ALPHA_BLEND",      "ENABLE_FOG"};
 
 std::string ErrorName(GLenum error) {
     switch (error) {
@@ -579,7 +574,8 @@ void WaterRenderer::Impl::BindWaterPolygon(const FramePlan& plan) {
 
 void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfiguration& c,
                                     const PassPlan& pass, FrameReport* report) {
-    const bool alpha_blend = c.Has("ENABLE_ALPHA_BLEND") && !c.Has("ENABLE_REFRACTION");
+    const bool alpha_blend =
+            c.Has(ShaderFeature::kAlphaBlend) && !c.Has(ShaderFeature::kRefraction);
     const auto vertex_count = static_cast<GLsizei>(plan.polygon.size());
     BindWaterPolygon(plan);
     if (pass.water_program.program == "water_composite") {
@@ -658,16 +654,19 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
                     settings.sun_colour.b);
     gl->glUniform1f(Uniform(program, "Shininess"), settings.shininess);
     if (c.UsesUniformBools()) {
-        for (const char* effect : kWaterEffects) {
-            gl->glUniform1i(Uniform(program, UniformBoolName(effect).c_str()),
-                            c.Has(effect) ? 1 : 0);
+        // The water effects water_uniform reads as uniform bools (INTERFACE.md).
+        for (const ShaderFeatureInfo& feature : kShaderFeatures) {
+            if (feature.uniform_bool) {
+                gl->glUniform1i(Uniform(program, UniformBoolName(feature.define).c_str()),
+                                c.Has(feature.feature) ? 1 : 0);
+            }
         }
     }
     gl->glActiveTexture(GL_TEXTURE0 + kUnitReflection);
     gl->glBindTexture(GL_TEXTURE_2D, reflection.colour);
     gl->glActiveTexture(GL_TEXTURE0 + kUnitRefraction);
     // Without a refraction pass the sampler still needs a complete texture behind it.
-    gl->glBindTexture(GL_TEXTURE_2D, c.Has("ENABLE_REFRACTION") && refraction.colour != 0
+    gl->glBindTexture(GL_TEXTURE_2D, c.Has(ShaderFeature::kRefraction) && refraction.colour != 0
                                              ? refraction.colour
                                              : reflection.colour);
     gl->glActiveTexture(GL_TEXTURE0);
@@ -675,7 +674,7 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
         gl->glEnable(GL_BLEND);
         gl->glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
     }
-    if (c.Has("REFLECTION_FOURIER") && fourier_grid_built) {
+    if (c.Has(ShaderFeature::kReflectionFourier) && fourier_grid_built) {
         // The tessellated grid: the coefficients vary per vertex, so the single polygon that
         // covers the view will not do.
         constexpr GLsizei kStride = 11 * sizeof(float);
@@ -771,7 +770,7 @@ DriverVerdict WaterRenderer::Prepare(const RenderConfiguration& c) {
     DriverVerdict verdict = r.Program(c.variant).verdict;
     // Helper programs this configuration's passes can use; their problems join the verdict.
     const std::vector<Variant> helpers = HelperPrograms(c);
-    if (c.Has("REFLECTION_FOURIER")) {
+    if (c.Has(ShaderFeature::kReflectionFourier)) {
         const std::string error = r.BuildFourierGrid();
         if (!error.empty()) {
             verdict.valid = false;

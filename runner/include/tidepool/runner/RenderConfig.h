@@ -5,6 +5,7 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/runner/ShaderFeatures.h"
 
 #include <string>
 #include <string_view>
@@ -30,6 +31,8 @@ struct RenderConfiguration {
     bool UsesUniformBools() const { return variant.program == kWaterUniformProgram; }
     /// True when `effect` (a define name such as ENABLE_REFRACTION) is in force.
     bool Has(std::string_view effect) const;
+    /// True when the define of `feature` is in force.
+    bool Has(ShaderFeature feature) const { return Has(DefineName(feature)); }
 };
 
 /// The suffix of non-default pass options in a configuration id: "@refl128", "@refr128",
