@@ -273,7 +273,11 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
             if (!v.is_object()) {
                 return fmt::format("configuration '{}': a view is not an object", c.id);
             }
-            ViewImage image{StringOr(v, "view"), {}, StringList(v, "pass_names"), std::nullopt};
+            ViewImage image{StringOr(v, "view"),
+                            {},
+                            StringList(v, "pass_names"),
+                            std::nullopt,
+                            std::nullopt};
             const std::string relative = StringOr(v, "image");
             if (!relative.empty()) {
                 // Images are read and embedded in the page: only files inside the results
@@ -293,6 +297,13 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
             }
             if (auto draws = v.find("draw_calls"); draws != v.end() && draws->is_number()) {
                 image.draw_calls = static_cast<int>(draws->get<double>());
+            }
+            if (auto a = v.find("accuracy"); a != v.end() && a->is_object()) {
+                const double inf = std::numeric_limits<double>::infinity();
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                image.accuracy =
+                        ViewImage::Accuracy{NumberOr(*a, "psnr_db", inf), NumberOr(*a, "ssim", nan),
+                                            NumberOr(*a, "share_visible", nan)};
             }
             c.views.push_back(std::move(image));
         }

@@ -81,28 +81,41 @@ std::optional<RgbaImage> LoadImage(const std::filesystem::path& path, std::strin
 
 // Compares every image of `c` with the image of `reference` at the same view; `whose` names
 // the other side in a size-mismatch error ("the reference's"). Fills `per_view` when not null.
+// With `recorded` (`reference` holds the reference configuration's images), a view the render
+// already compared with the reference while it was in memory is taken from the results.
 ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache& reference,
                                 std::string_view whose = "the reference's",
-                                std::vector<ViewError>* per_view = nullptr) {
+                                std::vector<ViewError>* per_view = nullptr, bool recorded = false) {
     ViewErrors errors;
     for (const ViewImage& v : c.views) {
         auto ref = reference.find(v.view);
         if (v.image.empty() || ref == reference.end()) {
             continue;
         }
-        std::optional<RgbaImage> image = LoadImage(v.image, &errors.error);
-        if (!image) {
-            return errors;
+        ViewError view;
+        if (recorded && v.accuracy) {
+            // The figures come from the results; the file they describe must still be there.
+            std::error_code ec;
+            if (!std::filesystem::is_regular_file(v.image, ec)) {
+                errors.error = fmt::format("{}: cannot read image: no such file", v.image.string());
+                return errors;
+            }
+            view = {v.view, v.accuracy->psnr_db, v.accuracy->ssim, v.accuracy->share_visible};
+        } else {
+            std::optional<RgbaImage> image = LoadImage(v.image, &errors.error);
+            if (!image) {
+                return errors;
+            }
+            const RgbaImage& r = ref->second.image;
+            if (image->width != r.width || image->height != r.height) {
+                errors.error = fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}",
+                                           v.image.string(), image->width, image->height, whose,
+                                           v.view, r.width, r.height);
+                return errors;
+            }
+            view = {v.view, Psnr(*image, r), ref->second.ssim->Compare(*image),
+                    ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold)};
         }
-        const RgbaImage& r = ref->second.image;
-        if (image->width != r.width || image->height != r.height) {
-            errors.error =
-                    fmt::format("{}: {}x{} image, but {} at view '{}' is {}x{}", v.image.string(),
-                                image->width, image->height, whose, v.view, r.width, r.height);
-            return errors;
-        }
-        const ViewError view{v.view, Psnr(*image, r), ref->second.ssim->Compare(*image),
-                             ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold)};
         errors.mse_sum += MseFromPsnr(view.psnr_db);
         errors.ssim_sum += view.ssim;
         errors.share_sum += view.share_visible;
@@ -776,7 +789,8 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
                       static_cast<int>(std::thread::hardware_concurrency()), [&](std::size_t i) {
                           if (inputs.configurations[i].ok) {
                               errors[i] = CompareWithReference(inputs.configurations[i],
-                                                               reference_images);
+                                                               reference_images, "the reference's",
+                                                               nullptr, true);
                           }
                       });
     std::vector<double> times;

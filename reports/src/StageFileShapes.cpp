@@ -219,6 +219,7 @@ constexpr const char* kResultsShape = R"json(
       "variant": "string",
       "views": [
         {
+          "accuracy": {"psnr_db": "number", "share_visible": "number", "ssim": "number"},
           "draw_calls": "number",
           "gl_error": "string",
           "image": "string",

@@ -19,12 +19,18 @@ constexpr double kPriorFrames = 150.0;
 
 }  // namespace
 
-std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations) {
+std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
+                                      std::optional<std::size_t> first) {
     std::vector<std::size_t> order(configurations);
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), std::mt19937(20161));
     std::vector<WorkUnit> units;
     units.reserve(comparisons + configurations);
+    if (first && *first < configurations) {
+        order.erase(std::find(order.begin(), order.end(), *first));
+        units.push_back({false, *first});
+        configurations -= 1;
+    }
     std::size_t next = 0;
     for (std::size_t k = 0; k < comparisons; ++k) {
         units.push_back({true, k});

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <map>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -22,12 +23,14 @@ struct WorkUnit {
     std::size_t index = 0;
 };
 
-/// The order the rendering threads take units in: each comparison followed by its share of the
-/// configurations, in a fixed shuffled order (the matrix runs from heavy variants to light
+/// The order the rendering threads take units in: `first` (the reference configuration, whose
+/// images the others are compared with), then each comparison followed by its share of the
+/// other configurations, in a fixed shuffled order (the matrix runs from heavy variants to light
 /// ones). Both kinds of frame are then measured from the first seconds on, so the ETA knows
 /// what an image frame costs long before the comparisons are done, and the queue still ends on
 /// short units, which keeps several threads busy to the end.
-std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations);
+std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
+                                      std::optional<std::size_t> first = std::nullopt);
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected

@@ -4,6 +4,7 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/base/SampleStatistics.h"
 
@@ -77,6 +78,47 @@ bool RunResults::AllOk() const {
 
 namespace {
 
+// The reference configuration's images, by view, with their SSIM moments; filled by the
+// thread that renders the reference, read by every thread after.
+class ReferenceImages {
+public:
+    void Keep(const std::string& view, const base::RgbaImage& image) {
+        auto kept = std::make_shared<const Kept>(image);
+        std::lock_guard<std::mutex> lock(mutex_);
+        views_[view] = std::move(kept);
+    }
+
+    // `image` against the reference's at `view`, the way the report measures accuracy;
+    // nothing when the reference has no image there (yet) or the sizes differ.
+    std::optional<ViewResult::Accuracy> Compare(const std::string& view,
+                                                const base::RgbaImage& image) const {
+        std::shared_ptr<const Kept> kept;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            auto found = views_.find(view);
+            if (found == views_.end()) {
+                return std::nullopt;
+            }
+            kept = found->second;
+        }
+        if (kept->image.width != image.width || kept->image.height != image.height) {
+            return std::nullopt;
+        }
+        return ViewResult::Accuracy{
+                base::Psnr(image, kept->image), kept->ssim.Compare(image),
+                base::ShareAboveThreshold(image, kept->image, base::kVisibleDifferenceThreshold)};
+    }
+
+private:
+    struct Kept {
+        explicit Kept(const base::RgbaImage& from) : image(from), ssim(image) {}
+        base::RgbaImage image;
+        base::SsimReference ssim;
+    };
+    mutable std::mutex mutex_;
+    std::map<std::string, std::shared_ptr<const Kept>> views_;
+};
+
 // One rendering thread's context, renderer and timer, and what it has compiled.
 struct RenderWorker {
     std::unique_ptr<WaterRenderer> renderer;
@@ -143,8 +185,18 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                       per_configuration * static_cast<long>(options.configurations.size()));
     meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
 
+    // The reference configuration renders first, so that every later image is compared with
+    // it while in memory.
+    std::optional<std::size_t> reference;
+    for (std::size_t i = 0; i < options.configurations.size() && !reference; ++i) {
+        const std::vector<std::string>& presets = options.configurations[i].presets;
+        if (std::find(presets.begin(), presets.end(), options.reference_preset) != presets.end()) {
+            reference = i;
+        }
+    }
+    ReferenceImages references;
     const std::vector<WorkUnit> units =
-            RenderWorkOrder(results.comparisons.size(), results.configurations.size());
+            RenderWorkOrder(results.comparisons.size(), results.configurations.size(), reference);
     std::atomic<std::size_t> next_unit{0};
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
@@ -206,11 +258,16 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             if (!view_result.frame.gl_error.empty() && r.gl_error.empty()) {
                 r.gl_error = fmt::format("{} (view {})", view_result.frame.gl_error, view.name);
             }
+            const base::RgbaImage image = w.renderer->ReadImage();
+            if (reference && i == *reference) {
+                references.Keep(view.name, image);
+            }
+            view_result.accuracy = references.Compare(view.name, image);
             if (options.write_images) {
                 const std::string name = fmt::format(
                         "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
                 const std::string write_error =
-                        base::WritePngAtomically(options.out_dir / name, w.renderer->ReadImage());
+                        base::WritePngAtomically(options.out_dir / name, image);
                 if (write_error.empty()) {
                     view_result.image_path = name;
                 } else {
@@ -456,13 +513,20 @@ nlohmann::json ResultsToJson(const RunResults& results) {
         }
         nlohmann::json view_results = nlohmann::json::array();
         for (const ViewResult& v : r.views) {
-            view_results.push_back({{"view", v.view},
-                                    {"image", v.image_path},
-                                    {"passes", v.frame.passes},
-                                    {"pass_names", v.frame.pass_names},
-                                    {"draw_calls", v.frame.draw_calls},
-                                    {"oblique_fallback", v.frame.oblique_fallback},
-                                    {"gl_error", v.frame.gl_error}});
+            nlohmann::json view = {{"view", v.view},
+                                   {"image", v.image_path},
+                                   {"passes", v.frame.passes},
+                                   {"pass_names", v.frame.pass_names},
+                                   {"draw_calls", v.frame.draw_calls},
+                                   {"oblique_fallback", v.frame.oblique_fallback},
+                                   {"gl_error", v.frame.gl_error}};
+            if (v.accuracy) {
+                // An identical image's PSNR is infinite, which JSON writes as null.
+                view["accuracy"] = {{"psnr_db", v.accuracy->psnr_db},
+                                    {"ssim", v.accuracy->ssim},
+                                    {"share_visible", v.accuracy->share_visible}};
+            }
+            view_results.push_back(std::move(view));
         }
         nlohmann::json entry = {
                 {"id", c.id},

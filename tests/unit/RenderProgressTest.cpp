@@ -36,6 +36,24 @@ TEST(RenderWorkOrderTest, EachComparisonIsFollowedByItsShareOfTheConfigurations)
     EXPECT_FALSE(units.back().comparison);  // the queue ends on short units
 }
 
+TEST(RenderWorkOrderTest, TheReferenceConfigurationRendersFirstAndOnce) {
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42);
+    ASSERT_EQ(units.size(), 16U + 147U);
+    EXPECT_FALSE(units.front().comparison);
+    EXPECT_EQ(units.front().index, 42U);
+    std::set<std::size_t> configurations;
+    std::size_t comparisons = 0;
+    for (const WorkUnit& unit : units) {
+        if (unit.comparison) {
+            ++comparisons;
+        } else {
+            EXPECT_TRUE(configurations.insert(unit.index).second) << unit.index;
+        }
+    }
+    EXPECT_EQ(comparisons, 16U);
+    EXPECT_EQ(configurations.size(), 147U);
+}
+
 TEST(RenderWorkOrderTest, WithoutComparisonsEveryConfigurationIsStillThere) {
     const std::vector<WorkUnit> units = RenderWorkOrder(0, 5);
     ASSERT_EQ(units.size(), 5U);

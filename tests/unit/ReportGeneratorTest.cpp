@@ -408,6 +408,43 @@ TEST(ReportModelTest, AccuracyAndParetoFrontierOnKnownImages) {
     EXPECT_EQ(model.frontier.back(), 0u);
 }
 
+// The render compares each image with the reference's while it is in memory and records it
+// (`accuracy` per view); the report takes those figures instead of reading the image back, and
+// null PSNR means identical. The file must still exist.
+TEST(ReportModelTest, AccuracyRecordedByTheRenderIsUsedWithoutReadingTheImage) {
+    TempDir dir;
+    const FakeRun run =
+            WriteFakeRun(dir, {{"water:REF", {"reference"}, 50, 0}, {"water:CHEAP", {}, 10, 4}});
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    results["configurations"][0]["views"][0]["accuracy"] = {
+            {"psnr_db", nullptr}, {"ssim", 1.0}, {"share_visible", 0.0}};
+    results["configurations"][1]["views"][0]["accuracy"] = {
+            {"psnr_db", 33.0}, {"ssim", 0.5}, {"share_visible", 0.25}};
+    dir.Write("render/results.json", results.dump(2));
+    // Not a PNG any more: reading it would fail the report.
+    const std::string cheap = results["configurations"][1]["views"][0]["image"];
+    dir.Write("render/" + cheap, "not a png");
+    {
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        ASSERT_TRUE(loaded.inputs) << loaded.error;
+        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+        ASSERT_TRUE(built.model) << built.error;
+        ASSERT_EQ(built.model->accuracy.size(), 2u);
+        EXPECT_TRUE(std::isinf(built.model->accuracy[0].psnr_db));
+        EXPECT_DOUBLE_EQ(built.model->accuracy[1].psnr_db, 33.0);
+        EXPECT_DOUBLE_EQ(built.model->accuracy[1].ssim, 0.5);
+        EXPECT_DOUBLE_EQ(built.model->accuracy[1].share_visible, 0.25);
+    }
+    std::filesystem::remove(dir.Path() / "render" / cheap);
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    EXPECT_FALSE(built.model);
+    EXPECT_NE(built.error.find((dir.Path() / "render" / cheap).string() + ": cannot read image"),
+              std::string::npos)
+            << built.error;
+}
+
 TEST(ReportStaticCost, RankCorrelationAndLargestDisagreementsOnKnownInputs) {
     MeasuredConfiguration a, b, c, d;
     a.id = "a";

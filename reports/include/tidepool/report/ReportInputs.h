@@ -47,6 +47,15 @@ struct ViewImage {
     // predate `pass_names` (the field is optional in tidepool.render-results v1).
     std::vector<std::string> pass_names;
     std::optional<int> draw_calls;  // draw calls of one frame; absent in older results
+    // The image against the reference's at this view, as the render measured it while the
+    // image was in memory (results' `accuracy`); absent in older results, and then the report
+    // reads both images and measures it itself.
+    struct Accuracy {
+        double psnr_db = 0;  // +infinity when identical (null in the file)
+        double ssim = 0;
+        double share_visible = 0;
+    };
+    std::optional<Accuracy> accuracy;
 };
 
 /// One render configuration (variant + pass options) as the runner recorded it.

@@ -70,6 +70,10 @@ struct RunOptions {
     GlContextFactory make_context;
     std::filesystem::path out_dir;  // images go to out_dir/images/
     bool write_images = true;
+    // The configuration whose images every other is compared with (the one with this preset):
+    // rendered first, its images kept, and every configuration's images compared with them
+    // while still in memory (ViewResult::accuracy), so the report need not read them back.
+    std::string reference_preset = "reference";
     bool compare_with_glslang = true;  // list variants where glslang and Mesa disagree
     HostInfo host;
     std::string config_path;  // variants.yaml as named by the user
@@ -80,6 +84,15 @@ struct ViewResult {
     std::string view;
     std::string image_path;  // relative to out_dir; "" when no image was written
     FrameReport frame;
+    // The image against the reference configuration's at the same view (base/ImageMetrics.h);
+    // absent when the reference has no image there (not rendered yet on another thread, failed,
+    // or no configuration has RunOptions::reference_preset).
+    struct Accuracy {
+        double psnr_db = 0;  // +inf for an identical image
+        double ssim = 0;
+        double share_visible = 0;  // share of pixels above kVisibleDifferenceThreshold
+    };
+    std::optional<Accuracy> accuracy;
 };
 
 /// Everything recorded about one configuration.
