@@ -36,6 +36,10 @@ inline constexpr const char* kVersionText = "tidepool 0.1.0";
 /// Prints `outcome`'s diagnostics on stderr and returns its status as the exit code.
 int PrintOutcome(const pipeline::Outcome& outcome);
 
+// Forwarding to the pipeline for RunCommand.cpp and GlCliSupport.cpp, which are being moved onto
+// the pipeline separately: PublishExitCode, BeginPublishing, WriteManifestInto, CpuModel,
+// DefaultJobs, GitRevision, LoadedMatrix, LoadAndExpand, OpenCache and WarnAboutCache.
+
 /// pipeline::PublishStatus as an exit code.
 int PublishExitCode(const base::PublishError& error);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdlib>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -49,26 +50,31 @@ TEST(ValidationCacheTest, TheFolderGivenWins) {
     EXPECT_EQ(cache->Folder(), "/given");
 }
 
-TEST(ValidationCacheTest, AnAbsoluteXdgCacheHomeComesBeforeHome) {
-    const ScopedEnv xdg("XDG_CACHE_HOME", "/xdg");
-    const ScopedEnv home("HOME", "/home/u");
-    const auto cache = OpenValidationCache({});
-    ASSERT_NE(cache, nullptr);
-    EXPECT_EQ(cache->Folder(), "/xdg/tidepool");
-}
-
-TEST(ValidationCacheTest, ARelativeXdgCacheHomeIsIgnored) {
-    const ScopedEnv xdg("XDG_CACHE_HOME", "relative");
-    const ScopedEnv home("HOME", "/home/u");
-    const auto cache = OpenValidationCache({});
-    ASSERT_NE(cache, nullptr);
-    EXPECT_EQ(cache->Folder(), "/home/u/.cache/tidepool");
-}
-
-TEST(ValidationCacheTest, NoFolderCanBeNamedWithoutXdgOrHome) {
-    const ScopedEnv xdg("XDG_CACHE_HOME", nullptr);
-    const ScopedEnv home("HOME", nullptr);
-    EXPECT_EQ(OpenValidationCache({}), nullptr);
+TEST(ValidationCacheTest, TheDefaultFolderFollowsTheXdgRules) {
+    struct Case {
+        const char* xdg;     // XDG_CACHE_HOME; null: unset
+        const char* home;    // HOME; null: unset
+        const char* folder;  // the cache's folder; null: no cache
+        const char* why;
+    };
+    const Case cases[] = {
+            {"/xdg", "/home/u", "/xdg/tidepool", "an absolute XDG_CACHE_HOME comes first"},
+            {"relative", "/home/u", "/home/u/.cache/tidepool", "a relative one is ignored"},
+            {nullptr, "/home/u", "/home/u/.cache/tidepool", "else HOME"},
+            {nullptr, "relative", nullptr, "a relative HOME names no folder"},
+            {nullptr, nullptr, nullptr, "nothing names a folder"},
+    };
+    for (const Case& c : cases) {
+        const ScopedEnv xdg("XDG_CACHE_HOME", c.xdg);
+        const ScopedEnv home("HOME", c.home);
+        const std::unique_ptr<base::ContentCache> cache = OpenValidationCache({});
+        if (c.folder == nullptr) {
+            EXPECT_EQ(cache, nullptr) << c.why;
+        } else {
+            ASSERT_NE(cache, nullptr) << c.why;
+            EXPECT_EQ(cache->Folder(), c.folder) << c.why;
+        }
+    }
 }
 
 }  // namespace
