@@ -31,6 +31,13 @@ public:
                           .string();
     }
 
+    /// Makes the variants with B fail to compile: an undeclared identifier on s.fsh line 5.
+    void BreakFeatureB() const {
+        dir_.Write("s.fsh",
+                   "#version 100\nprecision mediump float;\nvoid main() {\n#ifdef B\n"
+                   "  gl_FragColor = nope;\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n");
+    }
+
     const TempDir& Dir() const { return dir_; }
     const std::string& Config() const { return config_; }
 

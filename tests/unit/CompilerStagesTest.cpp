@@ -56,9 +56,7 @@ TEST(CompilerStagesTest, ValidateMatrixOfValidShadersIsOkAndWritesTheManifest) {
 
 TEST(CompilerStagesTest, ValidateMatrixWithAnErrorIsInvalidWithTheDiagnostic) {
     const SmallMatrix matrix;
-    matrix.Dir().Write("s.fsh",
-                       "#version 100\nprecision mediump float;\nvoid main() {\n#ifdef B\n"
-                       "  gl_FragColor = nope;\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n");
+    matrix.BreakFeatureB();
     ValidateOptions options;
     options.config = matrix.Config();
     options.jobs = 1;
@@ -122,9 +120,7 @@ TEST(CompilerStagesTest, StaticCostsHaveOneRowPerValidVariant) {
 
 TEST(CompilerStagesTest, StaticCostsLeaveOutInvalidVariantsAndSayWhy) {
     const SmallMatrix matrix;
-    matrix.Dir().Write("s.fsh",
-                       "#version 100\nprecision mediump float;\nvoid main() {\n#ifdef B\n"
-                       "  gl_FragColor = nope;\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n");
+    matrix.BreakFeatureB();
     StatsOptions options;
     options.config = matrix.Config();
     options.jobs = 1;

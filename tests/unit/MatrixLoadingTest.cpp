@@ -73,11 +73,19 @@ TEST(MatrixLoadingTest, AMissingFileIsAUsageErrorNamingIt) {
     EXPECT_NE(Formatted(loaded.outcome.diagnostics).find("/nonexistent/v.yaml"), std::string::npos);
 }
 
+// The small matrix loaded, then narrowed to `program`.
+LoadedMatrix LoadOnly(const SmallMatrix& matrix, const std::string& program) {
+    LoadedMatrix loaded = LoadMatrix(matrix.Config());
+    EXPECT_TRUE(loaded.config.has_value()) << Formatted(loaded.outcome.diagnostics);
+    if (loaded.config) {
+        KeepOnlyProgram(&loaded, program);
+    }
+    return loaded;
+}
+
 TEST(MatrixLoadingTest, KeepOnlyProgramNarrowsVariantsAndPrograms) {
     const SmallMatrix matrix;
-    LoadedMatrix loaded = LoadMatrix(matrix.Config());
-    ASSERT_TRUE(loaded.config.has_value());
-    KeepOnlyProgram(&loaded, "q");
+    const LoadedMatrix loaded = LoadOnly(matrix, "q");
     ASSERT_TRUE(loaded.config.has_value());
     EXPECT_EQ(loaded.outcome.status, Status::kOk);
     ASSERT_EQ(loaded.config->programs.size(), 1U);
@@ -88,9 +96,7 @@ TEST(MatrixLoadingTest, KeepOnlyProgramNarrowsVariantsAndPrograms) {
 
 TEST(MatrixLoadingTest, KeepOnlyAnUnknownProgramNamesThePrograms) {
     const SmallMatrix matrix;
-    LoadedMatrix loaded = LoadMatrix(matrix.Config());
-    ASSERT_TRUE(loaded.config.has_value());
-    KeepOnlyProgram(&loaded, "r");
+    const LoadedMatrix loaded = LoadOnly(matrix, "r");
     EXPECT_FALSE(loaded.config.has_value());
     EXPECT_EQ(loaded.outcome.status, Status::kUsage);
     EXPECT_EQ(Formatted(loaded.outcome.diagnostics),
