@@ -1,74 +1,40 @@
 #include "CliSupport.h"
 
-#include "tidepool/Manifest.h"
-#include "tidepool/base/AtomicFile.h"
+#include "tidepool/pipeline/OutputFiles.h"
 
-#include <algorithm>
-#include <charconv>
 #include <cstdio>
-#include <cstdlib>
-#include <fstream>
 #include <memory>
-#include <thread>
 #include <utility>
 
 #include "Commands.h"
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 namespace tidepool::cli {
 
+int PrintOutcome(const pipeline::Outcome& outcome) {
+    PrintDiagnostics(outcome.diagnostics);
+    return pipeline::ExitCode(outcome.status);
+}
+
 int PublishExitCode(const base::PublishError& error) {
-    return error.failure == base::PublishFailure::kRefused ? kExitUsage : kExitEnvironment;
+    return pipeline::ExitCode(pipeline::PublishStatus(error));
 }
 
 std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
                                                        const std::string& writer, int* exit_code) {
-    base::PublishError begin;
+    pipeline::Outcome outcome;
     std::unique_ptr<base::FolderPublisher> publisher =
-            base::FolderPublisher::Begin(target, writer, &begin);
+            pipeline::BeginPublishing(target, writer, &outcome);
     if (!publisher) {
-        std::fprintf(stderr, "error: %s\n", begin.message.c_str());
-        *exit_code = PublishExitCode(begin);
+        *exit_code = PrintOutcome(outcome);
     }
     return publisher;
 }
 
-int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& file_name,
-                     const std::string& schema, const std::string& what, const std::string& text,
-                     bool check_only) {
-    const std::filesystem::path path = folder / file_name;
-    std::error_code ec;
-    if (std::filesystem::exists(path, ec) && !base::IsTidepoolOutput(folder)) {
-        // A file named manifest.json is common (web apps, packages); the schema key inside it
-        // is what says it is ours.
-        std::ifstream in(path, std::ios::binary);
-        const nlohmann::json existing = nlohmann::json::parse(in, nullptr, false);
-        const bool ours =
-                existing.is_object() && existing.contains("schema") && existing["schema"] == schema;
-        if (!ours) {
-            std::fprintf(stderr,
-                         "error: %s: exists and is not a tidepool %s (no \"schema\": "
-                         "\"%s\"); nothing was changed. Choose another --out folder, or "
-                         "move the file yourself.\n",
-                         path.c_str(), what.c_str(), schema.c_str());
-            return kExitUsage;
-        }
-    }
-    if (check_only) {
-        return kExitOk;
-    }
-    if (std::string error = base::WriteFileAtomically(path, text); !error.empty()) {
-        std::fprintf(stderr, "error: %s\n", error.c_str());
-        return kExitEnvironment;
-    }
-    return kExitOk;
-}
-
 int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
                       bool check_only) {
-    return WriteOwnJsonInto(folder, "manifest.json", kManifestSchema, "manifest", text, check_only);
+    return PrintOutcome(pipeline::WriteManifest(folder, text, check_only));
 }
 
 int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
@@ -88,39 +54,6 @@ void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
     for (const Diagnostic& d : diagnostics) {
         std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
     }
-}
-
-std::string CpuModel() {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line)) {
-        if (line.rfind("model name", 0) == 0) {
-            const auto colon = line.find(':');
-            if (colon != std::string::npos) {
-                return line.substr(line.find_first_not_of(' ', colon + 1));
-            }
-        }
-    }
-    return "unknown";
-}
-
-std::string GitRevision(const std::filesystem::path& folder) {
-    const std::string command =
-            fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
-    FILE* pipe = popen(command.c_str(), "r");
-    if (pipe == nullptr) {
-        return "unknown";
-    }
-    char buffer[128] = {0};
-    std::string revision;
-    if (std::fgets(buffer, sizeof buffer, pipe) != nullptr) {
-        revision = buffer;
-    }
-    pclose(pipe);
-    while (!revision.empty() && (revision.back() == '\n' || revision.back() == '\r')) {
-        revision.pop_back();
-    }
-    return revision.empty() ? "unknown" : revision;
 }
 
 bool ParseSize(const std::string& text, int min_side, int* width, int* height, int max_side) {
@@ -156,20 +89,11 @@ bool ParseSizeOption(std::string_view flag, const std::string& text, int min_sid
 
 bool ParseCountOption(std::string_view flag, const std::string& text, std::uint64_t min,
                       std::uint64_t max, std::string_view hint, std::uint64_t* value) {
-    // Digits only: CLI11 and strtoull would wrap "-1" into 2^64-1 and accept "1e3" as 1.
-    std::uint64_t parsed = 0;
-    const char* end = text.data() + text.size();
-    const bool digits = !text.empty() && std::all_of(text.begin(), text.end(),
-                                                     [](char c) { return c >= '0' && c <= '9'; });
-    if (digits && std::from_chars(text.data(), end, parsed).ec == std::errc() && parsed >= min &&
-        parsed <= max) {
-        *value = parsed;
+    if (pipeline::ParseWholeNumber(text, min, max, value)) {
         return true;
     }
-    std::fprintf(stderr, "error: %.*s must be a whole number from %llu to %llu%s%.*s, not '%s'\n",
-                 static_cast<int>(flag.size()), flag.data(), static_cast<unsigned long long>(min),
-                 static_cast<unsigned long long>(max), hint.empty() ? "" : " ",
-                 static_cast<int>(hint.size()), hint.data(), text.c_str());
+    std::fprintf(stderr, "error: %s\n",
+                 pipeline::WholeNumberError(flag, text, min, max, hint).c_str());
     return false;
 }
 
@@ -186,46 +110,17 @@ void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits) {
                                   kVariantCeiling, kLargeVariantCeiling));
 }
 
+void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLimits* limits) {
+    command->add_option("--config", *config, "variant matrix file")->capture_default_str();
+    command->add_flag("--json", *json, "print JSON instead of text");
+    AddMatrixLimitOptions(command, limits);
+}
+
 LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits) {
-    LoadedMatrix loaded;
-    ExpansionOptions expansion_options;
-    expansion_options.allow_large_matrix = limits.allow_large_matrix;
-    expansion_options.pruned_limit = limits.pruned_limit;
-    if (limits.max_variants) {
-        const std::uint64_t ceiling =
-                limits.allow_large_matrix ? kLargeVariantCeiling : kVariantCeiling;
-        const std::string hint =
-                limits.allow_large_matrix
-                        ? std::string()
-                        : fmt::format("(up to {} with --allow-large-matrix)", kLargeVariantCeiling);
-        if (!ParseCountOption("--max-variants", *limits.max_variants, 1, ceiling, hint,
-                              &expansion_options.max_variants)) {
-            loaded.exit_code = kExitUsage;
-            return loaded;
-        }
-        expansion_options.limit_origin = "--max-variants";
-    }
-    ConfigResult config = LoadVariantConfig(config_path);
-    PrintDiagnostics(config.diagnostics);
-    if (!config.config) {
-        loaded.exit_code = kExitUsage;
-        return loaded;
-    }
-    if (!limits.max_variants) {
-        expansion_options.max_variants = config.config->max_variants;
-        if (!config.config->max_variants_where.file.empty()) {
-            expansion_options.limit_origin = "max_variants";
-            expansion_options.limit_where = config.config->max_variants_where;
-        }
-    }
-    loaded.expansion = ExpandVariants(*config.config, expansion_options);
-    PrintDiagnostics(loaded.expansion.diagnostics);
-    if (HasErrors(loaded.expansion.diagnostics)) {
-        loaded.exit_code = kExitUsage;
-        return loaded;
-    }
-    loaded.config = std::move(config.config);
-    return loaded;
+    pipeline::LoadedMatrix loaded = pipeline::LoadMatrix(config_path, limits);
+    PrintDiagnostics(loaded.outcome.diagnostics);
+    return {std::move(loaded.config), std::move(loaded.expansion),
+            pipeline::ExitCode(loaded.outcome.status)};
 }
 
 std::string NormaliseOutPath(std::string path) {
@@ -272,41 +167,13 @@ void AddCacheFlags(CLI::App* command, CacheFlags* flags) {
 }
 
 std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags) {
-    if (flags.off) {
-        return nullptr;
-    }
-    if (!flags.folder.empty()) {
-        return std::make_unique<base::ContentCache>(flags.folder);
-    }
-    // The XDG base directory rules: a relative $XDG_CACHE_HOME is invalid and ignored.
-    const char* xdg = std::getenv("XDG_CACHE_HOME");
-    if (xdg != nullptr && xdg[0] == '/') {
-        return std::make_unique<base::ContentCache>(std::filesystem::path(xdg) / "tidepool");
-    }
-    const char* home = std::getenv("HOME");
-    if (home != nullptr && home[0] == '/') {
-        return std::make_unique<base::ContentCache>(std::filesystem::path(home) / ".cache" /
-                                                    "tidepool");
-    }
-    return nullptr;
+    return pipeline::OpenValidationCache(flags);
 }
 
 void WarnAboutCache(const base::ContentCache* cache) {
-    if (cache == nullptr) {
-        return;
+    if (const std::optional<Diagnostic> warning = pipeline::CacheWarning(cache)) {
+        PrintDiagnostics({*warning});
     }
-    const base::ContentCacheStats stats = cache->Stats();
-    if (!stats.error.empty()) {
-        std::fprintf(stderr,
-                     "warning: validation cache %s: %s (results were not kept; use "
-                     "--cache DIR or --no-cache)\n",
-                     cache->Folder().c_str(), stats.error.c_str());
-    }
-}
-
-int DefaultJobs() {
-    const unsigned cores = std::thread::hardware_concurrency();
-    return cores == 0 ? 1 : static_cast<int>(cores);
 }
 
 }  // namespace tidepool::cli

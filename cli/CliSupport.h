@@ -1,5 +1,7 @@
-// Small pieces every `tidepool` command shares: printing diagnostics, reading the host, sizes.
-// Nothing here needs GL: the GL commands' own pieces are in GlCliSupport.h.
+// Small pieces every `tidepool` command shares: flags, parsing their values, printing a stage's
+// outcome. Nothing here needs GL: the GL commands' own pieces are in GlCliSupport.h. What the
+// stages do is in the pipeline library (pipeline/); the few declarations below that forward to
+// it keep the commands not yet moved there (RunCommand.cpp) unchanged.
 #pragma once
 
 #include "tidepool/Diagnostic.h"
@@ -7,6 +9,10 @@
 #include "tidepool/VariantExpander.h"
 #include "tidepool/base/ContentCache.h"
 #include "tidepool/base/FolderPublisher.h"
+#include "tidepool/pipeline/Host.h"
+#include "tidepool/pipeline/MatrixLoading.h"
+#include "tidepool/pipeline/Outcome.h"
+#include "tidepool/pipeline/ValidationCache.h"
 
 #include <cstdint>
 #include <filesystem>
@@ -27,27 +33,21 @@ inline constexpr const char* kAppDescription =
         "tidepool: shader-variant compiler and validation toolchain for GLSL ES water effects";
 inline constexpr const char* kVersionText = "tidepool 0.1.0";
 
-/// The exit code of a failed publication: kExitUsage when the folder is someone else's (choose
-/// another), kExitEnvironment when the file system failed (disk full, permissions).
+/// Prints `outcome`'s diagnostics on stderr and returns its status as the exit code.
+int PrintOutcome(const pipeline::Outcome& outcome);
+
+// Forwarding to the pipeline for RunCommand.cpp and GlCliSupport.cpp, which are being moved onto
+// the pipeline separately: PublishExitCode, BeginPublishing, WriteManifestInto, CpuModel,
+// DefaultJobs, GitRevision, LoadedMatrix, LoadAndExpand, OpenCache and WarnAboutCache.
+
+/// pipeline::PublishStatus as an exit code.
 int PublishExitCode(const base::PublishError& error);
 
-/// Begins publishing the output folder `target` for `writer` ("tidepool expand"); on failure
-/// prints why and sets `*exit_code` (PublishExitCode) and returns null.
+/// pipeline::BeginPublishing, printing why not and setting `*exit_code` on failure.
 std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
                                                        const std::string& writer, int* exit_code);
 
-/// Writes `text` to `folder`/`file_name` atomically, refusing (exit kExitUsage, message printed
-/// naming the file as not a tidepool `what`, nothing changed) to overwrite a file there whose
-/// "schema" is not `schema`, unless the folder carries tidepool's marker. Returns kExitOk, or
-/// kExitEnvironment (message printed) when the write fails. With `check_only`, writes nothing.
-int WriteOwnJsonInto(const std::filesystem::path& folder, const std::string& file_name,
-                     const std::string& schema, const std::string& what, const std::string& text,
-                     bool check_only = false);
-
-/// Writes the manifest `text` to `folder`/manifest.json atomically, refusing (exit kExitUsage,
-/// message printed, nothing changed) to overwrite a manifest.json that is not tidepool's (its
-/// "schema" is not kManifestSchema) unless the folder carries tidepool's marker. Returns kExitOk,
-/// or kExitEnvironment (message printed) when the write fails. With `check_only`, writes nothing.
+/// pipeline::WriteManifest, printing why not; returns the exit code.
 int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
                       bool check_only = false);
 
@@ -59,11 +59,9 @@ int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code);
 /// Prints each diagnostic in GCC form on stderr, one per line.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
-/// The CPU's model name from /proc/cpuinfo, or "unknown".
-std::string CpuModel();
-
-/// `git rev-parse HEAD` in `folder`, or "unknown" outside a repository or without git.
-std::string GitRevision(const std::filesystem::path& folder);
+using pipeline::CpuModel;
+using pipeline::DefaultJobs;
+using pipeline::GitRevision;
 
 /// The largest render target side the commands accept.
 inline constexpr int kMaxRenderSide = 8192;
@@ -77,7 +75,7 @@ bool ParseSize(const std::string& text, int min_side, int* width, int* height,
 bool ParseSizeOption(std::string_view flag, const std::string& text, int min_side, int* width,
                      int* height, int max_side = kMaxRenderSide);
 
-/// A configuration file loaded and expanded, or the exit code of why not.
+/// A configuration file loaded and expanded, or the exit code of why not (LoadAndExpand).
 struct LoadedMatrix {
     std::optional<VariantConfig> config;
     ExpansionResult expansion;
@@ -90,20 +88,15 @@ struct LoadedMatrix {
 bool ParseCountOption(std::string_view flag, const std::string& text, std::uint64_t min,
                       std::uint64_t max, std::string_view hint, std::uint64_t* value);
 
-/// How many valid variants a command may expand, and how many pruned combinations it lists.
-struct MatrixLimits {
-    std::optional<std::string> max_variants;  // --max-variants as typed; none: the file's
-    bool allow_large_matrix = false;          // --allow-large-matrix: limits above kVariantCeiling
-    std::uint64_t pruned_limit = 0;           // pruned combinations to list (expand --pruned)
-};
+using MatrixLimits = pipeline::MatrixLimits;
 
 /// Adds --max-variants and --allow-large-matrix to `command`, writing into `limits`.
 void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits);
 
-/// Loads `config_path` and expands it (to at most --max-variants valid variants, or the file's
-/// own max_variants), printing every diagnostic; fails through exit_code kExitUsage (and no
-/// config) when --max-variants is out of range, the file does not load or the expansion has
-/// errors.
+/// Adds what expand, validate and stats share: --config, --json and the matrix limits.
+void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLimits* limits);
+
+/// pipeline::LoadMatrix, printing every diagnostic.
 LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits = {});
 
 /// An --out folder as every command uses it: lexically normal and without a trailing slash, so
@@ -117,23 +110,15 @@ std::string NormaliseOutPath(std::string path);
 bool CheckDefineOptions(const std::vector<std::string>& defines);
 
 /// --cache DIR and --no-cache as a command received them.
-struct CacheFlags {
-    std::string folder;  // --cache; "" for the default folder
-    bool off = false;    // --no-cache
-};
+using CacheFlags = pipeline::CacheChoice;
 
 /// Adds --cache DIR and --no-cache (mutually exclusive) to `command`, writing into `flags`.
 void AddCacheFlags(CLI::App* command, CacheFlags* flags);
 
-/// The validation cache the flags ask for: --cache DIR, else $XDG_CACHE_HOME/tidepool (when
-/// absolute), else $HOME/.cache/tidepool; none with --no-cache or when no folder can be named.
+/// pipeline::OpenValidationCache.
 std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags);
 
-/// Prints "warning: validation cache DIR: ..." on stderr when the cache could not be written or
-/// trimmed (validation itself is unaffected).
+/// Prints pipeline::CacheWarning, if any, on stderr.
 void WarnAboutCache(const base::ContentCache* cache);
-
-/// Validation jobs when the user gives none: one per core (1 when unknown).
-int DefaultJobs();
 
 }  // namespace tidepool::cli

@@ -18,10 +18,16 @@ enum ExitCode : int {
     kExitEnvironment = 3,   // no EGL/OSMesa, no GL context
 };
 
-/// `tidepool expand`, `tidepool validate`, `tidepool stats` (the compiler side).
-void RegisterCompilerCommands(CLI::App& app, int& exit_code);
+/// `tidepool expand` (ExpandCommand.cpp).
+void RegisterExpandCommand(CLI::App& app, int& exit_code);
 
-/// `tidepool render`, `tidepool bench` (the runner side; `tidepool-gl` only).
+/// `tidepool validate` (ValidateCommand.cpp).
+void RegisterValidateCommand(CLI::App& app, int& exit_code);
+
+/// `tidepool stats` (StatsCommand.cpp).
+void RegisterStatsCommand(CLI::App& app, int& exit_code);
+
+/// `tidepool render`, `tidepool bench` (RenderCommands.cpp; `tidepool-gl` only).
 void RegisterRunnerCommands(CLI::App& app, int& exit_code);
 
 /// `tidepool report` (from saved manifest and results; needs no GL).

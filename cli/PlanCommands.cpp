@@ -1,28 +1,17 @@
-// `tidepool plan`: flags → plan options → PlanScene per scene → print → plans.json → exit code.
+// `tidepool plan`: flags → pipeline::PreparePlans and pipeline::PlanScenes → each plan → exit
+// code.
 #include "PlanCommands.h"
 
 #include "tidepool/Manifest.h"
-#include "tidepool/SceneDescription.h"
-#include "tidepool/VariantConfig.h"
-#include "tidepool/base/AtomicFile.h"
-#include "tidepool/base/FolderPublisher.h"
-#include "tidepool/lab/ScenePlanner.h"
-#include "tidepool/report/ReportInputs.h"
-#include "tidepool/runner/GlBackend.h"
-#include "tidepool/runner/Results.h"
+#include "tidepool/pipeline/PlanStage.h"
 
-#include <algorithm>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
 #include <memory>
 #include <string>
-#include <vector>
 
 #include "CliSupport.h"
 #include "Commands.h"
 #include "GlCliSupport.h"
-#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
@@ -31,15 +20,10 @@ namespace {
 constexpr int kMinPlanSide = 16;
 
 struct PlanCommandOptions {
-    std::string config = "variants.yaml";
-    std::vector<std::string> scenes;
-    bool all = false;
+    pipeline::PlanRequest request;
     std::string size = "320x240";
-    double resolution = 3.0;
     std::string backend = "auto";
-    int threads = 0;
     bool json = false;
-    std::string out;
 };
 
 void PrintPlan(const runner::ScenePlan& plan) {
@@ -81,130 +65,41 @@ void PrintPlan(const runner::ScenePlan& plan) {
             plan.passes_saved, plan.draws_saved);
 }
 
-int RunPlan(const PlanCommandOptions& options) {
-    using namespace tidepool::runner;
-    PlanOptions plan_options;
-    if (!ParseSizeOption("--size", options.size, kMinPlanSide, &plan_options.settings.width,
-                         &plan_options.settings.height)) {
+int RunPlan(PlanCommandOptions options) {
+    pipeline::PlanRequest& request = options.request;
+    if (!ParseSizeOption("--size", options.size, kMinPlanSide, &request.width, &request.height) ||
+        !ParseBackendOption(options.backend, &request.backend)) {
         return kExitUsage;
     }
-    BackendKind backend = BackendKind::kAuto;
-    if (!ParseBackendOption(options.backend, &backend)) {
-        return kExitUsage;
-    }
-    if (!(options.resolution > 0 && options.resolution <= 50) || options.threads < 0 ||
-        options.threads > 64) {
+    if (!(request.resolution > 0 && request.resolution <= 50) || request.threads < 0 ||
+        request.threads > 64) {
         std::fprintf(stderr,
                      "error: --resolution must be above 0 and at most 50 percent points, "
                      "--threads between 0 and 64\n");
         return kExitUsage;
     }
-    if (options.all == !options.scenes.empty()) {
+    if (request.all == !request.scenes.empty()) {
         std::fprintf(stderr, "error: give either --scene NAME (repeatable) or --all\n");
         return kExitUsage;
     }
-    plan_options.rule.resolution_points = options.resolution;
-
-    ConfigResult loaded = LoadVariantConfig(options.config);
-    for (const Diagnostic& d : loaded.diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+    pipeline::PreparedPlans prepared = pipeline::PreparePlans(request);
+    if (const int code = PrintOutcome(prepared.outcome); prepared.outcome.Stopped()) {
+        return code;
     }
-    if (!loaded.config) {
-        return kExitUsage;
-    }
-    const VariantConfig& config = *loaded.config;
-    const std::filesystem::path scene_dir = config.base_dir / "scenes";
-    std::vector<std::filesystem::path> paths;
-    if (options.all) {
-        std::error_code ec;
-        for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
-            if (entry.path().extension() == ".yaml") {
-                paths.push_back(entry.path());
-            }
-        }
-        std::sort(paths.begin(), paths.end());
-        if (paths.empty()) {
-            std::fprintf(stderr, "error: no scenes/*.yaml next to %s\n", options.config.c_str());
-            return kExitUsage;
-        }
-    } else {
-        for (const std::string& name : options.scenes) {
-            paths.push_back(scene_dir / (name + ".yaml"));
-        }
-    }
-    std::vector<SceneDescription> scenes;
-    bool bad = false;
-    for (const std::filesystem::path& path : paths) {
-        SceneResult scene = LoadSceneDescription(path);
-        for (const Diagnostic& d : scene.diagnostics) {
-            std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-        }
-        if (scene.scene) {
-            scenes.push_back(std::move(*scene.scene));
-        } else {
-            bad = true;
-        }
-    }
-    if (bad) {
-        return kExitUsage;
-    }
-
-    // The output folder (plans.json and the candidates' images) is published whole: a folder
-    // that is not tidepool's is refused before any rendering, and a killed run leaves the
-    // previous plans as they were.
-    std::string out = options.out;
-    if (out.empty() && options.all) {
-        out = "reports/out/plan";
-    }
-    std::unique_ptr<base::FolderPublisher> publisher;
-    if (!out.empty()) {
-        int begin_code = kExitOk;
-        publisher = BeginPublishing(out, "tidepool plan", &begin_code);
-        if (!publisher) {
-            return begin_code;
-        }
-        plan_options.out_dir = publisher->Staging();
-    }
-
-    // llvmpipe reads its thread count when the first context is created.
-    const std::string threads = std::to_string(options.threads);
-    setenv("LP_NUM_THREADS", threads.c_str(), 1);
-    GlContextResult context = CreateGlContext(backend);
-    if (!context.context) {
-        std::fprintf(stderr, "error: %s\n", context.error.c_str());
-        return kExitEnvironment;
-    }
-    plan_options.clock = ChooseFrameClock(context.context->Environment().renderer, threads,
-                                          context.context->Environment().timer_query)
-                                 .clock;
-    std::vector<ScenePlan> plans;
-    int failed = 0;
-    for (const SceneDescription& scene : scenes) {
-        plans.push_back(PlanScene(*context.context, config, scene, plan_options));
-        if (!options.json) {
-            PrintPlan(plans.back());
-        }
-        failed += plans.back().chosen < 0 ? 1 : 0;
-    }
-    const nlohmann::json json = PlansToJson(plans, plan_options);
+    const pipeline::PlanResult result = pipeline::PlanScenes(prepared);
     if (options.json) {
-        std::printf("%s\n", JsonText(json, 2).c_str());
-    }
-    if (publisher) {
-        const std::string error = base::WriteFileAtomically(
-                publisher->Staging() / report::kPlansFileName, JsonText(json, 2) + "\n");
-        if (!error.empty()) {
-            std::fprintf(stderr, "error: %s\n", error.c_str());
-            return kExitEnvironment;
+        std::printf("%s\n", JsonText(result.json, 2).c_str());
+    } else {
+        for (const runner::ScenePlan& plan : result.plans) {
+            PrintPlan(plan);
         }
-        if (const base::PublishError e = publisher->Publish(); e.Failed()) {
-            std::fprintf(stderr, "error: %s\n", e.message.c_str());
-            return PublishExitCode(e);
-        }
-        const std::filesystem::path path = publisher->Target() / report::kPlansFileName;
-        std::fprintf(stderr, "plan: %zu scenes; plans in %s\n", plans.size(), path.c_str());
     }
-    return failed > 0 ? kExitShaderErrors : kExitOk;
+    const int code = PrintOutcome(result.outcome);
+    if (!result.outcome.Stopped() && !result.path.empty()) {
+        std::fprintf(stderr, "plan: %zu scenes; plans in %s\n", result.plans.size(),
+                     result.path.c_str());
+    }
+    return code;
 }
 
 }  // namespace
@@ -212,22 +107,23 @@ int RunPlan(const PlanCommandOptions& options) {
 void RegisterPlanCommands(CLI::App& app, int& exit_code) {
     auto options = std::make_shared<PlanCommandOptions>();
     CLI::App* plan = app.add_subcommand("plan", GlCommandSummary("plan"));
-    plan->add_option("--config", options->config, "variants.yaml to read; scenes/ lies next to it")
+    plan->add_option("--config", options->request.config,
+                     "variants.yaml to read; scenes/ lies next to it")
             ->capture_default_str();
-    plan->add_option("--scene", options->scenes, "plan scenes/NAME.yaml (repeatable)");
-    plan->add_flag("--all", options->all, "plan every scenes/*.yaml and write plans.json");
+    plan->add_option("--scene", options->request.scenes, "plan scenes/NAME.yaml (repeatable)");
+    plan->add_flag("--all", options->request.all, "plan every scenes/*.yaml and write plans.json");
     plan->add_option("--size", options->size, "render size WxH")->capture_default_str();
-    plan->add_option("--resolution", options->resolution,
+    plan->add_option("--resolution", options->request.resolution,
                      "time each candidate against the full effect, pair by pair, until its 95% "
                      "interval is this narrow (half-width, percent points)")
             ->capture_default_str();
     plan->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
             ->capture_default_str();
-    plan->add_option("--threads", options->threads,
+    plan->add_option("--threads", options->request.threads,
                      "llvmpipe threads (LP_NUM_THREADS; 0 renders on the calling thread)")
             ->capture_default_str();
     plan->add_flag("--json", options->json, "print plans.json to stdout");
-    plan->add_option("--out", options->out,
+    plan->add_option("--out", options->request.out,
                      "folder for plans.json (default reports/out/plan with --all)")
             ->transform(NormaliseOutPath);
     plan->callback([options, &exit_code] { exit_code = RunPlan(*options); });

@@ -9,7 +9,9 @@
 int main(int argc, char** argv) {
     CLI::App app{tidepool::cli::kAppDescription};
     int exit_code = tidepool::cli::kExitOk;
-    tidepool::cli::RegisterCompilerCommands(app, exit_code);
+    tidepool::cli::RegisterExpandCommand(app, exit_code);
+    tidepool::cli::RegisterValidateCommand(app, exit_code);
+    tidepool::cli::RegisterStatsCommand(app, exit_code);
     tidepool::cli::RegisterRunnerCommands(app, exit_code);
     tidepool::cli::RegisterReportCommand(app, exit_code);
     tidepool::cli::RegisterRunCommand(app, exit_code);

@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
     CLI::App app{tidepool::cli::kAppDescription};
     int exit_code = tidepool::cli::kExitOk;
     // The order of the help list is the order tidepool-gl registers the commands in.
-    tidepool::cli::RegisterCompilerCommands(app, exit_code);
+    tidepool::cli::RegisterExpandCommand(app, exit_code);
+    tidepool::cli::RegisterValidateCommand(app, exit_code);
+    tidepool::cli::RegisterStatsCommand(app, exit_code);
     ListGlCommands(app, {"render", "bench"});
     tidepool::cli::RegisterReportCommand(app, exit_code);
     ListGlCommands(app, {"run", "stability", "plan"});

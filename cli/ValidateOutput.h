@@ -1,0 +1,32 @@
+// How `tidepool validate` prints or writes what it found: diagnostics aside, a one-line summary,
+// the manifest as JSON, or a SARIF log, on stdout or in --output-file.
+#pragma once
+
+#include "tidepool/pipeline/CompilerStages.h"
+
+#include <string>
+
+namespace tidepool::cli {
+
+/// `tidepool validate`'s flags, as the pipeline's options and the output's own.
+struct ValidateCommandOptions {
+    pipeline::ValidateOptions matrix;
+    pipeline::ValidateFilesOptions files;  // plain shader files: files, stage, defines
+    bool json = false;
+    std::string format = "text";  // text, json (as --json) or sarif
+    std::string output_file;      // where json or sarif goes instead of stdout
+    std::string target;           // --target webgl1|webgl2
+
+    // The report format asked for: --json is --format json.
+    std::string Format() const { return json ? "json" : format; }
+};
+
+/// Prints the summary, or emits the JSON or SARIF report of plain files; returns the exit code
+/// (kExitEnvironment when --output-file cannot be written, else the result's status).
+int ReportFiles(const ValidateCommandOptions& options, const pipeline::ValidateFilesResult& result);
+
+/// Prints the summary, or emits the manifest or SARIF report of a configuration; returns the exit
+/// code as ReportFiles does.
+int ReportMatrix(const ValidateCommandOptions& options, const pipeline::ValidateResult& result);
+
+}  // namespace tidepool::cli

@@ -1,0 +1,50 @@
+// What `expand` and `validate` write for a build system (the CMake module
+// cmake/TidepoolShaderVariants.cmake): driver-ready sources that keep their time stamp when
+// unchanged, and a depfile naming every file the command read.
+#pragma once
+
+#include "tidepool/SourceAssembler.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+#include "tidepool/pipeline/Outcome.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace tidepool::pipeline {
+
+/// Every file a command reads for `config`: the configuration itself, then each program's vertex
+/// and fragment shader, once each, as absolute paths.
+std::vector<std::filesystem::path> FilesRead(const VariantConfig& config);
+
+/// A Make-syntax depfile (Ninja and Make both read it): `target: dep dep ...`, spaces, '#' and
+/// '$' escaped as both tools expect.
+std::string DepfileText(const std::filesystem::path& target,
+                        const std::vector<std::filesystem::path>& dependencies);
+
+/// Writes DepfileText(target, FilesRead(config)) to `depfile` atomically; on failure records
+/// "error: --depfile: why" (kEnvironment) in `outcome` and returns false.
+bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
+                  const VariantConfig& config, Outcome* outcome);
+
+/// Where a variant's driver-ready stage source lives below an output folder:
+/// `<target>/<program>/<variant id, made a safe file name>.vert|.frag`.
+std::filesystem::path VariantSourcePath(GlslTarget target, const Variant& variant, Stage stage);
+
+/// Writes every variant's driver-ready vertex and fragment source for every target of `config`
+/// below `folder` (at VariantSourcePath), each atomically and only when its content changed, so
+/// that whatever depends on an unchanged variant is not rebuilt. On failure records why in
+/// `outcome` (kUsage: a shader file cannot be read; kEnvironment: a write failed) and returns
+/// false.
+bool WriteVariantSources(const VariantConfig& config, const std::vector<Variant>& variants,
+                         const std::filesystem::path& folder, Outcome* outcome);
+
+/// Records in each variant entry of `manifest` where WriteVariantSources put its stages:
+/// "sources": {"vertex": PATH, "fragment": PATH}, relative to the manifest's folder. Every
+/// variant of the manifest must be among `variants`.
+void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manifest);
+
+}  // namespace tidepool::pipeline

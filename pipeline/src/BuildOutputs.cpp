@@ -1,0 +1,131 @@
+#include "tidepool/pipeline/BuildOutputs.h"
+
+#include "tidepool/TextFile.h"
+#include "tidepool/pipeline/OutputFiles.h"
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace tidepool::pipeline {
+
+std::vector<std::filesystem::path> FilesRead(const VariantConfig& config) {
+    std::vector<std::filesystem::path> files{std::filesystem::absolute(config.path)};
+    for (const ProgramConfig& program : config.programs) {
+        for (const std::string& path : {program.vertex_path, program.fragment_path}) {
+            std::filesystem::path file =
+                    std::filesystem::absolute(config.Resolve(path)).lexically_normal();
+            if (std::find(files.begin(), files.end(), file) == files.end()) {
+                files.push_back(std::move(file));
+            }
+        }
+    }
+    return files;
+}
+
+namespace {
+
+// A path as one word of a Make rule: Make and Ninja's depfile parser both take "\ " for a space,
+// "\#" for '#' and "$$" for '$'.
+std::string DepfileWord(const std::filesystem::path& path) {
+    std::string word;
+    for (const char c : path.string()) {
+        if (c == ' ' || c == '#') {
+            word += '\\';
+        } else if (c == '$') {
+            word += '$';
+        }
+        word += c;
+    }
+    return word;
+}
+
+// True when `path` already holds exactly `content`.
+bool HoldsExactly(const std::filesystem::path& path, const std::string& content) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        return false;
+    }
+    const std::string existing{std::istreambuf_iterator<char>(in),
+                               std::istreambuf_iterator<char>()};
+    return existing == content;
+}
+
+}  // namespace
+
+std::string DepfileText(const std::filesystem::path& target,
+                        const std::vector<std::filesystem::path>& dependencies) {
+    std::string text = DepfileWord(target) + ":";
+    for (const std::filesystem::path& dependency : dependencies) {
+        text += " \\\n  " + DepfileWord(dependency);
+    }
+    return text + "\n";
+}
+
+bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
+                  const VariantConfig& config, Outcome* outcome) {
+    const std::string text =
+            DepfileText(std::filesystem::absolute(target).lexically_normal(), FilesRead(config));
+    return WriteFile(depfile, text, outcome, "--depfile: ");
+}
+
+std::filesystem::path VariantSourcePath(GlslTarget target, const Variant& variant, Stage stage) {
+    std::string name;
+    for (const char c : variant.Id()) {
+        name += (std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-') ? c : '.';
+    }
+    return std::filesystem::path(TargetName(target)) / variant.program /
+           (name + (stage == Stage::kVertex ? ".vert" : ".frag"));
+}
+
+bool WriteVariantSources(const VariantConfig& config, const std::vector<Variant>& variants,
+                         const std::filesystem::path& folder, Outcome* outcome) {
+    std::map<std::string, std::string> sources;  // path → text, read once
+    for (GlslTarget target : config.targets) {
+        for (const Variant& variant : variants) {
+            const ProgramConfig* program = config.FindProgram(variant.program);
+            for (Stage stage : {Stage::kVertex, Stage::kFragment}) {
+                const std::string& path =
+                        stage == Stage::kVertex ? program->vertex_path : program->fragment_path;
+                if (sources.count(path) == 0) {
+                    TextFileRead read = ReadShaderFile(config.Resolve(path));
+                    if (!read.ok) {
+                        outcome->diagnostics.push_back(
+                                MakeError(path, 0, 0, "cannot read shader file: " + read.error));
+                        outcome->status = Status::kUsage;
+                        return false;
+                    }
+                    sources[path] = std::move(read.text);
+                }
+                const std::filesystem::path file =
+                        folder / VariantSourcePath(target, variant, stage);
+                const std::string text =
+                        AssembleDriverSource(sources[path], variant.defines, stage, target);
+                if (!HoldsExactly(file, text) && !WriteFile(file, text, outcome)) {
+                    return false;
+                }
+            }
+        }
+    }
+    return true;
+}
+
+void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manifest) {
+    std::map<std::string, const Variant*> by_id;
+    for (const Variant& variant : variants) {
+        by_id[variant.Id()] = &variant;
+    }
+    for (nlohmann::json& entry : (*manifest)["variants"]) {
+        const Variant& variant = *by_id.at(entry["id"].get<std::string>());
+        GlslTarget target = GlslTarget::kEs100;
+        TargetFromName(entry["target"].get<std::string>(), &target);
+        entry["sources"] = {
+                {"vertex", VariantSourcePath(target, variant, Stage::kVertex).generic_string()},
+                {"fragment",
+                 VariantSourcePath(target, variant, Stage::kFragment).generic_string()}};
+    }
+}
+
+}  // namespace tidepool::pipeline

@@ -1,0 +1,219 @@
+#include "tidepool/pipeline/CompilerStages.h"
+
+#include "tidepool/Manifest.h"
+#include "tidepool/TextFile.h"
+#include "tidepool/pipeline/BuildOutputs.h"
+#include "tidepool/pipeline/Host.h"
+#include "tidepool/pipeline/OutputFiles.h"
+
+#include <map>
+#include <memory>
+#include <utility>
+
+namespace tidepool::pipeline {
+namespace {
+
+// The device limits `path` names, read into `limits`, their diagnostics into `outcome`; false
+// (kUsage) when they cannot be used. No path: true, and `limits` stays empty.
+bool LoadDeviceLimits(const std::string& path, std::optional<DeviceLimits>* limits,
+                      Outcome* outcome) {
+    if (path.empty()) {
+        return true;
+    }
+    DeviceLimitsRead read = ReadDeviceLimits(path);
+    outcome->Add(read.diagnostics);
+    if (!read.ok) {
+        outcome->status = Status::kUsage;
+        return false;
+    }
+    *limits = std::move(read.limits);
+    return true;
+}
+
+// Loads and expands `config`, narrowed to `program` when one is named.
+LoadedMatrix LoadProgram(const std::string& config, const MatrixLimits& limits,
+                         const std::string& program) {
+    LoadedMatrix loaded = LoadMatrix(config, limits);
+    if (loaded.config && !program.empty()) {
+        KeepOnlyProgram(&loaded, program);
+    }
+    return loaded;
+}
+
+// Appends the cache's warning, if any, to `outcome`.
+void WarnAboutCache(const base::ContentCache* cache, Outcome* outcome) {
+    if (const std::optional<Diagnostic> warning = CacheWarning(cache)) {
+        outcome->diagnostics.push_back(*warning);
+    }
+}
+
+}  // namespace
+
+ExpandResult Expand(const ExpandOptions& options) {
+    ExpandResult result;
+    result.matrix = LoadProgram(options.config, options.limits, options.program);
+    if (!result.matrix.config) {
+        return result;
+    }
+    const VariantConfig& config = *result.matrix.config;
+    const ExpansionResult& expansion = result.matrix.expansion;
+    result.manifest = BuildManifest(config, expansion, nullptr);
+    if (options.out.empty()) {
+        return result;
+    }
+    // Everything goes to a private staging folder, removed by the publisher unless published.
+    Outcome& outcome = result.matrix.outcome;
+    const std::unique_ptr<base::FolderPublisher> publisher =
+            BeginPublishing(options.out, "tidepool expand", &outcome);
+    if (!publisher ||
+        !WriteVariantSources(config, expansion.variants, publisher->Staging(), &outcome) ||
+        !WriteFile(publisher->Staging() / "manifest.json", JsonText(result.manifest, 2) + "\n",
+                   &outcome) ||
+        !Publish(*publisher, &outcome)) {
+        return result;
+    }
+    if (!options.depfile.empty()) {
+        WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json", config,
+                     &outcome);
+    }
+    return result;
+}
+
+ValidateResult ValidateMatrix(const ValidateOptions& options) {
+    ValidateResult result;
+    result.matrix = LoadProgram(options.config, options.limits, options.program);
+    Outcome& outcome = result.matrix.outcome;
+    std::optional<DeviceLimits> device_limits;
+    if (!result.matrix.config ||
+        !LoadDeviceLimits(options.device_limits, &device_limits, &outcome)) {
+        return result;
+    }
+    if (options.target) {
+        result.matrix.config->targets = {*options.target};  // instead of the file's `targets`
+    }
+    const VariantConfig& config = *result.matrix.config;
+    const std::vector<Variant>& variants = result.matrix.expansion.variants;
+    // Refused before the validation's work, not after it.
+    if (!options.out.empty()) {
+        if (Outcome check = WriteManifest(options.out, "", true); check.Stopped()) {
+            outcome.Add(check.diagnostics);
+            outcome.status = check.status;
+            return result;
+        }
+    }
+    ValidationOptions validation_options;
+    validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+    validation_options.targets = config.targets;
+    validation_options.limits = device_limits ? &*device_limits : nullptr;
+    const std::unique_ptr<base::ContentCache> cache = OpenValidationCache(options.cache);
+    validation_options.cache = cache.get();
+    result.report = ValidateVariants(config, variants, validation_options);
+    WarnAboutCache(cache.get(), &outcome);
+    outcome.Add(result.report.diagnostics);
+    for (const VariantVerdict& verdict : result.report.verdicts) {
+        outcome.Add(verdict.diagnostics);
+    }
+    // Built only when printed or written: it costs as much as a validation the cache answers.
+    if (options.manifest_wanted || !options.out.empty()) {
+        result.manifest = BuildManifest(config, result.matrix.expansion, &result.report);
+    }
+    if (!options.out.empty()) {
+        if (options.sources) {
+            if (!WriteVariantSources(config, variants, options.out, &outcome)) {
+                return result;
+            }
+            AddSourcePaths(variants, &result.manifest);
+        }
+        if (Outcome write = WriteManifest(options.out, JsonText(result.manifest, 2) + "\n");
+            write.Stopped()) {
+            outcome.Add(write.diagnostics);
+            outcome.status = write.status;
+            return result;
+        }
+        if (!options.depfile.empty() &&
+            !WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json",
+                          config, &outcome)) {
+            return result;
+        }
+    }
+    const bool valid = result.report.InvalidCount() == 0 && !HasErrors(result.report.diagnostics);
+    outcome.status = valid ? Status::kOk : Status::kInvalid;
+    return result;
+}
+
+ValidateFilesResult ValidateFiles(const ValidateFilesOptions& options) {
+    ValidateFilesResult result;
+    Outcome& outcome = result.outcome;
+    std::vector<ShaderFile> files;
+    for (const std::string& path : options.files) {
+        ShaderFile file{path, Stage::kVertex};
+        if (options.stage == "vert" || options.stage == "vertex") {
+            file.stage = Stage::kVertex;
+        } else if (options.stage == "frag" || options.stage == "fragment") {
+            file.stage = Stage::kFragment;
+        } else if (!StageFromExtension(path, &file.stage)) {
+            outcome.diagnostics.push_back(
+                    MakeError(path, 0, 0,
+                              "cannot tell the stage from the extension; use .vert/.vsh, "
+                              ".frag/.fsh or --stage vert|frag"));
+            outcome.status = Status::kUsage;
+            return result;
+        }
+        if (const TextFileRead read = ReadShaderFile(path); !read.ok) {
+            outcome.diagnostics.push_back(
+                    MakeError(path, 0, 0, "cannot read the shader file: " + read.error));
+            outcome.status = Status::kUsage;
+            return result;
+        }
+        files.push_back(file);
+    }
+    std::optional<DeviceLimits> limits;
+    if (!LoadDeviceLimits(options.device_limits, &limits, &outcome)) {
+        return result;
+    }
+    ShaderFileOptions file_options;
+    file_options.target = options.target;
+    file_options.limits = limits ? &*limits : nullptr;
+    const std::unique_ptr<base::ContentCache> cache = OpenValidationCache(options.cache);
+    file_options.cache = cache.get();
+    result.report = ValidateShaderFiles(files, options.defines, file_options);
+    WarnAboutCache(cache.get(), &outcome);
+    for (const VariantVerdict& verdict : result.report.verdicts) {
+        outcome.Add(verdict.diagnostics);
+    }
+    outcome.status = result.report.InvalidCount() == 0 ? Status::kOk : Status::kInvalid;
+    return result;
+}
+
+StatsResult MeasureStaticCosts(const StatsOptions& options) {
+    StatsResult result;
+    result.matrix = LoadMatrix(options.config, options.limits);
+    if (!result.matrix.config) {
+        return result;
+    }
+    const VariantConfig& config = *result.matrix.config;
+    ValidationOptions validation_options;
+    validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
+    validation_options.targets = {GlslTarget::kEs100};
+    const ValidationReport report =
+            ValidateVariants(config, result.matrix.expansion.variants, validation_options);
+    std::map<std::string, const StageProgram*> programs;
+    for (const StageProgram& program : report.stage_programs) {
+        programs[program.file + "|" + program.hash] = &program;
+    }
+    Outcome& outcome = result.matrix.outcome;
+    for (const VariantVerdict& verdict : report.verdicts) {
+        const ProgramConfig* program = config.FindProgram(verdict.variant.program);
+        const StageProgram* vs = programs[program->vertex_path + "|" + verdict.vertex_hash];
+        const StageProgram* fs = programs[program->fragment_path + "|" + verdict.fragment_hash];
+        if (!verdict.valid || vs == nullptr || fs == nullptr) {
+            outcome.Add(verdict.diagnostics);
+            outcome.status = Status::kInvalid;
+            continue;
+        }
+        result.costs.push_back({verdict.variant.Id(), vs->cost, fs->cost});
+    }
+    return result;
+}
+
+}  // namespace tidepool::pipeline

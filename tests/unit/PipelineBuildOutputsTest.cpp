@@ -1,0 +1,93 @@
+#include "tidepool/pipeline/BuildOutputs.h"
+#include "tidepool/pipeline/MatrixLoading.h"
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <chrono>
+
+#include "FileContents.h"
+#include "PipelineFixture.h"
+
+namespace tidepool::pipeline {
+namespace {
+
+using testing::Formatted;
+using testing::ReadText;
+using testing::SmallMatrix;
+
+TEST(PipelineBuildOutputsTest, DepfileEscapesSpacesHashesAndDollars) {
+    EXPECT_EQ(DepfileText("/o/m.json", {"/a b/c#d.yaml", "/x$y.vsh"}),
+              "/o/m.json: \\\n  /a\\ b/c\\#d.yaml \\\n  /x$$y.vsh\n");
+}
+
+TEST(PipelineBuildOutputsTest, FilesReadNamesTheConfigurationAndEachShaderOnce) {
+    const SmallMatrix matrix;
+    const LoadedMatrix loaded = LoadMatrix(matrix.Config());
+    ASSERT_TRUE(loaded.config.has_value());
+    const std::vector<std::filesystem::path> files = FilesRead(*loaded.config);
+    ASSERT_EQ(files.size(), 3U);  // both programs share s.vsh and s.fsh
+    EXPECT_EQ(files[0], std::filesystem::absolute(matrix.Config()));
+    EXPECT_EQ(files[1].filename(), "s.vsh");
+    EXPECT_EQ(files[2].filename(), "s.fsh");
+}
+
+TEST(PipelineBuildOutputsTest, VariantSourcePathMakesTheIdASafeFileName) {
+    Variant variant;
+    variant.program = "p";
+    variant.defines = {"A", "B"};
+    const std::filesystem::path path =
+            VariantSourcePath(GlslTarget::kEs100, variant, Stage::kFragment);
+    EXPECT_EQ(path.parent_path(), std::filesystem::path(TargetName(GlslTarget::kEs100)) / "p");
+    EXPECT_EQ(path.extension(), ".frag");
+    for (const char c : path.stem().string()) {
+        EXPECT_TRUE(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')
+                << path;
+    }
+}
+
+TEST(PipelineBuildOutputsTest, WritesEachStageAsTheDriverReceivesItAndKeepsUnchangedFiles) {
+    const SmallMatrix matrix;
+    const LoadedMatrix loaded = LoadMatrix(matrix.Config());
+    ASSERT_TRUE(loaded.config.has_value());
+    const std::filesystem::path out = matrix.Dir().Path() / "out";
+    Outcome outcome;
+    ASSERT_TRUE(WriteVariantSources(*loaded.config, loaded.expansion.variants, out, &outcome))
+            << Formatted(outcome.diagnostics);
+    const Variant& first = loaded.expansion.variants.front();
+    const std::filesystem::path vertex =
+            out / VariantSourcePath(GlslTarget::kEs100, first, Stage::kVertex);
+    EXPECT_NE(ReadText(vertex).find("#line 2"), std::string::npos);
+    const auto written = std::filesystem::last_write_time(vertex);
+    std::filesystem::last_write_time(vertex, written - std::chrono::hours(1));
+    ASSERT_TRUE(WriteVariantSources(*loaded.config, loaded.expansion.variants, out, &outcome));
+    EXPECT_EQ(std::filesystem::last_write_time(vertex), written - std::chrono::hours(1));
+}
+
+TEST(PipelineBuildOutputsTest, AnUnreadableShaderIsAUsageErrorAtItsPath) {
+    const SmallMatrix matrix;
+    LoadedMatrix loaded = LoadMatrix(matrix.Config());
+    ASSERT_TRUE(loaded.config.has_value());
+    std::filesystem::remove(matrix.Dir().Path() / "s.vsh");
+    Outcome outcome;
+    EXPECT_FALSE(WriteVariantSources(*loaded.config, loaded.expansion.variants,
+                                     matrix.Dir().Path() / "out", &outcome));
+    EXPECT_EQ(outcome.status, Status::kUsage);
+    EXPECT_EQ(Formatted(outcome.diagnostics).rfind("s.vsh: error: cannot read shader file: ", 0),
+              0U)
+            << Formatted(outcome.diagnostics);
+}
+
+TEST(PipelineBuildOutputsTest, AddSourcePathsNamesBothStagesOfEveryVariant) {
+    Variant variant;
+    variant.program = "p";
+    nlohmann::json manifest = {{"variants", {{{"id", variant.Id()}, {"target", "100"}}}}};
+    AddSourcePaths({variant}, &manifest);
+    EXPECT_EQ(manifest["variants"][0]["sources"]["vertex"],
+              VariantSourcePath(GlslTarget::kEs100, variant, Stage::kVertex).generic_string());
+    EXPECT_EQ(manifest["variants"][0]["sources"]["fragment"],
+              VariantSourcePath(GlslTarget::kEs100, variant, Stage::kFragment).generic_string());
+}
+
+}  // namespace
+}  // namespace tidepool::pipeline
