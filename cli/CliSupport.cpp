@@ -17,26 +17,6 @@ int PrintOutcome(const pipeline::Outcome& outcome) {
     return pipeline::ExitCode(outcome.status);
 }
 
-int PublishExitCode(const base::PublishError& error) {
-    return pipeline::ExitCode(pipeline::PublishStatus(error));
-}
-
-std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
-                                                       const std::string& writer, int* exit_code) {
-    pipeline::Outcome outcome;
-    std::unique_ptr<base::FolderPublisher> publisher =
-            pipeline::BeginPublishing(target, writer, &outcome);
-    if (!publisher) {
-        *exit_code = PrintOutcome(outcome);
-    }
-    return publisher;
-}
-
-int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
-                      bool check_only) {
-    return PrintOutcome(pipeline::WriteManifest(folder, text, check_only));
-}
-
 int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
     app.require_subcommand(1);
     app.set_version_flag("--version", kVersionText);
@@ -116,13 +96,6 @@ void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLi
     AddMatrixLimitOptions(command, limits);
 }
 
-LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits) {
-    pipeline::LoadedMatrix loaded = pipeline::LoadMatrix(config_path, limits);
-    PrintDiagnostics(loaded.outcome.diagnostics);
-    return {std::move(loaded.config), std::move(loaded.expansion),
-            pipeline::ExitCode(loaded.outcome.status)};
-}
-
 std::string NormaliseOutPath(std::string path) {
     if (path.empty()) {
         return path;
@@ -164,16 +137,6 @@ void AddCacheFlags(CLI::App* command, CacheFlags* flags) {
             "~/.cache/tidepool; at most 64 MiB, least recently used entries evicted)");
     command->add_flag("--no-cache", flags->off, "neither read nor write the validation cache")
             ->excludes(folder);
-}
-
-std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags) {
-    return pipeline::OpenValidationCache(flags);
-}
-
-void WarnAboutCache(const base::ContentCache* cache) {
-    if (const std::optional<Diagnostic> warning = pipeline::CacheWarning(cache)) {
-        PrintDiagnostics({*warning});
-    }
 }
 
 }  // namespace tidepool::cli

@@ -36,21 +36,6 @@ inline constexpr const char* kVersionText = "tidepool 0.1.0";
 /// Prints `outcome`'s diagnostics on stderr and returns its status as the exit code.
 int PrintOutcome(const pipeline::Outcome& outcome);
 
-// Forwarding to the pipeline for RunCommand.cpp and GlCliSupport.cpp, which are being moved onto
-// the pipeline separately: PublishExitCode, BeginPublishing, WriteManifestInto, CpuModel,
-// DefaultJobs, GitRevision, LoadedMatrix, LoadAndExpand, OpenCache and WarnAboutCache.
-
-/// pipeline::PublishStatus as an exit code.
-int PublishExitCode(const base::PublishError& error);
-
-/// pipeline::BeginPublishing, printing why not and setting `*exit_code` on failure.
-std::unique_ptr<base::FolderPublisher> BeginPublishing(const std::filesystem::path& target,
-                                                       const std::string& writer, int* exit_code);
-
-/// pipeline::WriteManifest, printing why not; returns the exit code.
-int WriteManifestInto(const std::filesystem::path& folder, const std::string& text,
-                      bool check_only = false);
-
 /// Parses `argv` into `app` (whose command callbacks store `exit_code`) and returns the process
 /// exit code: 0 for --help/--version, kExitUsage for a usage error (CLI11's message printed),
 /// else what the command stored.
@@ -59,6 +44,7 @@ int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code);
 /// Prints each diagnostic in GCC form on stderr, one per line.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
+// What DescribeHost (GlCliSupport) records about the machine.
 using pipeline::CpuModel;
 using pipeline::DefaultJobs;
 using pipeline::GitRevision;
@@ -75,13 +61,6 @@ bool ParseSize(const std::string& text, int min_side, int* width, int* height,
 bool ParseSizeOption(std::string_view flag, const std::string& text, int min_side, int* width,
                      int* height, int max_side = kMaxRenderSide);
 
-/// A configuration file loaded and expanded, or the exit code of why not (LoadAndExpand).
-struct LoadedMatrix {
-    std::optional<VariantConfig> config;
-    ExpansionResult expansion;
-    int exit_code = 0;  // kExitOk, or kExitUsage when config is missing
-};
-
 /// Parses a whole number in [min, max] for option `flag`, refusing signs, fractions, exponents
 /// and values that overflow; on failure prints "error: FLAG must be a whole number from MIN to
 /// MAX[ HINT], not 'TEXT'" and returns false.
@@ -95,9 +74,6 @@ void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits);
 
 /// Adds what expand, validate and stats share: --config, --json and the matrix limits.
 void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLimits* limits);
-
-/// pipeline::LoadMatrix, printing every diagnostic.
-LoadedMatrix LoadAndExpand(const std::string& config_path, const MatrixLimits& limits = {});
 
 /// An --out folder as every command uses it: lexically normal and without a trailing slash, so
 /// that `--out DIR/` names DIR (and its staging sibling) rather than an empty file name inside it.
@@ -114,11 +90,5 @@ using CacheFlags = pipeline::CacheChoice;
 
 /// Adds --cache DIR and --no-cache (mutually exclusive) to `command`, writing into `flags`.
 void AddCacheFlags(CLI::App* command, CacheFlags* flags);
-
-/// pipeline::OpenValidationCache.
-std::unique_ptr<base::ContentCache> OpenCache(const CacheFlags& flags);
-
-/// Prints pipeline::CacheWarning, if any, on stderr.
-void WarnAboutCache(const base::ContentCache* cache);
 
 }  // namespace tidepool::cli

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "CliSupport.h"
 #include "GlCliSupport.h"
 
 namespace tidepool::cli {
@@ -18,6 +19,14 @@ void StderrProgressSink::Progress(const pipeline::StageProgress& p) {
 
 void StderrProgressSink::Finish() {
     FinishProgress();
+}
+
+void StderrProgressSink::Line(const std::string& line) {
+    std::fprintf(stderr, "%s\n", line.c_str());
+}
+
+void StderrProgressSink::Tell(const std::vector<Diagnostic>& diagnostics) {
+    PrintDiagnostics(diagnostics);
 }
 
 }  // namespace tidepool::cli

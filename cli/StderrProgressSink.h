@@ -19,6 +19,8 @@ public:
     void Begin(const std::string& line) override;
     void Progress(const pipeline::StageProgress& progress) override;
     void Finish() override;
+    void Line(const std::string& line) override;
+    void Tell(const std::vector<Diagnostic>& diagnostics) override;
 
 private:
     runner::ProgressCallback printer_;

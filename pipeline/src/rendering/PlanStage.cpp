@@ -26,13 +26,7 @@ std::vector<std::filesystem::path> ScenePaths(const PlanRequest& request,
         }
         return paths;
     }
-    std::error_code ec;
-    for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
-        if (entry.path().extension() == ".yaml") {
-            paths.push_back(entry.path());
-        }
-    }
-    std::sort(paths.begin(), paths.end());
+    paths = SceneFilesIn(scene_dir);
     if (paths.empty()) {
         outcome->Fail(Status::kUsage, fmt::format("no scenes/*.yaml next to {}", request.config));
     }
@@ -40,6 +34,18 @@ std::vector<std::filesystem::path> ScenePaths(const PlanRequest& request,
 }
 
 }  // namespace
+
+std::vector<std::filesystem::path> SceneFilesIn(const std::filesystem::path& scene_dir) {
+    std::vector<std::filesystem::path> paths;
+    std::error_code ec;
+    for (const auto& entry : std::filesystem::directory_iterator(scene_dir, ec)) {
+        if (entry.path().extension() == ".yaml") {
+            paths.push_back(entry.path());
+        }
+    }
+    std::sort(paths.begin(), paths.end());
+    return paths;
+}
 
 PreparedPlans PreparePlans(const PlanRequest& request) {
     PreparedPlans prepared;

@@ -34,6 +34,9 @@ struct PlanRequest {
                       // with `all`)
 };
 
+/// Every scenes/*.yaml in `scene_dir`, sorted; none when there is none or no such folder.
+std::vector<std::filesystem::path> SceneFilesIn(const std::filesystem::path& scene_dir);
+
 /// Everything planning needs, ready: the configuration, the scenes, the output folder being
 /// staged, and a GL context.
 struct PreparedPlans {

@@ -3,7 +3,10 @@
 // returned.
 #pragma once
 
+#include "tidepool/Diagnostic.h"
+
 #include <string>
+#include <vector>
 
 namespace tidepool::pipeline {
 
@@ -32,6 +35,11 @@ public:
 
     /// The stage is done: whatever Progress left open (a terminal line) is ended. Must not throw.
     virtual void Finish() = 0;
+    /// A line for the user while a composite stage goes on (`run`: "validate: 163 variants,
+    /// ..."), told when it happens rather than returned at the end. Must not throw.
+    virtual void Line(const std::string& line) = 0;
+    /// Diagnostics a composite stage found, told as it finds them. Must not throw.
+    virtual void Tell(const std::vector<Diagnostic>& diagnostics) = 0;
 };
 
 }  // namespace tidepool::pipeline

@@ -1,0 +1,63 @@
+// `tidepool run` up to the report: validate (the manifest), then the render with the stability
+// catalogue and the scene plans beside it in a second process, into one render folder published
+// whole. The report is the last step, pipeline::BuildReport over the two files this returns.
+// Part of tidepool_pipeline_gl.
+#pragma once
+
+#include "tidepool/pipeline/Outcome.h"
+#include "tidepool/pipeline/ProgressSink.h"
+#include "tidepool/pipeline/ValidationCache.h"
+#include "tidepool/runner/FourierReflection.h"
+#include "tidepool/runner/GlBackend.h"
+#include "tidepool/runner/Results.h"
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+namespace tidepool::pipeline {
+
+/// What `run` is asked to do (sizes already parsed and checked by the caller).
+struct RunRequest {
+    std::string config = "variants.yaml";
+    std::filesystem::path out = "reports/out";  // receives manifest/ and render/
+    int width = 640;
+    int height = 480;
+    runner::BackendKind backend = runner::BackendKind::kAuto;
+    runner::FourierSettings fourier;
+    CacheChoice cache;
+    // Stability and plans run beside the render. Their sizes keep them well inside the render's
+    // time: the stability cases look for NaN, Inf and bounds, which do not depend on resolution
+    // (64x48 is `tidepool stability`'s own default); the plans compare images against the
+    // scene's full-effect image at 160x120 (above the 11x11 SSIM window many times over), each
+    // candidate timed against the full effect pair by pair to +/-plan_resolution points.
+    bool stability = true;
+    bool plans = true;
+    int stability_width = 64;
+    int stability_height = 48;
+    int plan_width = 160;
+    int plan_height = 120;
+    double plan_resolution = 3.0;
+    /// Fills the render's timing settings (stopping rule, frames, workers, context factory,
+    /// comparisons) and host description once its configurations are chosen.
+    std::function<void(runner::RunOptions*)> prepare_timing;
+};
+
+/// What `run` did up to the report.
+struct RunResult {
+    Outcome outcome;        // kInvalid when a variant, configuration, stability case or plan failed
+    bool rendered = false;  // the render folder was published: the report can be built
+    std::filesystem::path manifest_path;
+    std::filesystem::path results_path;
+};
+
+/// Validates the matrix into `out`/manifest/manifest.json, then renders it into `out`/render/
+/// (images, results.json) while a second process runs the stability catalogue and plans every
+/// scenes/*.yaml (stability.json, plans.json) into the same folder, and publishes the folder.
+/// Neither a user's manifest.json nor a render folder tidepool did not write is ever replaced
+/// (kUsage, before any work). Tells `progress` each stage's summary line and the render's
+/// progress; the messages of the stages run in their own processes are told as they come.
+/// Must be called while the process has one thread (it forks).
+RunResult Run(const RunRequest& request, ProgressSink& progress);
+
+}  // namespace tidepool::pipeline
