@@ -44,11 +44,6 @@ int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code);
 /// Prints each diagnostic in GCC form on stderr, one per line.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
-// What DescribeHost (GlCliSupport) records about the machine.
-using pipeline::CpuModel;
-using pipeline::DefaultJobs;
-using pipeline::GitRevision;
-
 /// The largest render target side the commands accept.
 inline constexpr int kMaxRenderSide = 8192;
 

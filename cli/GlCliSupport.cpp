@@ -1,12 +1,7 @@
 #include "GlCliSupport.h"
 
-#include "tidepool/report/ReportModel.h"
-
-#include <algorithm>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
-#include <optional>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
@@ -96,52 +91,6 @@ bool CheckTimingFlags(const TimingFlags& flags) {
         return false;
     }
     return true;
-}
-
-void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
-                      runner::RunOptions* run) {
-    setenv("LP_NUM_THREADS", std::to_string(flags.threads).c_str(), 1);
-    run->host.lp_num_threads = std::to_string(flags.threads);
-    run->rule.resolution_points = flags.resolution;
-    run->rule.min_pairs = flags.min_pairs;
-    run->rule.max_pairs = flags.max_pairs;
-    run->coarse_frames = flags.coarse_frames;
-    run->warmup_frames = flags.warmup;
-    run->workers = flags.workers > 0 ? flags.workers : DefaultJobs();
-    run->make_context = [backend] { return runner::CreateGlContext(backend).context; };
-    run->comparisons.clear();
-    auto find = [&](const std::string& preset) -> std::optional<std::size_t> {
-        for (std::size_t i = 0; i < run->configurations.size(); ++i) {
-            const auto& presets = run->configurations[i].presets;
-            if (std::find(presets.begin(), presets.end(), preset) != presets.end()) {
-                return i;
-            }
-        }
-        return std::nullopt;
-    };
-    for (const report::PresetPair& pair : report::ComparedPresetPairs()) {
-        const std::optional<std::size_t> a = find(pair.baseline);
-        const std::optional<std::size_t> b = find(pair.candidate);
-        if (a && b && *a != *b) {
-            run->comparisons.push_back({pair.label, *a, *b});
-        }
-    }
-}
-
-runner::HostInfo DescribeHost(const std::string& command, const std::string& config_path) {
-    runner::HostInfo host;
-    host.cpu_model = CpuModel();
-    if (const char* threads = std::getenv("LP_NUM_THREADS"); threads != nullptr) {
-        host.lp_num_threads = threads;
-    }
-#ifdef NDEBUG
-    host.build_type = "release (NDEBUG)";
-#else
-    host.build_type = "debug (assertions on)";
-#endif
-    host.git_revision = GitRevision(std::filesystem::absolute(config_path).parent_path());
-    host.command = command;
-    return host;
 }
 
 std::string FormatDuration(double seconds) {

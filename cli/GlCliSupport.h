@@ -1,8 +1,9 @@
 // Pieces the GL commands (render, bench, run, stability, plan) share: backend, timing and
-// Fourier flags, and the host description of a run. Built into `tidepool-gl` only, so the
+// Fourier flags, and the progress printer. Built into `tidepool-gl` only, so the
 // `tidepool` front end never links the runner.
 #pragma once
 
+#include "tidepool/pipeline/Timing.h"
 #include "tidepool/runner/FourierReflection.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
@@ -26,15 +27,7 @@ void AddFourierOptions(CLI::App* command, runner::FourierSettings* settings);
 bool CheckFourierOptions(const runner::FourierSettings& settings);
 
 /// The timing flags `render`, `bench` and `run` share (the one timing engine's settings).
-struct TimingFlags {
-    double resolution = 1.5;  // half-width of a comparison's 95% interval, percent points
-    int min_pairs = 20;
-    int max_pairs = 400;
-    int coarse_frames = 3;
-    int warmup = 2;
-    int workers = 1;  // rendering threads; 0: one per core
-    int threads = 0;  // LP_NUM_THREADS: 0 renders on each worker's own thread
-};
+using TimingFlags = pipeline::TimingSettings;
 
 /// Adds --resolution, --min-pairs, --max-pairs, --coarse-frames, --warmup, --workers and
 /// --threads to `command`, writing into `flags`.
@@ -42,13 +35,6 @@ void AddTimingFlags(CLI::App* command, TimingFlags* flags);
 
 /// Prints why `flags` cannot be used, naming the option and its range, and returns false.
 bool CheckTimingFlags(const TimingFlags& flags);
-
-/// Sets LP_NUM_THREADS from `flags` (llvmpipe reads it when the first context is created) and
-/// fills the timing part of `run`: rule, frames, workers and a factory for the workers'
-/// contexts on `backend`. Comparisons are every pair of ComparedPresetPairs() whose two presets
-/// are both among `run->configurations`.
-void ApplyTimingFlags(const TimingFlags& flags, runner::BackendKind backend,
-                      runner::RunOptions* run);
 
 /// "42s" or "3m05s". Never fails.
 std::string FormatDuration(double seconds);
@@ -60,9 +46,5 @@ runner::ProgressCallback MakeProgressPrinter();
 
 /// Ends the line a terminal progress printer left open. Never fails.
 void FinishProgress();
-
-/// What the run records about the machine and build for `command`, reading `config_path`'s
-/// folder for the git revision.
-runner::HostInfo DescribeHost(const std::string& command, const std::string& config_path);
 
 }  // namespace tidepool::cli

@@ -84,8 +84,8 @@ int RunRenderCommand(RenderCommandOptions options) {
     if (const int code = PrintOutcome(prepared.outcome); prepared.outcome.Stopped()) {
         return code;
     }
-    prepared.run.host = DescribeHost(options.command, selection.config);
-    ApplyTimingFlags(options.timing, backend, &prepared.run);
+    prepared.run.host = pipeline::DescribeHost(options.command, selection.config);
+    pipeline::ApplyTiming(options.timing, backend, &prepared.run);
     StderrProgressSink progress;
     const pipeline::RenderResult result = pipeline::Render(prepared, backend, options.out,
                                                            "tidepool " + options.command, progress);

@@ -72,8 +72,8 @@ bool ToRequest(const RunCommandOptions& options, pipeline::RunRequest* request) 
     request->plan_resolution = options.plan_resolution;
     const runner::BackendKind backend = request->backend;
     request->prepare_timing = [options, backend](runner::RunOptions* run) {
-        run->host = DescribeHost("run", options.config);
-        ApplyTimingFlags(options.timing, backend, run);
+        run->host = pipeline::DescribeHost("run", options.config);
+        pipeline::ApplyTiming(options.timing, backend, run);
     };
     return true;
 }
