@@ -67,17 +67,20 @@ void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished)
     std::lock_guard<std::mutex> lock(mutex_);
     comparison_frames_[k] = frames;
     comparison_state_[k] = finished ? ComparisonState::kFinished : ComparisonState::kRunning;
-    long finished_frames = comparison_guess_;
-    long finished_count = 1;
+    std::vector<long> finished_frames = {comparison_guess_};
     for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
         if (comparison_state_[i] == ComparisonState::kFinished && comparison_frames_[i] > 0) {
-            finished_frames += comparison_frames_[i];
-            ++finished_count;
+            finished_frames.push_back(comparison_frames_[i]);
         }
     }
+    // The median, not the mean: one comparison near a verdict's boundary may take five times
+    // the pairs of the others, and says nothing about the next one.
+    const auto middle =
+            finished_frames.begin() + static_cast<std::ptrdiff_t>(finished_frames.size() / 2);
+    std::nth_element(finished_frames.begin(), middle, finished_frames.end());
     for (std::size_t i = 0; i < comparison_frames_.size(); ++i) {
         if (comparison_state_[i] == ComparisonState::kWaiting) {
-            comparison_frames_[i] = finished_frames / finished_count;
+            comparison_frames_[i] = *middle;
         }
     }
     SumComparisons();

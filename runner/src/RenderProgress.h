@@ -58,9 +58,10 @@ public:
 
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
-    /// still waiting then expect what the finished ones took on average, the first guess
+    /// still waiting then expect the median of what the finished ones took, the first guess
     /// counting as one of them: a run whose comparisons resolve at the minimum should not
-    /// expect the guess of every later one.
+    /// expect the guess of every later one, nor should one slow comparison near a verdict's
+    /// boundary make every later one expect its pairs.
     void ComparisonExpects(std::size_t k, long frames, bool finished);
 
     /// `frames` of `kind` finished on the calling thread since its last step, at `now`.

@@ -117,5 +117,25 @@ TEST(ProgressMeterTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
     EXPECT_NEAR(meter.Last().eta_seconds, truth, 0.1 * truth);
 }
 
+// Comparisons not started expect the median of what the finished ones took (the first guess
+// counting as one): one that needed 300 pairs near a verdict's boundary does not make every
+// later one expect a hundred.
+TEST(ProgressMeterTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(6, 120);  // 6 comparisons, 120 frames each until they say otherwise
+    meter.ComparisonExpects(0, 40, true);
+    meter.ComparisonExpects(1, 600, true);
+    meter.ComparisonExpects(2, 40, true);
+    meter.Step(ProgressMeter::kComparison, "row", 680, start + std::chrono::seconds(34));
+    // Finished: 40 + 600 + 40 frames; the three waiting expect median{120, 40, 600, 40} = 120
+    // (the upper middle), not the mean 200.
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * 120);
+    meter.ComparisonExpects(3, 40, true);
+    meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(36));
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 40);
+}
+
 }  // namespace
 }  // namespace tidepool::runner
