@@ -289,4 +289,10 @@ RgbaImage DifferenceHeatMap(const RgbaImage& a, const RgbaImage& b, double full_
     return heat;
 }
 
+ImageAccuracy MeasureAccuracy(const RgbaImage& image, const RgbaImage& reference,
+                              const SsimReference& reference_ssim) {
+    return {Psnr(image, reference), reference_ssim.Compare(image),
+            ShareAboveThreshold(image, reference, kVisibleDifferenceThreshold)};
+}
+
 }  // namespace tidepool::base

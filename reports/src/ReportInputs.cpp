@@ -302,7 +302,7 @@ std::string ParseConfiguration(const nlohmann::json& entry, const std::filesyste
                 const double inf = std::numeric_limits<double>::infinity();
                 const double nan = std::numeric_limits<double>::quiet_NaN();
                 image.accuracy =
-                        ViewImage::Accuracy{NumberOr(*a, "psnr_db", inf), NumberOr(*a, "ssim", nan),
+                        base::ImageAccuracy{NumberOr(*a, "psnr_db", inf), NumberOr(*a, "ssim", nan),
                                             NumberOr(*a, "share_visible", nan)};
             }
             c.views.push_back(std::move(image));

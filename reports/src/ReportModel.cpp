@@ -113,8 +113,9 @@ ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache
                                            v.view, r.width, r.height);
                 return errors;
             }
-            view = {v.view, Psnr(*image, r), ref->second.ssim->Compare(*image),
-                    ShareAboveThreshold(*image, r, kVisibleDifferenceThreshold)};
+            const base::ImageAccuracy measured =
+                    base::MeasureAccuracy(*image, r, *ref->second.ssim);
+            view = {v.view, measured.psnr_db, measured.ssim, measured.share_visible};
         }
         errors.mse_sum += MseFromPsnr(view.psnr_db);
         errors.ssim_sum += view.ssim;

@@ -90,8 +90,8 @@ public:
 
     // `image` against the reference's at `view`, the way the report measures accuracy;
     // nothing when the reference has no image there (yet) or the sizes differ.
-    std::optional<ViewResult::Accuracy> Compare(const std::string& view,
-                                                const base::RgbaImage& image) const {
+    std::optional<base::ImageAccuracy> Compare(const std::string& view,
+                                               const base::RgbaImage& image) const {
         std::shared_ptr<const Kept> kept;
         {
             std::lock_guard<std::mutex> lock(mutex_);
@@ -104,9 +104,7 @@ public:
         if (kept->image.width != image.width || kept->image.height != image.height) {
             return std::nullopt;
         }
-        return ViewResult::Accuracy{
-                base::Psnr(image, kept->image), kept->ssim.Compare(image),
-                base::ShareAboveThreshold(image, kept->image, base::kVisibleDifferenceThreshold)};
+        return base::MeasureAccuracy(image, kept->image, kept->ssim);
     }
 
 private:

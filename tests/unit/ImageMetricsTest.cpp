@@ -68,6 +68,27 @@ TEST(ImageMetricsTest, SsimIsSymmetric) {
 // gaussian_weights=True, sigma=1.5, use_sample_covariance=False, data_range=255) on the float64
 // Rec. 601 luma of the same images: that is Wang et al.'s definition, as Ssim implements it.
 // 1e-9: the two sum the same terms in a different order.
+// The render (image in memory) and the report (image read back) both measure accuracy this
+// way: it must be the three metrics to the bit, and an identical image is infinitely close.
+TEST(ImageMetricsTest, AccuracyIsPsnrSsimAndVisibleShareAgainstTheReference) {
+    const RgbaImage noisy = MakeImage(40, 30, [](int x, int y) {
+        const Rgba c = Pattern(x, y);
+        const int d = (x * 7 + y * 11) % 25 - 12;
+        return Rgba{c.r + d, c.g + d, c.b + d, 255};
+    });
+    const RgbaImage reference = PatternImage();
+    const SsimReference moments(reference);
+    const ImageAccuracy a = MeasureAccuracy(noisy, reference, moments);
+    EXPECT_EQ(a.psnr_db, Psnr(noisy, reference));
+    EXPECT_EQ(a.ssim, Ssim(noisy, reference));
+    EXPECT_EQ(a.share_visible, ShareAboveThreshold(noisy, reference, kVisibleDifferenceThreshold));
+    EXPECT_GT(a.share_visible, 0.0);
+    const ImageAccuracy same = MeasureAccuracy(reference, reference, moments);
+    EXPECT_TRUE(std::isinf(same.psnr_db));
+    EXPECT_DOUBLE_EQ(same.ssim, 1.0);
+    EXPECT_EQ(same.share_visible, 0.0);
+}
+
 TEST(ImageMetricsTest, SsimMatchesScikitImageOnANoisyImage) {
     const RgbaImage noisy = MakeImage(40, 30, [](int x, int y) {
         const Rgba c = Pattern(x, y);

@@ -72,6 +72,19 @@ private:
 /// (returns NaN) when the sizes differ, an image is empty or malformed, or threshold is NaN.
 double ShareAboveThreshold(const RgbaImage& a, const RgbaImage& b, double threshold);
 
+/// How far an image is from a reference: what the report's accuracy axis shows.
+struct ImageAccuracy {
+    double psnr_db = 0;        // +infinity when identical
+    double ssim = 0;           // mean SSIM
+    double share_visible = 0;  // share of pixels above kVisibleDifferenceThreshold, 0..1
+};
+
+/// `image` against `reference`, whose SSIM moments `reference_ssim` holds. The render measures
+/// each image this way while it is in memory, and the report for images it reads back, so the
+/// two give the same bits. Fails (NaN fields) as Psnr, Ssim and ShareAboveThreshold do.
+ImageAccuracy MeasureAccuracy(const RgbaImage& image, const RgbaImage& reference,
+                              const SsimReference& reference_ssim);
+
 /// An opaque image of the same size whose pixels show the largest absolute R, G or B difference
 /// d as t = min(d / full_scale, 1) on a black -> red -> yellow -> white ramp (t = 0 black, 1/3
 /// red, 2/3 yellow, 1 white). Fails (returns an empty image, width and height 0) when the sizes

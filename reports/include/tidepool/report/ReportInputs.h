@@ -4,6 +4,8 @@
 // report reads, so a corrupt or foreign file is an error naming that file, never a crash.
 #pragma once
 
+#include "tidepool/base/ImageMetrics.h"
+
 #include <filesystem>
 #include <limits>
 #include <map>
@@ -50,12 +52,7 @@ struct ViewImage {
     // The image against the reference's at this view, as the render measured it while the
     // image was in memory (results' `accuracy`); absent in older results, and then the report
     // reads both images and measures it itself.
-    struct Accuracy {
-        double psnr_db = 0;  // +infinity when identical (null in the file)
-        double ssim = 0;
-        double share_visible = 0;
-    };
-    std::optional<Accuracy> accuracy;
+    std::optional<base::ImageAccuracy> accuracy;  // PSNR +infinity when null in the file
 };
 
 /// One render configuration (variant + pass options) as the runner recorded it.

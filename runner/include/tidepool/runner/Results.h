@@ -4,6 +4,7 @@
 
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/PairedEstimate.h"
 #include "tidepool/base/SampleStatistics.h"
 #include "tidepool/runner/FrameTimer.h"
@@ -87,12 +88,7 @@ struct ViewResult {
     // The image against the reference configuration's at the same view (base/ImageMetrics.h);
     // absent when the reference has no image there (not rendered yet on another thread, failed,
     // or no configuration has RunOptions::reference_preset).
-    struct Accuracy {
-        double psnr_db = 0;  // +inf for an identical image
-        double ssim = 0;
-        double share_visible = 0;  // share of pixels above kVisibleDifferenceThreshold
-    };
-    std::optional<Accuracy> accuracy;
+    std::optional<base::ImageAccuracy> accuracy;
 };
 
 /// Everything recorded about one configuration.
