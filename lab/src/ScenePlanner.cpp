@@ -308,7 +308,8 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
 }
 
 CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
-                                bool quality_bounds, std::optional<double> frame_budget_ms) {
+                                bool quality_bounds, std::optional<double> frame_budget_ms,
+                                double tie_points) {
     CandidateChoice choice;
     auto at = [&](int i) -> const CandidateMeasure& {
         return candidates[static_cast<std::size_t>(i)];
@@ -341,14 +342,20 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
             }
         } else {
             // Among the qualifying candidates indistinguishable from the fastest in time, the
-            // most accurate.
+            // most accurate. Indistinguishable: the intervals overlap, or the two changes differ
+            // by less than the planner's resolution. Two intervals that barely miss each other
+            // still leave a difference of a point or two, which another run on another load may
+            // turn round (murky_pond's two water-colour candidates, 1 to 2 points apart, swapped
+            // between a quiet and a loaded run).
             int kept = fastest;
             for (int i = 1; i < count; ++i) {
                 const CandidateMeasure& c = at(i);
                 const bool overlaps = c.time_change_low <= at(fastest).time_change_high &&
                                       at(fastest).time_change_low <= c.time_change_high;
-                if (i != fastest && c.valid && c.meets_quality && clearly_faster(c) && overlaps &&
-                    c.psnr_db > at(kept).psnr_db) {
+                const bool within_resolution =
+                        c.time_change_percent - at(fastest).time_change_percent < tie_points;
+                if (i != fastest && c.valid && c.meets_quality && clearly_faster(c) &&
+                    (overlaps || within_resolution) && c.psnr_db > at(kept).psnr_db) {
                     kept = i;
                 }
             }
@@ -363,10 +370,11 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                             : fmt::format(
                                       "the fastest qualifying candidate ({:+.1f}%) and this "
                                       "one ({:+.1f}%) differ by less than their 95% "
-                                      "intervals, so the more accurate one is kept "
+                                      "intervals or the planner's {:.1f}-point resolution, "
+                                      "so the more accurate one is kept "
                                       "({:.1f} dB against {:.1f} dB)",
                                       at(fastest).time_change_percent, at(kept).time_change_percent,
-                                      at(kept).psnr_db, at(fastest).psnr_db);
+                                      tie_points, at(kept).psnr_db, at(fastest).psnr_db);
             if (!frame_budget_ms || at(kept).time_ms <= *frame_budget_ms) {
                 return choice;
             }
@@ -632,7 +640,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                             c.time_change_high, c.time_change_percent, c.error.psnr_db});
     }
     const CandidateChoice choice =
-            ChooseCandidate(measures, quality_bounds, target.frame_budget_ms);
+            ChooseCandidate(measures, quality_bounds, target.frame_budget_ms,
+                            options.rule.resolution_points);
     const int best = choice.index;
     plan.choice_reason = choice.reason;
     plan.chosen = best;

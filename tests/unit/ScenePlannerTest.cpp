@@ -11,6 +11,9 @@
 namespace tidepool::runner {
 namespace {
 
+// The planner's resolution (PlanOptions::rule): qualifying candidates closer than this tie.
+constexpr double kTiePoints = 3.0;
+
 CandidateMeasure Candidate(double change, double low, double high, double psnr) {
     return {true, true, 10.0 * (1 + change / 100), low, high, change, psnr};
 }
@@ -20,23 +23,39 @@ TEST(PlannerChoiceTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
     // overlap, so the difference is inside the measurement's own uncertainty.
     const std::vector<CandidateMeasure> candidates = {
             Candidate(0, 0, 0, 99), Candidate(-20, -22, -18, 40), Candidate(-21, -23, -19, 30)};
-    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt, kTiePoints);
     EXPECT_EQ(choice.index, 1);
     EXPECT_NE(choice.reason.find("differ by less than their 95% intervals"), std::string::npos)
             << choice.reason;
 }
 
+TEST(PlannerChoiceTest, ADifferenceUnderTheResolutionTiesEvenWhenTheIntervalsMiss) {
+    // -35.6% [-36.4, -34.8] against -33.7% [-34.6, -32.8]: the intervals just miss each other,
+    // but 1.9 points is under the planner's 3-point resolution, so the more accurate is kept.
+    const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
+                                                      Candidate(-33.7, -34.6, -32.8, 41.88),
+                                                      Candidate(-35.6, -36.4, -34.8, 41.86)};
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt, kTiePoints);
+    EXPECT_EQ(choice.index, 1);
+    EXPECT_NE(choice.reason.find("3.0-point resolution"), std::string::npos) << choice.reason;
+    // Apart by more than the resolution and beyond both intervals: the faster one wins.
+    const std::vector<CandidateMeasure> apart = {Candidate(0, 0, 0, 99),
+                                                 Candidate(-33.7, -34.6, -32.8, 41.88),
+                                                 Candidate(-37.2, -38.0, -36.4, 41.86)};
+    EXPECT_EQ(ChooseCandidate(apart, true, std::nullopt, kTiePoints).index, 2);
+}
+
 TEST(PlannerChoiceTest, AClearlyFasterCandidateWins) {
     const std::vector<CandidateMeasure> candidates = {
             Candidate(0, 0, 0, 99), Candidate(-10, -11, -9, 40), Candidate(-30, -32, -28, 30)};
-    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 2);
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt, kTiePoints).index, 2);
 }
 
 TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
     // "+34% slower" and "-2% within noise" are never preferred to the full effect.
     const std::vector<CandidateMeasure> candidates = {
             Candidate(0, 0, 0, 99), Candidate(34, 30, 38, 40), Candidate(-2, -5, 1, 35)};
-    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt);
+    const CandidateChoice choice = ChooseCandidate(candidates, true, std::nullopt, kTiePoints);
     EXPECT_EQ(choice.index, 0);
     EXPECT_NE(choice.reason.find("full effect is kept"), std::string::npos) << choice.reason;
 }
@@ -46,17 +65,17 @@ TEST(PlannerChoiceTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
     // shift under load can reach, so it is not a reason to drop an effect.
     const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
                                                       Candidate(-2.5, -3.5, -1.0, 40)};
-    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt, kTiePoints).index, 0);
     const std::vector<CandidateMeasure> clear = {Candidate(0, 0, 0, 99),
                                                  Candidate(-3.5, -4.5, -2.0, 40)};
-    EXPECT_EQ(ChooseCandidate(clear, true, std::nullopt).index, 1);
+    EXPECT_EQ(ChooseCandidate(clear, true, std::nullopt, kTiePoints).index, 1);
 }
 
 TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
     std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
                                                 Candidate(-40, -42, -38, 20)};
     candidates[1].meets_quality = false;
-    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt).index, 0);
+    EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt, kTiePoints).index, 0);
 }
 
 }  // namespace

@@ -46,7 +46,9 @@ struct PlanOptions {
     int warmup_frames = 1;    // untimed frames per candidate before its image
     // Each candidate is timed against the full configuration pair by pair until its interval
     // is this narrow (the timing engine, FrameTimer.h); 3 points is plenty to rank candidates
-    // that differ by tens of percent, and the choice rule never picks on a smaller difference.
+    // that differ by tens of percent, and the choice rule never picks one qualifying candidate
+    // over a more accurate one on a smaller difference (against the full effect, the 1.5-point
+    // direction margin beyond the interval decides).
     base::StoppingRule rule{3.0, 20, 200, 10};
     // The clock frames are timed on: ChooseFrameClock for the context (the caller knows
     // LP_NUM_THREADS; the library reads no environment).
@@ -127,14 +129,16 @@ struct CandidateChoice {
 };
 
 /// Chooses among measured candidates (index 0 is the full configuration). With quality bounds:
-/// the fastest candidate that meets them and is faster than full beyond its interval; but a
-/// more accurate one that also qualifies is kept instead whenever the two intervals overlap,
-/// since then the time difference is within the measurement's own uncertainty (and it says
-/// so). Full is kept when no candidate is faster beyond its interval. With only a budget: the
-/// most accurate within it. When nothing qualifies: the fastest, which misses the target.
+/// the fastest candidate that meets them and is faster than full beyond its interval and the
+/// direction margin; but a more accurate one that also qualifies is kept instead whenever the
+/// two intervals overlap or their changes differ by less than `tie_points` (the planner's
+/// resolution), since then the time difference is within what the timing resolves (and it
+/// says so). Full is kept when no candidate is faster beyond its interval. With only a budget:
+/// the most accurate within it. When nothing qualifies: the fastest, which misses the target.
 /// Never fails; -1 when no candidate is valid.
 CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
-                                bool quality_bounds, std::optional<double> frame_budget_ms);
+                                bool quality_bounds, std::optional<double> frame_budget_ms,
+                                double tie_points);
 
 /// The candidate list the rules propose for `scene` (at most 11, the full configuration first,
 /// then every effect dropped alone, then combinations the scene suggests),
