@@ -639,9 +639,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         measures.push_back({c.valid, c.meets_quality, c.time_ms, c.time_change_low,
                             c.time_change_high, c.time_change_percent, c.error.psnr_db});
     }
-    const CandidateChoice choice =
-            ChooseCandidate(measures, quality_bounds, target.frame_budget_ms,
-                            options.rule.resolution_points);
+    const CandidateChoice choice = ChooseCandidate(measures, quality_bounds, target.frame_budget_ms,
+                                                   options.rule.resolution_points);
     const int best = choice.index;
     plan.choice_reason = choice.reason;
     plan.chosen = best;
