@@ -1166,4 +1166,44 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
     return report;
 }
 
+const VariantVerdict* ValidationReport::Find(const Variant& variant, GlslTarget target) const {
+    for (const VariantVerdict& v : verdicts) {
+        if (v.target == target && v.variant == variant) {
+            return &v;
+        }
+    }
+    return nullptr;
+}
+
+ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
+                                  const ValidationOptions& options, const ValidationReport& known) {
+    std::vector<Variant> missing;
+    for (const Variant& variant : variants) {
+        const bool lacking = std::any_of(
+                options.targets.begin(), options.targets.end(),
+                [&](GlslTarget target) { return known.Find(variant, target) == nullptr; });
+        if (lacking && std::find(missing.begin(), missing.end(), variant) == missing.end()) {
+            missing.push_back(variant);
+        }
+    }
+    ValidationReport report;
+    if (!missing.empty()) {
+        report = ValidateVariants(config, missing, options);
+    }
+    std::vector<VariantVerdict> verdicts;
+    for (const Variant& variant : variants) {
+        for (GlslTarget target : options.targets) {
+            const VariantVerdict* found = known.Find(variant, target);
+            if (found == nullptr) {
+                found = report.Find(variant, target);
+            }
+            if (found != nullptr) {
+                verdicts.push_back(*found);
+            }
+        }
+    }
+    report.verdicts = std::move(verdicts);
+    return report;
+}
+
 }  // namespace tidepool

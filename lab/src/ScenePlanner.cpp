@@ -445,7 +445,10 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     }
     ValidationOptions validation;
     validation.targets = {GlslTarget::kEs100};
-    const ValidationReport report = ValidateVariants(config, variants, validation);
+    const ValidationReport no_verdicts;
+    const ValidationReport& validated =
+            options.validated != nullptr ? *options.validated : no_verdicts;
+    const ValidationReport report = ValidateVariants(config, variants, validation, validated);
     for (std::size_t i = 0; i < plan.candidates.size(); ++i) {
         PlanCandidate& c = plan.candidates[i];
         const VariantVerdict* verdict = nullptr;
@@ -580,8 +583,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         if (!known && MakeCandidate(*water, scene, defines, passes, &combined)) {
             combined.proposed_because = fmt::format("every drop that met the target alone: {}",
                                                     fmt::join(passing, ", "));
-            const ValidationReport combined_report =
-                    ValidateVariants(config, {combined.configuration.variant}, validation);
+            const ValidationReport combined_report = ValidateVariants(
+                    config, {combined.configuration.variant}, validation, validated);
             combined.valid =
                     combined_report.InvalidCount() == 0 && !combined_report.verdicts.empty();
             for (const VariantVerdict& v : combined_report.verdicts) {

@@ -171,7 +171,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                 variants.push_back(r.configuration.variant);
             }
         }
-        const ValidationReport report = ValidateVariants(config, variants, ValidationOptions{});
+        const ValidationReport report = ValidateVariants(
+                config, variants, ValidationOptions{},
+                options.validated != nullptr ? *options.validated : ValidationReport{});
         for (const VariantVerdict& v : report.verdicts) {
             glslang[v.variant.Id()] = v.valid;
         }

@@ -367,6 +367,32 @@ TEST(RunRenderTest, ComparisonsArePairedUntilTheStoppingRuleAndConfigurationsTim
     EXPECT_GT(results.configurations[0].pass_ms.at("main"), 0.0);
 }
 
+TEST(RunRenderTest, GlslangVerdictsGivenByTheRunsValidationAreUsedNotFoundAgain) {
+    Shared& shared = Get();
+    ASSERT_TRUE(shared.context) << shared.error;
+    RunOptions options;
+    options.configurations = {Configuration({}), Configuration({"ENABLE_FOG"})};
+    options.views = {DefaultViews().front()};
+    options.settings.width = 32;
+    options.settings.height = 24;
+    options.coarse_frames = 1;
+    options.write_images = false;
+    // A verdict glslang would never give (both variants are valid): the render must take it
+    // from here, so Mesa's acceptance shows as a disagreement for that variant only.
+    ValidationReport validated;
+    VariantVerdict said_invalid;
+    said_invalid.variant = options.configurations[1].variant;
+    said_invalid.target = GlslTarget::kEs100;
+    said_invalid.valid = false;
+    validated.verdicts.push_back(said_invalid);
+    options.validated = &validated;
+    const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
+    ASSERT_EQ(results.disagreements.size(), 1U);
+    EXPECT_EQ(results.disagreements[0].variant, options.configurations[1].variant.Id());
+    EXPECT_FALSE(results.disagreements[0].glslang_valid);
+    EXPECT_TRUE(results.disagreements[0].mesa_valid);
+}
+
 TEST(RunRenderTest, SecondWorkerRendersOnItsOwnContext) {
     Shared& shared = Get();
     ASSERT_TRUE(shared.context) << shared.error;

@@ -114,6 +114,35 @@ TEST(GlslValidatorTest, ErrorInDefineGatedBlockIsReportedAtTheUsersLineWithVaria
                       "a.fsh:8:26: error: 'FogColor' : undeclared identifier [p:ENABLE_FOG]"});
 }
 
+TEST(GlslValidatorTest, VerdictsAlreadyKnownAreReusedAndOnlyTheMissingAreValidated) {
+    TempDir dir;
+    dir.Write("a.vsh", kVertex);
+    dir.Write("a.fsh", kFragment);
+    const VariantConfig config = ConfigIn(dir, "a.vsh", "a.fsh", {"ENABLE_FOG"});
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
+    ASSERT_EQ(expansion.variants.size(), 2U);
+    // A known verdict unlike what glslang would say, so that reuse shows.
+    ValidationReport known;
+    VariantVerdict marked;
+    marked.variant = expansion.variants[0];
+    marked.target = GlslTarget::kEs100;
+    marked.valid = false;
+    marked.vertex_hash = "known";
+    known.verdicts.push_back(marked);
+    const ValidationReport report =
+            ValidateVariants(config, expansion.variants, ValidationOptions{}, known);
+    ASSERT_EQ(report.verdicts.size(), 2U);
+    EXPECT_EQ(report.verdicts[0].variant, expansion.variants[0]);
+    EXPECT_EQ(report.verdicts[0].vertex_hash, "known");
+    EXPECT_FALSE(report.verdicts[0].valid);
+    EXPECT_EQ(report.verdicts[1].variant, expansion.variants[1]);
+    EXPECT_TRUE(report.verdicts[1].valid);
+    EXPECT_EQ(report.stage_slots, 2);  // only the missing variant's two stages were validated
+    EXPECT_EQ(report.links, 1);
+    ASSERT_NE(report.Find(expansion.variants[1], GlslTarget::kEs100), nullptr);
+    EXPECT_EQ(report.Find(expansion.variants[1], GlslTarget::kEs300), nullptr);
+}
+
 TEST(GlslValidatorTest, ValidationWithSeveralJobsGivesTheSameVerdicts) {
     TempDir dir;
     dir.Write("a.vsh", kVertex);

@@ -88,6 +88,8 @@ struct ValidationReport {
     int SharedStageSlots() const { return stage_slots - static_cast<int>(stage_programs.size()); }
     /// Number of verdicts that are invalid.
     int InvalidCount() const;
+    /// The verdict on `variant` for `target`; nullptr when the report has none.
+    const VariantVerdict* Find(const Variant& variant, GlslTarget target) const;
 };
 
 /// Validates every variant of `config` for every target in `options`; stage errors and link
@@ -95,6 +97,13 @@ struct ValidationReport {
 /// through its diagnostics (an unreadable shader file makes the variants using it invalid).
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options);
+
+/// The same, but a verdict `known` already holds for a variant and target is taken from it (a
+/// run's later stages reuse the validation its manifest came from, built with the same config):
+/// only the variants it lacks are validated. The verdicts come in the order of `variants`, per
+/// target; stage programs, slots and links count only what was validated here.
+ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
+                                  const ValidationOptions& options, const ValidationReport& known);
 
 /// A shader file named on the command line.
 struct ShaderFile {

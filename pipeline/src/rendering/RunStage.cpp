@@ -137,9 +137,9 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
 // Every scenes/*.yaml planned into render_dir/plans.json, the candidates' images under
 // render_dir/images/.
 StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
-                   const RunRequest& request, const base::StoppingRule& rule,
-                   const std::string& threads, const std::filesystem::path& render_dir,
+                   const RunRequest& request, const runner::RunOptions& run,
                    ProgressSink& progress) {
+    const std::filesystem::path& render_dir = run.out_dir;
     StageEnd end;
     const Clock::time_point start = Clock::now();
     const std::vector<std::filesystem::path> scenes = SceneFilesIn(config.base_dir / "scenes");
@@ -153,11 +153,13 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
     runner::PlanOptions options;
     options.settings.width = request.plan_width;
     options.settings.height = request.plan_height;
-    options.rule = rule;
+    options.rule = run.rule;
     options.rule.resolution_points = request.plan_resolution;
     const runner::GlEnvironment& gl = context.Environment();
-    options.clock = runner::ChooseFrameClock(gl.renderer, threads, gl.timer_query).clock;
+    options.clock =
+            runner::ChooseFrameClock(gl.renderer, run.host.lp_num_threads, gl.timer_query).clock;
     options.out_dir = render_dir;
+    options.validated = run.validated;  // the candidates' verdicts, from the run's validation
     std::vector<runner::ScenePlan> plans;
     for (const std::filesystem::path& path : scenes) {
         SceneResult scene = LoadSceneDescription(path);
@@ -210,8 +212,7 @@ StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>
                             progress);
     }
     if (request.plans) {
-        const StageEnd planned = PlansInto(*context.context, config, request, run.rule, threads,
-                                           run.out_dir, progress);
+        const StageEnd planned = PlansInto(*context.context, config, request, run, progress);
         end.status = planned.status == Status::kEnvironment ? planned.status : end.status;
         end.failures += planned.failures;
     }
@@ -343,6 +344,9 @@ RunResult Run(const RunRequest& request, ProgressSink& progress) {
     run.settings.fourier = request.fourier;
     run.out_dir = publisher->Staging();
     run.config_path = request.config;
+    // The render's glslang/Mesa comparison and the planner take glslang's verdicts from the
+    // validation above, which wrote the manifest, instead of validating again.
+    run.validated = &validation;
     if (request.prepare_timing) {
         request.prepare_timing(&run);
     }

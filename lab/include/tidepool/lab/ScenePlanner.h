@@ -5,6 +5,7 @@
 #pragma once
 
 #include "tidepool/Diagnostic.h"
+#include "tidepool/GlslValidator.h"
 #include "tidepool/SceneDescription.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/PairedEstimate.h"
@@ -54,6 +55,9 @@ struct PlanOptions {
     // LP_NUM_THREADS; the library reads no environment).
     FrameClock clock = FrameClock::kWall;
     std::string full_preset = "full";  // the full-effect configuration every error is against
+    // glslang's verdicts already found (a run's validation, which wrote its manifest):
+    // candidates found there are not validated again. Not owned; none: all are validated.
+    const ValidationReport* validated = nullptr;
     // When set, every candidate's image is written to out_dir/images/SCENE-ID.png (ids
     // sanitised), named relative to out_dir, where plans.json goes, so the report can show what
     // each drop looks like.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include "tidepool/Diagnostic.h"
+#include "tidepool/GlslValidator.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/PairedEstimate.h"
@@ -76,6 +77,10 @@ struct RunOptions {
     // while still in memory (ViewResult::accuracy), so the report need not read them back.
     std::string reference_preset = "reference";
     bool compare_with_glslang = true;  // list variants where glslang and Mesa disagree
+    // glslang's verdicts already found, by the validation that wrote the run's manifest: the
+    // comparison takes them from here and validates only variants missing from it. Not owned;
+    // none: every variant is validated.
+    const ValidationReport* validated = nullptr;
     HostInfo host;
     std::string config_path;  // variants.yaml as named by the user
 };
