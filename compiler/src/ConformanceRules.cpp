@@ -815,6 +815,222 @@ std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics
     return diagnostics;
 }
 
+bool FailedOnlyForConstantExpressions(const std::vector<Diagnostic>& diagnostics) {
+    static constexpr std::string_view kConstantWanted[] = {
+            "global const initializers must be constant",
+            "'non-constant initializer'",
+            "'non-constant global initializer",
+            "array size must be a constant integer expression",
+    };
+    bool any = false;
+    for (const Diagnostic& d : diagnostics) {
+        if (d.severity != Severity::kError) {
+            continue;
+        }
+        if (std::none_of(std::begin(kConstantWanted), std::end(kConstantWanted),
+                         [&](std::string_view text) { return Mentions(d, text); })) {
+            return false;
+        }
+        any = true;
+    }
+    return any;
+}
+
+const char* const kEs100FoldingPreamble =
+        "struct tp_es100_mat2 { highp mat2 m; };\n"
+        "struct tp_es100_mat3 { highp mat3 m; };\n"
+        "struct tp_es100_mat4 { highp mat4 m; };\n";
+
+namespace {
+
+// The rewriting of FoldEs100ConstantExpressions over the tokens of one text; ranges are token
+// indices [begin, end).
+class Es100ConstantFolder {
+public:
+    explicit Es100ConstantFolder(std::string_view text) : text_(text), tokens_(CodeTokens(text)) {}
+
+    // The lines where a rewritten expression starts.
+    std::set<int> lines;
+
+    // The whole text rewritten; empty when nothing was.
+    std::string Run() {
+        if (tokens_.empty()) {
+            return {};
+        }
+        std::string out(text_.substr(0, Offset(0)));
+        out += Rewrite(0, tokens_.size());
+        out += text_.substr(End(tokens_.size() - 1));
+        // Each matrixCompMult copies its operands N times: nesting could grow without bound.
+        return changed_ && out.size() <= 4 * text_.size() + 65536 ? out : std::string();
+    }
+
+private:
+    std::size_t Offset(std::size_t i) const {
+        return static_cast<std::size_t>(tokens_[i].text.data() - text_.data());
+    }
+    std::size_t End(std::size_t i) const { return Offset(i) + tokens_[i].text.size(); }
+    std::string_view Span(std::size_t begin, std::size_t end) const {
+        return text_.substr(Offset(begin), End(end - 1) - Offset(begin));
+    }
+
+    // The ranges between the commas at the top level of [begin, end); none when one is empty.
+    std::vector<std::pair<std::size_t, std::size_t>> Split(std::size_t begin,
+                                                           std::size_t end) const {
+        std::vector<std::pair<std::size_t, std::size_t>> parts;
+        int depth = 0;
+        std::size_t start = begin;
+        for (std::size_t i = begin; i <= end; ++i) {
+            if (i == end || (depth == 0 && tokens_[i].text == ",")) {
+                if (i == start) {
+                    return {};
+                }
+                parts.emplace_back(start, i);
+                start = i + 1;
+                continue;
+            }
+            const std::string_view t = tokens_[i].text;
+            depth += t == "(" || t == "[" || t == "{"   ? 1
+                     : t == ")" || t == "]" || t == "}" ? -1
+                                                        : 0;
+        }
+        return parts;
+    }
+
+    // The N of the `matN` type of the expression [begin, end), 0 when its tokens do not say.
+    int MatrixSize(std::size_t begin, std::size_t end) const {
+        const std::string_view first = tokens_[begin].text;
+        const bool call = begin + 1 < end && tokens_[begin + 1].text == "(";
+        if (first.size() == 4 && first.substr(0, 3) == "mat" && first[3] >= '2' &&
+            first[3] <= '4' && (call || begin + 1 == end)) {
+            return first[3] - '0';
+        }
+        if (first == "matrixCompMult" && call) {
+            const auto args = Split(begin + 2, Closing(tokens_, begin + 1));
+            return args.empty() ? 0 : MatrixSize(args[0].first, args[0].second);
+        }
+        if (first == "(" && Closing(tokens_, begin) == end - 1 && begin + 2 < end) {
+            return MatrixSize(begin + 1, end - 1);
+        }
+        const bool indexed = begin + 1 < end && tokens_[begin + 1].text == "[" &&
+                             Closing(tokens_, begin + 1) == end - 1;
+        if (!tokens_[begin].identifier || !(begin + 1 == end || indexed)) {
+            return 0;
+        }
+        // A name: the nearest declaration `matN name` before it (a variable, a parameter or an
+        // array of matrices).
+        for (std::size_t k = begin; k-- > 1;) {
+            if (tokens_[k].text == first) {
+                const std::string_view type = tokens_[k - 1].text;
+                if (type.size() == 4 && type.substr(0, 3) == "mat" && type[3] >= '2' &&
+                    type[3] <= '4') {
+                    return type[3] - '0';
+                }
+            }
+        }
+        return 0;
+    }
+
+    // A `(` that groups an expression rather than opening a call or a constructor's arguments.
+    bool Groups(std::size_t open) const {
+        if (open == 0) {
+            return true;
+        }
+        const std::string_view before = tokens_[open - 1].text;
+        return !(tokens_[open - 1].identifier ||
+                 std::isdigit(static_cast<unsigned char>(before[0])) != 0 || before == ")" ||
+                 before == "]");
+    }
+
+    // Rewritten text of a part, on one line.
+    std::string Flat(std::size_t begin, std::size_t end) {
+        std::string part = Rewrite(begin, end);
+        std::replace(part.begin(), part.end(), '\n', ' ');
+        return part;
+    }
+
+    // The replacement of the tokens [begin, end], then the line breaks the original held.
+    std::string KeepLines(std::string replacement, std::size_t begin, std::size_t end) const {
+        const std::string_view original = Span(begin, end + 1);
+        replacement.append(
+                static_cast<std::size_t>(std::count(original.begin(), original.end(), '\n')), '\n');
+        return replacement;
+    }
+
+    std::string Rewrite(std::size_t begin, std::size_t end) {
+        std::string out;
+        for (std::size_t i = begin; i < end; ++i) {
+            if (i > begin) {
+                out += text_.substr(End(i - 1), Offset(i) - End(i - 1));
+            }
+            const std::string_view token = tokens_[i].text;
+            const bool call = i + 1 < end && tokens_[i + 1].text == "(";
+            const std::size_t open = token == "(" ? i : i + 1;
+            const std::size_t close = token == "(" || (token == "matrixCompMult" && call)
+                                              ? Closing(tokens_, open)
+                                              : end;
+            // A directive inside the expression cannot be joined onto one line.
+            if (close >= end || Span(i, close + 1).find('#') != std::string_view::npos) {
+                out += token;
+                continue;
+            }
+            const auto parts = Split(open + 1, close);
+            if (token == "matrixCompMult" && parts.size() == 2) {
+                const int n = std::max(MatrixSize(parts[0].first, parts[0].second),
+                                       MatrixSize(parts[1].first, parts[1].second));
+                if (n != 0) {
+                    const std::string x = Flat(parts[0].first, parts[0].second);
+                    const std::string y = Flat(parts[1].first, parts[1].second);
+                    std::string folded = fmt::format("mat{}(", n);
+                    for (int column = 0; column < n; ++column) {
+                        folded +=
+                                fmt::format("{}tp_es100_mat{}({}).m[{}] * tp_es100_mat{}({}).m[{}]",
+                                            column == 0 ? "" : ", ", n, x, column, n, y, column);
+                    }
+                    out += KeepLines(folded + ")", i, close);
+                    changed_ = true;
+                    lines.insert(tokens_[i].line);
+                    i = close;
+                    continue;
+                }
+            }
+            if (token == "(" && parts.size() >= 2 && Groups(i)) {
+                std::string folded = "(";
+                for (std::size_t p = 0; p + 1 < parts.size(); ++p) {
+                    const std::string operand = Flat(parts[p].first, parts[p].second);
+                    folded += fmt::format("{}({}) == ({})", p == 0 ? "" : " && ", operand, operand);
+                }
+                const std::string value = Flat(parts.back().first, parts.back().second);
+                folded += fmt::format(" ? ({}) : ({}))", value, value);
+                out += KeepLines(folded, i, close);
+                changed_ = true;
+                lines.insert(tokens_[i].line);
+                i = close;
+                continue;
+            }
+            out += token;
+        }
+        return out;
+    }
+
+    std::string_view text_;
+    std::vector<SourceToken> tokens_;
+    bool changed_ = false;
+};
+
+}  // namespace
+
+std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
+                                         std::set<int>* rewritten_lines) {
+    if (preprocessed.find("matrixCompMult") == std::string_view::npos &&
+        preprocessed.find(',') == std::string_view::npos) {
+        return {};
+    }
+    Es100ConstantFolder folder(preprocessed);
+    std::string folded = folder.Run();
+    *rewritten_lines = std::move(folder.lines);
+    return folded;
+}
+
 std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagnostics,
                                                   int version) {
     if (version < 300) {

@@ -146,6 +146,33 @@ std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_l
                                         const std::vector<UnaryPlus>& pluses,
                                         const std::string& file);
 
+/// True when a failed `#version 100` parse failed only where glslang wanted a constant
+/// expression (a const initializer, a global initializer, an array size), so that
+/// FoldEs100ConstantExpressions may be worth trying.
+bool FailedOnlyForConstantExpressions(const std::vector<Diagnostic>& diagnostics);
+
+/// The declarations FoldEs100ConstantExpressions' text needs, given to glslang as its preamble:
+/// one struct per matrix size, whose constructor takes exactly that matrix type.
+extern const char* const kEs100FoldingPreamble;
+
+/// glslang's preprocessed text of a `#version 100` stage (macros expanded, comments gone, lines
+/// kept) rewritten so that glslang 12 folds two kinds of expression GLSL ES 1.00 §5.10 (and
+/// §4.3.3) makes constant expressions when their operands are, but glslang does not:
+/// - `matrixCompMult(x, y)`, "a built-in function call whose arguments are all constant
+///   expressions", becomes `matN(x[0] * y[0], ...)` for N the size of x's type (found from a
+///   `matN` constructor or the declaration `matN x` before it; the call is left as it is when
+///   neither says), each operand wrapped in a constructor of a preamble struct that takes only a
+///   `matN`, so a wrong size or a non-matrix operand stays an error;
+/// - the sequence operator in a parenthesised expression, `(a, b)`, "an operator on operands
+///   that are constant expressions" in 1.00 (3.00 §4.3.3 excludes it, and is left alone),
+///   becomes `((a) == (a) ? (b) : (b))`, which keeps the value of `b` and is constant only when
+///   `a` is.
+/// Each rewritten expression keeps its lines (the text it replaces is joined onto its first line
+/// and the line breaks follow it); `rewritten_lines` receives the lines where one starts. Empty
+/// when there is nothing to rewrite, or the text would grow past a bound.
+std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
+                                         std::set<int>* rewritten_lines);
+
 /// In a `#version 300 es` shader, glslang only warns when `#define` or `#undef` names a macro
 /// containing `__`; GLSL ES 3.00 §3.4 reserves those names, so each such warning becomes an
 /// error at the same place. Other versions are returned unchanged.

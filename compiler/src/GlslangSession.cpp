@@ -264,6 +264,44 @@ StageParse ParseStage(const GlslangStageInput& input) {
             result.shader = std::move(shader);
         }
     }
+    if (!result.ok && version == 100 && FailedOnlyForConstantExpressions(result.diagnostics)) {
+        // GLSL ES 1.00 §5.10: matrixCompMult and the sequence operator of constant expressions
+        // are constant expressions, which glslang 12 does not fold; the preprocessed text is
+        // parsed again with them rewritten into expressions it does fold.
+        PreprocessResult preprocessed;
+        {
+            const KeepThreadPool keep;
+            preprocessed = PreprocessStage(input);
+        }
+        std::set<int> rewritten_lines;
+        const std::string folded =
+                preprocessed.ok ? FoldEs100ConstantExpressions(preprocessed.text, &rewritten_lines)
+                                : std::string();
+        if (!folded.empty()) {
+            const char* folded_text = folded.c_str();
+            auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
+            shader->setStrings(&folded_text, 1);
+            shader->setPreamble(kEs100FoldingPreamble);
+            const bool ok = shader->parse(&resources, version, EEsProfile, prepared.force_version,
+                                          false, kMessages);
+            std::vector<Diagnostic> diagnostics =
+                    ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text);
+            // Errors away from the rewritten lines are the shader's own, found now that the
+            // constants fold (an index past an array sized by one); others stay glslang's first.
+            const bool own_errors =
+                    std::none_of(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) {
+                        return d.severity == Severity::kError &&
+                               (d.line == 0 || rewritten_lines.count(d.line) != 0);
+                    });
+            if (ok && !HasErrors(diagnostics)) {
+                result.ok = true;
+                result.shader = std::move(shader);
+                result.diagnostics = std::move(diagnostics);
+            } else if (own_errors) {
+                result.diagnostics = std::move(diagnostics);
+            }
+        }
+    }
     result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
     result.ok = result.ok && !HasErrors(result.diagnostics);
     if (!webgl_errors.empty()) {
