@@ -529,6 +529,8 @@ constexpr std::string_view kReservedMacroWarning =
 
 constexpr std::string_view kEmptyLastCase = "last case/default label not followed by statements";
 
+constexpr std::string_view kNonConstantGlobal = "'non-constant global initializer";
+
 bool Mentions(const Diagnostic& d, std::string_view text) {
     return d.message.find(text) != std::string::npos;
 }
@@ -782,10 +784,11 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
         if (d.severity != Severity::kError) {
             continue;
         }
-        const bool relaxable =
-                (!webgl && Mentions(d, kDefinedFromMacro)) ||
-                (version == 100 && Mentions(d, kReservedMacro100)) ||
-                (version >= 300 && Mentions(d, kEmptyLastCase) && switch_lines.count(d.line) != 0);
+        const bool relaxable = (!webgl && Mentions(d, kDefinedFromMacro)) ||
+                               (version == 100 && Mentions(d, kReservedMacro100)) ||
+                               (version >= 300 && Mentions(d, kEmptyLastCase) &&
+                                switch_lines.count(d.line) != 0) ||
+                               (webgl && version == 100 && Mentions(d, kNonConstantGlobal));
         if (!relaxable) {
             return false;
         }
@@ -795,7 +798,7 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
 }
 
 std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
-                                             const std::set<int>& switch_lines) {
+                                             const std::set<int>& switch_lines, bool webgl1) {
     // GLSL ES 3.00 §6.2: the statement after the last label is there, glslang only lost it.
     diagnostics.erase(std::remove_if(diagnostics.begin(), diagnostics.end(),
                                      [&](const Diagnostic& d) {
@@ -807,6 +810,16 @@ std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics
     for (Diagnostic& d : diagnostics) {
         // In 3.00 the reserved-name warning is glslang's strict verdict too (and is made an
         // error by PromoteReservedMacroNames); in 1.00 it is the relaxed form of the error.
+        if (webgl1 && d.severity == Severity::kWarning && Mentions(d, kNonConstantGlobal)) {
+            // WebGL 1.0 §6.33 asks for a warning; CheckWebGlGlobalInitializers checks the rest.
+            d.message =
+                    "global variable initializer is not a constant expression, as GLSL ES "
+                    "1.00 §4.3 requires; WebGL 1 allows uniforms and other global variables "
+                    "in it (WebGL 1.0 §6.33 \"GLSL ES Global Variable Initialization\"), "
+                    "but other GLSL ES 1.00 compilers may refuse it";
+            d.column = 0;
+            continue;
+        }
         if (d.severity == Severity::kWarning && !Mentions(d, kDefinedFromMacroRelaxed) &&
             !Mentions(d, kReservedMacroWarning)) {
             d.severity = Severity::kError;

@@ -103,7 +103,9 @@ std::set<int> SwitchesWithStatementAfterLastLabel(std::string_view preprocessed)
 /// reserved, "does not itself result in an error"). For a WebGL target (`webgl`), `defined`
 /// from a macro stays an error: WebGL 1.0 §6.34 makes it one. In `#version 300 es`, glslang's
 /// error for a switch whose last label has no statement after it is relaxable when the switch is
-/// at one of `switch_lines` (see SwitchesWithStatementAfterLastLabel).
+/// at one of `switch_lines` (see SwitchesWithStatementAfterLastLabel). For a WebGL 1 target
+/// (`webgl` and version 100), a global variable initializer that is not a constant expression is
+/// relaxable (WebGL 1.0 §6.33).
 bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
                                    bool webgl, const std::set<int>& switch_lines = {});
 
@@ -112,9 +114,12 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
 /// undefined name in `#if`, a disabled extension's feature, ...), and a warning it did not
 /// demote is also taken as one, which can only make a shader invalid, never valid. The
 /// relaxed warning for a switch at one of `switch_lines` is dropped (see
-/// SwitchesWithStatementAfterLastLabel).
+/// SwitchesWithStatementAfterLastLabel). For a WebGL 1 target (`webgl1`), the warning for a
+/// global initializer that is not a constant expression stays a warning, reworded (WebGL 1.0
+/// §6.33; CheckWebGlGlobalInitializers checks what such an initializer may use).
 std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
-                                             const std::set<int>& switch_lines = {});
+                                             const std::set<int>& switch_lines = {},
+                                             bool webgl1 = false);
 
 /// True when `diagnostics` holds glslang's error for a switch whose last label it believes has no
 /// statement after it, so that SwitchesWithStatementAfterLastLabel is worth computing.

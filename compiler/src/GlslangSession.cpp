@@ -258,7 +258,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
         // first one, goes past the relaxable error to the real one.
         result.diagnostics = RestoreDemotedErrors(
                 ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text),
-                switch_lines);
+                switch_lines, webgl && version == 100);
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
@@ -326,6 +326,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
             const std::vector<Diagnostic> nesting =
                     CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
             broken.insert(broken.end(), nesting.begin(), nesting.end());
+        }
+        if (webgl && version == 100) {
+            const std::vector<Diagnostic> initializers =
+                    CheckWebGlGlobalInitializers(*result.intermediate, input.file);
+            broken.insert(broken.end(), initializers.begin(), initializers.end());
         }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;

@@ -212,4 +212,98 @@ std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& st
     return errors;
 }
 
+namespace {
+
+// What a WebGL 1 global initializer may not use (WebGL 1.0 §6.33), each with its place.
+class GlobalInitializerChecker : public glslang::TIntermTraverser {
+public:
+    void visitSymbol(glslang::TIntermSymbol* node) override {
+        const glslang::TStorageQualifier storage = node->getType().getQualifier().storage;
+        const std::string name = node->getName().c_str();
+        const bool built_in = name.rfind("gl_", 0) == 0;
+        if (storage == glslang::EvqConst ||
+            (!built_in && (storage == glslang::EvqGlobal || storage == glslang::EvqUniform))) {
+            return;
+        }
+        const char* what = built_in                                     ? "the built-in variable"
+                           : storage == glslang::EvqVaryingIn && vertex ? "the attribute"
+                                                                        : "the varying";
+        Forbid(node->getLoc(), fmt::format("{} '{}'", what, name));
+    }
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        if (node->isTexture()) {
+            Forbid(node->getLoc(), "a texture lookup");
+        } else if (node->getOp() == glslang::EOpFunctionCall) {
+            Forbid(node->getLoc(), fmt::format("the user-defined function '{}'",
+                                               PlainFunctionName(node->getName().c_str())));
+        }
+        return true;
+    }
+    bool visitBinary(glslang::TVisit, glslang::TIntermBinary* node) override {
+        if (node->getOp() >= glslang::EOpAssign && node->getOp() <= glslang::EOpRightShiftAssign) {
+            Forbid(node->getLoc(), "an assignment");
+        }
+        return true;
+    }
+    bool visitUnary(glslang::TVisit, glslang::TIntermUnary* node) override {
+        if (node->getOp() >= glslang::EOpPostIncrement &&
+            node->getOp() <= glslang::EOpPreDecrement) {
+            Forbid(node->getLoc(), "an increment or decrement");
+        }
+        return true;
+    }
+
+    bool vertex = false;
+    std::vector<std::pair<glslang::TSourceLoc, std::string>> forbidden;
+
+private:
+    static std::string PlainFunctionName(const std::string& mangled) {
+        return mangled.substr(0, mangled.find('('));
+    }
+    void Forbid(const glslang::TSourceLoc& loc, std::string what) {
+        forbidden.emplace_back(loc, std::move(what));
+    }
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGlGlobalInitializers(const glslang::TIntermediate& stage,
+                                                     const std::string& file) {
+    std::vector<Diagnostic> errors;
+    glslang::TIntermAggregate* root =
+            stage.getTreeRoot() != nullptr ? stage.getTreeRoot()->getAsAggregate() : nullptr;
+    if (root == nullptr) {
+        return errors;
+    }
+    // glslang keeps each global declaration with an initializer as a sequence of assignments
+    // beside the function definitions.
+    for (TIntermNode* child : root->getSequence()) {
+        glslang::TIntermAggregate* sequence = child->getAsAggregate();
+        if (sequence == nullptr || sequence->getOp() != glslang::EOpSequence) {
+            continue;
+        }
+        for (TIntermNode* node : sequence->getSequence()) {
+            glslang::TIntermBinary* assign = node->getAsBinaryNode();
+            if (assign == nullptr || assign->getOp() != glslang::EOpAssign ||
+                assign->getLeft()->getAsSymbolNode() == nullptr) {
+                continue;
+            }
+            GlobalInitializerChecker checker;
+            checker.vertex = stage.getStage() == EShLangVertex;
+            assign->getRight()->traverse(&checker);
+            const std::string name = assign->getLeft()->getAsSymbolNode()->getName().c_str();
+            for (const auto& [loc, what] : checker.forbidden) {
+                errors.push_back(MakeError(
+                        file, loc.line, std::max(loc.column, 0),
+                        fmt::format("the initializer of the global variable '{}' uses {}; "
+                                    "WebGL 1 allows only constant expressions, uniforms and "
+                                    "other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                                    "Global Variable Initialization\")",
+                                    name, what)));
+            }
+        }
+    }
+    return errors;
+}
+
 }  // namespace tidepool

@@ -53,4 +53,14 @@ inline constexpr int kMaxWebGlStructNesting = 4;
 std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& stage,
                                                 const std::string& file, std::string_view source);
 
+/// Checks the initializers of the global variables of a `#version 100` stage for a WebGL 1
+/// target. GLSL ES 1.00 §4.3 wants constant expressions there; WebGL 1.0 §6.33 "GLSL ES Global
+/// Variable Initialization" also allows non-const user-defined globals and uniforms, and
+/// operators, constructors and built-in functions over them, but not texture lookups,
+/// user-defined functions, attributes, varyings, built-in variables (other than constant
+/// expressions) or assignments (`=`, `+=`, `++`, ...). Each use of one of those is an error at
+/// its place; glslang (in relaxed mode) has already checked everything else.
+std::vector<Diagnostic> CheckWebGlGlobalInitializers(const glslang::TIntermediate& stage,
+                                                     const std::string& file);
+
 }  // namespace tidepool

@@ -247,6 +247,57 @@ INSTANTIATE_TEST_SUITE_P(
                         "allows at most "
                         "4 (WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")"}));
 
+// WebGL 1.0 §6.33: a WebGL 1 global initializer may use uniforms and non-const globals, not
+// varyings, built-in variables, texture lookups or assignments; plain GLSL ES 1.00 wants constants.
+INSTANTIATE_TEST_SUITE_P(
+        GlobalInitializers, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"uniforms, globals and built-in functions", GlslTarget::kWebGl1,
+                          kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level * 2.0;\n"
+                                      "float crest = height + sin(level), trough = -height;\n",
+                                      "    gl_FragColor = vec4(crest, trough, uv);\n"),
+                          ""},
+                WebGlCase{"the same without a WebGL target", GlslTarget::kEs100, kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level * 2.0;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5: error: 'non-constant global initializer (needs "
+                          "GL_EXT_shader_non_constant_global_initializers)' : not supported for "
+                          "this version or the enabled extensions"},
+                WebGlCase{"a varying", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level + uv.x;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5:24: error: the initializer of the global variable 'height' "
+                          "uses the varying 'uv'; WebGL 1 allows only constant expressions, "
+                          "uniforms and other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                          "Global Variable Initialization\")"},
+                WebGlCase{"a texture lookup", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform sampler2D foam;\n"
+                                      "float height = texture2D(foam, uv).r;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5:34: error: the initializer of the global variable 'height' "
+                          "uses a texture lookup; WebGL 1 allows only constant expressions, "
+                          "uniforms and other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                          "Global Variable Initialization\")"},
+                WebGlCase{"an increment", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float height = 1.0;\n"
+                                      "float crest = height++;\n",
+                                      "    gl_FragColor = vec4(crest);\n"),
+                          "a.fsh:5:21: error: the initializer of the global variable 'crest' "
+                          "uses an increment or decrement; WebGL 1 allows only constant "
+                          "expressions, uniforms and other global variables there (WebGL 1.0 "
+                          "§6.33 \"GLSL ES Global Variable Initialization\")"},
+                WebGlCase{"gl_FragCoord", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float depth = gl_FragCoord.z;\n",
+                                      "    gl_FragColor = vec4(depth);\n"),
+                          "a.fsh:4:15: error: the initializer of the global variable 'depth' "
+                          "uses the built-in variable 'gl_FragCoord'; WebGL 1 allows only "
+                          "constant expressions, uniforms and other global variables there "
+                          "(WebGL 1.0 §6.33 \"GLSL ES Global Variable Initialization\")"}));
+
 // WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
 INSTANTIATE_TEST_SUITE_P(
         BlockLayouts, WebGlRuleTest,
