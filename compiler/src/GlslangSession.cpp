@@ -331,6 +331,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
             const std::vector<Diagnostic> initializers =
                     CheckWebGlGlobalInitializers(*result.intermediate, input.file);
             broken.insert(broken.end(), initializers.begin(), initializers.end());
+            // A uniform too large on its own is reported above; packing would only repeat it.
+            if (broken.empty()) {
+                broken = CheckWebGlUniformPacking(*result.intermediate, resources, input.file,
+                                                  prepared.text);
+            }
         }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;
@@ -410,6 +415,11 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
                                 parses[0].text, parses[0].invariance},
                     LinkedStage{*parses[1].shader->getIntermediate(), inputs[1]->file,
                                 parses[1].text, parses[1].invariance});
+        }
+        if (!HasErrors(result.diagnostics) && IsTarget(*inputs[1], GlslTarget::kWebGl1)) {
+            result.diagnostics = CheckWebGlVaryingPacking(*parses[1].shader->getIntermediate(),
+                                                          ResourcesOf(*inputs[1], 100),
+                                                          inputs[1]->file, parses[1].text);
         }
         for (Diagnostic& d : result.diagnostics) {
             d.message = restore(d.message);

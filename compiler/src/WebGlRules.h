@@ -6,9 +6,12 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+struct TBuiltInResource;
 
 namespace glslang {
 class TIntermediate;
@@ -62,5 +65,39 @@ std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& st
 /// its place; glslang (in relaxed mode) has already checked everything else.
 std::vector<Diagnostic> CheckWebGlGlobalInitializers(const glslang::TIntermediate& stage,
                                                      const std::string& file);
+
+/// One variable as GLSL ES 1.00 Appendix A §7 packs it: `elements` array elements (1 when it is
+/// no array), each `rows` rows of `columns` components (a vec3 is 1 row of 3, a mat3 3 rows of
+/// 3, a mat2 2 full rows of 4).
+struct PackingVariable {
+    std::string name;
+    int rows = 1;
+    int columns = 1;
+    long long elements = 1;
+};
+
+/// Packs `variables` into a grid of `rows` rows of 4 components by the algorithm of GLSL ES 1.00
+/// Appendix A §7 (sorted by type: mat4, mat2, vec4, mat3, vec3, vec2, scalars, larger arrays
+/// first; 4-component rows from the top, 3-component rows below them, 2-component ones in
+/// columns 0-1 from there down or columns 2-3 from the bottom up, scalars into the column with
+/// the smallest gap that holds them). Returns the name of the first variable that finds no room,
+/// or nothing when all fit.
+std::optional<std::string> FirstUnpackedVariable(std::vector<PackingVariable> variables, int rows);
+
+/// WebGL 1.0 §6.26 "Packing Restrictions for Uniforms and Varyings": the uniforms a stage
+/// statically uses (GLSL ES 1.00 §4.3.4: declared but unused ones do not count; samplers are
+/// not packed here) must pack into its gl_MaxVertexUniformVectors or
+/// gl_MaxFragmentUniformVectors rows, structures counted member by member. Reported at the
+/// declaration (first mention in `source`) of the first uniform with no room.
+std::vector<Diagnostic> CheckWebGlUniformPacking(const glslang::TIntermediate& stage,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source);
+
+/// WebGL 1.0 §6.26 for a program: the varyings the fragment stage statically uses must pack into
+/// gl_MaxVaryingVectors rows. Reported at the fragment stage's declaration of the first varying
+/// with no room.
+std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& fragment,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source);
 
 }  // namespace tidepool

@@ -298,6 +298,78 @@ INSTANTIATE_TEST_SUITE_P(
                           "constant expressions, uniforms and other global variables there "
                           "(WebGL 1.0 §6.33 \"GLSL ES Global Variable Initialization\")"}));
 
+// WebGL 1.0 §6.26: uniforms and varyings must pack by GLSL ES 1.00 Appendix A §7 into the limits
+// (ES 2.0's minimums here: 16 fragment uniform vectors, 8 varying vectors).
+const std::string kManyVaryingsVertex =
+        "#version 100\n"
+        "attribute vec4 position;\n"
+        "varying vec3 normals[4];\n"
+        "varying vec3 tangents[4];\n"
+        "varying vec3 view;\n"
+        "varying float fades[8];\n"
+        "void main() {\n"
+        "    for (int i = 0; i < 4; i++) { normals[i] = position.xyz; tangents[i] = position.xyz; "
+        "}\n"
+        "    for (int i = 0; i < 8; i++) { fades[i] = position.w; }\n"
+        "    view = position.xyz;\n"
+        "    gl_Position = position;\n"
+        "}\n";
+
+INSTANTIATE_TEST_SUITE_P(
+        Packing, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"16 vec3 and 16 floats fill 16 rows", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform float heights[16];\n",
+                                      "    gl_FragColor = vec4(normals[15], heights[15]);\n"),
+                          ""},
+                WebGlCase{"a vec2 finds no room beside 16 vec3", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform vec2 offset;\n",
+                                      "    gl_FragColor = vec4(normals[15], 0.0) + "
+                                      "offset.xyxy;\n"),
+                          "a.fsh:5:14: error: the uniforms of the fragment shader do not fit in "
+                          "16 vectors (gl_MaxFragmentUniformVectors): 'offset' finds no room by "
+                          "the packing of GLSL ES 1.00 Appendix A §7, which WebGL requires "
+                          "(WebGL 1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"},
+                WebGlCase{"vec2s in both column pairs and floats beside the vec3s fill all 64 "
+                          "components",
+                          GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[8];\n"
+                                      "uniform vec2 offsets[8];\n"
+                                      "uniform vec2 scales[8];\n"
+                                      "uniform float heights[8];\n",
+                                      "    gl_FragColor = vec4(normals[7], heights[7]) + "
+                                      "vec4(offsets[7], scales[7]);\n"),
+                          ""},
+                WebGlCase{"an unused uniform does not count", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform vec2 offset;\n",
+                                      "    gl_FragColor = vec4(normals[15], 0.0);\n"),
+                          ""},
+                WebGlCase{"8 vec3 and 8 floats fill 8 varying rows", GlslTarget::kWebGl1,
+                          kManyVaryingsVertex,
+                          "#version 100\n"
+                          "precision mediump float;\n"
+                          "varying vec3 normals[4];\n"
+                          "varying vec3 tangents[4];\n"
+                          "varying float fades[8];\n"
+                          "void main() { gl_FragColor = vec4(normals[3] + tangents[3], fades[7]); "
+                          "}\n",
+                          ""},
+                WebGlCase{"a ninth vec3 varying", GlslTarget::kWebGl1, kManyVaryingsVertex,
+                          "#version 100\n"
+                          "precision mediump float;\n"
+                          "varying vec3 normals[4];\n"
+                          "varying vec3 tangents[4];\n"
+                          "varying vec3 view;\n"
+                          "void main() { gl_FragColor = vec4(normals[3] + tangents[3] + view, "
+                          "1.0); }\n",
+                          "a.fsh:5:14: error: the varyings the fragment shader reads do not fit "
+                          "in 8 vectors (gl_MaxVaryingVectors): 'view' finds no room by the "
+                          "packing of GLSL ES 1.00 Appendix A §7, which WebGL requires (WebGL "
+                          "1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"}));
+
 // WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
 INSTANTIATE_TEST_SUITE_P(
         BlockLayouts, WebGlRuleTest,
