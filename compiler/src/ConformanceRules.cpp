@@ -630,6 +630,30 @@ bool EveryPlusIsPlainlyBinary(std::string_view text) {
         const auto word_char = [](char ch) {
             return std::isalnum(static_cast<unsigned char>(ch)) != 0 || ch == '_';
         };
+        if (c == ')') {
+            // The condition of `if`, `while` or `for` is followed by a statement, not an operand.
+            int depth = 0;
+            std::size_t open = before - 1;
+            for (; open != std::string_view::npos; --open) {
+                depth += text[open] == ')' ? 1 : text[open] == '(' ? -1 : 0;
+                if (depth == 0 || open == 0) {
+                    break;
+                }
+            }
+            std::size_t word_end = open;
+            while (word_end > 0 && (text[word_end - 1] == ' ' || text[word_end - 1] == '\t' ||
+                                    text[word_end - 1] == '\n')) {
+                --word_end;
+            }
+            std::size_t word_start = word_end;
+            while (word_start > 0 && word_char(text[word_start - 1])) {
+                --word_start;
+            }
+            const std::string_view keyword = text.substr(word_start, word_end - word_start);
+            if (keyword == "if" || keyword == "while" || keyword == "for") {
+                return false;
+            }
+        }
         if (!(word_char(c) || c == ')' || c == ']' || c == '.')) {
             return false;
         }
@@ -656,6 +680,9 @@ std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
     std::vector<UnaryPlus> pluses;
     // Whether tokens[i - 1] ends an operand, so that a `+` after it is binary.
     bool after_operand = false;
+    // For each open `(`, whether it opens the condition of `if`, `while` or `for`: its `)` is
+    // followed by a statement, where a `+` is unary.
+    std::vector<bool> conditions;
     for (std::size_t i = 0; i < tokens.size(); ++i) {
         const SourceToken& token = tokens[i];
         const bool next_adjacent = i + 1 < tokens.size() && Adjacent(token, tokens[i + 1]);
@@ -681,8 +708,16 @@ std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
                                                token.text == "else" || token.text == "do";
         const bool name_or_number = std::isalnum(static_cast<unsigned char>(token.text[0])) != 0 ||
                                     token.text[0] == '_';
-        after_operand = (name_or_number && !keyword_before_expression) || token.text == ")" ||
-                        token.text == "]";
+        bool closes_condition = false;
+        if (token.text == "(") {
+            const std::string_view before = i > 0 ? tokens[i - 1].text : std::string_view();
+            conditions.push_back(before == "if" || before == "while" || before == "for");
+        } else if (token.text == ")" && !conditions.empty()) {
+            closes_condition = conditions.back();
+            conditions.pop_back();
+        }
+        after_operand = (name_or_number && !keyword_before_expression) ||
+                        (token.text == ")" && !closes_condition) || token.text == "]";
         // A number's exponent sign (1.5e+3) follows the "name" 5e, so it counts as binary,
         // which is right: it is no operator at all.
     }
@@ -734,6 +769,20 @@ std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_l
                             type)));
     }
     return errors;
+}
+
+bool MacroMayHoldUnaryPlus(std::string_view text) {
+    for (std::size_t at = text.find('#'); at != std::string_view::npos;
+         at = text.find('#', at + 1)) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        if (line.find("define") != std::string_view::npos &&
+            line.find('+') != std::string_view::npos) {
+            return true;
+        }
+        at = end == text.size() ? end - 1 : end;
+    }
+    return false;
 }
 
 bool MayHaveLateExtension(std::string_view source) {

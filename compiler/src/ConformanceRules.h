@@ -133,10 +133,15 @@ struct UnaryPlus {
 };
 
 /// The unary `+` operators of a stage's text outside preprocessor directives: a `+` (not part of
-/// `++` or `+=`) that does not follow an operand (a name, a number, `)`, `]` or a postfix `++` or
-/// `--`), and is not directly followed by a number, whose type is never in doubt. glslang 12's
+/// `++` or `+=`) that does not follow an operand (a name, a number, `)` other than the one closing
+/// the condition of `if`, `while` or `for`, `]` or a postfix `++` or `--`), and is not directly
+/// followed by a number, whose type is never in doubt. glslang 12's
 /// grammar drops unary `+` without checking its operand.
 std::vector<UnaryPlus> FindUnaryPluses(std::string_view text);
+
+/// A cheap over-estimate: true when a `#define` line of `text` holds a `+`, so that a macro may
+/// produce a unary `+` that FindUnaryPluses finds only in the preprocessed text.
+bool MacroMayHoldUnaryPlus(std::string_view text);
 
 /// `text` with each of `pluses` replaced by ` - `: unary `-` takes exactly the operands unary
 /// `+` takes (GLSL ES 1.00 §5.9, 3.00 §5.9), and glslang does check those. Lines are kept.

@@ -339,10 +339,18 @@ StageParse ParseStage(const GlslangStageInput& input) {
         }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;
-        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(prepared.text); !pluses.empty()) {
+        // A macro may hold a unary '+': then the expanded text (lines kept) is the one scanned.
+        std::string expanded;
+        if (MacroMayHoldUnaryPlus(prepared.text)) {
+            if (PreprocessResult preprocessed = PreprocessStage(input); preprocessed.ok) {
+                expanded = std::move(preprocessed.text);
+            }
+        }
+        const std::string_view scanned = expanded.empty() ? prepared.text : expanded;
+        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(scanned); !pluses.empty()) {
             // glslang drops unary '+' unchecked; the same text with '-' in its place shows which
             // operand types it would refuse (GLSL ES 1.00 §5.9, 3.00 §5.9).
-            const std::string negated = NegateUnaryPluses(prepared.text, pluses);
+            const std::string negated = NegateUnaryPluses(scanned, pluses);
             const char* negated_text = negated.c_str();
             auto shader = MakeShader(input, prepared, &negated_text);
             shader->parse(&resources, version, EEsProfile, prepared.force_version, false,

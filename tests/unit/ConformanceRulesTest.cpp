@@ -494,6 +494,43 @@ INSTANTIATE_TEST_SUITE_P(
                          "a.fsh:4:28: error: '+' : wrong operand type: unary '+' takes an integer "
                          "or floating-point scalar, vector or matrix, not 'in structure{ global "
                          "mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on a struct as the statement of an if", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "uniform Wave wave;\n"
+                         "void main() {\n"
+                         "    if (wave.height > 0.0) +wave;\n"
+                         "    gl_FragColor = vec4(wave.height);\n"
+                         "}\n",
+                         "a.fsh:6:28: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or floating-point scalar, vector or matrix, not 'uniform structure{ "
+                         "global mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on a struct produced by a macro", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "uniform Wave wave;\n"
+                         "#define LIFT(x) +x\n"
+                         "void main() {\n"
+                         "    Wave w = LIFT(wave);\n"
+                         "    gl_FragColor = vec4(w.height);\n"
+                         "}\n",
+                         "a.fsh:7:14: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or floating-point scalar, vector or matrix, not 'uniform structure{ "
+                         "global mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on floats after an if and from a macro", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform float level;\n"
+                         "#define LIFT(x) +x\n"
+                         "void main() {\n"
+                         "    float h = LIFT(level);\n"
+                         "    if (h > 0.0) +h;\n"
+                         "    for (int i = 0; i < 2; i++) +h;\n"
+                         "    gl_FragColor = vec4(h);\n"
+                         "}\n",
+                         ""},
                 RuleCase{"unary + on numbers, vectors, matrices and after operators", nullptr,
                          "#version 100\n"
                          "precision mediump float;\n"
