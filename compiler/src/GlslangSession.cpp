@@ -327,6 +327,11 @@ StageParse ParseStage(const GlslangStageInput& input) {
                     CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
             broken.insert(broken.end(), nesting.begin(), nesting.end());
         }
+        if (IsTarget(input, GlslTarget::kWebGl2)) {
+            const std::vector<Diagnostic> operators =
+                    CheckWebGl2Operators(*result.intermediate, input.file);
+            broken.insert(broken.end(), operators.begin(), operators.end());
+        }
         if (webgl && version == 100) {
             const std::vector<Diagnostic> initializers =
                     CheckWebGlGlobalInitializers(*result.intermediate, input.file);

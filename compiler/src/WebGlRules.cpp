@@ -496,4 +496,67 @@ std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& f
                         "varyings the fragment shader reads", "gl_MaxVaryingVectors");
 }
 
+namespace {
+
+// A type WebGL 2.0 §5.26 keeps away from `,` and `?:`.
+std::string_view DisallowedOperandKind(const glslang::TType& type) {
+    if (type.getBasicType() == glslang::EbtVoid) {
+        return "void";
+    }
+    if (type.isArray()) {
+        return "an array";
+    }
+    return type.isStruct() && type.containsArray() ? "a structure containing an array" : "";
+}
+
+class Webgl2OperatorChecker : public glslang::TIntermTraverser {
+public:
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        if (node->getOp() != glslang::EOpComma) {
+            return true;
+        }
+        for (TIntermNode* operand : node->getSequence()) {
+            const glslang::TIntermTyped* typed = operand->getAsTyped();
+            const std::string_view kind =
+                    typed != nullptr ? DisallowedOperandKind(typed->getType()) : "";
+            if (!kind.empty()) {
+                Forbid(node->getLoc(), "sequence operator ','", kind);
+                break;
+            }
+        }
+        return true;
+    }
+    bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override {
+        const std::string_view kind = DisallowedOperandKind(node->getType());
+        if (node->getType().getBasicType() != glslang::EbtVoid && !kind.empty()) {
+            Forbid(node->getLoc(), "ternary operator '?:'", kind);
+        }
+        return true;
+    }
+
+    std::string file;
+    std::vector<Diagnostic> errors;
+
+private:
+    void Forbid(const glslang::TSourceLoc& loc, std::string_view op, std::string_view kind) {
+        errors.push_back(
+                MakeError(file, loc.line, std::max(loc.column, 0),
+                          fmt::format("the {} applied to {}: WebGL 2 forbids it (WebGL 2.0 §5.26 "
+                                      "\"Disallowed variants of GLSL ES 3.00 operators\")",
+                                      op, kind)));
+    }
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
+                                             const std::string& file) {
+    Webgl2OperatorChecker checker;
+    checker.file = file;
+    if (stage.getTreeRoot() != nullptr) {
+        stage.getTreeRoot()->traverse(&checker);
+    }
+    return checker.errors;
+}
+
 }  // namespace tidepool

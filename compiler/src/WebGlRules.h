@@ -100,4 +100,12 @@ std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& f
                                                  const TBuiltInResource& resources,
                                                  const std::string& file, std::string_view source);
 
+/// Checks a WebGL 2 stage for the operator forms WebGL 2.0 §5.26 "Disallowed variants of GLSL ES
+/// 3.00 operators" forbids: the sequence operator `,` with an operand that is void, an array or
+/// a structure containing an array, and the ternary operator `?:` whose result is an array or
+/// such a structure. Reported at the operator. (A `?:` of void operands is not seen: glslang
+/// keeps it as an if-statement.)
+std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
+                                             const std::string& file);
+
 }  // namespace tidepool

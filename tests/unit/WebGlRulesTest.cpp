@@ -370,6 +370,44 @@ INSTANTIATE_TEST_SUITE_P(
                           "packing of GLSL ES 1.00 Appendix A §7, which WebGL requires (WebGL "
                           "1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"}));
 
+// WebGL 2.0 §5.26: no `,` or `?:` over arrays, structures holding arrays or void.
+INSTANTIATE_TEST_SUITE_P(
+        Webgl2Operators, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"sequences and ternaries of scalars", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\n",
+                                      "    float a = uv.x;\n"
+                                      "    float x = (a += 1.0, wet ? a : 2.0);\n"
+                                      "    colour = vec4(x);\n"),
+                          ""},
+                WebGlCase{"a ternary choosing between arrays", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\n",
+                                      "    float a[2] = float[2](uv.x, uv.y);\n"
+                                      "    float b[2] = float[2](uv.y, uv.x);\n"
+                                      "    float c[2] = wet ? a : b;\n"
+                                      "    colour = vec4(c[0]);\n"),
+                          "a.fsh:9:22: error: the ternary operator '?:' applied to an array: "
+                          "WebGL 2 forbids it (WebGL 2.0 §5.26 \"Disallowed variants of GLSL ES "
+                          "3.00 operators\")"},
+                WebGlCase{"a sequence ending in a structure holding an array", GlslTarget::kWebGl2,
+                          kVertex300,
+                          Fragment300("struct Foam { float d[2]; };\n"
+                                      "uniform Foam foam;\n",
+                                      "    float h = uv.x;\n"
+                                      "    Foam f = (h = 2.0, foam);\n"
+                                      "    colour = vec4(f.d[0] + h);\n"),
+                          "a.fsh:9:22: error: the sequence operator ',' applied to a structure "
+                          "containing an array: WebGL 2 forbids it (WebGL 2.0 §5.26 \"Disallowed "
+                          "variants of GLSL ES 3.00 operators\")"},
+                WebGlCase{"the same sequence without a WebGL target", GlslTarget::kEs300,
+                          kVertex300,
+                          Fragment300("struct Foam { float d[2]; };\n"
+                                      "uniform Foam foam;\n",
+                                      "    float h = uv.x;\n"
+                                      "    Foam f = (h = 2.0, foam);\n"
+                                      "    colour = vec4(f.d[0] + h);\n"),
+                          ""}));
+
 // WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
 INSTANTIATE_TEST_SUITE_P(
         BlockLayouts, WebGlRuleTest,
