@@ -529,6 +529,8 @@ constexpr std::string_view kReservedMacroWarning =
 
 constexpr std::string_view kEmptyLastCase = "last case/default label not followed by statements";
 
+constexpr std::string_view kNonConstantGlobal = "'non-constant global initializer";
+
 bool Mentions(const Diagnostic& d, std::string_view text) {
     return d.message.find(text) != std::string::npos;
 }
@@ -628,6 +630,30 @@ bool EveryPlusIsPlainlyBinary(std::string_view text) {
         const auto word_char = [](char ch) {
             return std::isalnum(static_cast<unsigned char>(ch)) != 0 || ch == '_';
         };
+        if (c == ')') {
+            // The condition of `if`, `while` or `for` is followed by a statement, not an operand.
+            int depth = 0;
+            std::size_t open = before - 1;
+            for (; open != std::string_view::npos; --open) {
+                depth += text[open] == ')' ? 1 : text[open] == '(' ? -1 : 0;
+                if (depth == 0 || open == 0) {
+                    break;
+                }
+            }
+            std::size_t word_end = open;
+            while (word_end > 0 && (text[word_end - 1] == ' ' || text[word_end - 1] == '\t' ||
+                                    text[word_end - 1] == '\n')) {
+                --word_end;
+            }
+            std::size_t word_start = word_end;
+            while (word_start > 0 && word_char(text[word_start - 1])) {
+                --word_start;
+            }
+            const std::string_view keyword = text.substr(word_start, word_end - word_start);
+            if (keyword == "if" || keyword == "while" || keyword == "for") {
+                return false;
+            }
+        }
         if (!(word_char(c) || c == ')' || c == ']' || c == '.')) {
             return false;
         }
@@ -654,6 +680,9 @@ std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
     std::vector<UnaryPlus> pluses;
     // Whether tokens[i - 1] ends an operand, so that a `+` after it is binary.
     bool after_operand = false;
+    // For each open `(`, whether it opens the condition of `if`, `while` or `for`: its `)` is
+    // followed by a statement, where a `+` is unary.
+    std::vector<bool> conditions;
     for (std::size_t i = 0; i < tokens.size(); ++i) {
         const SourceToken& token = tokens[i];
         const bool next_adjacent = i + 1 < tokens.size() && Adjacent(token, tokens[i + 1]);
@@ -679,8 +708,16 @@ std::vector<UnaryPlus> FindUnaryPluses(std::string_view text) {
                                                token.text == "else" || token.text == "do";
         const bool name_or_number = std::isalnum(static_cast<unsigned char>(token.text[0])) != 0 ||
                                     token.text[0] == '_';
-        after_operand = (name_or_number && !keyword_before_expression) || token.text == ")" ||
-                        token.text == "]";
+        bool closes_condition = false;
+        if (token.text == "(") {
+            const std::string_view before = i > 0 ? tokens[i - 1].text : std::string_view();
+            conditions.push_back(before == "if" || before == "while" || before == "for");
+        } else if (token.text == ")" && !conditions.empty()) {
+            closes_condition = conditions.back();
+            conditions.pop_back();
+        }
+        after_operand = (name_or_number && !keyword_before_expression) ||
+                        (token.text == ")" && !closes_condition) || token.text == "]";
         // A number's exponent sign (1.5e+3) follows the "name" 5e, so it counts as binary,
         // which is right: it is no operator at all.
     }
@@ -734,6 +771,20 @@ std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_l
     return errors;
 }
 
+bool MacroMayHoldUnaryPlus(std::string_view text) {
+    for (std::size_t at = text.find('#'); at != std::string_view::npos;
+         at = text.find('#', at + 1)) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        if (line.find("define") != std::string_view::npos &&
+            line.find('+') != std::string_view::npos) {
+            return true;
+        }
+        at = end == text.size() ? end - 1 : end;
+    }
+    return false;
+}
+
 bool MayHaveLateExtension(std::string_view source) {
     bool tokens_seen = false;
     for (const std::string& line : CommentFreeLines(source)) {
@@ -782,10 +833,11 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
         if (d.severity != Severity::kError) {
             continue;
         }
-        const bool relaxable =
-                (!webgl && Mentions(d, kDefinedFromMacro)) ||
-                (version == 100 && Mentions(d, kReservedMacro100)) ||
-                (version >= 300 && Mentions(d, kEmptyLastCase) && switch_lines.count(d.line) != 0);
+        const bool relaxable = (!webgl && Mentions(d, kDefinedFromMacro)) ||
+                               (version == 100 && Mentions(d, kReservedMacro100)) ||
+                               (version >= 300 && Mentions(d, kEmptyLastCase) &&
+                                switch_lines.count(d.line) != 0) ||
+                               (webgl && version == 100 && Mentions(d, kNonConstantGlobal));
         if (!relaxable) {
             return false;
         }
@@ -795,7 +847,7 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
 }
 
 std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
-                                             const std::set<int>& switch_lines) {
+                                             const std::set<int>& switch_lines, bool webgl1) {
     // GLSL ES 3.00 §6.2: the statement after the last label is there, glslang only lost it.
     diagnostics.erase(std::remove_if(diagnostics.begin(), diagnostics.end(),
                                      [&](const Diagnostic& d) {
@@ -807,12 +859,238 @@ std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics
     for (Diagnostic& d : diagnostics) {
         // In 3.00 the reserved-name warning is glslang's strict verdict too (and is made an
         // error by PromoteReservedMacroNames); in 1.00 it is the relaxed form of the error.
+        if (webgl1 && d.severity == Severity::kWarning && Mentions(d, kNonConstantGlobal)) {
+            // WebGL 1.0 §6.33 asks for a warning; CheckWebGlGlobalInitializers checks the rest.
+            d.message =
+                    "global variable initializer is not a constant expression, as GLSL ES "
+                    "1.00 §4.3 requires; WebGL 1 allows uniforms and other global variables "
+                    "in it (WebGL 1.0 §6.33 \"GLSL ES Global Variable Initialization\"), "
+                    "but other GLSL ES 1.00 compilers may refuse it";
+            d.column = 0;
+            continue;
+        }
         if (d.severity == Severity::kWarning && !Mentions(d, kDefinedFromMacroRelaxed) &&
             !Mentions(d, kReservedMacroWarning)) {
             d.severity = Severity::kError;
         }
     }
     return diagnostics;
+}
+
+bool FailedOnlyForConstantExpressions(const std::vector<Diagnostic>& diagnostics) {
+    static constexpr std::string_view kConstantWanted[] = {
+            "global const initializers must be constant",
+            "'non-constant initializer'",
+            "'non-constant global initializer",
+            "array size must be a constant integer expression",
+    };
+    bool any = false;
+    for (const Diagnostic& d : diagnostics) {
+        if (d.severity != Severity::kError) {
+            continue;
+        }
+        if (std::none_of(std::begin(kConstantWanted), std::end(kConstantWanted),
+                         [&](std::string_view text) { return Mentions(d, text); })) {
+            return false;
+        }
+        any = true;
+    }
+    return any;
+}
+
+const char* const kEs100FoldingPreamble =
+        "struct tp_es100_mat2 { highp mat2 m; };\n"
+        "struct tp_es100_mat3 { highp mat3 m; };\n"
+        "struct tp_es100_mat4 { highp mat4 m; };\n";
+
+namespace {
+
+// The rewriting of FoldEs100ConstantExpressions over the tokens of one text; ranges are token
+// indices [begin, end).
+class Es100ConstantFolder {
+public:
+    explicit Es100ConstantFolder(std::string_view text) : text_(text), tokens_(CodeTokens(text)) {}
+
+    // The lines where a rewritten expression starts.
+    std::set<int> lines;
+
+    // The whole text rewritten; empty when nothing was.
+    std::string Run() {
+        if (tokens_.empty()) {
+            return {};
+        }
+        std::string out(text_.substr(0, Offset(0)));
+        out += Rewrite(0, tokens_.size());
+        out += text_.substr(End(tokens_.size() - 1));
+        // Each matrixCompMult copies its operands N times: nesting could grow without bound.
+        return changed_ && out.size() <= 4 * text_.size() + 65536 ? out : std::string();
+    }
+
+private:
+    std::size_t Offset(std::size_t i) const {
+        return static_cast<std::size_t>(tokens_[i].text.data() - text_.data());
+    }
+    std::size_t End(std::size_t i) const { return Offset(i) + tokens_[i].text.size(); }
+    std::string_view Span(std::size_t begin, std::size_t end) const {
+        return text_.substr(Offset(begin), End(end - 1) - Offset(begin));
+    }
+
+    // The ranges between the commas at the top level of [begin, end); none when one is empty.
+    std::vector<std::pair<std::size_t, std::size_t>> Split(std::size_t begin,
+                                                           std::size_t end) const {
+        std::vector<std::pair<std::size_t, std::size_t>> parts;
+        int depth = 0;
+        std::size_t start = begin;
+        for (std::size_t i = begin; i <= end; ++i) {
+            if (i == end || (depth == 0 && tokens_[i].text == ",")) {
+                if (i == start) {
+                    return {};
+                }
+                parts.emplace_back(start, i);
+                start = i + 1;
+                continue;
+            }
+            const std::string_view t = tokens_[i].text;
+            depth += t == "(" || t == "[" || t == "{"   ? 1
+                     : t == ")" || t == "]" || t == "}" ? -1
+                                                        : 0;
+        }
+        return parts;
+    }
+
+    // The N of the `matN` type of the expression [begin, end), 0 when its tokens do not say.
+    int MatrixSize(std::size_t begin, std::size_t end) const {
+        const std::string_view first = tokens_[begin].text;
+        const bool call = begin + 1 < end && tokens_[begin + 1].text == "(";
+        if (first.size() == 4 && first.substr(0, 3) == "mat" && first[3] >= '2' &&
+            first[3] <= '4' && (call || begin + 1 == end)) {
+            return first[3] - '0';
+        }
+        if (first == "matrixCompMult" && call) {
+            const auto args = Split(begin + 2, Closing(tokens_, begin + 1));
+            return args.empty() ? 0 : MatrixSize(args[0].first, args[0].second);
+        }
+        if (first == "(" && Closing(tokens_, begin) == end - 1 && begin + 2 < end) {
+            return MatrixSize(begin + 1, end - 1);
+        }
+        const bool indexed = begin + 1 < end && tokens_[begin + 1].text == "[" &&
+                             Closing(tokens_, begin + 1) == end - 1;
+        if (!tokens_[begin].identifier || !(begin + 1 == end || indexed)) {
+            return 0;
+        }
+        // A name: the nearest declaration `matN name` before it (a variable, a parameter or an
+        // array of matrices).
+        for (std::size_t k = begin; k-- > 1;) {
+            if (tokens_[k].text == first) {
+                const std::string_view type = tokens_[k - 1].text;
+                if (type.size() == 4 && type.substr(0, 3) == "mat" && type[3] >= '2' &&
+                    type[3] <= '4') {
+                    return type[3] - '0';
+                }
+            }
+        }
+        return 0;
+    }
+
+    // A `(` that groups an expression rather than opening a call or a constructor's arguments.
+    bool Groups(std::size_t open) const {
+        if (open == 0) {
+            return true;
+        }
+        const std::string_view before = tokens_[open - 1].text;
+        return !(tokens_[open - 1].identifier ||
+                 std::isdigit(static_cast<unsigned char>(before[0])) != 0 || before == ")" ||
+                 before == "]");
+    }
+
+    // Rewritten text of a part, on one line.
+    std::string Flat(std::size_t begin, std::size_t end) {
+        std::string part = Rewrite(begin, end);
+        std::replace(part.begin(), part.end(), '\n', ' ');
+        return part;
+    }
+
+    // The replacement of the tokens [begin, end], then the line breaks the original held.
+    std::string KeepLines(std::string replacement, std::size_t begin, std::size_t end) const {
+        const std::string_view original = Span(begin, end + 1);
+        replacement.append(
+                static_cast<std::size_t>(std::count(original.begin(), original.end(), '\n')), '\n');
+        return replacement;
+    }
+
+    std::string Rewrite(std::size_t begin, std::size_t end) {
+        std::string out;
+        for (std::size_t i = begin; i < end; ++i) {
+            if (i > begin) {
+                out += text_.substr(End(i - 1), Offset(i) - End(i - 1));
+            }
+            const std::string_view token = tokens_[i].text;
+            const bool call = i + 1 < end && tokens_[i + 1].text == "(";
+            const std::size_t open = token == "(" ? i : i + 1;
+            const std::size_t close = token == "(" || (token == "matrixCompMult" && call)
+                                              ? Closing(tokens_, open)
+                                              : end;
+            // A directive inside the expression cannot be joined onto one line.
+            if (close >= end || Span(i, close + 1).find('#') != std::string_view::npos) {
+                out += token;
+                continue;
+            }
+            const auto parts = Split(open + 1, close);
+            if (token == "matrixCompMult" && parts.size() == 2) {
+                const int n = std::max(MatrixSize(parts[0].first, parts[0].second),
+                                       MatrixSize(parts[1].first, parts[1].second));
+                if (n != 0) {
+                    const std::string x = Flat(parts[0].first, parts[0].second);
+                    const std::string y = Flat(parts[1].first, parts[1].second);
+                    std::string folded = fmt::format("mat{}(", n);
+                    for (int column = 0; column < n; ++column) {
+                        folded +=
+                                fmt::format("{}tp_es100_mat{}({}).m[{}] * tp_es100_mat{}({}).m[{}]",
+                                            column == 0 ? "" : ", ", n, x, column, n, y, column);
+                    }
+                    out += KeepLines(folded + ")", i, close);
+                    changed_ = true;
+                    lines.insert(tokens_[i].line);
+                    i = close;
+                    continue;
+                }
+            }
+            if (token == "(" && parts.size() >= 2 && Groups(i)) {
+                std::string folded = "(";
+                for (std::size_t p = 0; p + 1 < parts.size(); ++p) {
+                    const std::string operand = Flat(parts[p].first, parts[p].second);
+                    folded += fmt::format("{}({}) == ({})", p == 0 ? "" : " && ", operand, operand);
+                }
+                const std::string value = Flat(parts.back().first, parts.back().second);
+                folded += fmt::format(" ? ({}) : ({}))", value, value);
+                out += KeepLines(folded, i, close);
+                changed_ = true;
+                lines.insert(tokens_[i].line);
+                i = close;
+                continue;
+            }
+            out += token;
+        }
+        return out;
+    }
+
+    std::string_view text_;
+    std::vector<SourceToken> tokens_;
+    bool changed_ = false;
+};
+
+}  // namespace
+
+std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
+                                         std::set<int>* rewritten_lines) {
+    if (preprocessed.find("matrixCompMult") == std::string_view::npos &&
+        preprocessed.find(',') == std::string_view::npos) {
+        return {};
+    }
+    Es100ConstantFolder folder(preprocessed);
+    std::string folded = folder.Run();
+    *rewritten_lines = std::move(folder.lines);
+    return folded;
 }
 
 std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagnostics,

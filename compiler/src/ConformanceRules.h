@@ -103,7 +103,9 @@ std::set<int> SwitchesWithStatementAfterLastLabel(std::string_view preprocessed)
 /// reserved, "does not itself result in an error"). For a WebGL target (`webgl`), `defined`
 /// from a macro stays an error: WebGL 1.0 §6.34 makes it one. In `#version 300 es`, glslang's
 /// error for a switch whose last label has no statement after it is relaxable when the switch is
-/// at one of `switch_lines` (see SwitchesWithStatementAfterLastLabel).
+/// at one of `switch_lines` (see SwitchesWithStatementAfterLastLabel). For a WebGL 1 target
+/// (`webgl` and version 100), a global variable initializer that is not a constant expression is
+/// relaxable (WebGL 1.0 §6.33).
 bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, int version,
                                    bool webgl, const std::set<int>& switch_lines = {});
 
@@ -112,9 +114,12 @@ bool FailedOnlyForRelaxableReasons(const std::vector<Diagnostic>& diagnostics, i
 /// undefined name in `#if`, a disabled extension's feature, ...), and a warning it did not
 /// demote is also taken as one, which can only make a shader invalid, never valid. The
 /// relaxed warning for a switch at one of `switch_lines` is dropped (see
-/// SwitchesWithStatementAfterLastLabel).
+/// SwitchesWithStatementAfterLastLabel). For a WebGL 1 target (`webgl1`), the warning for a
+/// global initializer that is not a constant expression stays a warning, reworded (WebGL 1.0
+/// §6.33; CheckWebGlGlobalInitializers checks what such an initializer may use).
 std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics,
-                                             const std::set<int>& switch_lines = {});
+                                             const std::set<int>& switch_lines = {},
+                                             bool webgl1 = false);
 
 /// True when `diagnostics` holds glslang's error for a switch whose last label it believes has no
 /// statement after it, so that SwitchesWithStatementAfterLastLabel is worth computing.
@@ -128,10 +133,15 @@ struct UnaryPlus {
 };
 
 /// The unary `+` operators of a stage's text outside preprocessor directives: a `+` (not part of
-/// `++` or `+=`) that does not follow an operand (a name, a number, `)`, `]` or a postfix `++` or
-/// `--`), and is not directly followed by a number, whose type is never in doubt. glslang 12's
+/// `++` or `+=`) that does not follow an operand (a name, a number, `)` other than the one closing
+/// the condition of `if`, `while` or `for`, `]` or a postfix `++` or `--`), and is not directly
+/// followed by a number, whose type is never in doubt. glslang 12's
 /// grammar drops unary `+` without checking its operand.
 std::vector<UnaryPlus> FindUnaryPluses(std::string_view text);
+
+/// A cheap over-estimate: true when a `#define` line of `text` holds a `+`, so that a macro may
+/// produce a unary `+` that FindUnaryPluses finds only in the preprocessed text.
+bool MacroMayHoldUnaryPlus(std::string_view text);
 
 /// `text` with each of `pluses` replaced by ` - `: unary `-` takes exactly the operands unary
 /// `+` takes (GLSL ES 1.00 §5.9, 3.00 §5.9), and glslang does check those. Lines are kept.
@@ -145,6 +155,33 @@ std::string NegateUnaryPluses(std::string_view text, const std::vector<UnaryPlus
 std::vector<Diagnostic> UnaryPlusErrors(const std::vector<Diagnostic>& negated_log,
                                         const std::vector<UnaryPlus>& pluses,
                                         const std::string& file);
+
+/// True when a failed `#version 100` parse failed only where glslang wanted a constant
+/// expression (a const initializer, a global initializer, an array size), so that
+/// FoldEs100ConstantExpressions may be worth trying.
+bool FailedOnlyForConstantExpressions(const std::vector<Diagnostic>& diagnostics);
+
+/// The declarations FoldEs100ConstantExpressions' text needs, given to glslang as its preamble:
+/// one struct per matrix size, whose constructor takes exactly that matrix type.
+extern const char* const kEs100FoldingPreamble;
+
+/// glslang's preprocessed text of a `#version 100` stage (macros expanded, comments gone, lines
+/// kept) rewritten so that glslang 12 folds two kinds of expression GLSL ES 1.00 §5.10 (and
+/// §4.3.3) makes constant expressions when their operands are, but glslang does not:
+/// - `matrixCompMult(x, y)`, "a built-in function call whose arguments are all constant
+///   expressions", becomes `matN(x[0] * y[0], ...)` for N the size of x's type (found from a
+///   `matN` constructor or the declaration `matN x` before it; the call is left as it is when
+///   neither says), each operand wrapped in a constructor of a preamble struct that takes only a
+///   `matN`, so a wrong size or a non-matrix operand stays an error;
+/// - the sequence operator in a parenthesised expression, `(a, b)`, "an operator on operands
+///   that are constant expressions" in 1.00 (3.00 §4.3.3 excludes it, and is left alone),
+///   becomes `((a) == (a) ? (b) : (b))`, which keeps the value of `b` and is constant only when
+///   `a` is.
+/// Each rewritten expression keeps its lines (the text it replaces is joined onto its first line
+/// and the line breaks follow it); `rewritten_lines` receives the lines where one starts. Empty
+/// when there is nothing to rewrite, or the text would grow past a bound.
+std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
+                                         std::set<int>* rewritten_lines);
 
 /// In a `#version 300 es` shader, glslang only warns when `#define` or `#undef` names a macro
 /// containing `__`; GLSL ES 3.00 §3.4 reserves those names, so each such warning becomes an

@@ -335,6 +335,8 @@ public:
     std::map<std::string, glslang::TSourceLoc> used;
 };
 
+}  // namespace
+
 std::map<std::string, glslang::TSourceLoc> StaticallyUsed(const glslang::TIntermediate& stage) {
     UseCollector collector;
     glslang::TIntermAggregate* root =
@@ -350,8 +352,6 @@ std::map<std::string, glslang::TSourceLoc> StaticallyUsed(const glslang::TInterm
     }
     return collector.used;
 }
-
-}  // namespace
 
 std::pair<int, int> FirstMention(std::string_view source, std::string_view name) {
     auto is_ident = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };

@@ -8,6 +8,7 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/SourceAssembler.h"
 
+#include <map>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -18,6 +19,7 @@ struct TBuiltInResource;
 namespace glslang {
 class TIntermediate;
 class TIntermSymbol;
+struct TSourceLoc;
 }  // namespace glslang
 
 namespace tidepool {
@@ -68,6 +70,10 @@ std::vector<Diagnostic> CheckStageRules(const glslang::TIntermediate& stage,
 
 /// The declarations glslang keeps for the linker: every global the stage declares.
 std::vector<glslang::TIntermSymbol*> LinkerObjects(const glslang::TIntermediate& stage);
+
+/// The variables the stage's code reads or writes (a declaration alone is no use), each with
+/// the place of its first use.
+std::map<std::string, glslang::TSourceLoc> StaticallyUsed(const glslang::TIntermediate& stage);
 
 /// Line and column of the first whole-word mention of `name` in `source` ({0, 0} when none):
 /// glslang 12 keeps no position on its linker objects, and in GLSL ES a declaration comes before

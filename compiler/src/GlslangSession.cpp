@@ -258,10 +258,48 @@ StageParse ParseStage(const GlslangStageInput& input) {
         // first one, goes past the relaxable error to the real one.
         result.diagnostics = RestoreDemotedErrors(
                 ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text),
-                switch_lines);
+                switch_lines, webgl && version == 100);
         if (ok && !HasErrors(result.diagnostics)) {
             result.ok = true;
             result.shader = std::move(shader);
+        }
+    }
+    if (!result.ok && version == 100 && FailedOnlyForConstantExpressions(result.diagnostics)) {
+        // GLSL ES 1.00 §5.10: matrixCompMult and the sequence operator of constant expressions
+        // are constant expressions, which glslang 12 does not fold; the preprocessed text is
+        // parsed again with them rewritten into expressions it does fold.
+        PreprocessResult preprocessed;
+        {
+            const KeepThreadPool keep;
+            preprocessed = PreprocessStage(input);
+        }
+        std::set<int> rewritten_lines;
+        const std::string folded =
+                preprocessed.ok ? FoldEs100ConstantExpressions(preprocessed.text, &rewritten_lines)
+                                : std::string();
+        if (!folded.empty()) {
+            const char* folded_text = folded.c_str();
+            auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
+            shader->setStrings(&folded_text, 1);
+            shader->setPreamble(kEs100FoldingPreamble);
+            const bool ok = shader->parse(&resources, version, EEsProfile, prepared.force_version,
+                                          false, kMessages);
+            std::vector<Diagnostic> diagnostics =
+                    ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, input.text);
+            // Errors away from the rewritten lines are the shader's own, found now that the
+            // constants fold (an index past an array sized by one); others stay glslang's first.
+            const bool own_errors =
+                    std::none_of(diagnostics.begin(), diagnostics.end(), [&](const Diagnostic& d) {
+                        return d.severity == Severity::kError &&
+                               (d.line == 0 || rewritten_lines.count(d.line) != 0);
+                    });
+            if (ok && !HasErrors(diagnostics)) {
+                result.ok = true;
+                result.shader = std::move(shader);
+                result.diagnostics = std::move(diagnostics);
+            } else if (own_errors) {
+                result.diagnostics = std::move(diagnostics);
+            }
         }
     }
     result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
@@ -289,12 +327,35 @@ StageParse ParseStage(const GlslangStageInput& input) {
                     CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
             broken.insert(broken.end(), nesting.begin(), nesting.end());
         }
+        if (IsTarget(input, GlslTarget::kWebGl2)) {
+            const std::vector<Diagnostic> operators =
+                    CheckWebGl2Operators(*result.intermediate, input.file);
+            broken.insert(broken.end(), operators.begin(), operators.end());
+        }
+        if (webgl && version == 100) {
+            const std::vector<Diagnostic> initializers =
+                    CheckWebGlGlobalInitializers(*result.intermediate, input.file);
+            broken.insert(broken.end(), initializers.begin(), initializers.end());
+            // A uniform too large on its own is reported above; packing would only repeat it.
+            if (broken.empty()) {
+                broken = CheckWebGlUniformPacking(*result.intermediate, resources, input.file,
+                                                  prepared.text);
+            }
+        }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;
-        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(prepared.text); !pluses.empty()) {
+        // A macro may hold a unary '+': then the expanded text (lines kept) is the one scanned.
+        std::string expanded;
+        if (MacroMayHoldUnaryPlus(prepared.text)) {
+            if (PreprocessResult preprocessed = PreprocessStage(input); preprocessed.ok) {
+                expanded = std::move(preprocessed.text);
+            }
+        }
+        const std::string_view scanned = expanded.empty() ? prepared.text : expanded;
+        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(scanned); !pluses.empty()) {
             // glslang drops unary '+' unchecked; the same text with '-' in its place shows which
             // operand types it would refuse (GLSL ES 1.00 §5.9, 3.00 §5.9).
-            const std::string negated = NegateUnaryPluses(prepared.text, pluses);
+            const std::string negated = NegateUnaryPluses(scanned, pluses);
             const char* negated_text = negated.c_str();
             auto shader = MakeShader(input, prepared, &negated_text);
             shader->parse(&resources, version, EEsProfile, prepared.force_version, false,
@@ -367,6 +428,11 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
                                 parses[0].text, parses[0].invariance},
                     LinkedStage{*parses[1].shader->getIntermediate(), inputs[1]->file,
                                 parses[1].text, parses[1].invariance});
+        }
+        if (!HasErrors(result.diagnostics) && IsTarget(*inputs[1], GlslTarget::kWebGl1)) {
+            result.diagnostics = CheckWebGlVaryingPacking(*parses[1].shader->getIntermediate(),
+                                                          ResourcesOf(*inputs[1], 100),
+                                                          inputs[1]->file, parses[1].text);
         }
         for (Diagnostic& d : result.diagnostics) {
             d.message = restore(d.message);

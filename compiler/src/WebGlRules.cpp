@@ -1,11 +1,13 @@
 #include "WebGlRules.h"
 
+#include <glslang/Include/ResourceLimits.h>
 #include <glslang/Include/intermediate.h>
 #include <glslang/MachineIndependent/localintermediate.h>
 
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <map>
 #include <set>
 
 #include "GlslEsRules.h"
@@ -210,6 +212,351 @@ std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& st
                             name, nesting, kMaxWebGlStructNesting)));
     }
     return errors;
+}
+
+namespace {
+
+// What a WebGL 1 global initializer may not use (WebGL 1.0 §6.33), each with its place.
+class GlobalInitializerChecker : public glslang::TIntermTraverser {
+public:
+    void visitSymbol(glslang::TIntermSymbol* node) override {
+        const glslang::TStorageQualifier storage = node->getType().getQualifier().storage;
+        const std::string name = node->getName().c_str();
+        const bool built_in = name.rfind("gl_", 0) == 0;
+        if (storage == glslang::EvqConst ||
+            (!built_in && (storage == glslang::EvqGlobal || storage == glslang::EvqUniform))) {
+            return;
+        }
+        const char* what = built_in                                     ? "the built-in variable"
+                           : storage == glslang::EvqVaryingIn && vertex ? "the attribute"
+                                                                        : "the varying";
+        Forbid(node->getLoc(), fmt::format("{} '{}'", what, name));
+    }
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        if (node->isTexture()) {
+            Forbid(node->getLoc(), "a texture lookup");
+        } else if (node->getOp() == glslang::EOpFunctionCall) {
+            Forbid(node->getLoc(), fmt::format("the user-defined function '{}'",
+                                               PlainFunctionName(node->getName().c_str())));
+        }
+        return true;
+    }
+    bool visitBinary(glslang::TVisit, glslang::TIntermBinary* node) override {
+        if (node->getOp() >= glslang::EOpAssign && node->getOp() <= glslang::EOpRightShiftAssign) {
+            Forbid(node->getLoc(), "an assignment");
+        }
+        return true;
+    }
+    bool visitUnary(glslang::TVisit, glslang::TIntermUnary* node) override {
+        if (node->getOp() >= glslang::EOpPostIncrement &&
+            node->getOp() <= glslang::EOpPreDecrement) {
+            Forbid(node->getLoc(), "an increment or decrement");
+        }
+        return true;
+    }
+
+    bool vertex = false;
+    std::vector<std::pair<glslang::TSourceLoc, std::string>> forbidden;
+
+private:
+    static std::string PlainFunctionName(const std::string& mangled) {
+        return mangled.substr(0, mangled.find('('));
+    }
+    void Forbid(const glslang::TSourceLoc& loc, std::string what) {
+        forbidden.emplace_back(loc, std::move(what));
+    }
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGlGlobalInitializers(const glslang::TIntermediate& stage,
+                                                     const std::string& file) {
+    std::vector<Diagnostic> errors;
+    glslang::TIntermAggregate* root =
+            stage.getTreeRoot() != nullptr ? stage.getTreeRoot()->getAsAggregate() : nullptr;
+    if (root == nullptr) {
+        return errors;
+    }
+    // glslang keeps each global declaration with an initializer as a sequence of assignments
+    // beside the function definitions.
+    for (TIntermNode* child : root->getSequence()) {
+        glslang::TIntermAggregate* sequence = child->getAsAggregate();
+        if (sequence == nullptr || sequence->getOp() != glslang::EOpSequence) {
+            continue;
+        }
+        for (TIntermNode* node : sequence->getSequence()) {
+            glslang::TIntermBinary* assign = node->getAsBinaryNode();
+            if (assign == nullptr || assign->getOp() != glslang::EOpAssign ||
+                assign->getLeft()->getAsSymbolNode() == nullptr) {
+                continue;
+            }
+            GlobalInitializerChecker checker;
+            checker.vertex = stage.getStage() == EShLangVertex;
+            assign->getRight()->traverse(&checker);
+            const std::string name = assign->getLeft()->getAsSymbolNode()->getName().c_str();
+            for (const auto& [loc, what] : checker.forbidden) {
+                errors.push_back(MakeError(
+                        file, loc.line, std::max(loc.column, 0),
+                        fmt::format("the initializer of the global variable '{}' uses {}; "
+                                    "WebGL 1 allows only constant expressions, uniforms and "
+                                    "other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                                    "Global Variable Initialization\")",
+                                    name, what)));
+            }
+        }
+    }
+    return errors;
+}
+
+namespace {
+
+// The place of a type in Appendix A §7's packing order: mat4, mat2, vec4, mat3, vec3, vec2,
+// scalars.
+int PackingOrder(const PackingVariable& v) {
+    if (v.rows > 1) {
+        return v.rows == 4 ? 0 : v.rows == 2 ? 1 : 3;
+    }
+    return v.columns == 4 ? 2 : v.columns == 3 ? 4 : v.columns == 2 ? 5 : 6;
+}
+
+// Appends the packing variables of `type` (structures member by member, each element of an
+// array of structures apart) named `name`.
+void AddPackingVariables(const glslang::TType& type, const std::string& name, long long elements,
+                         std::vector<PackingVariable>* out) {
+    long long count = elements;
+    if (type.isArray()) {
+        const glslang::TArraySizes* sizes = type.getArraySizes();
+        for (int d = 0; d < sizes->getNumDims(); ++d) {
+            count = std::min(count * std::max(sizes->getDimSize(d), 1), 1LL << 40);
+        }
+    }
+    if (type.isStruct()) {
+        for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            AddPackingVariables(*member.type,
+                                fmt::format("{}.{}", name, member.type->getFieldName().c_str()),
+                                count, out);
+        }
+        return;
+    }
+    PackingVariable v;
+    v.name = name;
+    v.elements = count;
+    if (type.isMatrix()) {
+        v.rows = type.getMatrixCols();
+        v.columns = v.rows == 2 ? 4 : v.rows;  // a mat2 takes two full rows
+    } else {
+        v.columns = type.isVector() ? type.getVectorSize() : 1;
+    }
+    out->push_back(std::move(v));
+}
+
+// The grid of Appendix A §7: one bit per column of each row, set when taken.
+class PackingGrid {
+public:
+    explicit PackingGrid(int rows) : taken_(static_cast<std::size_t>(rows), 0U) {}
+    int Rows() const { return static_cast<int>(taken_.size()); }
+    void Take(int top, int count, int column, int width) {
+        for (int r = top; r < top + count; ++r) {
+            for (int c = column; c < column + width; ++c) {
+                taken_[static_cast<std::size_t>(r)] |= 1U << c;
+            }
+        }
+    }
+    // The top row of the smallest gap of free rows in `column` that holds `count` rows, and its
+    // size; {-1, 0} when there is none.
+    std::pair<int, int> SmallestGap(int column, int count) const {
+        std::pair<int, int> best{-1, 0};
+        int start = -1;
+        for (int r = 0; r <= Rows(); ++r) {
+            const bool free =
+                    r < Rows() && (taken_[static_cast<std::size_t>(r)] & (1U << column)) == 0;
+            if (free && start < 0) {
+                start = r;
+            } else if (!free && start >= 0) {
+                const int size = r - start;
+                if (size >= count && (best.first < 0 || size < best.second)) {
+                    best = {start, size};
+                }
+                start = -1;
+            }
+        }
+        return best;
+    }
+
+private:
+    std::vector<unsigned> taken_;
+};
+
+}  // namespace
+
+std::optional<std::string> FirstUnpackedVariable(std::vector<PackingVariable> variables, int rows) {
+    std::stable_sort(variables.begin(), variables.end(),
+                     [](const PackingVariable& a, const PackingVariable& b) {
+                         const int ao = PackingOrder(a);
+                         const int bo = PackingOrder(b);
+                         return ao != bo ? ao < bo : a.elements > b.elements;
+                     });
+    auto rows_of = [](const PackingVariable& v) {
+        return std::min(v.elements * v.rows, 1LL << 40);
+    };
+    PackingGrid grid(rows);
+    long long top = 0;  // the first row below the 4- and 3-component rows
+    std::size_t i = 0;
+    for (; i < variables.size() && variables[i].columns >= 3; ++i) {
+        const long long needed = rows_of(variables[i]);
+        if (top + needed > rows) {
+            return variables[i].name;
+        }
+        grid.Take(static_cast<int>(top), static_cast<int>(needed), 0, variables[i].columns);
+        top += needed;
+    }
+    // 2-component rows: columns 0-1 from the top down, else columns 2-3 from the bottom up.
+    long long left = top;
+    long long right = rows;
+    for (; i < variables.size() && variables[i].columns == 2; ++i) {
+        const long long needed = rows_of(variables[i]);
+        if (left + needed <= rows) {
+            grid.Take(static_cast<int>(left), static_cast<int>(needed), 0, 2);
+            left += needed;
+        } else if (right - needed >= top) {
+            right -= needed;
+            grid.Take(static_cast<int>(right), static_cast<int>(needed), 2, 2);
+        } else {
+            return variables[i].name;
+        }
+    }
+    for (; i < variables.size(); ++i) {
+        const long long needed = rows_of(variables[i]);
+        int column = -1;
+        std::pair<int, int> gap{-1, 0};
+        for (int c = 0; c < 4 && needed <= rows; ++c) {
+            const std::pair<int, int> found = grid.SmallestGap(c, static_cast<int>(needed));
+            if (found.first >= 0 && (column < 0 || found.second < gap.second)) {
+                column = c;
+                gap = found;
+            }
+        }
+        if (column < 0) {
+            return variables[i].name;
+        }
+        grid.Take(gap.first, static_cast<int>(needed), column, 1);
+    }
+    return std::nullopt;
+}
+
+namespace {
+
+// The packing check of WebGL 1.0 §6.26 over the statically used variables of `storage`.
+std::vector<Diagnostic> CheckPacking(const glslang::TIntermediate& stage,
+                                     glslang::TStorageQualifier storage, int rows,
+                                     const std::string& file, std::string_view source,
+                                     std::string_view what, std::string_view limit) {
+    const std::map<std::string, glslang::TSourceLoc> used = StaticallyUsed(stage);
+    std::vector<PackingVariable> variables;
+    for (glslang::TIntermSymbol* symbol : LinkerObjects(stage)) {
+        const glslang::TType& type = symbol->getType();
+        const std::string name = symbol->getName().c_str();
+        if (type.getQualifier().storage != storage || name.rfind("gl_", 0) == 0 ||
+            type.getBasicType() == glslang::EbtSampler || used.count(name) == 0) {
+            continue;
+        }
+        AddPackingVariables(type, name, 1, &variables);
+    }
+    const std::optional<std::string> unpacked = FirstUnpackedVariable(variables, rows);
+    if (!unpacked) {
+        return {};
+    }
+    const std::string declared = unpacked->substr(0, unpacked->find('.'));
+    const auto [line, column] = FirstMention(source, declared);
+    return {MakeError(file, line, column,
+                      fmt::format("the {} do not fit in {} vectors ({}): '{}' finds no room by "
+                                  "the packing of GLSL ES 1.00 Appendix A §7, which WebGL "
+                                  "requires (WebGL 1.0 §6.26 \"Packing Restrictions for "
+                                  "Uniforms and Varyings\")",
+                                  what, rows, limit, *unpacked))};
+}
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGlUniformPacking(const glslang::TIntermediate& stage,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source) {
+    const bool vertex = stage.getStage() == EShLangVertex;
+    return CheckPacking(
+            stage, glslang::EvqUniform,
+            vertex ? resources.maxVertexUniformVectors : resources.maxFragmentUniformVectors, file,
+            source, vertex ? "uniforms of the vertex shader" : "uniforms of the fragment shader",
+            vertex ? "gl_MaxVertexUniformVectors" : "gl_MaxFragmentUniformVectors");
+}
+
+std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& fragment,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source) {
+    return CheckPacking(fragment, glslang::EvqVaryingIn, resources.maxVaryingVectors, file, source,
+                        "varyings the fragment shader reads", "gl_MaxVaryingVectors");
+}
+
+namespace {
+
+// A type WebGL 2.0 §5.26 keeps away from `,` and `?:`.
+std::string_view DisallowedOperandKind(const glslang::TType& type) {
+    if (type.getBasicType() == glslang::EbtVoid) {
+        return "void";
+    }
+    if (type.isArray()) {
+        return "an array";
+    }
+    return type.isStruct() && type.containsArray() ? "a structure containing an array" : "";
+}
+
+class Webgl2OperatorChecker : public glslang::TIntermTraverser {
+public:
+    bool visitAggregate(glslang::TVisit, glslang::TIntermAggregate* node) override {
+        if (node->getOp() != glslang::EOpComma) {
+            return true;
+        }
+        for (TIntermNode* operand : node->getSequence()) {
+            const glslang::TIntermTyped* typed = operand->getAsTyped();
+            const std::string_view kind =
+                    typed != nullptr ? DisallowedOperandKind(typed->getType()) : "";
+            if (!kind.empty()) {
+                Forbid(node->getLoc(), "sequence operator ','", kind);
+                break;
+            }
+        }
+        return true;
+    }
+    bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override {
+        const std::string_view kind = DisallowedOperandKind(node->getType());
+        if (node->getType().getBasicType() != glslang::EbtVoid && !kind.empty()) {
+            Forbid(node->getLoc(), "ternary operator '?:'", kind);
+        }
+        return true;
+    }
+
+    std::string file;
+    std::vector<Diagnostic> errors;
+
+private:
+    void Forbid(const glslang::TSourceLoc& loc, std::string_view op, std::string_view kind) {
+        errors.push_back(
+                MakeError(file, loc.line, std::max(loc.column, 0),
+                          fmt::format("the {} applied to {}: WebGL 2 forbids it (WebGL 2.0 §5.26 "
+                                      "\"Disallowed variants of GLSL ES 3.00 operators\")",
+                                      op, kind)));
+    }
+};
+
+}  // namespace
+
+std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
+                                             const std::string& file) {
+    Webgl2OperatorChecker checker;
+    checker.file = file;
+    if (stage.getTreeRoot() != nullptr) {
+        stage.getTreeRoot()->traverse(&checker);
+    }
+    return checker.errors;
 }
 
 }  // namespace tidepool

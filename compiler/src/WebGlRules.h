@@ -6,9 +6,12 @@
 #include "tidepool/Diagnostic.h"
 #include "tidepool/VariantConfig.h"
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+struct TBuiltInResource;
 
 namespace glslang {
 class TIntermediate;
@@ -52,5 +55,57 @@ inline constexpr int kMaxWebGlStructNesting = 4;
 /// the first mention of the structure's name in `source`, the text glslang parsed.
 std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& stage,
                                                 const std::string& file, std::string_view source);
+
+/// Checks the initializers of the global variables of a `#version 100` stage for a WebGL 1
+/// target. GLSL ES 1.00 §4.3 wants constant expressions there; WebGL 1.0 §6.33 "GLSL ES Global
+/// Variable Initialization" also allows non-const user-defined globals and uniforms, and
+/// operators, constructors and built-in functions over them, but not texture lookups,
+/// user-defined functions, attributes, varyings, built-in variables (other than constant
+/// expressions) or assignments (`=`, `+=`, `++`, ...). Each use of one of those is an error at
+/// its place; glslang (in relaxed mode) has already checked everything else.
+std::vector<Diagnostic> CheckWebGlGlobalInitializers(const glslang::TIntermediate& stage,
+                                                     const std::string& file);
+
+/// One variable as GLSL ES 1.00 Appendix A §7 packs it: `elements` array elements (1 when it is
+/// no array), each `rows` rows of `columns` components (a vec3 is 1 row of 3, a mat3 3 rows of
+/// 3, a mat2 2 full rows of 4).
+struct PackingVariable {
+    std::string name;
+    int rows = 1;
+    int columns = 1;
+    long long elements = 1;
+};
+
+/// Packs `variables` into a grid of `rows` rows of 4 components by the algorithm of GLSL ES 1.00
+/// Appendix A §7 (sorted by type: mat4, mat2, vec4, mat3, vec3, vec2, scalars, larger arrays
+/// first; 4-component rows from the top, 3-component rows below them, 2-component ones in
+/// columns 0-1 from there down or columns 2-3 from the bottom up, scalars into the column with
+/// the smallest gap that holds them). Returns the name of the first variable that finds no room,
+/// or nothing when all fit.
+std::optional<std::string> FirstUnpackedVariable(std::vector<PackingVariable> variables, int rows);
+
+/// WebGL 1.0 §6.26 "Packing Restrictions for Uniforms and Varyings": the uniforms a stage
+/// statically uses (GLSL ES 1.00 §4.3.4: declared but unused ones do not count; samplers are
+/// not packed here) must pack into its gl_MaxVertexUniformVectors or
+/// gl_MaxFragmentUniformVectors rows, structures counted member by member. Reported at the
+/// declaration (first mention in `source`) of the first uniform with no room.
+std::vector<Diagnostic> CheckWebGlUniformPacking(const glslang::TIntermediate& stage,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source);
+
+/// WebGL 1.0 §6.26 for a program: the varyings the fragment stage statically uses must pack into
+/// gl_MaxVaryingVectors rows. Reported at the fragment stage's declaration of the first varying
+/// with no room.
+std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& fragment,
+                                                 const TBuiltInResource& resources,
+                                                 const std::string& file, std::string_view source);
+
+/// Checks a WebGL 2 stage for the operator forms WebGL 2.0 §5.26 "Disallowed variants of GLSL ES
+/// 3.00 operators" forbids: the sequence operator `,` with an operand that is void, an array or
+/// a structure containing an array, and the ternary operator `?:` whose result is an array or
+/// such a structure. Reported at the operator. (A `?:` of void operands is not seen: glslang
+/// keeps it as an if-statement.)
+std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
+                                             const std::string& file);
 
 }  // namespace tidepool

@@ -494,6 +494,43 @@ INSTANTIATE_TEST_SUITE_P(
                          "a.fsh:4:28: error: '+' : wrong operand type: unary '+' takes an integer "
                          "or floating-point scalar, vector or matrix, not 'in structure{ global "
                          "mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on a struct as the statement of an if", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "uniform Wave wave;\n"
+                         "void main() {\n"
+                         "    if (wave.height > 0.0) +wave;\n"
+                         "    gl_FragColor = vec4(wave.height);\n"
+                         "}\n",
+                         "a.fsh:6:28: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or floating-point scalar, vector or matrix, not 'uniform structure{ "
+                         "global mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on a struct produced by a macro", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "struct Wave { float height; };\n"
+                         "uniform Wave wave;\n"
+                         "#define LIFT(x) +x\n"
+                         "void main() {\n"
+                         "    Wave w = LIFT(wave);\n"
+                         "    gl_FragColor = vec4(w.height);\n"
+                         "}\n",
+                         "a.fsh:7:14: error: '+' : wrong operand type: unary '+' takes an integer "
+                         "or floating-point scalar, vector or matrix, not 'uniform structure{ "
+                         "global mediump float height}' (GLSL ES 1.00 §5.9, GLSL ES 3.00 §5.9)"},
+                RuleCase{"unary + on floats after an if and from a macro", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform float level;\n"
+                         "#define LIFT(x) +x\n"
+                         "void main() {\n"
+                         "    float h = LIFT(level);\n"
+                         "    if (h > 0.0) +h;\n"
+                         "    for (int i = 0; i < 2; i++) +h;\n"
+                         "    gl_FragColor = vec4(h);\n"
+                         "}\n",
+                         ""},
                 RuleCase{"unary + on numbers, vectors, matrices and after operators", nullptr,
                          "#version 100\n"
                          "precision mediump float;\n"
@@ -578,6 +615,66 @@ INSTANTIATE_TEST_SUITE_P(
                          "struct Tide { float height; };\n"
                          "void main() { Tide t = Tide(1.0); gl_FragColor = vec4(t.length); }\n",
                          "a.fsh:5:57: error: 'length' : no such field in structure 't'"}));
+
+// GLSL ES 1.00 §5.10: matrixCompMult of constant expressions, and the sequence operator over
+// them, are constant expressions; 3.00 §4.3.3 leaves the sequence operator out.
+INSTANTIATE_TEST_SUITE_P(
+        Es100ConstantExpressions, ConformanceRuleTest,
+        ::testing::Values(
+                RuleCase{"an array sized by a matrixCompMult, and commas in constants",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "const mat2 scale = mat2(2.0, 0.0, 0.0, 3.0);\n"
+                         "const mat2 squared = matrixCompMult(scale, scale);\n"
+                         "float weights[int(squared[1][1])];\n"
+                         "void main() {\n"
+                         "    weights[8] = 1.0;\n"
+                         "    gl_Position = position * weights[8];\n"
+                         "}\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "const float offset = (0.25, 0.5);\n"
+                         "void main() {\n"
+                         "    const float spread = (offset,\n"
+                         "                          2.0 * offset);\n"
+                         "    float taps[(1, 3)];\n"
+                         "    taps[2] = spread;\n"
+                         "    gl_FragColor = vec4(taps[2]);\n"
+                         "}\n",
+                         ""},
+                RuleCase{"the folded size is exact: one past it is out of range",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "const mat3 spread = matrixCompMult(mat3(2.0), mat3(3.0));\n"
+                         "float taps[int(spread[2][2])];\n"
+                         "void main() { gl_Position = position * taps[6]; }\n",
+                         nullptr, "a.vsh:5:44: error: '[' :  array index out of range '6'"},
+                RuleCase{"matrixCompMult of a uniform is no constant",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "uniform mat2 tilt;\n"
+                         "const mat2 scale = mat2(2.0);\n"
+                         "const mat2 tilted = matrixCompMult(scale, tilt);\n"
+                         "void main() { gl_Position = position * tilted[0][0]; }\n",
+                         nullptr,
+                         "a.vsh:5:19: error: '=' : global const initializers must be constant ' "
+                         "const highp 2X2 matrix of float'"},
+                RuleCase{"a sequence whose left operand is a uniform is no constant", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform float level;\n"
+                         "const float offset = (level, 0.5);\n"
+                         "void main() { gl_FragColor = vec4(offset); }\n",
+                         "a.fsh:4:20: error: '=' : global const initializers must be constant ' "
+                         "const mediump float'"},
+                RuleCase{"in 3.00 a sequence is never a constant expression", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "const float offset = (0.25, 0.5);\n"
+                         "void main() { colour = vec4(offset); }\n",
+                         "a.fsh:4:20: error: '=' : global const initializers must be constant ' "
+                         "const mediump float'"}));
 
 // GLSL ES 1.00 §3.4, 3.00 §3.4: `#version` names 100 or `300 es`; desktop versions are refused.
 INSTANTIATE_TEST_SUITE_P(

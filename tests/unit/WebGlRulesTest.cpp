@@ -247,6 +247,167 @@ INSTANTIATE_TEST_SUITE_P(
                         "allows at most "
                         "4 (WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")"}));
 
+// WebGL 1.0 §6.33: a WebGL 1 global initializer may use uniforms and non-const globals, not
+// varyings, built-in variables, texture lookups or assignments; plain GLSL ES 1.00 wants constants.
+INSTANTIATE_TEST_SUITE_P(
+        GlobalInitializers, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"uniforms, globals and built-in functions", GlslTarget::kWebGl1,
+                          kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level * 2.0;\n"
+                                      "float crest = height + sin(level), trough = -height;\n",
+                                      "    gl_FragColor = vec4(crest, trough, uv);\n"),
+                          ""},
+                WebGlCase{"the same without a WebGL target", GlslTarget::kEs100, kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level * 2.0;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5: error: 'non-constant global initializer (needs "
+                          "GL_EXT_shader_non_constant_global_initializers)' : not supported for "
+                          "this version or the enabled extensions"},
+                WebGlCase{"a varying", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform float level;\n"
+                                      "float height = level + uv.x;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5:24: error: the initializer of the global variable 'height' "
+                          "uses the varying 'uv'; WebGL 1 allows only constant expressions, "
+                          "uniforms and other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                          "Global Variable Initialization\")"},
+                WebGlCase{"a texture lookup", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform sampler2D foam;\n"
+                                      "float height = texture2D(foam, uv).r;\n",
+                                      "    gl_FragColor = vec4(height);\n"),
+                          "a.fsh:5:34: error: the initializer of the global variable 'height' "
+                          "uses a texture lookup; WebGL 1 allows only constant expressions, "
+                          "uniforms and other global variables there (WebGL 1.0 §6.33 \"GLSL ES "
+                          "Global Variable Initialization\")"},
+                WebGlCase{"an increment", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float height = 1.0;\n"
+                                      "float crest = height++;\n",
+                                      "    gl_FragColor = vec4(crest);\n"),
+                          "a.fsh:5:21: error: the initializer of the global variable 'crest' "
+                          "uses an increment or decrement; WebGL 1 allows only constant "
+                          "expressions, uniforms and other global variables there (WebGL 1.0 "
+                          "§6.33 \"GLSL ES Global Variable Initialization\")"},
+                WebGlCase{"gl_FragCoord", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("float depth = gl_FragCoord.z;\n",
+                                      "    gl_FragColor = vec4(depth);\n"),
+                          "a.fsh:4:15: error: the initializer of the global variable 'depth' "
+                          "uses the built-in variable 'gl_FragCoord'; WebGL 1 allows only "
+                          "constant expressions, uniforms and other global variables there "
+                          "(WebGL 1.0 §6.33 \"GLSL ES Global Variable Initialization\")"}));
+
+// WebGL 1.0 §6.26: uniforms and varyings must pack by GLSL ES 1.00 Appendix A §7 into the limits
+// (ES 2.0's minimums here: 16 fragment uniform vectors, 8 varying vectors).
+const std::string kManyVaryingsVertex =
+        "#version 100\n"
+        "attribute vec4 position;\n"
+        "varying vec3 normals[4];\n"
+        "varying vec3 tangents[4];\n"
+        "varying vec3 view;\n"
+        "varying float fades[8];\n"
+        "void main() {\n"
+        "    for (int i = 0; i < 4; i++) { normals[i] = position.xyz; tangents[i] = position.xyz; "
+        "}\n"
+        "    for (int i = 0; i < 8; i++) { fades[i] = position.w; }\n"
+        "    view = position.xyz;\n"
+        "    gl_Position = position;\n"
+        "}\n";
+
+INSTANTIATE_TEST_SUITE_P(
+        Packing, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"16 vec3 and 16 floats fill 16 rows", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform float heights[16];\n",
+                                      "    gl_FragColor = vec4(normals[15], heights[15]);\n"),
+                          ""},
+                WebGlCase{"a vec2 finds no room beside 16 vec3", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform vec2 offset;\n",
+                                      "    gl_FragColor = vec4(normals[15], 0.0) + "
+                                      "offset.xyxy;\n"),
+                          "a.fsh:5:14: error: the uniforms of the fragment shader do not fit in "
+                          "16 vectors (gl_MaxFragmentUniformVectors): 'offset' finds no room by "
+                          "the packing of GLSL ES 1.00 Appendix A §7, which WebGL requires "
+                          "(WebGL 1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"},
+                WebGlCase{"vec2s in both column pairs and floats beside the vec3s fill all 64 "
+                          "components",
+                          GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[8];\n"
+                                      "uniform vec2 offsets[8];\n"
+                                      "uniform vec2 scales[8];\n"
+                                      "uniform float heights[8];\n",
+                                      "    gl_FragColor = vec4(normals[7], heights[7]) + "
+                                      "vec4(offsets[7], scales[7]);\n"),
+                          ""},
+                WebGlCase{"an unused uniform does not count", GlslTarget::kWebGl1, kVertex100,
+                          Fragment100("uniform vec3 normals[16];\n"
+                                      "uniform vec2 offset;\n",
+                                      "    gl_FragColor = vec4(normals[15], 0.0);\n"),
+                          ""},
+                WebGlCase{"8 vec3 and 8 floats fill 8 varying rows", GlslTarget::kWebGl1,
+                          kManyVaryingsVertex,
+                          "#version 100\n"
+                          "precision mediump float;\n"
+                          "varying vec3 normals[4];\n"
+                          "varying vec3 tangents[4];\n"
+                          "varying float fades[8];\n"
+                          "void main() { gl_FragColor = vec4(normals[3] + tangents[3], fades[7]); "
+                          "}\n",
+                          ""},
+                WebGlCase{"a ninth vec3 varying", GlslTarget::kWebGl1, kManyVaryingsVertex,
+                          "#version 100\n"
+                          "precision mediump float;\n"
+                          "varying vec3 normals[4];\n"
+                          "varying vec3 tangents[4];\n"
+                          "varying vec3 view;\n"
+                          "void main() { gl_FragColor = vec4(normals[3] + tangents[3] + view, "
+                          "1.0); }\n",
+                          "a.fsh:5:14: error: the varyings the fragment shader reads do not fit "
+                          "in 8 vectors (gl_MaxVaryingVectors): 'view' finds no room by the "
+                          "packing of GLSL ES 1.00 Appendix A §7, which WebGL requires (WebGL "
+                          "1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"}));
+
+// WebGL 2.0 §5.26: no `,` or `?:` over arrays, structures holding arrays or void.
+INSTANTIATE_TEST_SUITE_P(
+        Webgl2Operators, WebGlRuleTest,
+        ::testing::Values(
+                WebGlCase{"sequences and ternaries of scalars", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\n",
+                                      "    float a = uv.x;\n"
+                                      "    float x = (a += 1.0, wet ? a : 2.0);\n"
+                                      "    colour = vec4(x);\n"),
+                          ""},
+                WebGlCase{"a ternary choosing between arrays", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\n",
+                                      "    float a[2] = float[2](uv.x, uv.y);\n"
+                                      "    float b[2] = float[2](uv.y, uv.x);\n"
+                                      "    float c[2] = wet ? a : b;\n"
+                                      "    colour = vec4(c[0]);\n"),
+                          "a.fsh:9:22: error: the ternary operator '?:' applied to an array: "
+                          "WebGL 2 forbids it (WebGL 2.0 §5.26 \"Disallowed variants of GLSL ES "
+                          "3.00 operators\")"},
+                WebGlCase{"a sequence ending in a structure holding an array", GlslTarget::kWebGl2,
+                          kVertex300,
+                          Fragment300("struct Foam { float d[2]; };\n"
+                                      "uniform Foam foam;\n",
+                                      "    float h = uv.x;\n"
+                                      "    Foam f = (h = 2.0, foam);\n"
+                                      "    colour = vec4(f.d[0] + h);\n"),
+                          "a.fsh:9:22: error: the sequence operator ',' applied to a structure "
+                          "containing an array: WebGL 2 forbids it (WebGL 2.0 §5.26 \"Disallowed "
+                          "variants of GLSL ES 3.00 operators\")"},
+                WebGlCase{"the same sequence without a WebGL target", GlslTarget::kEs300,
+                          kVertex300,
+                          Fragment300("struct Foam { float d[2]; };\n"
+                                      "uniform Foam foam;\n",
+                                      "    float h = uv.x;\n"
+                                      "    Foam f = (h = 2.0, foam);\n"
+                                      "    colour = vec4(f.d[0] + h);\n"),
+                          ""}));
+
 // WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
 INSTANTIATE_TEST_SUITE_P(
         BlockLayouts, WebGlRuleTest,
