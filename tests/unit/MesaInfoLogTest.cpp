@@ -6,7 +6,7 @@
 namespace tidepool::runner {
 namespace {
 
-TEST(RunnerMesaInfoLogTest, PositionedErrorsKeepLineAndMesasColumnWithoutSource) {
+TEST(MesaInfoLogTest, PositionedErrorsKeepLineAndMesasColumnWithoutSource) {
     const std::vector<Diagnostic> d = ParseMesaInfoLog(
             "0:5(22): error: `x' undeclared\n0:5(17): error: cannot construct `vec4' from a "
             "non-numeric data type\n\n",
@@ -20,7 +20,7 @@ TEST(RunnerMesaInfoLogTest, PositionedErrorsKeepLineAndMesasColumnWithoutSource)
 
 // Mesa's preprocessor collapses blank runs to one space before it counts columns, so
 // `    colour = undeclaredThing` reports column 11 for what is column 14 in the file.
-TEST(RunnerMesaInfoLogTest, ColumnsMapBackThroughCollapsedBlanks) {
+TEST(MesaInfoLogTest, ColumnsMapBackThroughCollapsedBlanks) {
     const std::string source = "#version 100\nvoid main()\n{\n    colour =  undeclaredThing;\n}\n";
     const std::vector<Diagnostic> d =
             ParseMesaInfoLog("0:4(11): error: `undeclaredThing' undeclared\n", "u.fsh", "", source);
@@ -31,7 +31,7 @@ TEST(RunnerMesaInfoLogTest, ColumnsMapBackThroughCollapsedBlanks) {
     EXPECT_EQ(MapMesaColumn("ab", 9), 9);
 }
 
-TEST(RunnerMesaInfoLogTest, WarningsAndUnpositionedLinkErrors) {
+TEST(MesaInfoLogTest, WarningsAndUnpositionedLinkErrors) {
     const std::vector<Diagnostic> d = ParseMesaInfoLog(
             "0:12(3): warning: `foo' used uninitialized\nerror: vertex shader output `Colour' is "
             "not read\n  by the fragment shader\n",
@@ -44,7 +44,7 @@ TEST(RunnerMesaInfoLogTest, WarningsAndUnpositionedLinkErrors) {
     EXPECT_EQ(d[1].message, "vertex shader output `Colour' is not read by the fragment shader");
 }
 
-TEST(RunnerMesaInfoLogTest, UnknownTextBecomesOneDiagnostic) {
+TEST(MesaInfoLogTest, UnknownTextBecomesOneDiagnostic) {
     const std::vector<Diagnostic> d = ParseMesaInfoLog("something odd", "f.fsh", "");
     ASSERT_EQ(d.size(), 1U);
     EXPECT_EQ(d[0].message, "something odd");

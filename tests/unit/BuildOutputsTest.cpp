@@ -16,12 +16,12 @@ using testing::Formatted;
 using testing::ReadText;
 using testing::SmallMatrix;
 
-TEST(PipelineBuildOutputsTest, DepfileEscapesSpacesHashesAndDollars) {
+TEST(BuildOutputsTest, DepfileEscapesSpacesHashesAndDollars) {
     EXPECT_EQ(DepfileText("/o/m.json", {"/a b/c#d.yaml", "/x$y.vsh"}),
               "/o/m.json: \\\n  /a\\ b/c\\#d.yaml \\\n  /x$$y.vsh\n");
 }
 
-TEST(PipelineBuildOutputsTest, FilesReadNamesTheConfigurationAndEachShaderOnce) {
+TEST(BuildOutputsTest, FilesReadNamesTheConfigurationAndEachShaderOnce) {
     const SmallMatrix matrix;
     const LoadedMatrix loaded = LoadMatrix(matrix.Config());
     ASSERT_TRUE(loaded.config.has_value());
@@ -32,7 +32,7 @@ TEST(PipelineBuildOutputsTest, FilesReadNamesTheConfigurationAndEachShaderOnce) 
     EXPECT_EQ(files[2].filename(), "s.fsh");
 }
 
-TEST(PipelineBuildOutputsTest, VariantSourcePathMakesTheIdASafeFileName) {
+TEST(BuildOutputsTest, VariantSourcePathMakesTheIdASafeFileName) {
     Variant variant;
     variant.program = "p";
     variant.defines = {"A", "B"};
@@ -46,7 +46,7 @@ TEST(PipelineBuildOutputsTest, VariantSourcePathMakesTheIdASafeFileName) {
     }
 }
 
-TEST(PipelineBuildOutputsTest, WritesEachStageAsTheDriverReceivesItAndKeepsUnchangedFiles) {
+TEST(BuildOutputsTest, WritesEachStageAsTheDriverReceivesItAndKeepsUnchangedFiles) {
     const SmallMatrix matrix;
     const LoadedMatrix loaded = LoadMatrix(matrix.Config());
     ASSERT_TRUE(loaded.config.has_value());
@@ -64,7 +64,7 @@ TEST(PipelineBuildOutputsTest, WritesEachStageAsTheDriverReceivesItAndKeepsUncha
     EXPECT_EQ(std::filesystem::last_write_time(vertex), written - std::chrono::hours(1));
 }
 
-TEST(PipelineBuildOutputsTest, AnUnreadableShaderIsAUsageErrorAtItsPath) {
+TEST(BuildOutputsTest, AnUnreadableShaderIsAUsageErrorAtItsPath) {
     const SmallMatrix matrix;
     LoadedMatrix loaded = LoadMatrix(matrix.Config());
     ASSERT_TRUE(loaded.config.has_value());
@@ -78,7 +78,7 @@ TEST(PipelineBuildOutputsTest, AnUnreadableShaderIsAUsageErrorAtItsPath) {
             << Formatted(outcome.diagnostics);
 }
 
-TEST(PipelineBuildOutputsTest, AddSourcePathsNamesBothStagesOfEveryVariant) {
+TEST(BuildOutputsTest, AddSourcePathsNamesBothStagesOfEveryVariant) {
     Variant variant;
     variant.program = "p";
     nlohmann::json manifest = {{"variants", {{{"id", variant.Id()}, {"target", "100"}}}}};

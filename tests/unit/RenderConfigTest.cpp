@@ -7,12 +7,12 @@
 namespace tidepool::runner {
 namespace {
 
-TEST(RunnerConfigTest, DefaultPassesHaveNoSuffix) {
+TEST(RenderConfigTest, DefaultPassesHaveNoSuffix) {
     EXPECT_EQ(ConfigurationId(MakeVariant("water", {"ENABLE_REFRACTION", "ENABLE_FOG"}), {}),
               "water:ENABLE_FOG,ENABLE_REFRACTION");
 }
 
-TEST(RunnerConfigTest, NonDefaultPassesAppendSuffixesInFixedOrder) {
+TEST(RenderConfigTest, NonDefaultPassesAppendSuffixesInFixedOrder) {
     PassOptions passes;
     passes.reflection_size = 128;
     passes.refraction_size = 64;
@@ -24,7 +24,7 @@ TEST(RunnerConfigTest, NonDefaultPassesAppendSuffixesInFixedOrder) {
               "water:ENABLE_FOG@refl128@refr64@lowres@discard@nodepthfog@nocull");
 }
 
-TEST(RunnerConfigTest, UniformBoolNamesFollowTheInterface) {
+TEST(RenderConfigTest, UniformBoolNamesFollowTheInterface) {
     const std::pair<const char*, const char*> cases[] = {
             {"ENABLE_DISTORTION", "bDistortion"},
             {"ENABLE_SCALE_DISTORTION", "bScaleDistortion"},
@@ -40,7 +40,7 @@ TEST(RunnerConfigTest, UniformBoolNamesFollowTheInterface) {
     }
 }
 
-TEST(RunnerConfigTest, PresetsJoinTheWaterVariantsAndDeduplicate) {
+TEST(RenderConfigTest, PresetsJoinTheWaterVariantsAndDeduplicate) {
     VariantConfig config;
     Preset same;
     same.name = "fog";
@@ -81,14 +81,14 @@ TEST(RunnerConfigTest, PresetsJoinTheWaterVariantsAndDeduplicate) {
               "variants.yaml");
 }
 
-TEST(RunnerConfigTest, FileNamesAreSafeAndDistinct) {
+TEST(RenderConfigTest, FileNamesAreSafeAndDistinct) {
     EXPECT_EQ(SanitiseFileName("water:ENABLE_FOG,ENABLE_REFRACTION@lowres"),
               "water__ENABLE_FOG+ENABLE_REFRACTION-lowres");
     EXPECT_EQ(SanitiseFileName("a/b c"), "a_b_c");
     EXPECT_NE(SanitiseFileName("water:"), SanitiseFileName("water_"));
 }
 
-TEST(RunnerConfigTest, NoGlMessageNamesPackagesAndVariables) {
+TEST(RenderConfigTest, NoGlMessageNamesPackagesAndVariables) {
     const std::string message = DescribeMissingGl(
             {{BackendKind::kEgl, "eglInitialize failed"}, {BackendKind::kOsMesa, "no libOSMesa"}});
     for (const char* needle :
@@ -98,7 +98,7 @@ TEST(RunnerConfigTest, NoGlMessageNamesPackagesAndVariables) {
     }
 }
 
-TEST(RunnerConfigTest, BackendNamesRoundTrip) {
+TEST(RenderConfigTest, BackendNamesRoundTrip) {
     for (BackendKind kind : {BackendKind::kAuto, BackendKind::kEgl, BackendKind::kOsMesa}) {
         BackendKind parsed = BackendKind::kAuto;
         ASSERT_TRUE(ParseBackendKind(BackendName(kind), &parsed));
