@@ -4,10 +4,7 @@
 #include "tidepool/report/StageFileShapes.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
-#include <tuple>
 
 #include <fmt/format.h>
 
@@ -171,7 +168,7 @@ void LoadOptionalSibling(const std::filesystem::path& path, std::string_view sch
     if (!std::filesystem::exists(path, ec)) {
         return;
     }
-    std::optional<nlohmann::json> json = ReadJsonFile(path, error);
+    std::optional<nlohmann::json> json = stagefiles::ReadJsonFile(path, error);
     if (!json) {
         return;
     }
@@ -187,32 +184,6 @@ void LoadOptionalSibling(const std::filesystem::path& path, std::string_view sch
         }
     }
     *content = std::move(*json);
-}
-
-// The fields of plans.json the Scenes section reads; returns "" or what is wrong.
-std::string CheckPlans(const nlohmann::json& plans) {
-    auto list = plans.find("plans");
-    if (list == plans.end() || !list->is_array()) {
-        return "lacks the 'plans' array";
-    }
-    for (const nlohmann::json& plan : *list) {
-        if (!plan.is_object() || !plan.contains("scene") || !plan["scene"].is_string()) {
-            return "a plan has no string 'scene'";
-        }
-        for (const char* key : {"dropped", "kept"}) {
-            if (auto it = plan.find(key); it != plan.end() && !it->is_array()) {
-                return fmt::format("plan '{}': '{}' is not an array",
-                                   plan["scene"].get<std::string>(), key);
-            }
-        }
-        for (const char* key : {"chosen", "full", "error"}) {
-            if (auto it = plan.find(key); it != plan.end() && !it->is_object() && !it->is_null()) {
-                return fmt::format("plan '{}': '{}' is not an object",
-                                   plan["scene"].get<std::string>(), key);
-            }
-        }
-    }
-    return {};
 }
 
 // Parses one entry of results.json `configurations`; returns "" or the problem.
@@ -479,27 +450,6 @@ const MeasuredConfiguration* ReportInputs::FindById(std::string_view id) const {
     return nullptr;
 }
 
-std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        *error = fmt::format("{}: no such file", path.string());
-        return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in) {
-        *error = fmt::format("{}: cannot read", path.string());
-        return std::nullopt;
-    }
-    nlohmann::json json = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-    if (json.is_discarded()) {
-        *error = fmt::format("{}: not valid JSON (corrupt or truncated)", path.string());
-        return std::nullopt;
-    }
-    return json;
-}
-
 namespace {
 
 // The fields of each manifest variant the report reads, checked once here so the model can
@@ -537,7 +487,7 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     inputs.manifest_path = manifest_path;
     inputs.results_path = results_path;
 
-    std::optional<nlohmann::json> manifest = ReadJsonFile(manifest_path, &out.error);
+    std::optional<nlohmann::json> manifest = stagefiles::ReadJsonFile(manifest_path, &out.error);
     if (!manifest) {
         return out;
     }
@@ -561,7 +511,7 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     }
     inputs.manifest = std::move(*manifest);
 
-    std::optional<nlohmann::json> results = ReadJsonFile(results_path, &out.error);
+    std::optional<nlohmann::json> results = stagefiles::ReadJsonFile(results_path, &out.error);
     if (!results) {
         return out;
     }
@@ -654,27 +604,26 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     // The stability schema's version is not checked: the section renders its tables generically.
     LoadOptionalSibling(inputs.stability_path, kStabilitySchemaName, 0, &inputs.stability,
                         &inputs.stability_error);
-    inputs.plans_path = folder / kPlansFileName;
-    LoadOptionalSibling(inputs.plans_path, kPlansSchemaName, kPlansVersion, &inputs.plans,
-                        &inputs.plans_error);
     // A sibling that is unreadable or not tidepool's is left out and named in its section (it
     // may be anything a user left there); one that claims the schema but has a wrongly typed
     // field is a damaged stage file, an error like a damaged manifest or results file.
-    for (const auto& [sibling, kind, path] :
-         {std::tuple{&inputs.stability, StageFile::kStability, &inputs.stability_path},
-          std::tuple{&inputs.plans, StageFile::kPlans, &inputs.plans_path}}) {
-        if (*sibling) {
-            if (std::string problem = CheckStageFileShape(kind, **sibling); !problem.empty()) {
-                out.error = fmt::format("{}: {}", path->string(), problem);
-                return out;
-            }
+    if (inputs.stability) {
+        if (std::string problem = CheckStageFileShape(StageFile::kStability, *inputs.stability);
+            !problem.empty()) {
+            out.error = fmt::format("{}: {}", inputs.stability_path.string(), problem);
+            return out;
         }
     }
-    if (inputs.plans) {
-        if (std::string problem = CheckPlans(*inputs.plans); !problem.empty()) {
-            inputs.plans_error = fmt::format("{}: {}", inputs.plans_path.string(), problem);
-            inputs.plans.reset();
+    inputs.plans_path = folder / stagefiles::kPlansFileName;
+    if (std::error_code ec; std::filesystem::exists(inputs.plans_path, ec)) {
+        stagefiles::ReadResult<stagefiles::PlansFile> plans =
+                stagefiles::ReadPlansFile(inputs.plans_path);
+        if (plans.failure == stagefiles::ReadFailure::kWrongType) {
+            out.error = std::move(plans.error);
+            return out;
         }
+        inputs.plans = std::move(plans.value);
+        inputs.plans_error = std::move(plans.error);
     }
     out.inputs = std::move(inputs);
     return out;

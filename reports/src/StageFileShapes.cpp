@@ -13,9 +13,8 @@ namespace {
 // fails: the CLI tests build reports from files the real writers wrote, so they catch it.
 // Shapes used at several places, named there as "$name" (Resolve): a stage's static cost
 // (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json),
-// the summary of a configuration's frame times (base/SampleStatistics.h), a configuration's
-// pass options and, in plans.json,
-// a plan's configuration and an effect it dropped or kept.
+// the summary of a configuration's frame times (base/SampleStatistics.h) and a configuration's
+// pass options. plans.json is checked by its reader (stagefiles/PlansFile.h).
 constexpr const char* kStatisticsShape = R"json(
 {
   "ci_coverage": "number",
@@ -42,29 +41,6 @@ constexpr const char* kDiagnosticShape = R"json(
   "message": "string",
   "variant": "string",
   "text": "string"
-}
-)json";
-
-// A plan's chosen and full configurations, and its dropped and kept effects (plans.json).
-constexpr const char* kPlanConfigurationShape = R"json(
-{
-  "draw_calls": "number",
-  "id": "string",
-  "image": "string",
-  "pass_draw_calls": ["number"],
-  "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-  "passes": ["string"],
-  "pixels_shaded_estimate": "number",
-  "variant": "string"
-}
-)json";
-
-constexpr const char* kEffectShape = R"json(
-{
-  "effect": "string",
-  "psnr_change_db": "number",
-  "reason": "string",
-  "time_change_percent": "number"
 }
 )json";
 
@@ -371,70 +347,12 @@ constexpr const char* kStabilityShape = R"json(
 }
 )json";
 
-// Written by lab/src/ScenePlanner.cpp, PlansToJson.
-constexpr const char* kPlansShape = R"json(
-{
-  "plans": [
-    {
-      "candidates": [
-        {
-          "draw_calls": "number",
-          "id": "string",
-          "image": "string",
-          "meets_quality": "bool",
-          "pairs": "number",
-          "pass_draw_calls": ["number"],
-          "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-          "passes": ["string"],
-          "pixels_shaded_estimate": "number",
-          "proposed_because": "string",
-          "psnr_db": "number",
-          "share_visible": "number",
-          "ssim": "number",
-          "time_change_interval": ["number"],
-          "time_change_percent": "number",
-          "time_ms": "number",
-          "valid": "bool",
-          "variant": "string",
-          "water_colour_alpha": "number"
-        }
-      ],
-      "choice_reason": "string",
-      "chosen": "$plan_configuration",
-      "description": "string",
-      "draws_saved": "number",
-      "dropped": ["$effect"],
-      "error": {"psnr_db": "number", "share_visible": "number", "ssim": "number"},
-      "errors": ["string"],
-      "full": "$plan_configuration",
-      "kept": ["$effect"],
-      "met": "bool",
-      "needed": ["string"],
-      "passes_saved": "number",
-      "pixels_saved": "number",
-      "scene": "string",
-      "target": {"min_psnr_db": "number"},
-      "time_change_interval": ["number"],
-      "time_change_percent": "number",
-      "time_ms_chosen": "number",
-      "time_ms_full": "number"
-    }
-  ],
-  "schema": "string",
-  "size": ["number"],
-  "timing": {"max_pairs": "number", "min_pairs": "number", "resolution_points": "number"},
-  "version": "number"
-}
-)json";
-
 // `shape` with every "$name" leaf replaced by the named shape it stands for.
 nlohmann::json Resolve(nlohmann::json shape) {
     static const std::map<std::string, nlohmann::json, std::less<>> named = {
             {"$cost", nlohmann::json::parse(kStageCostShape)},
             {"$diagnostic", nlohmann::json::parse(kDiagnosticShape)},
             {"$statistics", nlohmann::json::parse(kStatisticsShape)},
-            {"$plan_configuration", nlohmann::json::parse(kPlanConfigurationShape)},
-            {"$effect", nlohmann::json::parse(kEffectShape)},
             {"$pass_options", nlohmann::json::parse(kPassOptionsShape)},
     };
     if (shape.is_string()) {
@@ -540,7 +458,6 @@ std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) 
     static const nlohmann::json manifest = Resolve(nlohmann::json::parse(kManifestShape));
     static const nlohmann::json results = Resolve(nlohmann::json::parse(kResultsShape));
     static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
-    static const nlohmann::json plans = Resolve(nlohmann::json::parse(kPlansShape));
     switch (file) {
         case StageFile::kManifest:
             return CheckJsonShape(document, manifest);
@@ -548,8 +465,6 @@ std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) 
             return CheckJsonShape(document, results);
         case StageFile::kStability:
             return CheckJsonShape(document, stability);
-        case StageFile::kPlans:
-            return CheckJsonShape(document, plans);
     }
     return {};
 }

@@ -176,9 +176,11 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
         }
         plans.push_back(std::move(plan));
     }
-    Outcome written;
-    if (!WriteFile(render_dir / report::kPlansFileName,
-                   JsonText(runner::PlansToJson(plans, options), 2) + "\n", &written)) {
+    if (const std::string error = stagefiles::WritePlansFile(
+                runner::PlansFileFor(plans, options), render_dir / stagefiles::kPlansFileName);
+        !error.empty()) {
+        Outcome written;
+        written.Fail(Status::kEnvironment, error);
         progress.Tell(written.diagnostics);
         end.status = Status::kEnvironment;
         return end;
@@ -188,7 +190,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
                         "not met, done after {:.0f} s; {} in the render folder",
                         plans.size(), options.settings.width, options.settings.height,
                         options.rule.resolution_points, end.failures, SecondsSince(start),
-                        report::kPlansFileName));
+                        stagefiles::kPlansFileName));
     return end;
 }
 
