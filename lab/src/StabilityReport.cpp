@@ -685,51 +685,23 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
     return results;
 }
 
-std::string StabilityReportJson(const StabilityReport& report) {
-    nlohmann::ordered_json json;
-    json["schema"] = "tidepool.stability";
-    json["version"] = 1;
-    nlohmann::ordered_json environment = nlohmann::ordered_json::object();
-    for (const auto& [key, value] : report.environment) {
-        environment[key] = value;
-    }
-    json["environment"] = environment;
-    nlohmann::ordered_json cases = nlohmann::ordered_json::array();
+stagefiles::StabilityFile StabilityFileFor(const StabilityReport& report) {
+    stagefiles::StabilityFile file;
+    file.environment = report.environment;
     for (const StabilityCaseResult& c : report.cases) {
-        cases.push_back({{"name", c.name},
-                         {"description", c.description},
-                         {"kind", HardCaseKindName(c.kind)},
-                         {"variants_checked", c.variants_checked},
-                         {"nan_count", c.nan_count},
-                         {"inf_count", c.inf_count},
-                         {"max_error", c.max_error},
-                         {"bound", c.bound},
-                         {"passed", c.passed},
-                         {"fix", c.fix},
-                         {"note", c.note}});
+        file.cases.push_back({c.name, c.description, HardCaseKindName(c.kind), c.variants_checked,
+                              c.nan_count, c.inf_count, c.max_error, c.bound, c.passed, c.fix,
+                              c.note});
     }
-    json["cases"] = cases;
-    nlohmann::ordered_json precision = nlohmann::ordered_json::array();
     for (const PrecisionRow& p : report.precision) {
-        precision.push_back({{"expression", p.expression},
-                             {"max_abs_error_float", p.max_abs_error_float},
-                             {"max_abs_error_fp16", p.max_abs_error_fp16},
-                             {"max_rel_error_fp16", p.max_rel_error_fp16},
-                             {"bound_fp16", p.bound_fp16},
-                             {"non_finite_fp16", p.non_finite_fp16},
-                             {"loses_precision", p.loses_precision},
-                             {"note", p.note}});
+        file.precision.push_back({p.expression, p.max_abs_error_float, p.max_abs_error_fp16,
+                                  p.max_rel_error_fp16, p.bound_fp16, p.non_finite_fp16,
+                                  p.loses_precision, p.note});
     }
-    json["precision"] = precision;
-    nlohmann::ordered_json guards = nlohmann::ordered_json::array();
     for (const GuardResult& g : report.guards) {
-        guards.push_back({{"guard", g.guard},
-                          {"max_channel_diff_normal_views", g.max_channel_diff_normal_views},
-                          {"tolerance", g.tolerance},
-                          {"passed", g.passed}});
+        file.guards.push_back({g.guard, g.max_channel_diff_normal_views, g.tolerance, g.passed});
     }
-    json["guards"] = guards;
-    return JsonText(json, 2) + "\n";
+    return file;
 }
 
 }  // namespace tidepool::runner

@@ -149,20 +149,6 @@ std::string ClockText(const ReportModel& model) {
             model.inputs->clock_reason, ClockName(model.clock));
 }
 
-// The columns of each stability table, in display order.
-const std::vector<std::pair<std::string, std::vector<std::string>>>& StabilityTables() {
-    static const std::vector<std::pair<std::string, std::vector<std::string>>> tables = {
-            {"cases",
-             {"name", "description", "kind", "variants_checked", "nan_count", "inf_count",
-              "max_error", "bound", "passed", "fix"}},
-            {"precision",
-             {"expression", "max_abs_error_float", "max_abs_error_fp16", "max_rel_error_fp16",
-              "loses_precision", "note"}},
-            {"guards", {"guard", "max_channel_diff_normal_views", "tolerance"}},
-    };
-    return tables;
-}
-
 std::string JsonCell(const nlohmann::json& value) {
     if (value.is_null()) {
         return "–";
@@ -182,6 +168,53 @@ std::string JsonCell(const nlohmann::json& value) {
         return out;
     }
     return tidepool::JsonText(value);
+}
+
+// A field of a stage file as a table cell, as JsonCell shows its JSON.
+template <typename T>
+std::string Cell(const T& value) {
+    return JsonCell(nlohmann::json(value));
+}
+
+// One table of the Numerical stability section: its key in stability.json, its columns (the
+// fields shown, in display order) and a row per entry, "bad" when the entry did not pass.
+struct StabilityTable {
+    std::string key;
+    std::vector<std::string> columns;
+    std::vector<std::vector<std::string>> rows;
+    std::vector<std::string> css;
+};
+
+std::vector<StabilityTable> StabilityTables(const stagefiles::StabilityFile& file) {
+    StabilityTable cases{"cases",
+                         {"name", "description", "kind", "variants_checked", "nan_count",
+                          "inf_count", "max_error", "bound", "passed", "fix"},
+                         {},
+                         {}};
+    for (const stagefiles::StabilityCase& c : file.cases) {
+        cases.rows.push_back({c.name, c.description, c.kind, Cell(c.variants_checked),
+                              Cell(c.nan_count), Cell(c.inf_count), Cell(c.max_error),
+                              Cell(c.bound), Cell(c.passed), c.fix});
+        cases.css.push_back(c.passed ? "" : "bad");
+    }
+    StabilityTable precision{"precision",
+                             {"expression", "max_abs_error_float", "max_abs_error_fp16",
+                              "max_rel_error_fp16", "loses_precision", "note"},
+                             {},
+                             {}};
+    for (const stagefiles::PrecisionEntry& p : file.precision) {
+        precision.rows.push_back({p.expression, Cell(p.max_abs_error_float),
+                                  Cell(p.max_abs_error_fp16), Cell(p.max_rel_error_fp16),
+                                  Cell(p.loses_precision), p.note});
+        precision.css.push_back("");  // a finding, not a check
+    }
+    StabilityTable guards{
+            "guards", {"guard", "max_channel_diff_normal_views", "tolerance"}, {}, {}};
+    for (const stagefiles::GuardEntry& g : file.guards) {
+        guards.rows.push_back({g.guard, Cell(g.max_channel_diff_normal_views), Cell(g.tolerance)});
+        guards.css.push_back(g.passed ? "" : "bad");
+    }
+    return {std::move(cases), std::move(precision), std::move(guards)};
 }
 
 // The Scenes section's tables, read from plans.json.
@@ -879,26 +912,13 @@ doc::Section StabilitySection(const ReportModel& model) {
                              : model.inputs->stability_error + ". " + StabilityHowTo()));
         return s;
     }
-    for (const auto& [key, columns] : StabilityTables()) {
-        const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
-        std::vector<std::vector<std::string>> rows;
-        std::vector<std::string> css;
-        if (table.is_array()) {
-            for (const nlohmann::json& item : table) {
-                std::vector<std::string> row;
-                for (const std::string& column : columns) {
-                    row.push_back(item.is_object() && item.contains(column) ? JsonCell(item[column])
-                                                                            : "–");
-                }
-                css.push_back(item.is_object() && item.value("passed", true) == false ? "bad" : "");
-                rows.push_back(std::move(row));
-            }
-        }
-        s.blocks.emplace_back(Heading{key, ""});
-        if (rows.empty()) {
+    for (StabilityTable& table : StabilityTables(*model.inputs->stability)) {
+        s.blocks.emplace_back(Heading{table.key, ""});
+        if (table.rows.empty()) {
             s.blocks.emplace_back(Body("(none)"));
         } else {
-            s.blocks.emplace_back(TableOf(columns, std::move(rows), std::move(css)));
+            s.blocks.emplace_back(
+                    TableOf(table.columns, std::move(table.rows), std::move(table.css)));
         }
     }
     return s;

@@ -159,31 +159,22 @@ std::string CheckStageFile(const nlohmann::json& document, std::string_view sche
     return CheckStageFileShape(kind, document);
 }
 
-// Reads an optional JSON file beside the results: absent leaves both outputs untouched; present
-// but unreadable, not JSON or not of `schema` (version `version`, when `version` > 0) sets
-// `error` naming the file.
-void LoadOptionalSibling(const std::filesystem::path& path, std::string_view schema, int version,
-                         std::optional<nlohmann::json>* content, std::string* error) {
+// Reads a stage file beside the results with `read`: absent leaves both outputs untouched; one
+// that is unreadable, not tidepool's or incomplete is left out with `error` saying why (it may be
+// anything a user left there). One that claims the schema but has a wrongly typed field is a
+// damaged stage file, an error like a damaged manifest or results file: returns false.
+template <typename T>
+bool LoadSibling(const std::filesystem::path& path,
+                 stagefiles::ReadResult<T> (*read)(const std::filesystem::path&),
+                 std::optional<T>* value, std::string* error) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
-        return;
+        return true;
     }
-    std::optional<nlohmann::json> json = stagefiles::ReadJsonFile(path, error);
-    if (!json) {
-        return;
-    }
-    if (!json->is_object() || StringOr(*json, "schema") != schema) {
-        *error = fmt::format("{}: schema is not '{}'", path.string(), schema);
-        return;
-    }
-    if (version > 0) {
-        auto v = json->find("version");
-        if (v == json->end() || !v->is_number_integer() || v->get<int>() != version) {
-            *error = fmt::format("{}: version must be {}", path.string(), version);
-            return;
-        }
-    }
-    *content = std::move(*json);
+    stagefiles::ReadResult<T> result = read(path);
+    *value = std::move(result.value);
+    *error = std::move(result.error);
+    return result.failure != stagefiles::ReadFailure::kWrongType;
 }
 
 // Parses one entry of results.json `configurations`; returns "" or the problem.
@@ -600,30 +591,17 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         }
     }
 
-    inputs.stability_path = folder / kStabilityFileName;
-    // The stability schema's version is not checked: the section renders its tables generically.
-    LoadOptionalSibling(inputs.stability_path, kStabilitySchemaName, 0, &inputs.stability,
-                        &inputs.stability_error);
-    // A sibling that is unreadable or not tidepool's is left out and named in its section (it
-    // may be anything a user left there); one that claims the schema but has a wrongly typed
-    // field is a damaged stage file, an error like a damaged manifest or results file.
-    if (inputs.stability) {
-        if (std::string problem = CheckStageFileShape(StageFile::kStability, *inputs.stability);
-            !problem.empty()) {
-            out.error = fmt::format("{}: {}", inputs.stability_path.string(), problem);
-            return out;
-        }
+    inputs.stability_path = folder / stagefiles::kStabilityFileName;
+    if (!LoadSibling(inputs.stability_path, &stagefiles::ReadStabilityFile, &inputs.stability,
+                     &inputs.stability_error)) {
+        out.error = inputs.stability_error;
+        return out;
     }
     inputs.plans_path = folder / stagefiles::kPlansFileName;
-    if (std::error_code ec; std::filesystem::exists(inputs.plans_path, ec)) {
-        stagefiles::ReadResult<stagefiles::PlansFile> plans =
-                stagefiles::ReadPlansFile(inputs.plans_path);
-        if (plans.failure == stagefiles::ReadFailure::kWrongType) {
-            out.error = std::move(plans.error);
-            return out;
-        }
-        inputs.plans = std::move(plans.value);
-        inputs.plans_error = std::move(plans.error);
+    if (!LoadSibling(inputs.plans_path, &stagefiles::ReadPlansFile, &inputs.plans,
+                     &inputs.plans_error)) {
+        out.error = inputs.plans_error;
+        return out;
     }
     out.inputs = std::move(inputs);
     return out;

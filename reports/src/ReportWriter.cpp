@@ -400,7 +400,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     }
     json["depth_optics"] = {{"baseline", "full"}, {"comparisons", optics}};
     if (model.inputs->stability) {
-        json["stability"] = *model.inputs->stability;
+        json["stability"] = stagefiles::ToJson(*model.inputs->stability);
     } else {
         json["stability"] = {{"present", false},
                              {"error", model.inputs->stability_error},

@@ -14,7 +14,7 @@ namespace {
 // Shapes used at several places, named there as "$name" (Resolve): a stage's static cost
 // (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json),
 // the summary of a configuration's frame times (base/SampleStatistics.h) and a configuration's
-// pass options. plans.json is checked by its reader (stagefiles/PlansFile.h).
+// pass options. plans.json and stability.json are checked by their readers (stagefiles/).
 constexpr const char* kStatisticsShape = R"json(
 {
   "ci_coverage": "number",
@@ -295,58 +295,6 @@ constexpr const char* kResultsShape = R"json(
 }
 )json";
 
-// Written by lab/src/StabilityReport.cpp.
-constexpr const char* kStabilityShape = R"json(
-{
-  "cases": [
-    {
-      "bound": "number",
-      "description": "string",
-      "fix": "string",
-      "inf_count": "number",
-      "kind": "string",
-      "max_error": "number",
-      "name": "string",
-      "nan_count": "number",
-      "note": "string",
-      "passed": "bool",
-      "variants_checked": "number"
-    }
-  ],
-  "environment": {
-    "backend": "string",
-    "config": "string",
-    "lp_num_threads": "string",
-    "mesa_version": "string",
-    "renderer": "string",
-    "size": "string",
-    "version": "string"
-  },
-  "guards": [
-    {
-      "guard": "string",
-      "max_channel_diff_normal_views": "number",
-      "passed": "bool",
-      "tolerance": "number"
-    }
-  ],
-  "precision": [
-    {
-      "bound_fp16": "number",
-      "expression": "string",
-      "loses_precision": "bool",
-      "max_abs_error_float": "number",
-      "max_abs_error_fp16": "number",
-      "max_rel_error_fp16": "number",
-      "non_finite_fp16": "number",
-      "note": "string"
-    }
-  ],
-  "schema": "string",
-  "version": "number"
-}
-)json";
-
 // `shape` with every "$name" leaf replaced by the named shape it stands for.
 nlohmann::json Resolve(nlohmann::json shape) {
     static const std::map<std::string, nlohmann::json, std::less<>> named = {
@@ -457,14 +405,11 @@ std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) 
     // Parsed once: the shapes are constants of this build.
     static const nlohmann::json manifest = Resolve(nlohmann::json::parse(kManifestShape));
     static const nlohmann::json results = Resolve(nlohmann::json::parse(kResultsShape));
-    static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
     switch (file) {
         case StageFile::kManifest:
             return CheckJsonShape(document, manifest);
         case StageFile::kResults:
             return CheckJsonShape(document, results);
-        case StageFile::kStability:
-            return CheckJsonShape(document, stability);
     }
     return {};
 }

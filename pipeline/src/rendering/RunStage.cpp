@@ -10,7 +10,6 @@
 #include "tidepool/pipeline/OutputFiles.h"
 #include "tidepool/pipeline/PlanStage.h"
 #include "tidepool/pipeline/StabilityStage.h"
-#include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -110,8 +109,8 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
     if (!error.empty()) {
         written.Fail(Status::kEnvironment, "stability: " + error);
     } else {
-        WriteFile(render_dir / report::kStabilityFileName, runner::StabilityReportJson(report),
-                  &written);
+        WriteFile(render_dir / stagefiles::kStabilityFileName,
+                  stagefiles::StabilityFileText(runner::StabilityFileFor(report)), &written);
     }
     if (written.Stopped()) {
         progress.Tell(written.diagnostics);
@@ -130,7 +129,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
             fmt::format("stability: {} cases at {}x{}, {} failed, {:.0f} s; {} in the render "
                         "folder",
                         report.cases.size(), run.width, run.height, end.failures,
-                        SecondsSince(start), report::kStabilityFileName));
+                        SecondsSince(start), stagefiles::kStabilityFileName));
     return end;
 }
 

@@ -1,6 +1,6 @@
 // Runs the hard-case catalogue (CPU sweeps and GL renders of every water variant into a float
-// target), the precision study and the shader-guard comparison, and writes stability.json
-// (schema "tidepool.stability", version 1).
+// target), the precision study and the shader-guard comparison, for stability.json (schema
+// "tidepool.stability", version 1).
 #pragma once
 
 #include "tidepool/VariantConfig.h"
@@ -8,6 +8,7 @@
 #include "tidepool/lab/PrecisionStudy.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/RenderConfig.h"
+#include "tidepool/stagefiles/StabilityFile.h"
 
 #include <map>
 #include <string>
@@ -74,7 +75,7 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
 /// The water variants of `variants` as configurations with default passes. Never fails.
 std::vector<RenderConfiguration> WaterVariantConfigurations(const std::vector<Variant>& variants);
 
-/// stability.json for `report`. Never fails.
-std::string StabilityReportJson(const StabilityReport& report);
+/// `report` as stability.json holds it (stagefiles/StabilityFile.h). Never fails.
+stagefiles::StabilityFile StabilityFileFor(const StabilityReport& report);
 
 }  // namespace tidepool::runner

@@ -6,6 +6,7 @@
 
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/stagefiles/PlansFile.h"
+#include "tidepool/stagefiles/StabilityFile.h"
 
 #include <filesystem>
 #include <limits>
@@ -23,10 +24,6 @@ namespace tidepool::report {
 inline constexpr std::string_view kResultsSchemaName = "tidepool.render-results";
 /// The manifest schema the report understands.
 inline constexpr std::string_view kManifestSchemaName = "tidepool.manifest";
-/// The numerical-stability schema rendered generically when its file exists.
-inline constexpr std::string_view kStabilitySchemaName = "tidepool.stability";
-/// The file name of the stability catalogue, looked for beside results.json.
-inline constexpr std::string_view kStabilityFileName = "stability.json";
 
 /// The clock whose samples the report compares configurations on.
 enum class TimingClock {
@@ -126,7 +123,7 @@ struct ReportInputs {
     int height = 480;
     std::vector<std::string> view_names;
     std::filesystem::path stability_path;     // where stability.json was looked for
-    std::optional<nlohmann::json> stability;  // its content when present and valid
+    std::optional<stagefiles::StabilityFile> stability;  // its content when present and valid
     std::string stability_error;              // why a present stability.json was not used
     std::filesystem::path plans_path;         // where plans.json was looked for
     std::optional<stagefiles::PlansFile> plans;  // its content when present and valid

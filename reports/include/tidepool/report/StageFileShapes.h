@@ -1,8 +1,8 @@
 // The shape of each stage file the report reads whose typed reader is still to come
-// (tidepool.manifest, tidepool.render-results, tidepool.stability; plans.json has its own reader,
-// stagefiles/PlansFile.h): the JSON type of every field its writer emits. The report
-// checks a file against its shape before reading anything from it, so a wrongly typed field is
-// an error naming the file and the field, never a crash or a silently wrong report.
+// (tidepool.manifest, tidepool.render-results; plans.json and stability.json have theirs in
+// stagefiles/): the JSON type of every field its writer emits. The report checks a file against
+// its shape before reading anything from it, so a wrongly typed field is an error naming the
+// file and the field, never a crash or a silently wrong report.
 #pragma once
 
 #include <string>
@@ -13,7 +13,7 @@
 namespace tidepool::report {
 
 /// The stage files the report checks by shape.
-enum class StageFile { kManifest, kResults, kStability };
+enum class StageFile { kManifest, kResults };
 
 /// Checks every field of `document` that `file`'s writer emits against the type the writer
 /// gives it. Returns "" when all agree, else "'path' has the wrong type (expected T, found U)"
