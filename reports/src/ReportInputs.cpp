@@ -506,7 +506,13 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     if (!results) {
         return out;
     }
-    if (std::string problem = CheckStageFile(*results, kResultsSchemaName, "schema_version",
+    // Results written before every stage file carried its version under one key say
+    // "schema_version"; they still report.
+    const char* version_key = results->is_object() && !results->contains(stagefiles::kVersionKey) &&
+                                              results->contains("schema_version")
+                                      ? "schema_version"
+                                      : stagefiles::kVersionKey;
+    if (std::string problem = CheckStageFile(*results, kResultsSchemaName, version_key,
                                              kResultsVersion, StageFile::kResults);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", results_path.string(), problem);

@@ -227,6 +227,7 @@ constexpr const char* kResultsShape = R"json(
   "ok": "bool",
   "schema": "string",
   "schema_version": "number",
+  "version": "number",
   "settings": {
     "animation_time_s": "number",
     "bump_scale": [["number"]],
