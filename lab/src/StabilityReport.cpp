@@ -456,7 +456,7 @@ StabilityCaseResult RunCpuHardCase(const HardCase& hard_case) {
     }
     r.name = hard_case.name;
     r.description = hard_case.description;
-    r.kind = HardCaseKind::kCpu;
+    r.kind = HardCaseKindName(HardCaseKind::kCpu);
     r.fix = hard_case.fix;
     r.passed = hard_case.kind == HardCaseKind::kCpu && r.nan_count == 0 && r.inf_count == 0 &&
                r.max_error <= r.bound;
@@ -538,7 +538,7 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
         StabilityCaseResult r;
         r.name = hard_case.name;
         r.description = hard_case.description;
-        r.kind = HardCaseKind::kGl;
+        r.kind = HardCaseKindName(HardCaseKind::kGl);
         r.fix = hard_case.fix;
         r.bound = kRangeTolerance;
         const RenderSettings settings = CaseSettings(hard_case, options);
@@ -683,25 +683,6 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
         results.push_back(std::move(g));
     }
     return results;
-}
-
-stagefiles::StabilityFile StabilityFileFor(const StabilityReport& report) {
-    stagefiles::StabilityFile file;
-    file.environment = report.environment;
-    for (const StabilityCaseResult& c : report.cases) {
-        file.cases.push_back({c.name, c.description, HardCaseKindName(c.kind), c.variants_checked,
-                              c.nan_count, c.inf_count, c.max_error, c.bound, c.passed, c.fix,
-                              c.note});
-    }
-    for (const PrecisionRow& p : report.precision) {
-        file.precision.push_back({p.expression, p.max_abs_error_float, p.max_abs_error_fp16,
-                                  p.max_rel_error_fp16, p.bound_fp16, p.non_finite_fp16,
-                                  p.loses_precision, p.note});
-    }
-    for (const GuardResult& g : report.guards) {
-        file.guards.push_back({g.guard, g.max_channel_diff_normal_views, g.tolerance, g.passed});
-    }
-    return file;
 }
 
 }  // namespace tidepool::runner

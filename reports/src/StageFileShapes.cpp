@@ -1,5 +1,7 @@
 #include "tidepool/report/StageFileShapes.h"
 
+#include "tidepool/stagefiles/WrongTypeMessage.h"
+
 #include <map>
 #include <string>
 
@@ -314,33 +316,6 @@ nlohmann::json Resolve(nlohmann::json shape) {
     return shape;
 }
 
-const char* TypeName(const nlohmann::json& value) {
-    switch (value.type()) {
-        case nlohmann::json::value_t::null:
-            return "null";
-        case nlohmann::json::value_t::boolean:
-            return "bool";
-        case nlohmann::json::value_t::number_integer:
-        case nlohmann::json::value_t::number_unsigned:
-        case nlohmann::json::value_t::number_float:
-            return "number";
-        case nlohmann::json::value_t::string:
-            return "string";
-        case nlohmann::json::value_t::array:
-            return "array";
-        case nlohmann::json::value_t::object:
-            return "object";
-        default:
-            return "binary";
-    }
-}
-
-std::string WrongType(const std::string& path, std::string_view expected,
-                      const nlohmann::json& found) {
-    return fmt::format("'{}' has the wrong type (expected {}, found {})",
-                       path.empty() ? "(the document)" : path, expected, TypeName(found));
-}
-
 // Whether `value` is of the type named by `type` (a shape's leaf; a trailing '?' allows null).
 bool IsOfType(const nlohmann::json& value, std::string_view type) {
     if (!type.empty() && type.back() == '?') {
@@ -367,11 +342,12 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
                            const std::string& path) {
     if (shape.is_string()) {
         const std::string& type = shape.get_ref<const std::string&>();
-        return IsOfType(document, type) ? std::string() : WrongType(path, type, document);
+        return IsOfType(document, type) ? std::string()
+                                        : stagefiles::WrongTypeMessage(path, type, document);
     }
     if (shape.is_array()) {
         if (!document.is_array()) {
-            return WrongType(path, "array", document);
+            return stagefiles::WrongTypeMessage(path, "array", document);
         }
         if (shape.empty()) {
             return {};
@@ -386,7 +362,7 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
         return {};
     }
     if (!document.is_object()) {
-        return WrongType(path, "object", document);
+        return stagefiles::WrongTypeMessage(path, "object", document);
     }
     const auto every = shape.find("*");
     for (const auto& [key, value] : document.items()) {

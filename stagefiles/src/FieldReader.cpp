@@ -1,32 +1,10 @@
 #include "FieldReader.h"
 
+#include "tidepool/stagefiles/WrongTypeMessage.h"
+
 #include <fmt/format.h>
 
 namespace tidepool::stagefiles {
-namespace {
-
-const char* TypeName(const nlohmann::json& value) {
-    switch (value.type()) {
-        case nlohmann::json::value_t::null:
-            return "null";
-        case nlohmann::json::value_t::boolean:
-            return "bool";
-        case nlohmann::json::value_t::number_integer:
-        case nlohmann::json::value_t::number_unsigned:
-        case nlohmann::json::value_t::number_float:
-            return "number";
-        case nlohmann::json::value_t::string:
-            return "string";
-        case nlohmann::json::value_t::array:
-            return "array";
-        case nlohmann::json::value_t::object:
-            return "object";
-        default:
-            return "binary";
-    }
-}
-
-}  // namespace
 
 void FieldReader::Value(const nlohmann::json& value, const std::string& path, std::string* out) {
     if (Expect(value.is_string(), value, path, "string")) {
@@ -84,9 +62,7 @@ std::string FieldReader::Index(std::string_view path, std::size_t i) {
 bool FieldReader::Expect(bool ok, const nlohmann::json& value, const std::string& path,
                          std::string_view expected) {
     if (!ok) {
-        Fail(ReadFailure::kWrongType,
-             fmt::format("'{}' has the wrong type (expected {}, found {})",
-                         path.empty() ? "(the document)" : path, expected, TypeName(value)));
+        Fail(ReadFailure::kWrongType, WrongTypeMessage(path, expected, value));
     }
     return Ok();
 }

@@ -110,7 +110,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
         written.Fail(Status::kEnvironment, "stability: " + error);
     } else {
         WriteFile(render_dir / stagefiles::kStabilityFileName,
-                  stagefiles::StabilityFileText(runner::StabilityFileFor(report)), &written);
+                  stagefiles::StabilityFileText(report), &written);
     }
     if (written.Stopped()) {
         progress.Tell(written.diagnostics);

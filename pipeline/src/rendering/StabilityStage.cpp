@@ -84,7 +84,7 @@ StabilityResult RunStability(const StabilityOptions& options) {
         result.outcome.Fail(Status::kEnvironment, error);
         return result;
     }
-    result.json = stagefiles::StabilityFileText(runner::StabilityFileFor(result.report));
+    result.json = stagefiles::StabilityFileText(result.report);
     if (Outcome write = WriteStabilityInto(options.out, result.json); write.Stopped()) {
         result.outcome.Add(write.diagnostics);
         result.outcome.status = write.status;

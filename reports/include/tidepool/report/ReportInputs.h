@@ -122,12 +122,12 @@ struct ReportInputs {
     int width = 640;          // the render size of the run
     int height = 480;
     std::vector<std::string> view_names;
-    std::filesystem::path stability_path;     // where stability.json was looked for
+    std::filesystem::path stability_path;                // where stability.json was looked for
     std::optional<stagefiles::StabilityFile> stability;  // its content when present and valid
-    std::string stability_error;              // why a present stability.json was not used
-    std::filesystem::path plans_path;         // where plans.json was looked for
+    std::string stability_error;                 // why a present stability.json was not used
+    std::filesystem::path plans_path;            // where plans.json was looked for
     std::optional<stagefiles::PlansFile> plans;  // its content when present and valid
-    std::string plans_error;                  // why a present plans.json was not used
+    std::string plans_error;                     // why a present plans.json was not used
     // The clock every comparison uses: CPU time when every timed configuration has CPU samples
     // (wall time on a shared machine is disturbed by other processes), else wall time.
     TimingClock clock = TimingClock::kWall;
