@@ -88,7 +88,7 @@ int RunPlan(PlanCommandOptions options) {
     }
     const pipeline::PlanResult result = pipeline::PlanScenes(prepared);
     if (options.json) {
-        std::printf("%s\n", JsonText(result.json, 2).c_str());
+        std::printf("%s\n", JsonText(stagefiles::ToJson(result.file), 2).c_str());
     } else {
         for (const runner::ScenePlan& plan : result.plans) {
             PrintPlan(plan);

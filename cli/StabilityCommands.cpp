@@ -28,7 +28,7 @@ void PrintStability(const pipeline::StabilityResult& result) {
     using namespace tidepool::runner;
     for (const StabilityCaseResult& r : result.report.cases) {
         std::printf("%-4s %-34s %s  max_error %.3g (bound %.3g)\n", r.passed ? "ok" : "FAIL",
-                    r.name.c_str(), HardCaseKindName(r.kind), r.max_error, r.bound);
+                    r.name.c_str(), r.kind.c_str(), r.max_error, r.bound);
     }
     for (const PrecisionRow& p : result.report.precision) {
         std::printf("%-9s %s (fp16 rel %.3g)\n", p.loses_precision ? "mediump!" : "mediump",

@@ -4,10 +4,6 @@
 
 namespace tidepool {
 
-std::string JsonText(const nlohmann::json& json, int indent) {
-    return json.dump(indent, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
 nlohmann::json ToJson(const Diagnostic& diagnostic) {
     return {{"severity", SeverityName(diagnostic.severity)},
             {"file", diagnostic.file},

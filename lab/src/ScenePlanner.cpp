@@ -754,121 +754,93 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     return plan;
 }
 
-nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOptions& options) {
-    nlohmann::json out;
-    out["schema"] = "tidepool.plans";
-    out["version"] = 1;
-    out["size"] = {options.settings.width, options.settings.height};
-    out["timing"] = {{"resolution_points", options.rule.resolution_points},
-                     {"min_pairs", options.rule.min_pairs},
-                     {"max_pairs", options.rule.max_pairs}};
-    out["plans"] = nlohmann::json::array();
+stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
+                                   const PlanOptions& options) {
+    stagefiles::PlansFile file;
+    file.size = {options.settings.width, options.settings.height};
+    file.timing = {options.rule.resolution_points, options.rule.min_pairs, options.rule.max_pairs};
     auto configuration = [&options](const PlanCandidate& c) {
-        long long pixels = 0;
+        stagefiles::PlanConfiguration out;
+        out.id = c.configuration.id;
+        out.variant = c.configuration.variant.Id();
+        out.passes = c.frame.pass_names;
+        out.pass_draw_calls = c.frame.pass_draw_calls;
+        out.pass_options = {ReflectionSize(c.configuration.passes, options.settings.width,
+                                           options.settings.height),
+                            c.configuration.passes.low_res_water};
+        out.draw_calls = c.frame.draw_calls;
+        out.image = c.image_path;
         for (long long p : c.frame.pass_pixels) {
-            pixels += p;
+            out.pixels_shaded_estimate += p;
         }
-        return nlohmann::json{
-                {"id", c.configuration.id},
-                {"variant", c.configuration.variant.Id()},
-                {"passes", c.frame.pass_names},
-                {"pass_draw_calls", c.frame.pass_draw_calls},
-                {"pass_options",
-                 {{"reflection_size", ReflectionSize(c.configuration.passes, options.settings.width,
-                                                     options.settings.height)},
-                  {"low_res_water", c.configuration.passes.low_res_water}}},
-                {"draw_calls", c.frame.draw_calls},
-                {"image", c.image_path},
-                {"pixels_shaded_estimate", pixels}};
+        return out;
+    };
+    auto error = [](const ImageError& e) {
+        return stagefiles::PlanImageError{e.psnr_db, e.ssim, e.share_visible};
+    };
+    auto effects = [](const std::vector<DroppedEffect>& list) {
+        std::vector<stagefiles::PlanEffect> out;
+        for (const DroppedEffect& d : list) {
+            out.push_back({d.effect, d.reason, d.psnr_change_db, d.time_change_percent});
+        }
+        return out;
+    };
+    auto messages = [](const std::vector<Diagnostic>& diagnostics) {
+        std::vector<std::string> out;
+        for (const Diagnostic& d : diagnostics) {
+            out.push_back(FormatDiagnostic(d));
+        }
+        return out;
     };
     for (const ScenePlan& plan : plans) {
-        nlohmann::json p;
-        p["scene"] = plan.scene.name;
-        p["description"] = plan.scene.description;
-        nlohmann::json target = nlohmann::json::object();
-        if (plan.scene.target.min_psnr_db) {
-            target["min_psnr_db"] = *plan.scene.target.min_psnr_db;
-        }
-        if (plan.scene.target.max_share_visible) {
-            target["max_share_visible"] = *plan.scene.target.max_share_visible;
-        }
-        if (plan.scene.target.frame_budget_ms) {
-            target["frame_budget_ms"] = *plan.scene.target.frame_budget_ms;
-        }
-        p["target"] = target;
-        p["needed"] = plan.needed;
-        std::vector<std::string> errors;
-        for (const Diagnostic& d : plan.diagnostics) {
-            errors.push_back(FormatDiagnostic(d));
-        }
-        p["errors"] = errors;
+        stagefiles::PlannedScene& p = file.plans.emplace_back();
+        p.scene = plan.scene.name;
+        p.description = plan.scene.description;
+        p.target = {plan.scene.target.frame_budget_ms, plan.scene.target.max_share_visible,
+                    plan.scene.target.min_psnr_db};
+        p.needed = plan.needed;
+        p.errors = messages(plan.diagnostics);
         if (plan.chosen < 0 || plan.full < 0) {
-            p["met"] = false;
-            out["plans"].push_back(p);
-            continue;
+            continue;  // failed: no choice, not met
         }
         const PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(plan.chosen)];
         const PlanCandidate& full = plan.candidates[static_cast<std::size_t>(plan.full)];
-        p["chosen"] = configuration(chosen);
-        p["full"] = configuration(full);
-        p["time_ms_chosen"] = chosen.time_ms;
-        p["time_ms_full"] = full.time_ms;
-        p["time_change_percent"] = chosen.time_change_percent;
-        p["time_change_interval"] = {chosen.time_change_low, chosen.time_change_high};
-        p["choice_reason"] = plan.choice_reason;
-        p["error"] = {{"psnr_db", chosen.error.psnr_db},
-                      {"ssim", chosen.error.ssim},
-                      {"share_visible", chosen.error.share_visible}};
-        p["met"] = plan.met;
-        nlohmann::json dropped = nlohmann::json::array();
-        for (const DroppedEffect& d : plan.dropped) {
-            dropped.push_back({{"effect", d.effect},
-                               {"reason", d.reason},
-                               {"psnr_change_db", d.psnr_change_db},
-                               {"time_change_percent", d.time_change_percent}});
-        }
-        p["dropped"] = dropped;
-        nlohmann::json kept = nlohmann::json::array();
-        for (const DroppedEffect& k : plan.kept) {
-            kept.push_back({{"effect", k.effect},
-                            {"reason", k.reason},
-                            {"psnr_change_db", k.psnr_change_db},
-                            {"time_change_percent", k.time_change_percent}});
-        }
-        p["kept"] = kept;
-        p["passes_saved"] = plan.passes_saved;
-        p["draws_saved"] = plan.draws_saved;
-        p["pixels_saved"] = plan.pixels_saved;
-        nlohmann::json candidates = nlohmann::json::array();
+        p.met = plan.met;
+        stagefiles::PlanChoice& choice = p.choice.emplace();
+        choice.chosen = configuration(chosen);
+        choice.full = configuration(full);
+        choice.time_ms_chosen = chosen.time_ms;
+        choice.time_ms_full = full.time_ms;
+        choice.time_change_percent = chosen.time_change_percent;
+        choice.time_change_interval = {chosen.time_change_low, chosen.time_change_high};
+        choice.choice_reason = plan.choice_reason;
+        choice.error = error(chosen.error);
+        choice.dropped = effects(plan.dropped);
+        choice.kept = effects(plan.kept);
+        choice.passes_saved = plan.passes_saved;
+        choice.draws_saved = plan.draws_saved;
+        choice.pixels_saved = plan.pixels_saved;
         for (const PlanCandidate& c : plan.candidates) {
-            nlohmann::json j = configuration(c);
-            j["proposed_because"] = c.proposed_because;
+            stagefiles::PlanCandidate& j = choice.candidates.emplace_back();
+            j.configuration = configuration(c);
+            j.proposed_because = c.proposed_because;
             if (c.water_colour_alpha >= 0.0F) {
-                j["water_colour_alpha"] = c.water_colour_alpha;
+                j.water_colour_alpha = c.water_colour_alpha;
             }
-            j["valid"] = c.valid;
+            j.valid = c.valid;
             if (c.valid) {
-                j["psnr_db"] = c.error.psnr_db;
-                j["ssim"] = c.error.ssim;
-                j["share_visible"] = c.error.share_visible;
-                j["time_ms"] = c.time_ms;
-                j["time_change_percent"] = c.time_change_percent;
-                j["time_change_interval"] = {c.time_change_low, c.time_change_high};
-                j["pairs"] = c.pairs;
-                j["meets_quality"] = c.meets_quality;
+                j.measurement = {error(c.error),
+                                 c.time_ms,
+                                 c.time_change_percent,
+                                 {c.time_change_low, c.time_change_high},
+                                 c.pairs,
+                                 c.meets_quality};
             } else {
-                std::vector<std::string> messages;
-                for (const Diagnostic& d : c.diagnostics) {
-                    messages.push_back(FormatDiagnostic(d));
-                }
-                j["diagnostics"] = messages;
+                j.diagnostics = messages(c.diagnostics);
             }
-            candidates.push_back(j);
         }
-        p["candidates"] = candidates;
-        out["plans"].push_back(p);
     }
-    return out;
+    return file;
 }
 
 }  // namespace tidepool::runner

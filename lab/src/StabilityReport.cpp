@@ -456,7 +456,7 @@ StabilityCaseResult RunCpuHardCase(const HardCase& hard_case) {
     }
     r.name = hard_case.name;
     r.description = hard_case.description;
-    r.kind = HardCaseKind::kCpu;
+    r.kind = HardCaseKindName(HardCaseKind::kCpu);
     r.fix = hard_case.fix;
     r.passed = hard_case.kind == HardCaseKind::kCpu && r.nan_count == 0 && r.inf_count == 0 &&
                r.max_error <= r.bound;
@@ -538,7 +538,7 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
         StabilityCaseResult r;
         r.name = hard_case.name;
         r.description = hard_case.description;
-        r.kind = HardCaseKind::kGl;
+        r.kind = HardCaseKindName(HardCaseKind::kGl);
         r.fix = hard_case.fix;
         r.bound = kRangeTolerance;
         const RenderSettings settings = CaseSettings(hard_case, options);
@@ -683,53 +683,6 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
         results.push_back(std::move(g));
     }
     return results;
-}
-
-std::string StabilityReportJson(const StabilityReport& report) {
-    nlohmann::ordered_json json;
-    json["schema"] = "tidepool.stability";
-    json["version"] = 1;
-    nlohmann::ordered_json environment = nlohmann::ordered_json::object();
-    for (const auto& [key, value] : report.environment) {
-        environment[key] = value;
-    }
-    json["environment"] = environment;
-    nlohmann::ordered_json cases = nlohmann::ordered_json::array();
-    for (const StabilityCaseResult& c : report.cases) {
-        cases.push_back({{"name", c.name},
-                         {"description", c.description},
-                         {"kind", HardCaseKindName(c.kind)},
-                         {"variants_checked", c.variants_checked},
-                         {"nan_count", c.nan_count},
-                         {"inf_count", c.inf_count},
-                         {"max_error", c.max_error},
-                         {"bound", c.bound},
-                         {"passed", c.passed},
-                         {"fix", c.fix},
-                         {"note", c.note}});
-    }
-    json["cases"] = cases;
-    nlohmann::ordered_json precision = nlohmann::ordered_json::array();
-    for (const PrecisionRow& p : report.precision) {
-        precision.push_back({{"expression", p.expression},
-                             {"max_abs_error_float", p.max_abs_error_float},
-                             {"max_abs_error_fp16", p.max_abs_error_fp16},
-                             {"max_rel_error_fp16", p.max_rel_error_fp16},
-                             {"bound_fp16", p.bound_fp16},
-                             {"non_finite_fp16", p.non_finite_fp16},
-                             {"loses_precision", p.loses_precision},
-                             {"note", p.note}});
-    }
-    json["precision"] = precision;
-    nlohmann::ordered_json guards = nlohmann::ordered_json::array();
-    for (const GuardResult& g : report.guards) {
-        guards.push_back({{"guard", g.guard},
-                          {"max_channel_diff_normal_views", g.max_channel_diff_normal_views},
-                          {"tolerance", g.tolerance},
-                          {"passed", g.passed}});
-    }
-    json["guards"] = guards;
-    return JsonText(json, 2) + "\n";
 }
 
 }  // namespace tidepool::runner

@@ -149,20 +149,6 @@ std::string ClockText(const ReportModel& model) {
             model.inputs->clock_reason, ClockName(model.clock));
 }
 
-// The columns of each stability table, in display order.
-const std::vector<std::pair<std::string, std::vector<std::string>>>& StabilityTables() {
-    static const std::vector<std::pair<std::string, std::vector<std::string>>> tables = {
-            {"cases",
-             {"name", "description", "kind", "variants_checked", "nan_count", "inf_count",
-              "max_error", "bound", "passed", "fix"}},
-            {"precision",
-             {"expression", "max_abs_error_float", "max_abs_error_fp16", "max_rel_error_fp16",
-              "loses_precision", "note"}},
-            {"guards", {"guard", "max_channel_diff_normal_views", "tolerance"}},
-    };
-    return tables;
-}
-
 std::string JsonCell(const nlohmann::json& value) {
     if (value.is_null()) {
         return "–";
@@ -184,30 +170,54 @@ std::string JsonCell(const nlohmann::json& value) {
     return tidepool::JsonText(value);
 }
 
-// A JSON number as text with `digits` decimals, "–" when absent or not a number.
-std::string JsonFixed(const nlohmann::json& object, const char* key, int digits,
-                      std::string_view unit = "") {
-    auto it = object.find(key);
-    return it != object.end() && it->is_number() ? Fixed(it->get<double>(), digits, unit)
-                                                 : std::string("–");
+// A field of a stage file as a table cell, as JsonCell shows its JSON.
+template <typename T>
+std::string Cell(const T& value) {
+    return JsonCell(nlohmann::json(value));
 }
 
-std::string JsonSigned(const nlohmann::json& object, const char* key, int digits,
-                       std::string_view unit = "") {
-    auto it = object.find(key);
-    return it != object.end() && it->is_number() ? Signed(it->get<double>(), digits, unit)
-                                                 : std::string("–");
-}
+// One table of the Numerical stability section: its key in stability.json, its columns (the
+// fields shown, in display order) and a row per entry, "bad" when the entry did not pass.
+struct StabilityTable {
+    std::string key;
+    std::vector<std::string> columns;
+    std::vector<std::vector<std::string>> rows;
+    std::vector<std::string> css;
+};
 
-std::string JsonText(const nlohmann::json& object, const char* key) {
-    auto it = object.find(key);
-    if (it == object.end() || it->is_null()) {
-        return "–";
+std::vector<StabilityTable> StabilityTables(const stagefiles::StabilityFile& file) {
+    StabilityTable cases{"cases",
+                         {"name", "description", "kind", "variants_checked", "nan_count",
+                          "inf_count", "max_error", "bound", "passed", "fix"},
+                         {},
+                         {}};
+    for (const stagefiles::StabilityCase& c : file.cases) {
+        cases.rows.push_back({c.name, c.description, c.kind, Cell(c.variants_checked),
+                              Cell(c.nan_count), Cell(c.inf_count), Cell(c.max_error),
+                              Cell(c.bound), Cell(c.passed), c.fix});
+        cases.css.push_back(c.passed ? "" : "bad");
     }
-    return it->is_string() ? it->get<std::string>() : it->dump();
+    StabilityTable precision{"precision",
+                             {"expression", "max_abs_error_float", "max_abs_error_fp16",
+                              "max_rel_error_fp16", "loses_precision", "note"},
+                             {},
+                             {}};
+    for (const stagefiles::PrecisionEntry& p : file.precision) {
+        precision.rows.push_back({p.expression, Cell(p.max_abs_error_float),
+                                  Cell(p.max_abs_error_fp16), Cell(p.max_rel_error_fp16),
+                                  Cell(p.loses_precision), p.note});
+        precision.css.push_back("");  // a finding, not a check
+    }
+    StabilityTable guards{
+            "guards", {"guard", "max_channel_diff_normal_views", "tolerance"}, {}, {}};
+    for (const stagefiles::GuardEntry& g : file.guards) {
+        guards.rows.push_back({g.guard, Cell(g.max_channel_diff_normal_views), Cell(g.tolerance)});
+        guards.css.push_back(g.passed ? "" : "bad");
+    }
+    return {std::move(cases), std::move(precision), std::move(guards)};
 }
 
-// The Scenes section's tables, read from plans.json (CheckPlans vetted the shape).
+// The Scenes section's tables, read from plans.json.
 struct SceneTables {
     std::vector<std::vector<std::string>> summary;
     std::vector<std::string> summary_css;
@@ -235,83 +245,72 @@ const std::vector<std::string>& SceneEffectHeader() {
     return header;
 }
 
-SceneTables BuildSceneTables(const nlohmann::json& plans) {
+// A PSNR of 99 dB is how plans.json writes "identical" (docs/SCENES.md).
+std::string PsnrText(double psnr_db) {
+    return psnr_db >= 99.0 ? std::string("identical") : Fixed(psnr_db, 1, " dB");
+}
+
+SceneTables BuildSceneTables(const stagefiles::PlansFile& plans) {
     SceneTables t;
-    const nlohmann::json empty = nlohmann::json::object();
-    for (const nlohmann::json& plan : plans.value("plans", nlohmann::json::array())) {
-        const std::string scene = JsonText(plan, "scene");
-        const nlohmann::json& chosen =
-                plan.contains("chosen") && plan["chosen"].is_object() ? plan["chosen"] : empty;
-        const nlohmann::json& full =
-                plan.contains("full") && plan["full"].is_object() ? plan["full"] : empty;
-        const nlohmann::json& error =
-                plan.contains("error") && plan["error"].is_object() ? plan["error"] : empty;
+    for (const stagefiles::PlannedScene& plan : plans.plans) {
         std::string target;
-        if (auto it = plan.find("target"); it != plan.end() && it->is_object()) {
-            for (const auto& [key, value] : it->items()) {
-                target += (target.empty() ? "" : ", ") + key + " " + JsonCell(value);
+        for (const auto& [key, bound] :
+             {std::pair{"frame_budget_ms", &plan.target.frame_budget_ms},
+              std::pair{"max_share_visible", &plan.target.max_share_visible},
+              std::pair{"min_psnr_db", &plan.target.min_psnr_db}}) {
+            if (*bound) {
+                target += (target.empty() ? "" : ", ") + std::string(key) + " " +
+                          JsonCell(nlohmann::json(**bound));
             }
         }
-        const bool met = plan.value("met", false);
-        t.missed += met ? 0 : 1;
-        // 99 dB is how plans.json writes "identical" (docs/SCENES.md).
-        const std::string psnr = error.contains("psnr_db") && error["psnr_db"].is_number() &&
-                                                 error["psnr_db"].get<double>() >= 99.0
-                                         ? std::string("identical")
-                                         : JsonFixed(error, "psnr_db", 1, " dB");
-        std::string visible = "–";
-        if (error.contains("share_visible") && error["share_visible"].is_number()) {
-            visible = Fixed(error["share_visible"].get<double>() * 100, 1, "%");
-        }
+        t.missed += plan.met ? 0 : 1;
         std::string errors;
-        if (auto it = plan.find("errors"); it != plan.end() && it->is_array() && !it->empty()) {
-            errors = " (" + JsonCell(*it) + ")";
+        if (!plan.errors.empty()) {
+            errors = " (" + JsonCell(nlohmann::json(plan.errors)) + ")";
         }
+        const std::string none = "–";  // a plan that failed chose nothing
+        const stagefiles::PlanChoice* c = plan.choice ? &*plan.choice : nullptr;
         t.summary.push_back(
-                {scene, JsonText(chosen, "id") + errors, JsonText(full, "id"),
-                 JsonFixed(plan, "time_ms_chosen", 2) + " / " + JsonFixed(plan, "time_ms_full", 2),
-                 JsonSigned(plan, "time_change_percent", 0, "%"),
-                 psnr + ", SSIM " + JsonFixed(error, "ssim", 3) + ", " + visible,
-                 target.empty() ? "–" : target, met ? "met" : "NOT met",
-                 JsonText(plan, "passes_saved") + " / " + JsonText(plan, "draws_saved") + " / " +
-                         JsonText(plan, "pixels_saved")});
-        t.summary_css.push_back(met ? "" : "bad");
+                {plan.scene, (c != nullptr ? c->chosen.id : none) + errors,
+                 c != nullptr ? c->full.id : none,
+                 c != nullptr ? Fixed(c->time_ms_chosen, 2) + " / " + Fixed(c->time_ms_full, 2)
+                              : none + " / " + none,
+                 c != nullptr ? Signed(c->time_change_percent, 0, "%") : none,
+                 c != nullptr ? PsnrText(c->error.psnr_db) + ", SSIM " + Fixed(c->error.ssim, 3) +
+                                        ", " + Fixed(c->error.share_visible * 100, 1, "%")
+                              : none + ", SSIM " + none + ", " + none,
+                 target.empty() ? "–" : target, plan.met ? "met" : "NOT met",
+                 c != nullptr ? fmt::format("{} / {} / {}", c->passes_saved, c->draws_saved,
+                                            c->pixels_saved)
+                              : none + " / " + none + " / " + none});
+        t.summary_css.push_back(plan.met ? "" : "bad");
         std::vector<std::vector<std::string>> effects;
-        for (const auto& [key, decision] :
-             {std::pair<const char*, const char*>{"dropped", "dropped"}, {"kept", "kept"}}) {
-            for (const nlohmann::json& e : plan.value(key, nlohmann::json::array())) {
-                if (!e.is_object()) {
-                    continue;
+        if (c != nullptr) {
+            for (const auto& [list, decision] :
+                 {std::pair{&c->dropped, "dropped"}, std::pair{&c->kept, "kept"}}) {
+                for (const stagefiles::PlanEffect& e : *list) {
+                    effects.push_back({e.effect, decision, PsnrText(e.psnr_change_db),
+                                       Signed(e.time_change_percent, 0, "%"), e.reason});
                 }
-                const bool identical = e.contains("psnr_change_db") &&
-                                       e["psnr_change_db"].is_number() &&
-                                       e["psnr_change_db"].get<double>() >= 99.0;
-                effects.push_back({JsonText(e, "effect"), decision,
-                                   identical ? std::string("identical")
-                                             : JsonFixed(e, "psnr_change_db", 1, " dB"),
-                                   JsonSigned(e, "time_change_percent", 0, "%"),
-                                   JsonText(e, "reason")});
             }
         }
-        t.effects.emplace_back(scene, std::move(effects));
+        t.effects.emplace_back(plan.scene, std::move(effects));
     }
     return t;
 }
 
-std::string ScenesIntro(const nlohmann::json& plans) {
-    std::string size = "–";
-    if (auto it = plans.find("size"); it != plans.end() && it->is_array() && it->size() == 2) {
-        size = (*it)[0].dump() + "x" + (*it)[1].dump();
-    }
+std::string ScenesIntro(const stagefiles::PlansFile& plans) {
+    // plans.json has never carried the rounds and frames per round this sentence names (the
+    // planner times candidates by pairs, `timing`), so they show as "–" as they always have.
     return fmt::format(
             "Per scene (scenes/*.yaml), the cheapest configuration whose image meets the scene's "
             "target against the full-effect configuration (docs/SCENES.md), from `tidepool plan` "
-            "at {} with {} paired rounds of {} frames. Times are the planner's own medians at "
+            "at {}x{} with – paired rounds of – frames. Times are the planner's own medians at "
             "that size, not the whitepaper run's; the time change is the median of per-round "
             "ratios (so it can differ from the ratio of the two medians), negative = faster. "
             "\"PSNR alone\" and \"time change alone\" are those of the candidate that drops "
             "only that effect.",
-            size, JsonText(plans, "rounds"), JsonText(plans, "frames_per_round"));
+            plans.size[0], plans.size[1]);
 }
 
 std::string VerdictCss(Verdict verdict) {
@@ -913,26 +912,13 @@ doc::Section StabilitySection(const ReportModel& model) {
                              : model.inputs->stability_error + ". " + StabilityHowTo()));
         return s;
     }
-    for (const auto& [key, columns] : StabilityTables()) {
-        const nlohmann::json& table = model.inputs->stability->value(key, nlohmann::json::array());
-        std::vector<std::vector<std::string>> rows;
-        std::vector<std::string> css;
-        if (table.is_array()) {
-            for (const nlohmann::json& item : table) {
-                std::vector<std::string> row;
-                for (const std::string& column : columns) {
-                    row.push_back(item.is_object() && item.contains(column) ? JsonCell(item[column])
-                                                                            : "–");
-                }
-                css.push_back(item.is_object() && item.value("passed", true) == false ? "bad" : "");
-                rows.push_back(std::move(row));
-            }
-        }
-        s.blocks.emplace_back(Heading{key, ""});
-        if (rows.empty()) {
+    for (StabilityTable& table : StabilityTables(*model.inputs->stability)) {
+        s.blocks.emplace_back(Heading{table.key, ""});
+        if (table.rows.empty()) {
             s.blocks.emplace_back(Body("(none)"));
         } else {
-            s.blocks.emplace_back(TableOf(columns, std::move(rows), std::move(css)));
+            s.blocks.emplace_back(
+                    TableOf(table.columns, std::move(table.rows), std::move(table.css)));
         }
     }
     return s;

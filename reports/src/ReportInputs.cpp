@@ -4,10 +4,7 @@
 #include "tidepool/report/StageFileShapes.h"
 
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
-#include <tuple>
 
 #include <fmt/format.h>
 
@@ -162,57 +159,22 @@ std::string CheckStageFile(const nlohmann::json& document, std::string_view sche
     return CheckStageFileShape(kind, document);
 }
 
-// Reads an optional JSON file beside the results: absent leaves both outputs untouched; present
-// but unreadable, not JSON or not of `schema` (version `version`, when `version` > 0) sets
-// `error` naming the file.
-void LoadOptionalSibling(const std::filesystem::path& path, std::string_view schema, int version,
-                         std::optional<nlohmann::json>* content, std::string* error) {
+// Reads a stage file beside the results with `read`: absent leaves both outputs untouched; one
+// that is unreadable, not tidepool's or incomplete is left out with `error` saying why (it may be
+// anything a user left there). One that claims the schema but has a wrongly typed field is a
+// damaged stage file, an error like a damaged manifest or results file: returns false.
+template <typename T>
+bool LoadSibling(const std::filesystem::path& path,
+                 stagefiles::ReadResult<T> (*read)(const std::filesystem::path&),
+                 std::optional<T>* value, std::string* error) {
     std::error_code ec;
     if (!std::filesystem::exists(path, ec)) {
-        return;
+        return true;
     }
-    std::optional<nlohmann::json> json = ReadJsonFile(path, error);
-    if (!json) {
-        return;
-    }
-    if (!json->is_object() || StringOr(*json, "schema") != schema) {
-        *error = fmt::format("{}: schema is not '{}'", path.string(), schema);
-        return;
-    }
-    if (version > 0) {
-        auto v = json->find("version");
-        if (v == json->end() || !v->is_number_integer() || v->get<int>() != version) {
-            *error = fmt::format("{}: version must be {}", path.string(), version);
-            return;
-        }
-    }
-    *content = std::move(*json);
-}
-
-// The fields of plans.json the Scenes section reads; returns "" or what is wrong.
-std::string CheckPlans(const nlohmann::json& plans) {
-    auto list = plans.find("plans");
-    if (list == plans.end() || !list->is_array()) {
-        return "lacks the 'plans' array";
-    }
-    for (const nlohmann::json& plan : *list) {
-        if (!plan.is_object() || !plan.contains("scene") || !plan["scene"].is_string()) {
-            return "a plan has no string 'scene'";
-        }
-        for (const char* key : {"dropped", "kept"}) {
-            if (auto it = plan.find(key); it != plan.end() && !it->is_array()) {
-                return fmt::format("plan '{}': '{}' is not an array",
-                                   plan["scene"].get<std::string>(), key);
-            }
-        }
-        for (const char* key : {"chosen", "full", "error"}) {
-            if (auto it = plan.find(key); it != plan.end() && !it->is_object() && !it->is_null()) {
-                return fmt::format("plan '{}': '{}' is not an object",
-                                   plan["scene"].get<std::string>(), key);
-            }
-        }
-    }
-    return {};
+    stagefiles::ReadResult<T> result = read(path);
+    *value = std::move(result.value);
+    *error = std::move(result.error);
+    return result.failure != stagefiles::ReadFailure::kWrongType;
 }
 
 // Parses one entry of results.json `configurations`; returns "" or the problem.
@@ -479,27 +441,6 @@ const MeasuredConfiguration* ReportInputs::FindById(std::string_view id) const {
     return nullptr;
 }
 
-std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        *error = fmt::format("{}: no such file", path.string());
-        return std::nullopt;
-    }
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (!in) {
-        *error = fmt::format("{}: cannot read", path.string());
-        return std::nullopt;
-    }
-    nlohmann::json json = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
-    if (json.is_discarded()) {
-        *error = fmt::format("{}: not valid JSON (corrupt or truncated)", path.string());
-        return std::nullopt;
-    }
-    return json;
-}
-
 namespace {
 
 // The fields of each manifest variant the report reads, checked once here so the model can
@@ -537,7 +478,7 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     inputs.manifest_path = manifest_path;
     inputs.results_path = results_path;
 
-    std::optional<nlohmann::json> manifest = ReadJsonFile(manifest_path, &out.error);
+    std::optional<nlohmann::json> manifest = stagefiles::ReadJsonFile(manifest_path, &out.error);
     if (!manifest) {
         return out;
     }
@@ -561,11 +502,17 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     }
     inputs.manifest = std::move(*manifest);
 
-    std::optional<nlohmann::json> results = ReadJsonFile(results_path, &out.error);
+    std::optional<nlohmann::json> results = stagefiles::ReadJsonFile(results_path, &out.error);
     if (!results) {
         return out;
     }
-    if (std::string problem = CheckStageFile(*results, kResultsSchemaName, "schema_version",
+    // Results written before every stage file carried its version under one key say
+    // "schema_version"; they still report.
+    const char* version_key = results->is_object() && !results->contains(stagefiles::kVersionKey) &&
+                                              results->contains("schema_version")
+                                      ? "schema_version"
+                                      : stagefiles::kVersionKey;
+    if (std::string problem = CheckStageFile(*results, kResultsSchemaName, version_key,
                                              kResultsVersion, StageFile::kResults);
         !problem.empty()) {
         out.error = fmt::format("{}: {}", results_path.string(), problem);
@@ -650,31 +597,17 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
         }
     }
 
-    inputs.stability_path = folder / kStabilityFileName;
-    // The stability schema's version is not checked: the section renders its tables generically.
-    LoadOptionalSibling(inputs.stability_path, kStabilitySchemaName, 0, &inputs.stability,
-                        &inputs.stability_error);
-    inputs.plans_path = folder / kPlansFileName;
-    LoadOptionalSibling(inputs.plans_path, kPlansSchemaName, kPlansVersion, &inputs.plans,
-                        &inputs.plans_error);
-    // A sibling that is unreadable or not tidepool's is left out and named in its section (it
-    // may be anything a user left there); one that claims the schema but has a wrongly typed
-    // field is a damaged stage file, an error like a damaged manifest or results file.
-    for (const auto& [sibling, kind, path] :
-         {std::tuple{&inputs.stability, StageFile::kStability, &inputs.stability_path},
-          std::tuple{&inputs.plans, StageFile::kPlans, &inputs.plans_path}}) {
-        if (*sibling) {
-            if (std::string problem = CheckStageFileShape(kind, **sibling); !problem.empty()) {
-                out.error = fmt::format("{}: {}", path->string(), problem);
-                return out;
-            }
-        }
+    inputs.stability_path = folder / stagefiles::kStabilityFileName;
+    if (!LoadSibling(inputs.stability_path, &stagefiles::ReadStabilityFile, &inputs.stability,
+                     &inputs.stability_error)) {
+        out.error = inputs.stability_error;
+        return out;
     }
-    if (inputs.plans) {
-        if (std::string problem = CheckPlans(*inputs.plans); !problem.empty()) {
-            inputs.plans_error = fmt::format("{}: {}", inputs.plans_path.string(), problem);
-            inputs.plans.reset();
-        }
+    inputs.plans_path = folder / stagefiles::kPlansFileName;
+    if (!LoadSibling(inputs.plans_path, &stagefiles::ReadPlansFile, &inputs.plans,
+                     &inputs.plans_error)) {
+        out.error = inputs.plans_error;
+        return out;
     }
     out.inputs = std::move(inputs);
     return out;

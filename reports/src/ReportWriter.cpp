@@ -400,7 +400,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     }
     json["depth_optics"] = {{"baseline", "full"}, {"comparisons", optics}};
     if (model.inputs->stability) {
-        json["stability"] = *model.inputs->stability;
+        json["stability"] = stagefiles::ToJson(*model.inputs->stability);
     } else {
         json["stability"] = {{"present", false},
                              {"error", model.inputs->stability_error},
@@ -409,8 +409,8 @@ nlohmann::json ReportToJson(const ReportModel& model) {
     if (model.inputs->plans) {
         // The scenes as the section shows them; the full plans (candidates) stay in plans.json.
         nlohmann::json scenes = nlohmann::json::array();
-        for (const nlohmann::json& plan :
-             model.inputs->plans->value("plans", nlohmann::json::array())) {
+        for (const stagefiles::PlannedScene& planned : model.inputs->plans->plans) {
+            const nlohmann::json plan = stagefiles::ToJson(planned);
             nlohmann::json scene = nlohmann::json::object();
             for (const char* key :
                  {"scene", "description", "target", "met", "chosen", "full", "time_ms_chosen",
@@ -422,11 +422,11 @@ nlohmann::json ReportToJson(const ReportModel& model) {
             }
             scenes.push_back(std::move(scene));
         }
+        // plans.json has never carried rounds or frames per round (ScenesIntro): null, as ever.
         json["scenes"] = {{"present", true},
-                          {"size", model.inputs->plans->value("size", nlohmann::json())},
-                          {"rounds", model.inputs->plans->value("rounds", nlohmann::json())},
-                          {"frames_per_round",
-                           model.inputs->plans->value("frames_per_round", nlohmann::json())},
+                          {"size", model.inputs->plans->size},
+                          {"rounds", nullptr},
+                          {"frames_per_round", nullptr},
                           {"plans", scenes}};
     } else {
         json["scenes"] = {{"present", false},

@@ -1,5 +1,7 @@
 #include "tidepool/report/StageFileShapes.h"
 
+#include "tidepool/stagefiles/WrongTypeMessage.h"
+
 #include <map>
 #include <string>
 
@@ -13,9 +15,8 @@ namespace {
 // fails: the CLI tests build reports from files the real writers wrote, so they catch it.
 // Shapes used at several places, named there as "$name" (Resolve): a stage's static cost
 // (compiler/src/StaticCost.cpp), a diagnostic (Diagnostic.h's fields, `text` in results.json),
-// the summary of a configuration's frame times (base/SampleStatistics.h), a configuration's
-// pass options and, in plans.json,
-// a plan's configuration and an effect it dropped or kept.
+// the summary of a configuration's frame times (base/SampleStatistics.h) and a configuration's
+// pass options. plans.json and stability.json are checked by their readers (stagefiles/).
 constexpr const char* kStatisticsShape = R"json(
 {
   "ci_coverage": "number",
@@ -42,29 +43,6 @@ constexpr const char* kDiagnosticShape = R"json(
   "message": "string",
   "variant": "string",
   "text": "string"
-}
-)json";
-
-// A plan's chosen and full configurations, and its dropped and kept effects (plans.json).
-constexpr const char* kPlanConfigurationShape = R"json(
-{
-  "draw_calls": "number",
-  "id": "string",
-  "image": "string",
-  "pass_draw_calls": ["number"],
-  "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-  "passes": ["string"],
-  "pixels_shaded_estimate": "number",
-  "variant": "string"
-}
-)json";
-
-constexpr const char* kEffectShape = R"json(
-{
-  "effect": "string",
-  "psnr_change_db": "number",
-  "reason": "string",
-  "time_change_percent": "number"
 }
 )json";
 
@@ -251,6 +229,7 @@ constexpr const char* kResultsShape = R"json(
   "ok": "bool",
   "schema": "string",
   "schema_version": "number",
+  "version": "number",
   "settings": {
     "animation_time_s": "number",
     "bump_scale": [["number"]],
@@ -319,122 +298,12 @@ constexpr const char* kResultsShape = R"json(
 }
 )json";
 
-// Written by lab/src/StabilityReport.cpp.
-constexpr const char* kStabilityShape = R"json(
-{
-  "cases": [
-    {
-      "bound": "number",
-      "description": "string",
-      "fix": "string",
-      "inf_count": "number",
-      "kind": "string",
-      "max_error": "number",
-      "name": "string",
-      "nan_count": "number",
-      "note": "string",
-      "passed": "bool",
-      "variants_checked": "number"
-    }
-  ],
-  "environment": {
-    "backend": "string",
-    "config": "string",
-    "lp_num_threads": "string",
-    "mesa_version": "string",
-    "renderer": "string",
-    "size": "string",
-    "version": "string"
-  },
-  "guards": [
-    {
-      "guard": "string",
-      "max_channel_diff_normal_views": "number",
-      "passed": "bool",
-      "tolerance": "number"
-    }
-  ],
-  "precision": [
-    {
-      "bound_fp16": "number",
-      "expression": "string",
-      "loses_precision": "bool",
-      "max_abs_error_float": "number",
-      "max_abs_error_fp16": "number",
-      "max_rel_error_fp16": "number",
-      "non_finite_fp16": "number",
-      "note": "string"
-    }
-  ],
-  "schema": "string",
-  "version": "number"
-}
-)json";
-
-// Written by lab/src/ScenePlanner.cpp, PlansToJson.
-constexpr const char* kPlansShape = R"json(
-{
-  "plans": [
-    {
-      "candidates": [
-        {
-          "draw_calls": "number",
-          "id": "string",
-          "image": "string",
-          "meets_quality": "bool",
-          "pairs": "number",
-          "pass_draw_calls": ["number"],
-          "pass_options": {"low_res_water": "bool", "reflection_size": "number"},
-          "passes": ["string"],
-          "pixels_shaded_estimate": "number",
-          "proposed_because": "string",
-          "psnr_db": "number",
-          "share_visible": "number",
-          "ssim": "number",
-          "time_change_interval": ["number"],
-          "time_change_percent": "number",
-          "time_ms": "number",
-          "valid": "bool",
-          "variant": "string",
-          "water_colour_alpha": "number"
-        }
-      ],
-      "choice_reason": "string",
-      "chosen": "$plan_configuration",
-      "description": "string",
-      "draws_saved": "number",
-      "dropped": ["$effect"],
-      "error": {"psnr_db": "number", "share_visible": "number", "ssim": "number"},
-      "errors": ["string"],
-      "full": "$plan_configuration",
-      "kept": ["$effect"],
-      "met": "bool",
-      "needed": ["string"],
-      "passes_saved": "number",
-      "pixels_saved": "number",
-      "scene": "string",
-      "target": {"min_psnr_db": "number"},
-      "time_change_interval": ["number"],
-      "time_change_percent": "number",
-      "time_ms_chosen": "number",
-      "time_ms_full": "number"
-    }
-  ],
-  "schema": "string",
-  "size": ["number"],
-  "timing": {"max_pairs": "number", "min_pairs": "number", "resolution_points": "number"},
-  "version": "number"
-}
-)json";
-
 // `shape` with every "$name" leaf replaced by the named shape it stands for.
 nlohmann::json Resolve(nlohmann::json shape) {
     static const std::map<std::string, nlohmann::json, std::less<>> named = {
             {"$cost", nlohmann::json::parse(kStageCostShape)},
             {"$diagnostic", nlohmann::json::parse(kDiagnosticShape)},
             {"$statistics", nlohmann::json::parse(kStatisticsShape)},
-            {"$plan_configuration", nlohmann::json::parse(kPlanConfigurationShape)},
-            {"$effect", nlohmann::json::parse(kEffectShape)},
             {"$pass_options", nlohmann::json::parse(kPassOptionsShape)},
     };
     if (shape.is_string()) {
@@ -445,33 +314,6 @@ nlohmann::json Resolve(nlohmann::json shape) {
         part = Resolve(std::move(part));
     }
     return shape;
-}
-
-const char* TypeName(const nlohmann::json& value) {
-    switch (value.type()) {
-        case nlohmann::json::value_t::null:
-            return "null";
-        case nlohmann::json::value_t::boolean:
-            return "bool";
-        case nlohmann::json::value_t::number_integer:
-        case nlohmann::json::value_t::number_unsigned:
-        case nlohmann::json::value_t::number_float:
-            return "number";
-        case nlohmann::json::value_t::string:
-            return "string";
-        case nlohmann::json::value_t::array:
-            return "array";
-        case nlohmann::json::value_t::object:
-            return "object";
-        default:
-            return "binary";
-    }
-}
-
-std::string WrongType(const std::string& path, std::string_view expected,
-                      const nlohmann::json& found) {
-    return fmt::format("'{}' has the wrong type (expected {}, found {})",
-                       path.empty() ? "(the document)" : path, expected, TypeName(found));
 }
 
 // Whether `value` is of the type named by `type` (a shape's leaf; a trailing '?' allows null).
@@ -500,11 +342,12 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
                            const std::string& path) {
     if (shape.is_string()) {
         const std::string& type = shape.get_ref<const std::string&>();
-        return IsOfType(document, type) ? std::string() : WrongType(path, type, document);
+        return IsOfType(document, type) ? std::string()
+                                        : stagefiles::WrongTypeMessage(path, type, document);
     }
     if (shape.is_array()) {
         if (!document.is_array()) {
-            return WrongType(path, "array", document);
+            return stagefiles::WrongTypeMessage(path, "array", document);
         }
         if (shape.empty()) {
             return {};
@@ -519,7 +362,7 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
         return {};
     }
     if (!document.is_object()) {
-        return WrongType(path, "object", document);
+        return stagefiles::WrongTypeMessage(path, "object", document);
     }
     const auto every = shape.find("*");
     for (const auto& [key, value] : document.items()) {
@@ -539,17 +382,11 @@ std::string CheckStageFileShape(StageFile file, const nlohmann::json& document) 
     // Parsed once: the shapes are constants of this build.
     static const nlohmann::json manifest = Resolve(nlohmann::json::parse(kManifestShape));
     static const nlohmann::json results = Resolve(nlohmann::json::parse(kResultsShape));
-    static const nlohmann::json stability = nlohmann::json::parse(kStabilityShape);
-    static const nlohmann::json plans = Resolve(nlohmann::json::parse(kPlansShape));
     switch (file) {
         case StageFile::kManifest:
             return CheckJsonShape(document, manifest);
         case StageFile::kResults:
             return CheckJsonShape(document, results);
-        case StageFile::kStability:
-            return CheckJsonShape(document, stability);
-        case StageFile::kPlans:
-            return CheckJsonShape(document, plans);
     }
     return {};
 }

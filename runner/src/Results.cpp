@@ -7,6 +7,7 @@
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/base/SampleStatistics.h"
+#include "tidepool/stagefiles/StageFile.h"
 
 #include <algorithm>
 #include <atomic>
@@ -419,7 +420,7 @@ nlohmann::json ResultsToJson(const RunResults& results) {
     const RenderSettings& s = o.settings;
     nlohmann::json json;
     json["schema"] = kResultsSchema;
-    json["schema_version"] = kResultsSchemaVersion;
+    json[stagefiles::kVersionKey] = kResultsSchemaVersion;
     json["started_utc"] = results.started_utc;
     json["wall_seconds"] = results.wall_seconds;
     json["environment"] = {

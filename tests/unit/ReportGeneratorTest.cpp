@@ -161,7 +161,7 @@ FakeRun WriteFakeRun(const TempDir& dir, const std::vector<FakeConfiguration>& c
                                      {"counts", {{"variants", variants.size()}, {"pruned", 0}}}};
     const nlohmann::json results = {
             {"schema", "tidepool.render-results"},
-            {"schema_version", 1},
+            {"version", 1},
             {"environment", {{"gl_renderer", "llvmpipe (test)"}, {"lp_num_threads", "2"}}},
             {"settings",
              {{"timing_view", "three_quarter"},
@@ -631,6 +631,29 @@ TEST(ReportInputsTest, ForeignSchemaIsAnErrorNamingTheFile) {
     EXPECT_EQ(loaded.error, run.results.string() +
                                     ": schema is 'something.else', expected "
                                     "'tidepool.render-results'");
+}
+
+// Every stage file carries its version under "version"; results.json once said
+// "schema_version", and old runs still report.
+TEST(ReportInputsTest, ResultsWithTheOldVersionKeyStillLoadAndAWrongVersionIsNamed) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    results.erase("version");
+    results["schema_version"] = 1;
+    dir.Write("render/results.json", results.dump());
+    ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_TRUE(loaded.inputs) << loaded.error;
+    results["schema_version"] = 2;
+    dir.Write("render/results.json", results.dump());
+    loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_FALSE(loaded.inputs);
+    EXPECT_EQ(loaded.error, run.results.string() + ": schema_version must be 1");
+    results.erase("schema_version");
+    dir.Write("render/results.json", results.dump());
+    loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_FALSE(loaded.inputs);
+    EXPECT_EQ(loaded.error, run.results.string() + ": version must be 1");
 }
 
 TEST(ReportModelTest, MissingImageIsAnErrorNamingTheFileAndNothingIsBuilt) {

@@ -6,6 +6,7 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/stagefiles/StageFile.h"  // JsonText
 
 #include <nlohmann/json.hpp>
 
@@ -14,11 +15,6 @@ namespace tidepool {
 /// The schema name and version written into every manifest.
 inline constexpr const char* kManifestSchema = "tidepool.manifest";
 inline constexpr int kManifestVersion = 1;
-
-/// Serialises `json` like json.dump(indent), but bytes that are not UTF-8 (a diagnostic quoting a
-/// Latin-1 identifier of a shader, a file name) become U+FFFD instead of throwing: shader text is
-/// bytes, and a writer must never abort on it. Every JSON writer of tidepool goes through here.
-std::string JsonText(const nlohmann::json& json, int indent = -1);
 
 /// A diagnostic as a JSON object {severity, file, line, column, message, variant}.
 nlohmann::json ToJson(const Diagnostic& diagnostic);

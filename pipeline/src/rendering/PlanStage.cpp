@@ -2,7 +2,6 @@
 
 #include "tidepool/Manifest.h"
 #include "tidepool/pipeline/OutputFiles.h"
-#include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/FrameTimer.h"
 
 #include <algorithm>
@@ -114,16 +113,20 @@ PlanResult PlanScenes(PreparedPlans& prepared) {
             result.outcome.status = Status::kInvalid;
         }
     }
-    result.json = runner::PlansToJson(result.plans, prepared.options);
+    result.file = runner::PlansFileFor(result.plans, prepared.options);
     if (!prepared.publisher) {
         return result;
     }
-    if (!WriteFile(prepared.publisher->Staging() / report::kPlansFileName,
-                   JsonText(result.json, 2) + "\n", &result.outcome) ||
-        !Publish(*prepared.publisher, &result.outcome)) {
+    if (const std::string error = stagefiles::WritePlansFile(
+                result.file, prepared.publisher->Staging() / stagefiles::kPlansFileName);
+        !error.empty()) {
+        result.outcome.Fail(Status::kEnvironment, error);
         return result;
     }
-    result.path = prepared.publisher->Target() / report::kPlansFileName;
+    if (!Publish(*prepared.publisher, &result.outcome)) {
+        return result;
+    }
+    result.path = prepared.publisher->Target() / stagefiles::kPlansFileName;
     return result;
 }
 

@@ -10,7 +10,6 @@
 #include "tidepool/pipeline/OutputFiles.h"
 #include "tidepool/pipeline/PlanStage.h"
 #include "tidepool/pipeline/StabilityStage.h"
-#include "tidepool/report/ReportInputs.h"
 #include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
@@ -110,8 +109,8 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
     if (!error.empty()) {
         written.Fail(Status::kEnvironment, "stability: " + error);
     } else {
-        WriteFile(render_dir / report::kStabilityFileName, runner::StabilityReportJson(report),
-                  &written);
+        WriteFile(render_dir / stagefiles::kStabilityFileName,
+                  stagefiles::StabilityFileText(report), &written);
     }
     if (written.Stopped()) {
         progress.Tell(written.diagnostics);
@@ -130,7 +129,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
             fmt::format("stability: {} cases at {}x{}, {} failed, {:.0f} s; {} in the render "
                         "folder",
                         report.cases.size(), run.width, run.height, end.failures,
-                        SecondsSince(start), report::kStabilityFileName));
+                        SecondsSince(start), stagefiles::kStabilityFileName));
     return end;
 }
 
@@ -178,9 +177,11 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
         }
         plans.push_back(std::move(plan));
     }
-    Outcome written;
-    if (!WriteFile(render_dir / report::kPlansFileName,
-                   JsonText(runner::PlansToJson(plans, options), 2) + "\n", &written)) {
+    if (const std::string error = stagefiles::WritePlansFile(
+                runner::PlansFileFor(plans, options), render_dir / stagefiles::kPlansFileName);
+        !error.empty()) {
+        Outcome written;
+        written.Fail(Status::kEnvironment, error);
         progress.Tell(written.diagnostics);
         end.status = Status::kEnvironment;
         return end;
@@ -190,7 +191,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
                         "not met, done after {:.0f} s; {} in the render folder",
                         plans.size(), options.settings.width, options.settings.height,
                         options.rule.resolution_points, end.failures, SecondsSince(start),
-                        report::kPlansFileName));
+                        stagefiles::kPlansFileName));
     return end;
 }
 

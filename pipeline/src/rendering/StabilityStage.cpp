@@ -2,7 +2,6 @@
 
 #include "tidepool/pipeline/MatrixLoading.h"
 #include "tidepool/pipeline/OutputFiles.h"
-#include "tidepool/report/ReportInputs.h"
 
 #include <cstdlib>
 #include <utility>
@@ -12,8 +11,8 @@ namespace {
 
 Outcome WriteStabilityInto(const std::filesystem::path& folder, const std::string& json,
                            bool check_only = false) {
-    return WriteOwnJson(folder, std::string(report::kStabilityFileName),
-                        std::string(report::kStabilitySchemaName), "stability report", json,
+    return WriteOwnJson(folder, std::string(stagefiles::kStabilityFileName),
+                        std::string(stagefiles::kStabilitySchemaName), "stability report", json,
                         check_only);
 }
 
@@ -59,7 +58,7 @@ StabilityResult RunStability(const StabilityOptions& options) {
     StabilityResult result;
     // A stability.json of someone else's is refused before the catalogue runs; tidepool's own is
     // replaced atomically, so a killed run leaves the previous one whole.
-    result.path = options.out / report::kStabilityFileName;
+    result.path = options.out / stagefiles::kStabilityFileName;
     result.outcome = WriteStabilityInto(options.out, "", true);
     if (result.outcome.Stopped()) {
         return result;
@@ -85,7 +84,7 @@ StabilityResult RunStability(const StabilityOptions& options) {
         result.outcome.Fail(Status::kEnvironment, error);
         return result;
     }
-    result.json = runner::StabilityReportJson(result.report);
+    result.json = stagefiles::StabilityFileText(result.report);
     if (Outcome write = WriteStabilityInto(options.out, result.json); write.Stopped()) {
         result.outcome.Add(write.diagnostics);
         result.outcome.status = write.status;

@@ -3,6 +3,8 @@
 // expressions that lose precision at mediump and to check that the shaders' guarded forms do not.
 #pragma once
 
+#include "tidepool/stagefiles/StabilityFile.h"
+
 #include <string>
 #include <vector>
 
@@ -29,17 +31,8 @@ Half operator/(Half a, Half b);
 bool operator<(Half a, Half b);
 bool operator>(Half a, Half b);
 
-/// The accuracy of one shader expression over its sweep.
-struct PrecisionRow {
-    std::string expression;          // the expression as the shader writes it
-    double max_abs_error_float = 0;  // against double, over the sweep
-    double max_abs_error_fp16 = 0;
-    double max_rel_error_fp16 = 0;  // abs error / max(|reference|, the expression's floor)
-    double bound_fp16 = 0;          // the relative error above which it "loses precision"
-    bool loses_precision = false;   // max_rel_error_fp16 > bound_fp16, or non-finite in fp16
-    int non_finite_fp16 = 0;        // sweep points where fp16 gave NaN or Inf
-    std::string note;               // where it breaks, and what the shaders do about it
-};
+/// The accuracy of one shader expression over its sweep: a row of stability.json.
+using PrecisionRow = stagefiles::PrecisionEntry;
 
 /// Evaluates every expression of the study over its sweep (a few hundred thousand evaluations,
 /// well under a second). Never fails.

@@ -14,13 +14,12 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
+#include "tidepool/stagefiles/PlansFile.h"
 
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace tidepool::runner {
 
@@ -164,7 +163,7 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
 ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const SceneDescription& scene,
                     const PlanOptions& options);
 
-/// The plans as JSON, schema "tidepool.plans" version 1 (docs/SCENES.md). Never fails.
-nlohmann::json PlansToJson(const std::vector<ScenePlan>& plans, const PlanOptions& options);
+/// The plans as plans.json holds them (stagefiles/PlansFile.h, docs/SCENES.md). Never fails.
+stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans, const PlanOptions& options);
 
 }  // namespace tidepool::runner

@@ -1,6 +1,6 @@
 // Runs the hard-case catalogue (CPU sweeps and GL renders of every water variant into a float
-// target), the precision study and the shader-guard comparison, and writes stability.json
-// (schema "tidepool.stability", version 1).
+// target), the precision study and the shader-guard comparison, for stability.json (schema
+// "tidepool.stability", version 1).
 #pragma once
 
 #include "tidepool/VariantConfig.h"
@@ -8,6 +8,7 @@
 #include "tidepool/lab/PrecisionStudy.h"
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/RenderConfig.h"
+#include "tidepool/stagefiles/StabilityFile.h"
 
 #include <map>
 #include <string>
@@ -15,36 +16,11 @@
 
 namespace tidepool::runner {
 
-/// The outcome of one hard case.
-struct StabilityCaseResult {
-    std::string name;
-    std::string description;
-    HardCaseKind kind = HardCaseKind::kCpu;
-    int variants_checked = 0;  // GL: configurations rendered; CPU: 0
-    long nan_count = 0;        // GL: pixel channels; CPU: evaluated values
-    long inf_count = 0;
-    double max_error = 0;  // GL: largest distance of a channel outside [0, 1]; CPU: see bound
-    double bound = 0;      // the largest max_error that passes, and why (in `note`)
-    bool passed = false;
-    std::string fix;
-    std::string note;  // what max_error measures and failures, if any
-};
-
-/// What removing one shader guard changes on the default views.
-struct GuardResult {
-    std::string guard;  // the guard, and the test-only define that removes it
-    double max_channel_diff_normal_views = 0;
-    double tolerance = 0;
-    bool passed = false;
-};
-
-/// Everything stability.json holds.
-struct StabilityReport {
-    std::map<std::string, std::string> environment;
-    std::vector<StabilityCaseResult> cases;
-    std::vector<PrecisionRow> precision;
-    std::vector<GuardResult> guards;
-};
+// The catalogue's results are the types of the file they are written to, so that stability.json
+// has one C++ type (stagefiles/StabilityFile.h).
+using StabilityCaseResult = stagefiles::StabilityCase;
+using GuardResult = stagefiles::GuardEntry;
+using StabilityReport = stagefiles::StabilityFile;
 
 /// Runs one kCpu hard case's sweep. Fails through `passed` false (and `note`) when the case is
 /// not a CPU case or its bound is broken.
@@ -73,8 +49,5 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
 
 /// The water variants of `variants` as configurations with default passes. Never fails.
 std::vector<RenderConfiguration> WaterVariantConfigurations(const std::vector<Variant>& variants);
-
-/// stability.json for `report`. Never fails.
-std::string StabilityReportJson(const StabilityReport& report);
 
 }  // namespace tidepool::runner

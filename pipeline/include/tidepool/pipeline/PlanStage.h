@@ -9,14 +9,13 @@
 #include "tidepool/lab/ScenePlanner.h"
 #include "tidepool/pipeline/Outcome.h"
 #include "tidepool/runner/GlBackend.h"
+#include "tidepool/stagefiles/PlansFile.h"
 
 #include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 namespace tidepool::pipeline {
 
@@ -58,7 +57,7 @@ struct PlanResult {
     Outcome outcome;  // kInvalid when a scene could not be planned; why plans.json was not
                       // written or published
     std::vector<runner::ScenePlan> plans;  // one per scene, in order
-    nlohmann::json json;                   // plans.json
+    stagefiles::PlansFile file;            // plans.json
     std::filesystem::path path;            // where plans.json is once published; "" for none
 };
 

@@ -5,6 +5,8 @@
 #pragma once
 
 #include "tidepool/base/ImageMetrics.h"
+#include "tidepool/stagefiles/PlansFile.h"
+#include "tidepool/stagefiles/StabilityFile.h"
 
 #include <filesystem>
 #include <limits>
@@ -22,15 +24,6 @@ namespace tidepool::report {
 inline constexpr std::string_view kResultsSchemaName = "tidepool.render-results";
 /// The manifest schema the report understands.
 inline constexpr std::string_view kManifestSchemaName = "tidepool.manifest";
-/// The numerical-stability schema rendered generically when its file exists.
-inline constexpr std::string_view kStabilitySchemaName = "tidepool.stability";
-/// The file name of the stability catalogue, looked for beside results.json.
-inline constexpr std::string_view kStabilityFileName = "stability.json";
-/// The scene-plan schema (docs/SCENES.md) rendered in the Scenes section when its file exists.
-inline constexpr std::string_view kPlansSchemaName = "tidepool.plans";
-inline constexpr int kPlansVersion = 1;
-/// The file name of the scene plans, looked for beside results.json.
-inline constexpr std::string_view kPlansFileName = "plans.json";
 
 /// The clock whose samples the report compares configurations on.
 enum class TimingClock {
@@ -129,12 +122,12 @@ struct ReportInputs {
     int width = 640;          // the render size of the run
     int height = 480;
     std::vector<std::string> view_names;
-    std::filesystem::path stability_path;     // where stability.json was looked for
-    std::optional<nlohmann::json> stability;  // its content when present and valid
-    std::string stability_error;              // why a present stability.json was not used
-    std::filesystem::path plans_path;         // where plans.json was looked for
-    std::optional<nlohmann::json> plans;      // its content when present and valid
-    std::string plans_error;                  // why a present plans.json was not used
+    std::filesystem::path stability_path;                // where stability.json was looked for
+    std::optional<stagefiles::StabilityFile> stability;  // its content when present and valid
+    std::string stability_error;                 // why a present stability.json was not used
+    std::filesystem::path plans_path;            // where plans.json was looked for
+    std::optional<stagefiles::PlansFile> plans;  // its content when present and valid
+    std::string plans_error;                     // why a present plans.json was not used
     // The clock every comparison uses: CPU time when every timed configuration has CPU samples
     // (wall time on a shared machine is disturbed by other processes), else wall time.
     TimingClock clock = TimingClock::kWall;
@@ -166,8 +159,5 @@ struct ReportInputsResult {
 /// the load: the report shows why (the error names the file). Chooses the comparison clock.
 ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
                                     const std::filesystem::path& results_path);
-
-/// Reads a JSON file; returns it or an error "<path>: <what went wrong>". Never throws.
-std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error);
 
 }  // namespace tidepool::report
