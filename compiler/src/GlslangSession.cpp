@@ -88,11 +88,12 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
     // Enough for every file of a configuration; a plain-file run over a corpus sees each text
     // once, so a full memo is dropped rather than grown.
     constexpr std::size_t kTexts = 64;
-    static std::mutex mutex;
-    static std::unordered_map<std::string, std::shared_ptr<const TextScan>> scans;
+    // Never destroyed, like glslang's tables: a thread may still parse while main returns.
+    static auto* const mutex = new std::mutex;
+    static auto* const scans = new std::unordered_map<std::string, std::shared_ptr<const TextScan>>;
     {
-        const std::lock_guard<std::mutex> lock(mutex);
-        if (const auto it = scans.find(text); it != scans.end()) {
+        const std::lock_guard<std::mutex> lock(*mutex);
+        if (const auto it = scans->find(text); it != scans->end()) {
             return it->second;
         }
     }
@@ -100,11 +101,11 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
     scan->renaming = ScanForRenaming(text);
     scan->may_have_late_extension = MayHaveLateExtension(text);
     scan->unary_pluses = FindUnaryPluses(text);
-    const std::lock_guard<std::mutex> lock(mutex);
-    if (scans.size() >= kTexts) {
-        scans.clear();
+    const std::lock_guard<std::mutex> lock(*mutex);
+    if (scans->size() >= kTexts) {
+        scans->clear();
     }
-    scans.emplace(text, scan);
+    scans->emplace(text, scan);
     return scan;
 }
 
