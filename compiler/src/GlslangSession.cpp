@@ -1,15 +1,19 @@
 #include "GlslangSession.h"
 
 #include <algorithm>
+#include <memory>
 #include <mutex>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <tuple>
+#include <unordered_map>
 #include <utility>
 
 #include "BuiltInResources.h"
 #include "ConformanceRules.h"
 #include "GlslEsRules.h"
+#include "KeywordRenaming.h"
 #include "WebGlRules.h"
 #include <fmt/format.h>
 
@@ -68,6 +72,43 @@ std::string Es300Preamble(Stage stage) {
            "out highp vec4 tp_FragColor;\n#define gl_FragColor tp_FragColor\n";
 }
 
+// What the text scans around glslang find in one text. They depend on the text alone, and a
+// validation gives glslang the same few files hundreds of times (each preprocessing group, both
+// stages of each link); scanning them every time was a quarter of a cold validation of the
+// default matrix.
+struct TextScan {
+    RenamingScan renaming;
+    bool may_have_late_extension = false;
+    std::vector<UnaryPlus> unary_pluses;
+};
+
+// The scan of `text`, from the texts this process scanned last (a worker keeps its own after
+// fork). Thread-safe.
+std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
+    // Enough for every file of a configuration; a plain-file run over a corpus sees each text
+    // once, so a full memo is dropped rather than grown.
+    constexpr std::size_t kTexts = 64;
+    // Never destroyed, like glslang's tables: a thread may still parse while main returns.
+    static auto* const mutex = new std::mutex;
+    static auto* const scans = new std::unordered_map<std::string, std::shared_ptr<const TextScan>>;
+    {
+        const std::lock_guard<std::mutex> lock(*mutex);
+        if (const auto it = scans->find(text); it != scans->end()) {
+            return it->second;
+        }
+    }
+    auto scan = std::make_shared<TextScan>();
+    scan->renaming = ScanForRenaming(text);
+    scan->may_have_late_extension = MayHaveLateExtension(text);
+    scan->unary_pluses = FindUnaryPluses(text);
+    const std::lock_guard<std::mutex> lock(*mutex);
+    if (scans->size() >= kTexts) {
+        scans->clear();
+    }
+    scans->emplace(text, scan);
+    return scan;
+}
+
 PreparedStage Prepare(const GlslangStageInput& input) {
     PreparedStage prepared;
     prepared.text = input.text;
@@ -109,12 +150,11 @@ PreparedStage Prepare(const GlslangStageInput& input) {
         prepared.default_version = version;
     }
     prepared.preamble += DefinePreamble(input.defines);
-    if (prepared.default_version == 100) {
-        // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
-        prepared.renaming = PlanEs100Renaming({prepared.text, prepared.preamble});
-    }
+    // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
     // GLSL ES 1.00 and 3.00 §4.1.8: a member may be named `length`; glslang 12 refuses its use.
-    prepared.renaming.length_members = PlanLengthMemberRenaming({prepared.text, prepared.preamble});
+    prepared.renaming =
+            PlanRenaming({ScanOf(prepared.text)->renaming, ScanForRenaming(prepared.preamble)},
+                         /*es100=*/prepared.default_version == 100);
     prepared.text = prepared.renaming.Apply(prepared.text);
     prepared.preamble = prepared.renaming.Apply(prepared.preamble);
     return prepared;
@@ -215,7 +255,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
     // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
     std::vector<Diagnostic> late_extensions;
     // WebGL 1.0 §6.35: in a WebGL 1 shader, #extension may follow other tokens.
-    if (MayHaveLateExtension(input.text) && !IsTarget(input, GlslTarget::kWebGl1)) {
+    if (!IsTarget(input, GlslTarget::kWebGl1) && ScanOf(input.text)->may_have_late_extension) {
         // Only the user's defines go with the text: Es300Preamble declares an output, which
         // would count as a token before the user's own #extension lines.
         const std::string defines = DefinePreamble(input.defines);
@@ -344,7 +384,8 @@ StageParse ParseStage(const GlslangStageInput& input) {
         }
         // The glslang work below must leave the thread's pool allocator to the parsed tree.
         const KeepThreadPool keep;
-        // A macro may hold a unary '+': then the expanded text (lines kept) is the one scanned.
+        // A macro may hold a unary '+': then the expanded text (lines kept) is the one scanned;
+        // otherwise the stage text's scan, made once per process (ScanOf).
         std::string expanded;
         if (MacroMayHoldUnaryPlus(prepared.text)) {
             if (PreprocessResult preprocessed = PreprocessStage(input); preprocessed.ok) {
@@ -352,7 +393,9 @@ StageParse ParseStage(const GlslangStageInput& input) {
             }
         }
         const std::string_view scanned = expanded.empty() ? prepared.text : expanded;
-        if (const std::vector<UnaryPlus> pluses = FindUnaryPluses(scanned); !pluses.empty()) {
+        const std::vector<UnaryPlus> pluses =
+                expanded.empty() ? ScanOf(prepared.text)->unary_pluses : FindUnaryPluses(scanned);
+        if (!pluses.empty()) {
             // glslang drops unary '+' unchecked; the same text with '-' in its place shows which
             // operand types it would refuse (GLSL ES 1.00 §5.9, 3.00 §5.9).
             const std::string negated = NegateUnaryPluses(scanned, pluses);
@@ -362,7 +405,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
                           kMessages);
             // Reported where the user wrote it: renaming lengthens words, never moves a '+'
             // to another place among the '+'s.
-            std::vector<UnaryPlus> shown = FindUnaryPluses(input.text);
+            std::vector<UnaryPlus> shown = ScanOf(input.text)->unary_pluses;
             if (shown.size() != pluses.size()) {
                 shown = pluses;
             }
@@ -527,7 +570,9 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
             {"UNIMPLEMENTED: ", Severity::kError}, {"WARNING: ", Severity::kWarning},
             {"NOTE: ", Severity::kNote},
     };
-    const std::vector<std::string> source_lines = SplitLines(source);
+    // Split only for a message to place: most logs are empty, and splitting every parsed stage's
+    // text was a few per cent of a cold validation.
+    std::optional<std::vector<std::string>> source_lines;
     std::vector<Diagnostic> diagnostics;
     for (const std::string& raw : SplitLines(log)) {
         std::string_view line = TrimView(raw);
@@ -579,7 +624,10 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
             }
         }
         d.message = std::string(rest);
-        d.column = ColumnOfToken(d.message, source_lines, d.line);
+        if (!source_lines) {
+            source_lines = SplitLines(source);
+        }
+        d.column = ColumnOfToken(d.message, *source_lines, d.line);
         diagnostics.push_back(std::move(d));
     }
     return diagnostics;

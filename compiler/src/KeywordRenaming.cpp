@@ -131,27 +131,11 @@ std::vector<LengthMember> LengthMembers(std::string_view text) {
 }  // namespace
 
 bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts) {
-    bool declared = false;
+    std::vector<RenamingScan> scans;
     for (std::string_view text : texts) {
-        // Substring tests first: an identifier can only be what the text contains, and most
-        // shaders mention neither word, so they skip the token scans (run for every variant).
-        bool spelled = false;
-        if (text.find(kLengthMemberStandIn) != std::string_view::npos) {
-            ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
-                spelled = spelled || text.substr(start, length) == kLengthMemberStandIn;
-            });
-        }
-        if (spelled) {
-            return false;
-        }
-        if (text.find("length") == std::string_view::npos) {
-            continue;
-        }
-        for (const LengthMember& member : LengthMembers(text)) {
-            declared = declared || member.declared;
-        }
+        scans.push_back(ScanForRenaming(text));
     }
-    return declared;
+    return PlanRenaming(scans, /*es100=*/false).length_members;
 }
 
 const std::vector<std::string>& Es100IdentifiersGlslangRejects() {
@@ -193,20 +177,71 @@ std::string KeywordRenaming::Restore(std::string_view text) const {
     return restored;
 }
 
-KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts) {
-    std::set<std::string_view> used;
-    for (std::string_view text : texts) {
-        ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
-            used.insert(text.substr(start, length));
-        });
-    }
-    KeywordRenaming renaming;
+RenamingScan ScanForRenaming(std::string_view text) {
+    RenamingScan scan;
+    // Substring tests first: a word can only be a token of a text that contains it, and most
+    // shaders contain none of them. A set of every token of every text, built for each stage
+    // glslang was given, was a fifth of a cold validation of the default matrix.
+    std::vector<std::string_view> candidates;
     for (const std::string& word : Es100IdentifiersGlslangRejects()) {
-        const std::string stand_in = "tp_es100_" + word;
-        if (used.count(word) != 0 && used.count(stand_in) == 0) {
-            renaming.names.emplace_back(stand_in, word);
+        if (text.find(word) != std::string_view::npos) {
+            candidates.push_back(word);
         }
     }
+    if (!candidates.empty()) {
+        ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
+            const std::string_view token = text.substr(start, length);
+            if (token.substr(0, kEs100StandInPrefix.size()) == kEs100StandInPrefix ||
+                std::find(candidates.begin(), candidates.end(), token) != candidates.end()) {
+                scan.es100_tokens.emplace(token);
+            }
+        });
+    }
+    // Most shaders mention neither word, so they skip the token scans.
+    if (text.find(kLengthMemberStandIn) != std::string_view::npos) {
+        ForEachIdentifier(text, [&](std::size_t start, std::size_t length) {
+            scan.spells_length_stand_in = scan.spells_length_stand_in ||
+                                          text.substr(start, length) == kLengthMemberStandIn;
+        });
+    }
+    if (!scan.spells_length_stand_in && text.find("length") != std::string_view::npos) {
+        for (const LengthMember& member : LengthMembers(text)) {
+            scan.declares_length_member = scan.declares_length_member || member.declared;
+        }
+    }
+    return scan;
+}
+
+KeywordRenaming PlanRenaming(const std::vector<RenamingScan>& scans, bool es100) {
+    KeywordRenaming renaming;
+    auto used = [&](const std::string& token) {
+        return std::any_of(scans.begin(), scans.end(), [&](const RenamingScan& scan) {
+            return scan.es100_tokens.count(token) != 0;
+        });
+    };
+    if (es100) {
+        for (const std::string& word : Es100IdentifiersGlslangRejects()) {
+            const std::string stand_in = std::string(kEs100StandInPrefix) + word;
+            if (used(word) && !used(stand_in)) {
+                renaming.names.emplace_back(stand_in, word);
+            }
+        }
+    }
+    renaming.length_members =
+            std::none_of(scans.begin(), scans.end(),
+                         [](const RenamingScan& scan) { return scan.spells_length_stand_in; }) &&
+            std::any_of(scans.begin(), scans.end(),
+                        [](const RenamingScan& scan) { return scan.declares_length_member; });
+    return renaming;
+}
+
+KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts) {
+    std::vector<RenamingScan> scans;
+    for (std::string_view text : texts) {
+        scans.push_back(ScanForRenaming(text));
+    }
+    KeywordRenaming renaming = PlanRenaming(scans, /*es100=*/true);
+    renaming.length_members = false;  // planned by PlanLengthMemberRenaming
     return renaming;
 }
 

@@ -2,6 +2,8 @@
 // identifiers, and the stand-in names glslang is given instead. Private to the compiler library.
 #pragma once
 
+#include <functional>
+#include <set>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -16,6 +18,9 @@ namespace tidepool {
 /// declaring each of glslang 12's keywords and reserved words as a global `float` in a
 /// `#version 100` shader and comparing the errors with the two lists of §3.7.
 const std::vector<std::string>& Es100IdentifiersGlslangRejects();
+
+/// The start of the name glslang is given for a word of Es100IdentifiersGlslangRejects().
+inline constexpr std::string_view kEs100StandInPrefix = "tp_es100_";
 
 /// The name glslang is given for a struct or block member named `length` (see
 /// PlanLengthMemberRenaming).
@@ -51,5 +56,22 @@ bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts);
 /// of the user's names never become one: glslang then reports the word, which is stricter than
 /// the specification, never more lenient. Never fails.
 KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts);
+
+/// What the two plans above need to know of one text; a text's scan depends on nothing else, so
+/// a caller that gives glslang the same text many times may keep it.
+struct RenamingScan {
+    /// The tokens that are a word of Es100IdentifiersGlslangRejects() or start with
+    /// kEs100StandInPrefix.
+    std::set<std::string, std::less<>> es100_tokens;
+    bool spells_length_stand_in = false;  // kLengthMemberStandIn is a token
+    bool declares_length_member = false;  // a struct or block member named `length`
+};
+
+/// The scan of `text`. Never fails.
+RenamingScan ScanForRenaming(std::string_view text);
+
+/// The renaming of a stage made of the scanned texts: PlanEs100Renaming's names when `es100`
+/// (none otherwise) and PlanLengthMemberRenaming's verdict. Never fails.
+KeywordRenaming PlanRenaming(const std::vector<RenamingScan>& scans, bool es100);
 
 }  // namespace tidepool

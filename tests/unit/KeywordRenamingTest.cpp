@@ -2,7 +2,10 @@
 // and the way back for glslang's messages.
 #include <gtest/gtest.h>
 
+#include <functional>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "KeywordRenaming.h"
 
@@ -64,6 +67,37 @@ TEST(KeywordRenamingTest, NoMemberNamedLengthOrTheStandInSpelledMeansNoRenaming)
     EXPECT_FALSE(PlanLengthMemberRenaming({"float g(Wave w) { return w.length; }", ""}));
     EXPECT_FALSE(PlanLengthMemberRenaming(
             {"struct Wave { float length; float tp_member_length; };", ""}));
+}
+
+TEST(KeywordRenamingTest, AScanKeepsOnlyTheWholeWordsAndStandInsThePlanAsksAbout) {
+    const RenamingScan scan =
+            ScanForRenaming("float filter; int filters, case_count, tp_es100_x; // common\n");
+    EXPECT_EQ(scan.es100_tokens,
+              (std::set<std::string, std::less<>>{"common", "filter", "tp_es100_x"}));
+    EXPECT_FALSE(scan.spells_length_stand_in);
+    EXPECT_FALSE(scan.declares_length_member);
+}
+
+TEST(KeywordRenamingTest, AStandInSpelledInAnotherTextOfTheStageBlocksTheWord) {
+    // The scans of a stage's texts are planned together, as PlanEs100Renaming plans its texts.
+    const std::vector<RenamingScan> scans = {ScanForRenaming("float filter;"),
+                                             ScanForRenaming("#define tp_es100_filter 1\n")};
+    EXPECT_TRUE(PlanRenaming(scans, /*es100=*/true).names.empty());
+    const std::vector<RenamingScan> member = {ScanForRenaming("struct S { float length; };"),
+                                              ScanForRenaming("#define tp_member_length 1\n")};
+    EXPECT_FALSE(PlanRenaming(member, /*es100=*/true).length_members);
+}
+
+TEST(KeywordRenamingTest, OnlyAnEs100StageRenamesWordsButEveryStageRenamesLengthMembers) {
+    const std::vector<RenamingScan> scans = {
+            ScanForRenaming("struct S { float length; }; float filter;"), ScanForRenaming("")};
+    const KeywordRenaming es300 = PlanRenaming(scans, /*es100=*/false);
+    EXPECT_TRUE(es300.names.empty());
+    EXPECT_TRUE(es300.length_members);
+    const KeywordRenaming es100 = PlanRenaming(scans, /*es100=*/true);
+    ASSERT_EQ(es100.names.size(), 1U);
+    EXPECT_EQ(es100.names[0].second, "filter");
+    EXPECT_TRUE(es100.length_members);
 }
 
 }  // namespace
