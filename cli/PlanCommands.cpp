@@ -26,7 +26,7 @@ struct PlanCommandOptions {
     bool json = false;
 };
 
-void PrintPlan(const runner::ScenePlan& plan) {
+void PrintPlan(const lab::ScenePlan& plan) {
     std::printf("scene %s: %s\n", plan.scene.name.c_str(), plan.scene.description.c_str());
     for (const Diagnostic& d : plan.diagnostics) {
         std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
@@ -37,7 +37,7 @@ void PrintPlan(const runner::ScenePlan& plan) {
     for (const std::string& need : plan.needed) {
         std::printf("  needs   %s\n", need.c_str());
     }
-    for (const runner::PlanCandidate& c : plan.candidates) {
+    for (const lab::PlanCandidate& c : plan.candidates) {
         if (!c.valid) {
             std::printf("  skip    %-64s invalid\n", c.configuration.id.c_str());
             continue;
@@ -50,13 +50,13 @@ void PrintPlan(const runner::ScenePlan& plan) {
                 c.configuration.id.c_str(), c.time_ms, c.time_change_percent, c.error.psnr_db,
                 c.error.ssim, 100.0 * c.error.share_visible, c.frame.passes, c.frame.draw_calls);
     }
-    for (const runner::DroppedEffect& d : plan.dropped) {
+    for (const lab::DroppedEffect& d : plan.dropped) {
         std::printf("  %s\n", d.reason.c_str());
     }
-    for (const runner::DroppedEffect& k : plan.kept) {
+    for (const lab::DroppedEffect& k : plan.kept) {
         std::printf("  %s\n", k.reason.c_str());
     }
-    const runner::PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(plan.chosen)];
+    const lab::PlanCandidate& chosen = plan.candidates[static_cast<std::size_t>(plan.chosen)];
     std::printf(
             "  => %s: %.2f ms vs %.2f ms full (%+.0f%%), %.1f dB, target %s; %d passes and "
             "%d draws saved\n",
@@ -90,7 +90,7 @@ int RunPlan(PlanCommandOptions options) {
     if (options.json) {
         std::printf("%s\n", JsonText(stagefiles::ToJson(result.file), 2).c_str());
     } else {
-        for (const runner::ScenePlan& plan : result.plans) {
+        for (const lab::ScenePlan& plan : result.plans) {
             PrintPlan(plan);
         }
     }

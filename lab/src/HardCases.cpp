@@ -6,7 +6,7 @@
 
 #include <glm/gtc/constants.hpp>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 // The default views' lens: 50° vertical field, near 1, far 2000 (ProceduralScene.cpp).
@@ -226,4 +226,4 @@ const HardCase* FindHardCase(const std::vector<HardCase>& cases, std::string_vie
     return found == cases.end() ? nullptr : &*found;
 }
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

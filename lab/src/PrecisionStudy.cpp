@@ -8,7 +8,7 @@
 #include <type_traits>
 #include <utility>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 
 double RoundToHalf(double value) {
     if (!std::isfinite(value) || value == 0.0) {
@@ -579,4 +579,4 @@ std::vector<PrecisionRow> RunPrecisionStudy() {
     return rows;
 }
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

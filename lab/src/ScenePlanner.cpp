@@ -18,7 +18,7 @@
 
 #include <fmt/format.h>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 // The longest candidate list: the budget for a short search, which keeps a plan at the
@@ -843,4 +843,4 @@ stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
     return file;
 }
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -15,7 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 using dvec3 = glm::dvec3;
@@ -685,4 +685,4 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
     return results;
 }
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -19,7 +19,7 @@
 #include "GlTestEnvironment.h"
 #include "TempDir.h"
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 // Small enough to plan a scene in a few seconds on llvmpipe, large enough for SSIM's window and
@@ -240,4 +240,4 @@ TEST(ScenePlannerGlTest, InvalidVariantIsNeverChosen) {
 }
 
 }  // namespace
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -18,7 +18,7 @@
 
 #include "GlTestEnvironment.h"
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 // Tiny: 141 variants × ~20 cases must render in about a minute on llvmpipe.
@@ -150,4 +150,4 @@ TEST_F(StabilityGlTest, MediumpFallbackOfEveryShaderCompilesAndRendersFinite) {
 }
 
 }  // namespace
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 namespace {
 
 // The planner's resolution (PlanOptions::rule): qualifying candidates closer than this tie.
@@ -79,4 +79,4 @@ TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
 }
 
 }  // namespace
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

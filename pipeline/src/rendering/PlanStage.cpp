@@ -108,12 +108,12 @@ PlanResult PlanScenes(PreparedPlans& prepared) {
     PlanResult result;
     for (const SceneDescription& scene : prepared.scenes) {
         result.plans.push_back(
-                runner::PlanScene(*prepared.context, *prepared.config, scene, prepared.options));
+                lab::PlanScene(*prepared.context, *prepared.config, scene, prepared.options));
         if (result.plans.back().chosen < 0) {
             result.outcome.status = Status::kInvalid;
         }
     }
-    result.file = runner::PlansFileFor(result.plans, prepared.options);
+    result.file = lab::PlansFileFor(result.plans, prepared.options);
     if (!prepared.publisher) {
         return result;
     }

@@ -103,7 +103,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
     run.lp_num_threads = threads;
     run.config_path = request.config;
     std::string error;
-    const runner::StabilityReport report =
+    const lab::StabilityReport report =
             RunStabilityCatalogue(context, config, variants, run, &error);
     Outcome written;
     if (!error.empty()) {
@@ -117,7 +117,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
         end.status = Status::kEnvironment;
         return end;
     }
-    for (const runner::StabilityCaseResult& r : report.cases) {
+    for (const lab::StabilityCaseResult& r : report.cases) {
         if (!r.passed) {
             ++end.failures;
             progress.Line(fmt::format("stability: FAIL {} (max_error {:.3g}, bound {:.3g})", r.name,
@@ -149,7 +149,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
         end.status = Status::kEnvironment;
         return end;
     }
-    runner::PlanOptions options;
+    lab::PlanOptions options;
     options.settings.width = request.plan_width;
     options.settings.height = request.plan_height;
     options.rule = run.rule;
@@ -159,7 +159,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
             runner::ChooseFrameClock(gl.renderer, run.host.lp_num_threads, gl.timer_query).clock;
     options.out_dir = render_dir;
     options.validated = run.validated;  // the candidates' verdicts, from the run's validation
-    std::vector<runner::ScenePlan> plans;
+    std::vector<lab::ScenePlan> plans;
     for (const std::filesystem::path& path : scenes) {
         SceneResult scene = LoadSceneDescription(path);
         progress.Tell(scene.diagnostics);
@@ -167,7 +167,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
             ++end.failures;  // a bad scene file cannot meet its target
             continue;
         }
-        runner::ScenePlan plan = runner::PlanScene(context, config, *scene.scene, options);
+        lab::ScenePlan plan = lab::PlanScene(context, config, *scene.scene, options);
         progress.Tell(plan.diagnostics);
         if (plan.chosen < 0 || !plan.met) {
             ++end.failures;
@@ -178,7 +178,7 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
         plans.push_back(std::move(plan));
     }
     if (const std::string error = stagefiles::WritePlansFile(
-                runner::PlansFileFor(plans, options), render_dir / stagefiles::kPlansFileName);
+                lab::PlansFileFor(plans, options), render_dir / stagefiles::kPlansFileName);
         !error.empty()) {
         Outcome written;
         written.Fail(Status::kEnvironment, error);

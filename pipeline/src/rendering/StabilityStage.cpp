@@ -18,7 +18,7 @@ Outcome WriteStabilityInto(const std::filesystem::path& folder, const std::strin
 
 }  // namespace
 
-runner::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
+lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
                                               const VariantConfig& config,
                                               const std::vector<Variant>& variants,
                                               const StabilityRun& run, std::string* error) {
@@ -90,7 +90,7 @@ StabilityResult RunStability(const StabilityOptions& options) {
         result.outcome.status = write.status;
         return result;
     }
-    for (const runner::StabilityCaseResult& r : result.report.cases) {
+    for (const lab::StabilityCaseResult& r : result.report.cases) {
         result.failed += r.passed ? 0 : 1;
     }
     result.outcome.status = result.failed == 0 ? Status::kOk : Status::kInvalid;

@@ -11,7 +11,10 @@
 #include <string_view>
 #include <vector>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
+
+// The lab's experiments are built on the renderer: its types are used here unqualified.
+using namespace tidepool::runner;  // NOLINT(google-build-using-namespace)
 
 /// Whether a hard case is a CPU sweep against a double reference or a GL render of every variant.
 enum class HardCaseKind { kCpu, kGl };
@@ -39,4 +42,4 @@ std::vector<HardCase> HardCaseCatalogue();
 /// Returns the case called `name` in `cases`, or nullptr when there is none.
 const HardCase* FindHardCase(const std::vector<HardCase>& cases, std::string_view name);
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

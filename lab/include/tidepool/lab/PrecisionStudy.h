@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
 
 /// Rounds `value` to the nearest IEEE binary16 number (ties to even), with overflow to ±Inf past
 /// 65504 and gradual underflow below 6.1e-5; NaN stays NaN. Never fails.
@@ -38,4 +38,4 @@ using PrecisionRow = stagefiles::PrecisionEntry;
 /// well under a second). Never fails.
 std::vector<PrecisionRow> RunPrecisionStudy();
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -21,7 +21,10 @@
 #include <string>
 #include <vector>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
+
+// The lab's experiments are built on the renderer: its types are used here unqualified.
+using namespace tidepool::runner;  // NOLINT(google-build-using-namespace)
 
 /// PSNR reported for identical images, since JSON has no infinity; above any finite PSNR of
 /// 8-bit images (one code value off in one pixel of a 640x480 image is about 103 dB, but a
@@ -166,4 +169,4 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
 /// The plans as plans.json holds them (stagefiles/PlansFile.h, docs/SCENES.md). Never fails.
 stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans, const PlanOptions& options);
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -14,7 +14,10 @@
 #include <string>
 #include <vector>
 
-namespace tidepool::runner {
+namespace tidepool::lab {
+
+// The lab's experiments are built on the renderer: its types are used here unqualified.
+using namespace tidepool::runner;  // NOLINT(google-build-using-namespace)
 
 // The catalogue's results are the types of the file they are written to, so that stability.json
 // has one C++ type (stagefiles/StabilityFile.h).
@@ -50,4 +53,4 @@ std::vector<GuardResult> MeasureGuards(GlContext& context, const VariantConfig& 
 /// The water variants of `variants` as configurations with default passes. Never fails.
 std::vector<RenderConfiguration> WaterVariantConfigurations(const std::vector<Variant>& variants);
 
-}  // namespace tidepool::runner
+}  // namespace tidepool::lab

@@ -44,7 +44,7 @@ struct PreparedPlans {
     std::vector<SceneDescription> scenes;
     std::unique_ptr<base::FolderPublisher> publisher;  // null without an output folder
     std::unique_ptr<runner::GlContext> context;
-    runner::PlanOptions options;
+    lab::PlanOptions options;
 };
 
 /// Loads the configuration and the scenes, begins publishing the output folder and creates the
@@ -56,7 +56,7 @@ PreparedPlans PreparePlans(const PlanRequest& request);
 struct PlanResult {
     Outcome outcome;  // kInvalid when a scene could not be planned; why plans.json was not
                       // written or published
-    std::vector<runner::ScenePlan> plans;  // one per scene, in order
+    std::vector<lab::ScenePlan> plans;  // one per scene, in order
     stagefiles::PlansFile file;            // plans.json
     std::filesystem::path path;            // where plans.json is once published; "" for none
 };

@@ -26,7 +26,7 @@ struct StabilityRun {
 
 /// Runs the whole catalogue with `context` on the water variants among `variants`. Fails (the
 /// report incomplete, `error` set) when the context cannot render to float.
-runner::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
+lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
                                               const VariantConfig& config,
                                               const std::vector<Variant>& variants,
                                               const StabilityRun& run, std::string* error);
@@ -43,7 +43,7 @@ struct StabilityOptions {
 /// What `stability` did.
 struct StabilityResult {
     Outcome outcome;  // kInvalid when a case failed
-    runner::StabilityReport report;
+    lab::StabilityReport report;
     std::string json;            // stability.json as written
     std::filesystem::path path;  // where it was written
     int failed = 0;              // cases that failed
