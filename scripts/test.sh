@@ -2,24 +2,29 @@
 # The test command (README.md): installs dependencies, checks the format (.clang-format), builds,
 # runs every test (unit, gl, cli), then runs the unit tests again under AddressSanitizer +
 # UndefinedBehaviorSanitizer, then fuzzes each YAML loader for a minute (FUZZ_SECONDS).
+# Each phase ends with its elapsed time, so a slow CI run shows where the time went.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
-"$root/scripts/install-deps.sh"
 
-echo "== format check (.clang-format)"
-"$root/scripts/check-format.sh"
+# phase NAME COMMAND...: announces NAME, runs COMMAND, then stamps NAME with its seconds.
+phase() {
+  local name="$1" start="$SECONDS"
+  shift
+  echo "== $name"
+  "$@"
+  echo "== $name (took $((SECONDS - start)) s)"
+}
 
-echo "== release build"
-"$root/scripts/build.sh" release
-echo "== tests (release): unit, gl, cli"
+phase "install dependencies" "$root/scripts/install-deps.sh"
+phase "format check (.clang-format)" "$root/scripts/check-format.sh"
+phase "release build" "$root/scripts/build.sh" release
 # llvmpipe's thread count is fixed so that GL results do not depend on the machine's core count.
 export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
-(cd "$root/build/release" && ctest --output-on-failure -j 2 --timeout 600)
-
-echo "== sanitizer build (ASan + UBSan)"
-"$root/scripts/build.sh" sanitize
-echo "== unit tests under ASan + UBSan"
-(cd "$root/build/sanitize" && ctest --output-on-failure -j 2 -L unit --timeout 600)
-
-echo "== fuzzing the YAML loaders (libFuzzer, ${FUZZ_SECONDS:-60} s each)"
-"$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"
+phase "tests (release): unit, gl, cli" \
+  ctest --test-dir "$root/build/release" --output-on-failure -j 2 --timeout 600
+phase "sanitizer build (ASan + UBSan)" "$root/scripts/build.sh" sanitize
+phase "unit tests under ASan + UBSan" \
+  ctest --test-dir "$root/build/sanitize" --output-on-failure -j 2 -L unit --timeout 600
+phase "fuzzing the YAML loaders (libFuzzer, ${FUZZ_SECONDS:-60} s each)" \
+  "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"
+echo "== all phases passed in $SECONDS s"

@@ -13,7 +13,6 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <optional>
 #include <sstream>
 
 #include "GlTestEnvironment.h"
@@ -49,8 +48,6 @@ SceneDescription LoadScene(const std::string& name) {
 struct Shared {
     GlContext* context = nullptr;
     const VariantConfig* config = nullptr;
-    std::optional<ScenePlan> murky;
-    std::optional<ScenePlan> lake;
     std::string error;
 };
 
@@ -64,11 +61,23 @@ Shared& Get() {
         }
         s.context = environment.context.get();
         s.config = &*environment.config;
-        s.murky = PlanScene(*s.context, *s.config, LoadScene("murky_pond"), SmallOptions());
-        s.lake = PlanScene(*s.context, *s.config, LoadScene("clear_lake"), SmallOptions());
         return s;
     }();
     return shared;
+}
+
+// Each plan is made on first use: every test runs in a process of its own (CTest), and a plan
+// takes most of a test's time, so a test plans only the scenes it asserts on.
+const ScenePlan& MurkyPlan() {
+    static const ScenePlan plan =
+            PlanScene(*Get().context, *Get().config, LoadScene("murky_pond"), SmallOptions());
+    return plan;
+}
+
+const ScenePlan& LakePlan() {
+    static const ScenePlan plan =
+            PlanScene(*Get().context, *Get().config, LoadScene("clear_lake"), SmallOptions());
+    return plan;
 }
 
 #define REQUIRE_GL()                                          \
@@ -98,7 +107,7 @@ bool HasPass(const FrameReport& frame, const std::string& name) {
 
 TEST(ScenePlannerGlTest, MurkyPondDropsRefractionWithinTarget) {
     REQUIRE_GL();
-    const ScenePlan& plan = *Get().murky;
+    const ScenePlan& plan = MurkyPlan();
     ASSERT_GE(plan.chosen, 0);
     const PlanCandidate* drop = Dropping(plan, "refraction");
     ASSERT_NE(drop, nullptr);
@@ -124,7 +133,7 @@ TEST(ScenePlannerGlTest, MurkyPondDropsRefractionWithinTarget) {
 
 TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarget) {
     REQUIRE_GL();
-    const ScenePlan& plan = *Get().lake;
+    const ScenePlan& plan = LakePlan();
     ASSERT_GE(plan.chosen, 0);
     const PlanCandidate* drop = Dropping(plan, "refraction");
     ASSERT_NE(drop, nullptr);
@@ -140,7 +149,7 @@ TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarge
 // than their intervals, but never one that another qualifying candidate beats beyond both.
 TEST(ScenePlannerGlTest, EveryChoiceMeetsTheTargetAndNoneThatDoesIsFasterBeyondItsInterval) {
     REQUIRE_GL();
-    for (const ScenePlan* plan : {&*Get().murky, &*Get().lake}) {
+    for (const ScenePlan* plan : {&MurkyPlan(), &LakePlan()}) {
         const PlanCandidate& chosen = Chosen(*plan);
         EXPECT_TRUE(chosen.valid && chosen.meets_quality);
         EXPECT_FALSE(plan->choice_reason.empty());
@@ -156,7 +165,7 @@ TEST(ScenePlannerGlTest, EveryChoiceMeetsTheTargetAndNoneThatDoesIsFasterBeyondI
 
 TEST(ScenePlannerGlTest, ReflectionDrawsOnlyWhatIsAboveTheWater) {
     REQUIRE_GL();
-    const ScenePlan& plan = *Get().lake;
+    const ScenePlan& plan = LakePlan();
     const Scene scene = BuildSceneFromDescription(plan.scene);
     // The clear lake keeps its submerged rocks; the reflection pass must leave them out.
     int above = 0;

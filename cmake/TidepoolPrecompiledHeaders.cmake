@@ -1,0 +1,42 @@
+# TIDEPOOL_FAST_COLD_BUILD: precompiled headers and a unity build of the CLI, for builds without
+# a compiler cache (CI builds from a fresh clone). Without them every file parses the standard
+# library, fmt, nlohmann/json and GoogleTest again, and every file that includes cli/Commands.h
+# compiles CLI11's validator objects again (about 10 s of CPU per file at -O3).
+#
+# Off by default when a compiler launcher (ccache) is set: ccache does not cache a file compiled
+# with a precompiled header unless its sloppiness has pch_defines,time_macros, so a warm cache
+# would miss every file, and a unity file is recompiled whenever one of its files changes.
+if(CMAKE_CXX_COMPILER_LAUNCHER)
+  set(tidepool_fast_cold_build_default OFF)
+else()
+  set(tidepool_fast_cold_build_default ON)
+endif()
+option(TIDEPOOL_FAST_COLD_BUILD "Precompiled headers and a unity build of the CLI"
+       ${tidepool_fast_cold_build_default})
+
+if(TIDEPOOL_FAST_COLD_BUILD)
+  set(std_headers <algorithm> <filesystem> <functional> <map> <memory> <optional> <string>
+      <string_view> <vector>)
+  # Making a precompiled header costs as much as compiling two to four ordinary files, so the
+  # libraries share one and the tests share another (REUSE_FROM). The flags that decide whether
+  # a precompiled header can be used (-O, -g, -fsanitize, FMT_SHARED) are the same within each
+  # group; a mismatch is an error (-Winvalid-pch with -Werror), not a silent slowdown.
+  # nlohmann/json is left out of the libraries' header: loading it costs the files that do not
+  # include it more than parsing it costs the files that do (its cost is in the instantiations).
+  target_precompile_headers(tidepool_base PRIVATE ${std_headers} <fmt/format.h>)
+  # The CLI targets are one file each (unity), so CLI11 is compiled once per target.
+  set_target_properties(tidepool_cli_common tidepool-gl PROPERTIES UNITY_BUILD ON)
+  foreach(target tidepool_compiler tidepool_runner tidepool_lab tidepool_report tidepool_pipeline
+                 tidepool_pipeline_gl tidepool_cli_common tidepool-gl)
+    target_precompile_headers(${target} REUSE_FROM tidepool_base)
+  endforeach()
+  if(TARGET tidepool_unit_tests)
+    target_precompile_headers(tidepool_unit_tests PRIVATE ${std_headers} <nlohmann/json.hpp>
+                              <gtest/gtest.h>)
+    foreach(target tidepool_gl_tests tidepool_cli_tests)
+      if(TARGET ${target})
+        target_precompile_headers(${target} REUSE_FROM tidepool_unit_tests)
+      endif()
+    endforeach()
+  endif()
+endif()
