@@ -25,7 +25,7 @@ struct StabilityCommandOptions {
 constexpr int kMaxStabilitySide = 4096;
 
 void PrintStability(const pipeline::StabilityResult& result) {
-    using namespace tidepool::runner;
+    using namespace tidepool::lab;  // and, through it, the runner
     for (const StabilityCaseResult& r : result.report.cases) {
         std::printf("%-4s %-34s %s  max_error %.3g (bound %.3g)\n", r.passed ? "ok" : "FAIL",
                     r.name.c_str(), r.kind.c_str(), r.max_error, r.bound);

@@ -18,11 +18,10 @@ Outcome WriteStabilityInto(const std::filesystem::path& folder, const std::strin
 
 }  // namespace
 
-lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
-                                              const VariantConfig& config,
-                                              const std::vector<Variant>& variants,
-                                              const StabilityRun& run, std::string* error) {
-    using namespace tidepool::runner;
+lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context, const VariantConfig& config,
+                                           const std::vector<Variant>& variants,
+                                           const StabilityRun& run, std::string* error) {
+    using namespace tidepool::lab;  // and, through it, the runner
     StabilityReport report;
     const std::vector<HardCase> catalogue = HardCaseCatalogue();
     for (const HardCase& hard_case : catalogue) {

@@ -57,8 +57,8 @@ struct PlanResult {
     Outcome outcome;  // kInvalid when a scene could not be planned; why plans.json was not
                       // written or published
     std::vector<lab::ScenePlan> plans;  // one per scene, in order
-    stagefiles::PlansFile file;            // plans.json
-    std::filesystem::path path;            // where plans.json is once published; "" for none
+    stagefiles::PlansFile file;         // plans.json
+    std::filesystem::path path;         // where plans.json is once published; "" for none
 };
 
 /// Plans every scene of `prepared` and, with an output folder, writes plans.json there and

@@ -26,10 +26,9 @@ struct StabilityRun {
 
 /// Runs the whole catalogue with `context` on the water variants among `variants`. Fails (the
 /// report incomplete, `error` set) when the context cannot render to float.
-lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context,
-                                              const VariantConfig& config,
-                                              const std::vector<Variant>& variants,
-                                              const StabilityRun& run, std::string* error);
+lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context, const VariantConfig& config,
+                                           const std::vector<Variant>& variants,
+                                           const StabilityRun& run, std::string* error);
 
 /// What `stability` is asked to do.
 struct StabilityOptions {
