@@ -367,16 +367,25 @@ TEST(RunRenderTest, ComparisonsArePairedUntilTheStoppingRuleAndConfigurationsTim
     EXPECT_GT(results.configurations[0].pass_ms.at("main"), 0.0);
 }
 
-TEST(RunRenderTest, GlslangVerdictsGivenByTheRunsValidationAreUsedNotFoundAgain) {
-    Shared& shared = Get();
-    ASSERT_TRUE(shared.context) << shared.error;
+// Two configurations (none and fog) at one view, 32x24, timed coarsely only, no images, no
+// glslang comparison.
+RunOptions TinyRunWithoutComparisons(int coarse_frames) {
     RunOptions options;
     options.configurations = {Configuration({}), Configuration({"ENABLE_FOG"})};
     options.views = {DefaultViews().front()};
     options.settings.width = 32;
     options.settings.height = 24;
-    options.coarse_frames = 1;
+    options.coarse_frames = coarse_frames;
     options.write_images = false;
+    options.compare_with_glslang = false;
+    return options;
+}
+
+TEST(RunRenderTest, GlslangVerdictsGivenByTheRunsValidationAreUsedNotFoundAgain) {
+    Shared& shared = Get();
+    ASSERT_TRUE(shared.context) << shared.error;
+    RunOptions options = TinyRunWithoutComparisons(1);
+    options.compare_with_glslang = true;
     // A verdict glslang would never give (both variants are valid): the render must take it
     // from here, so Mesa's acceptance shows as a disagreement for that variant only.
     ValidationReport validated;
@@ -396,14 +405,7 @@ TEST(RunRenderTest, GlslangVerdictsGivenByTheRunsValidationAreUsedNotFoundAgain)
 TEST(RunRenderTest, SecondWorkerRendersOnItsOwnContext) {
     Shared& shared = Get();
     ASSERT_TRUE(shared.context) << shared.error;
-    RunOptions options;
-    options.configurations = {Configuration({}), Configuration({"ENABLE_FOG"})};
-    options.views = {DefaultViews().front()};
-    options.settings.width = 32;
-    options.settings.height = 24;
-    options.coarse_frames = 2;
-    options.write_images = false;
-    options.compare_with_glslang = false;
+    RunOptions options = TinyRunWithoutComparisons(2);
     options.workers = 2;
     options.make_context = [] { return CreateGlContext(BackendKind::kAuto).context; };
     const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
