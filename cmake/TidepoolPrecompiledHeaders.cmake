@@ -24,6 +24,11 @@ if(TIDEPOOL_FAST_COLD_BUILD)
   # nlohmann/json is left out of the libraries' header: loading it costs the files that do not
   # include it more than parsing it costs the files that do (its cost is in the instantiations).
   target_precompile_headers(tidepool_base PRIVATE ${std_headers} <fmt/format.h>)
+  # Sha256.cpp's SHA-extension code needs <immintrin.h> as -O0 builds declare it (_mm_alignr_epi8
+  # as a macro); behind the precompiled header GCC 12 takes the inline function, whose last
+  # argument is then not an immediate, and the sanitizer build fails.
+  set_source_files_properties("${PROJECT_SOURCE_DIR}/base/src/Sha256.cpp" TARGET_DIRECTORY tidepool_base
+                              PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
   # The CLI targets are one file each (unity), so CLI11 is compiled once per target.
   set_target_properties(tidepool_cli_common tidepool-gl PROPERTIES UNITY_BUILD ON)
   foreach(target tidepool_compiler tidepool_runner tidepool_lab tidepool_report tidepool_pipeline
