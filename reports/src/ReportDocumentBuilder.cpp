@@ -300,17 +300,24 @@ SceneTables BuildSceneTables(const stagefiles::PlansFile& plans) {
 }
 
 std::string ScenesIntro(const stagefiles::PlansFile& plans) {
-    // plans.json has never carried the rounds and frames per round this sentence names (the
-    // planner times candidates by pairs, `timing`), so they show as "–" as they always have.
+    // How the candidates were timed, from plans.json's `timing` (a hand-made file may lack it).
+    const stagefiles::PlansTiming& timing = plans.timing;
+    const std::string how =
+            timing.resolution_points > 0
+                    ? fmt::format(
+                              "each candidate timed against the full effect pair by pair "
+                              "until its 95% interval is within +/-{:.1f} points ({} to {} "
+                              "pairs)",
+                              timing.resolution_points, timing.min_pairs, timing.max_pairs)
+                    : std::string("each candidate timed against the full effect pair by pair");
     return fmt::format(
             "Per scene (scenes/*.yaml), the cheapest configuration whose image meets the scene's "
             "target against the full-effect configuration (docs/SCENES.md), from `tidepool plan` "
-            "at {}x{} with – paired rounds of – frames. Times are the planner's own medians at "
-            "that size, not the whitepaper run's; the time change is the median of per-round "
-            "ratios (so it can differ from the ratio of the two medians), negative = faster. "
-            "\"PSNR alone\" and \"time change alone\" are those of the candidate that drops "
-            "only that effect.",
-            plans.size[0], plans.size[1]);
+            "at {}x{}, {}. Times are the planner's own medians at that size, not the whitepaper "
+            "run's; the time change is the paired estimate over per-pair ratios (so it can "
+            "differ from the ratio of the two medians), negative = faster. \"PSNR alone\" and "
+            "\"time change alone\" are those of the candidate that drops only that effect.",
+            plans.size[0], plans.size[1], how);
 }
 
 std::string VerdictCss(Verdict verdict) {

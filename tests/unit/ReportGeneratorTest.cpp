@@ -823,7 +823,8 @@ TEST(ReportClockTest, OneConfigurationWithoutCpuSamplesKeepsEveryComparisonOnWal
 
 // A plans.json of two scenes as `tidepool plan --all` writes it (docs/SCENES.md).
 constexpr const char* kPlansJson = R"js({"schema": "tidepool.plans", "version": 1,
-    "size": [160, 120], "rounds": 3, "frames_per_round": 2, "plans": [
+    "size": [160, 120], "timing": {"resolution_points": 3.0, "min_pairs": 20, "max_pairs": 200},
+    "plans": [
     {"scene": "murky_pond", "description": "murky", "target": {"min_psnr_db": 30},
      "chosen": {"id": "water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128", "variant": "water:x",
                 "passes": ["reflection", "main"]},
@@ -854,6 +855,12 @@ TEST(ReportScenesTest, PlansBesideTheResultsAreShownPerSceneWithEveryDecisionAnd
     ASSERT_EQ(written.error, "");
     const std::string md = ReadText(written.folder / "report.md");
     EXPECT_NE(md.find("## 8. Scenes"), std::string::npos);
+    // The method as plans.json records it, not placeholders.
+    EXPECT_NE(md.find("at 160x120, each candidate timed against the full effect pair by pair "
+                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs)"),
+              std::string::npos)
+            << md;
+    EXPECT_EQ(md.find("paired rounds of"), std::string::npos);
     EXPECT_NE(md.find("| murky_pond | water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128 | water:FULL | "
                       "8.06 / 15.00 | -46% | 41.1 dB, SSIM 0.998, 1.8% | min_psnr_db 30 | met | "
                       "1 / 5 / 19200 |"),
