@@ -422,7 +422,8 @@ nlohmann::json ReportToJson(const ReportModel& model) {
             }
             scenes.push_back(std::move(scene));
         }
-        // plans.json has never carried rounds or frames per round (ScenesIntro): null, as ever.
+        // plans.json has never carried rounds or frames per round (the planner times pair by
+        // pair, plans.json's `timing`): both stay null, so data.json keeps its keys.
         json["scenes"] = {{"present", true},
                           {"size", model.inputs->plans->size},
                           {"rounds", nullptr},
