@@ -2,7 +2,8 @@
 # Benchmark (issue 11): the main job as a user runs it, `tidepool run` on the default
 # variants.yaml (install and build excluded), once as the machine is and once with two
 # CPU-bound processes competing (`yes`). Prints the wall time of each run with the share of
-# each stage, and the two runs' whitepaper verdicts side by side. Figures only.
+# each stage and the report's size, and the two runs' whitepaper verdicts side by side. Figures
+# only.
 # Usage: bench/main_job.sh [BUILD_DIR (build/release)] [extra `run` flags...]
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -23,10 +24,11 @@ run_once() {  # LABEL
 }
 
 stages() {  # LABEL DESCRIPTION
-  python3 - "$out/$1.log" "$out/$1.stdout" "$(cat "$out/$1.ms")" "$1" "$2" <<'PY'
-import re, sys
+  python3 - "$out/$1.log" "$out/$1.stdout" "$(cat "$out/$1.ms")" "$1" "$2" "$out/$1/default" <<'PY'
+import os, re, sys
 log, stdout, total_ms, label, what = open(sys.argv[1]).read(), open(sys.argv[2]).read(), \
     int(sys.argv[3]), sys.argv[4], sys.argv[5]
+report_dir = sys.argv[6]
 total = total_ms / 1000
 found = {
     "render": re.search(r"^render: \d+ configurations, \d+ failed, (\d+) s", log, re.M),
@@ -47,6 +49,13 @@ for stage, m in found.items():
               + ("  (beside the render, not added)" if beside else ""))
 print(f"  {'validate, start-up and the rest':<15} {total - accounted:7.1f} s  "
       f"{100 * (total - accounted) / total:5.1f}%")
+# The report's size (issue 14): report.md under 300 KB, index.html under 6 MB.
+for name, limit_kb in (("report.md", 300), ("index.html", 6 * 1024)):
+    path = os.path.join(report_dir, name)
+    if os.path.exists(path):
+        kb = os.path.getsize(path) / 1024
+        print(f"  {name:<15} {kb:9.0f} KB (target under {limit_kb} KB: "
+              f"{'met' if kb < limit_kb else 'NOT met'})")
 # The render's progress lines against what happened: each line's predicted render end
 # (elapsed + ETA) and percentage against the render's real end, over lines after the first 10%.
 def duration_s(text):
