@@ -15,7 +15,7 @@
 namespace tidepool::lab {
 namespace {
 
-TEST(StabilityCatalogueTest, NamesAreUniqueAndEveryCaseIsDocumented) {
+TEST(HardCasesTest, NamesAreUniqueAndEveryCaseIsDocumented) {
     std::set<std::string> names;
     for (const HardCase& c : HardCaseCatalogue()) {
         EXPECT_TRUE(names.insert(c.name).second) << c.name;
@@ -25,9 +25,9 @@ TEST(StabilityCatalogueTest, NamesAreUniqueAndEveryCaseIsDocumented) {
     EXPECT_EQ(FindHardCase(HardCaseCatalogue(), "no_such_case"), nullptr);
 }
 
-class StabilityCpuCaseTest : public ::testing::TestWithParam<std::string> {};
+class HardCasesCpuCaseTest : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(StabilityCpuCaseTest, SweepIsFiniteAndWithinItsBound) {
+TEST_P(HardCasesCpuCaseTest, SweepIsFiniteAndWithinItsBound) {
     const std::vector<HardCase> catalogue = HardCaseCatalogue();
     const HardCase* hard_case = FindHardCase(catalogue, GetParam());
     ASSERT_NE(hard_case, nullptr);
@@ -38,7 +38,7 @@ TEST_P(StabilityCpuCaseTest, SweepIsFiniteAndWithinItsBound) {
     EXPECT_TRUE(r.passed) << r.note;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllCpuCases, StabilityCpuCaseTest,
+INSTANTIATE_TEST_SUITE_P(AllCpuCases, HardCasesCpuCaseTest,
                          ::testing::Values("cpu_mirror_matrix", "cpu_oblique_near_plane",
                                            "cpu_infinite_plane_polygon", "cpu_projective_tex_coord",
                                            "cpu_view_matrix_vertical",
@@ -47,7 +47,7 @@ INSTANTIATE_TEST_SUITE_P(AllCpuCases, StabilityCpuCaseTest,
                                            "cpu_distortion_eye_distance_zero",
                                            "cpu_fog_depth_extremes"));
 
-TEST(StabilityCpuTest, EveryCpuCaseOfTheCatalogueIsCovered) {
+TEST(HardCasesTest, EveryCpuCaseOfTheCatalogueIsCovered) {
     for (const HardCase& c : HardCaseCatalogue()) {
         if (c.kind == HardCaseKind::kCpu) {
             EXPECT_TRUE(RunCpuHardCase(c).passed) << c.name;
@@ -55,7 +55,7 @@ TEST(StabilityCpuTest, EveryCpuCaseOfTheCatalogueIsCovered) {
     }
 }
 
-TEST(StabilityCpuTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
+TEST(HardCasesTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
     const CameraView down{"down", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}, 0.8F, 1.0F, 2000.0F};
     EXPECT_FALSE(std::isfinite(ViewMatrix(down)[0][0]));  // why the fallback exists
     const glm::mat4 view = LookAtWithFallbackUp(down.eye, down.target);
@@ -71,12 +71,12 @@ TEST(StabilityCpuTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
     EXPECT_NEAR(target.z, -60.0F, 1e-3F);
 }
 
-TEST(StabilityCpuTest, FallbackLookAtEqualsLookAtAwayFromVertical) {
+TEST(HardCasesTest, FallbackLookAtEqualsLookAtAwayFromVertical) {
     const CameraView view = DefaultViews().front();
     EXPECT_EQ(LookAtWithFallbackUp(view.eye, view.target), ViewMatrix(view));
 }
 
-TEST(StabilityCpuTest, FogReciprocalIsClampedToMediumpRange) {
+TEST(HardCasesTest, FogReciprocalIsClampedToMediumpRange) {
     EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::infinity()), kMaxMediump);
     EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::quiet_NaN()), 0.0F);
     EXPECT_EQ(MediumpFogReciprocal(-1.0F), 0.0F);
