@@ -1,10 +1,13 @@
 // Water geometry against hand-derived values, at float and double precision; the CPU reference
-// of the extinction formula.
+// of the extinction formula; the guards the hard cases needed (look-at straight down, the fog
+// reciprocal in mediump range).
+#include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/WaterMath.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -348,6 +351,34 @@ TEST(WaterMathExtinctionTest, MatchesTheFormulaAtSampledDepths) {
                                              glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))),
               glm::length(steep - glm::mix(model.surface_colour, model.depth_colour,
                                            glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))));
+}
+
+TEST(WaterMathGuardTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
+    const CameraView down{"down", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}, 0.8F, 1.0F, 2000.0F};
+    EXPECT_FALSE(std::isfinite(ViewMatrix(down)[0][0]));  // why the fallback exists
+    const glm::mat4 view = LookAtWithFallbackUp(down.eye, down.target);
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            EXPECT_TRUE(std::isfinite(view[c][r]));
+        }
+    }
+    // The eye maps to the origin and the target straight ahead (-z).
+    const glm::vec4 target = view * glm::vec4(down.target, 1.0F);
+    EXPECT_NEAR(target.x, 0.0F, 1e-4F);
+    EXPECT_NEAR(target.y, 0.0F, 1e-4F);
+    EXPECT_NEAR(target.z, -60.0F, 1e-3F);
+}
+
+TEST(WaterMathGuardTest, FallbackLookAtEqualsLookAtAwayFromVertical) {
+    const CameraView view = DefaultViews().front();
+    EXPECT_EQ(LookAtWithFallbackUp(view.eye, view.target), ViewMatrix(view));
+}
+
+TEST(WaterMathGuardTest, FogReciprocalIsClampedToMediumpRange) {
+    EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::infinity()), kMaxMediump);
+    EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::quiet_NaN()), 0.0F);
+    EXPECT_EQ(MediumpFogReciprocal(-1.0F), 0.0F);
+    EXPECT_EQ(MediumpFogReciprocal(1.0F / 2000.0F), 1.0F / 2000.0F);
 }
 
 }  // namespace
