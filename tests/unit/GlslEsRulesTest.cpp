@@ -8,9 +8,12 @@
 #include <vector>
 
 #include "GlslEsRules.h"
+#include "PipelineFixture.h"
 
 namespace tidepool {
 namespace {
+
+using testing::Formatted;
 
 std::vector<std::string> Texts(const std::vector<SourceToken>& line) {
     std::vector<std::string> texts;
@@ -18,14 +21,6 @@ std::vector<std::string> Texts(const std::vector<SourceToken>& line) {
         texts.emplace_back(token.text);
     }
     return texts;
-}
-
-std::string Errors(const std::vector<Diagnostic>& diagnostics) {
-    std::string text;
-    for (const Diagnostic& d : diagnostics) {
-        text += FormatDiagnostic(d) + "\n";
-    }
-    return text;
 }
 
 TEST(GlslEsRulesTest, TokenLinesSplitIdentifiersFromPunctuationAndDropComments) {
@@ -61,7 +56,7 @@ TEST(GlslEsRulesTest, NumbersComeOutInPieces) {
 
 TEST(GlslEsRulesTest, ANulByteIsAnErrorAtItsLineAndColumn) {
     const std::string text = std::string("void main() {\n  x;") + '\0' + "y;\n}\n";
-    EXPECT_EQ(Errors(CheckSourceText(text, "", "a.fsh")),
+    EXPECT_EQ(Formatted(CheckSourceText(text, "", "a.fsh")),
               "a.fsh:2:5: error: NUL byte in the shader source; GLSL ES source is text "
               "(GLSL ES §3.1) and glslang would stop reading here\n");
 }
@@ -78,26 +73,26 @@ std::string Doubling(int levels) {
 }
 
 TEST(GlslEsRulesTest, AMacroExpandingBeyondTheBoundIsNamedWhereItIsUsed) {
-    EXPECT_EQ(Errors(CheckSourceText(Doubling(16) + "M16\n", "", "a.fsh")), "");
-    EXPECT_EQ(Errors(CheckSourceText(Doubling(17) + "float f =\n  M17;\n", "", "a.fsh")),
+    EXPECT_EQ(Formatted(CheckSourceText(Doubling(16) + "M16\n", "", "a.fsh")), "");
+    EXPECT_EQ(Formatted(CheckSourceText(Doubling(17) + "float f =\n  M17;\n", "", "a.fsh")),
               "a.fsh:20:3: error: macro 'M17' expands to more than 131072 tokens (a macro "
               "bomb); tidepool refuses shaders that large\n");
 }
 
 TEST(GlslEsRulesTest, ManyUsesOfAnAllowedMacroAddUpToTheBoundToo) {
     const std::string text = Doubling(16) + "M16 M16\n";
-    EXPECT_EQ(Errors(CheckSourceText(text, "", "a.fsh")),
+    EXPECT_EQ(Formatted(CheckSourceText(text, "", "a.fsh")),
               "a.fsh:18:5: error: the shader expands through its macros to more than 131072 "
               "tokens; tidepool refuses shaders that large\n");
 }
 
 TEST(GlslEsRulesTest, MacrosOfThePreambleExpandLikeTheFilesOwn) {
     // Defined on the command line, used in the file: the use is in the file, so it has a place.
-    EXPECT_EQ(Errors(CheckSourceText("M17\n", Doubling(17), "a.fsh")),
+    EXPECT_EQ(Formatted(CheckSourceText("M17\n", Doubling(17), "a.fsh")),
               "a.fsh:1:1: error: macro 'M17' expands to more than 131072 tokens (a macro bomb); "
               "tidepool refuses shaders that large\n");
     // #undef forgets a macro: the name is one token again.
-    EXPECT_EQ(Errors(CheckSourceText("#undef M17\nM17\n", Doubling(17), "a.fsh")), "");
+    EXPECT_EQ(Formatted(CheckSourceText("#undef M17\nM17\n", Doubling(17), "a.fsh")), "");
 }
 
 TEST(GlslEsRulesTest, FirstMentionIsTheFirstWholeWordAndZeroWhenAbsent) {

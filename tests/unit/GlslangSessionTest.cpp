@@ -6,9 +6,12 @@
 #include <vector>
 
 #include "GlslangSession.h"
+#include "PipelineFixture.h"
 
 namespace tidepool {
 namespace {
+
+using testing::Formatted;
 
 const std::vector<std::string> kNoDefines;
 
@@ -17,21 +20,13 @@ GlslangStageInput Input(const std::string& file, const std::string& text, Stage 
     return GlslangStageInput{file, text, stage, std::nullopt, defines, nullptr};
 }
 
-std::string Errors(const std::vector<Diagnostic>& diagnostics) {
-    std::string text;
-    for (const Diagnostic& d : diagnostics) {
-        text += FormatDiagnostic(d) + "\n";
-    }
-    return text;
-}
-
 TEST(GlslangSessionTest, LogLinesBecomeDiagnosticsAtTheQuotedTokensColumn) {
     const std::string source = "void main() {\n  float x = yy;\n}\n";
     const std::string log =
             "ERROR: 0:2: 'yy' : undeclared identifier\n"
             "WARNING: 0:1: 'main' : something to note\n"
             "ERROR: 1 compilation errors.  No code generated.\n";
-    EXPECT_EQ(Errors(ParseGlslangLog(log, "a.fsh", source)),
+    EXPECT_EQ(Formatted(ParseGlslangLog(log, "a.fsh", source)),
               "a.fsh:2:13: error: 'yy' : undeclared identifier\n"
               "a.fsh:1:6: warning: 'main' : something to note\n");
 }
@@ -43,7 +38,7 @@ TEST(GlslangSessionTest, ContinuationLinesJoinTheirMessageAndUnplacedMessagesKee
             "\"smooth out highp 3-component vector of float\"\n"
             "ERROR: 0:3: '' : compilation terminated\n";
     const std::vector<Diagnostic> diagnostics = ParseGlslangLog(log, "a.fsh", "");
-    ASSERT_EQ(diagnostics.size(), 1U) << Errors(diagnostics);
+    ASSERT_EQ(diagnostics.size(), 1U) << Formatted(diagnostics);
     EXPECT_EQ(diagnostics[0].line, 0);
     EXPECT_EQ(diagnostics[0].message,
               "Linking fragment stage: Types must match:; colour: \"smooth in highp 4-component "
@@ -72,7 +67,7 @@ TEST(GlslangSessionTest, ParseKeepsTheTreeOfAValidStageAndPlacesAnError) {
     const std::string good =
             "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
     const StageParse parsed = ParseStage(Input("a.fsh", good, Stage::kFragment));
-    EXPECT_TRUE(parsed.ok) << Errors(parsed.diagnostics);
+    EXPECT_TRUE(parsed.ok) << Formatted(parsed.diagnostics);
     EXPECT_NE(parsed.intermediate, nullptr);
     const std::string bad =
             "#version 100\nprecision mediump float;\nvoid main() {\n  gl_FragColor = yy;\n}\n";
@@ -103,7 +98,7 @@ TEST(GlslangSessionTest, LinkingChecksTheVaryingsBetweenTheStages) {
             "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
     const LinkResult good = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
                                        Input("a.fsh", matching, Stage::kFragment));
-    EXPECT_TRUE(good.ok) << Errors(good.diagnostics);
+    EXPECT_TRUE(good.ok) << Formatted(good.diagnostics);
     const LinkResult bad = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
                                       Input("b.fsh", mismatched, Stage::kFragment));
     EXPECT_FALSE(bad.ok);

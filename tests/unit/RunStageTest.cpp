@@ -36,11 +36,18 @@ public:
     std::vector<Diagnostic> diagnostics;
 };
 
+// `run` of the small matrix into its folder's out/.
+RunRequest RequestFor(const SmallMatrix& matrix) {
+    RunRequest request;
+    request.config = matrix.Config();
+    request.out = matrix.Dir().Path() / "out";
+    return request;
+}
+
 TEST(RunStageTest, AMatrixThatDoesNotLoadStopsAsUsageAndCreatesNothing) {
     const SmallMatrix matrix;
-    RunRequest request;
+    RunRequest request = RequestFor(matrix);
     request.config = (matrix.Dir().Path() / "missing.yaml").string();
-    request.out = matrix.Dir().Path() / "out";
     RecordedProgress progress;
     const RunResult result = pipeline::Run(request, progress);
     EXPECT_EQ(result.outcome.status, Status::kUsage);
@@ -53,9 +60,7 @@ TEST(RunStageTest, SomeoneElsesManifestIsRefusedBeforeValidationAndKept) {
     const SmallMatrix matrix;
     const std::filesystem::path theirs =
             matrix.Dir().Write("out/manifest/manifest.json", "{\"schema\": \"mine\"}");
-    RunRequest request;
-    request.config = matrix.Config();
-    request.out = matrix.Dir().Path() / "out";
+    const RunRequest request = RequestFor(matrix);
     RecordedProgress progress;
     const RunResult result = pipeline::Run(request, progress);
     EXPECT_EQ(result.outcome.status, Status::kUsage);
@@ -70,9 +75,7 @@ TEST(RunStageTest, SomeoneElsesManifestIsRefusedBeforeValidationAndKept) {
 TEST(RunStageTest, ARenderFolderTidepoolDidNotWriteIsRefusedAndKept) {
     const SmallMatrix matrix;
     const std::filesystem::path theirs = matrix.Dir().Write("out/render/notes.txt", "mine");
-    RunRequest request;
-    request.config = matrix.Config();
-    request.out = matrix.Dir().Path() / "out";
+    const RunRequest request = RequestFor(matrix);
     RecordedProgress progress;
     const RunResult result = pipeline::Run(request, progress);
     EXPECT_EQ(result.outcome.status, Status::kUsage);
