@@ -20,9 +20,9 @@ struct RuleCase {
     const char* expected;  // the first error, folder left out; "" when the pair is valid
 };
 
-class ConformanceRuleTest : public ::testing::TestWithParam<RuleCase> {};
+class ConformanceRulesTest : public ::testing::TestWithParam<RuleCase> {};
 
-TEST_P(ConformanceRuleTest, GivesTheExpectedVerdictAndFirstError) {
+TEST_P(ConformanceRulesTest, GivesTheExpectedVerdictAndFirstError) {
     const RuleCase& c = GetParam();
     auto text = [](const char* t) {
         return t != nullptr ? std::optional<std::string>(t) : std::nullopt;
@@ -35,7 +35,7 @@ TEST_P(ConformanceRuleTest, GivesTheExpectedVerdictAndFirstError) {
 
 // GLSL ES 1.00 §6.1, 3.00 §6.1: no recursion, even static; a compile error, not a link error.
 INSTANTIATE_TEST_SUITE_P(
-        StaticRecursion, ConformanceRuleTest,
+        StaticRecursion, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"two functions calling each other, neither called from main", nullptr,
                          "#version 100\n"
@@ -69,7 +69,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §7.2: gl_FragColor or gl_FragData, never both, wherever the writes stand.
 INSTANTIATE_TEST_SUITE_P(
-        FragColorAndFragData, ConformanceRuleTest,
+        FragColorAndFragData, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"gl_FragData written in a function nobody calls", nullptr,
                          "#version 100\n"
@@ -94,7 +94,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §4.5.3, 3.00 §4.3.5: a uniform in both stages matches in precision, members too.
 INSTANTIATE_TEST_SUITE_P(
-        UniformMemberPrecision, ConformanceRuleTest,
+        UniformMemberPrecision, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"struct member highp in one stage, mediump in the other",
                          "#version 100\n"
@@ -141,7 +141,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 3.00 §4.3.9: an output and the input of the same name interpolate the same way.
 INSTANTIATE_TEST_SUITE_P(
-        Interpolation, ConformanceRuleTest,
+        Interpolation, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"flat output read as a smooth input",
                          "#version 300 es\n"
@@ -170,7 +170,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §3.4, 3.00 §3.4: #extension before any non-preprocessor token.
 INSTANTIATE_TEST_SUITE_P(
-        ExtensionPlacement, ConformanceRuleTest,
+        ExtensionPlacement, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"#extension after a declaration", nullptr,
                          "#version 100\n"
@@ -192,7 +192,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // `defined` from a macro expansion inside #if works (dEQP requires it); nothing else is relaxed.
 INSTANTIATE_TEST_SUITE_P(
-        DefinedFromMacro, ConformanceRuleTest,
+        DefinedFromMacro, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"defined() produced by a macro", nullptr,
                          "#version 100\n"
@@ -225,7 +225,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §3.4: a macro name with "__" is reserved, not an error; 3.00 §3.4 makes it one.
 INSTANTIATE_TEST_SUITE_P(
-        ReservedMacroNames, ConformanceRuleTest,
+        ReservedMacroNames, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"#define of a name with __ in 1.00", nullptr,
                          "#version 100\n"
@@ -246,7 +246,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 3.00 §7.3: a `#version 300 es` shader sees the ES 3.0 minimum limits, not glslang's
 // desktop-sized defaults. An array sized from a limit shows the value the shader sees.
 INSTANTIATE_TEST_SUITE_P(
-        Es300Limits, ConformanceRuleTest,
+        Es300Limits, ConformanceRulesTest,
         ::testing::Values(RuleCase{"gl_MaxDrawBuffers is 4", nullptr,
                                    "#version 300 es\n"
                                    "precision mediump float;\n"
@@ -271,7 +271,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 1.00 §3.7: words that 1.00 neither uses nor reserves are identifiers there, although
 // glslang 12 refuses them; the words 1.00 does reserve stay errors, and so do all of them in 3.00.
 INSTANTIATE_TEST_SUITE_P(
-        Es100Identifiers, ConformanceRuleTest,
+        Es100Identifiers, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"later versions' keywords as a varying, uniform, member and parameter",
                          "#version 100\n"
@@ -332,7 +332,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 1.00 §4.6.4: the invariance of a varying declared in both stages matches; gl_FragCoord
 // and gl_PointCoord may be invariant only with gl_Position and gl_PointSize; never gl_FrontFacing.
 INSTANTIATE_TEST_SUITE_P(
-        Invariance, ConformanceRuleTest,
+        Invariance, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"a varying invariant in the fragment stage only",
                          "#version 100\n"
@@ -455,7 +455,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 1.00 §5.9, 3.00 §5.9: unary '+' takes integer and floating-point operands only; glslang
 // 12 drops it unchecked.
 INSTANTIATE_TEST_SUITE_P(
-        UnaryPlus, ConformanceRuleTest,
+        UnaryPlus, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"unary + on a struct", nullptr,
                          "#version 100\n"
@@ -549,7 +549,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 3.00 §6.2: a statement must follow the last label of a switch; `;`, `{}` and an empty
 // declaration are statements, which glslang 12 does not see.
 INSTANTIATE_TEST_SUITE_P(
-        SwitchLastLabel, ConformanceRuleTest,
+        SwitchLastLabel, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"last labels followed by an empty statement, block and declaration",
                          nullptr,
@@ -585,7 +585,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §4.1.8, 3.00 §4.1.8: `length` is no keyword, so a member may be named so.
 INSTANTIATE_TEST_SUITE_P(
-        LengthMember, ConformanceRuleTest,
+        LengthMember, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"a struct member named length, read and written",
                          "#version 100\n"
@@ -619,7 +619,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 1.00 §5.10: matrixCompMult of constant expressions, and the sequence operator over
 // them, are constant expressions; 3.00 §4.3.3 leaves the sequence operator out.
 INSTANTIATE_TEST_SUITE_P(
-        Es100ConstantExpressions, ConformanceRuleTest,
+        Es100ConstantExpressions, ConformanceRulesTest,
         ::testing::Values(
                 RuleCase{"an array sized by a matrixCompMult, and commas in constants",
                          "#version 100\n"
@@ -678,7 +678,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // GLSL ES 1.00 §3.4, 3.00 §3.4: `#version` names 100 or `300 es`; desktop versions are refused.
 INSTANTIATE_TEST_SUITE_P(
-        DesktopVersions, ConformanceRuleTest,
+        DesktopVersions, ConformanceRulesTest,
         ::testing::Values(RuleCase{"#version 130", nullptr,
                                    "#version 130\n"
                                    "void main() { gl_FragColor = vec4(1.0); }\n",

@@ -1,8 +1,7 @@
 // The shipped variants.yaml as a matrix: the seeds' techniques are in it, and its rules refuse
-// the combinations that cannot work. Also the CPU reference of the extinction formula.
+// the combinations that cannot work.
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
-#include "tidepool/runner/WaterMath.h"
 
 #include <gtest/gtest.h>
 
@@ -122,34 +121,5 @@ TEST_F(DefaultMatrixTest, PrunedCountsPerRuleMatchEveryCombinationCheckedOneByOn
     }
     EXPECT_EQ(row, expansion.pruned_by_rule.size());
 }
-
-TEST(ExtinctionColourTest, MatchesTheFormulaAtSampledDepths) {
-    const runner::ExtinctionModel model;
-    const glm::vec3 floor(0.8F, 0.7F, 0.5F);
-    // Depth 0: nothing changes.
-    const glm::vec3 at_surface = runner::ExtinctionColour(floor, 0.0F, 1.0F, model);
-    EXPECT_FLOAT_EQ(at_surface.r, floor.r);
-    EXPECT_FLOAT_EQ(at_surface.b, floor.b);
-    // Looking straight down at depth 2: path 2 = 5% of visibility 40, then red 2/4.5 extinct,
-    // green 2/75, blue 2/300, each towards the deep colour.
-    const glm::vec3 seen = runner::ExtinctionColour(floor, 2.0F, 1.0F, model);
-    const glm::vec3 tinted = glm::mix(floor, model.surface_colour, 2.0F / model.visibility);
-    EXPECT_NEAR(seen.r, glm::mix(tinted.r, model.depth_colour.r, 2.0F / 4.5F), 1e-6);
-    EXPECT_NEAR(seen.g, glm::mix(tinted.g, model.depth_colour.g, 2.0F / 75.0F), 1e-6);
-    EXPECT_NEAR(seen.b, glm::mix(tinted.b, model.depth_colour.b, 2.0F / 300.0F), 1e-6);
-    // Red is gone at 4.5, blue only at 300.
-    const glm::vec3 deep = runner::ExtinctionColour(floor, 4.5F, 1.0F, model);
-    EXPECT_FLOAT_EQ(deep.r, model.depth_colour.r);
-    EXPECT_GT(deep.b, model.depth_colour.b);
-    // A grazing view lengthens the path (at most 20x): the surface colour takes over sooner;
-    // at depth 2 the grazing path is 40, the whole visibility.
-    const glm::vec3 grazing = runner::ExtinctionColour(floor, 2.0F, 0.0F, model);
-    const glm::vec3 steep = runner::ExtinctionColour(floor, 2.0F, 1.0F, model);
-    EXPECT_LT(glm::length(grazing - glm::mix(model.surface_colour, model.depth_colour,
-                                             glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))),
-              glm::length(steep - glm::mix(model.surface_colour, model.depth_colour,
-                                           glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))));
-}
-
 }  // namespace
 }  // namespace tidepool

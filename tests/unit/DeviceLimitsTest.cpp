@@ -39,16 +39,16 @@ struct BadLimitsCase {
     const char* expected;
 };
 
-class BadDeviceLimitsTest : public ::testing::TestWithParam<BadLimitsCase> {};
+class DeviceLimitsBadInputTest : public ::testing::TestWithParam<BadLimitsCase> {};
 
-TEST_P(BadDeviceLimitsTest, IsRefusedAtItsLineWithTheFix) {
+TEST_P(DeviceLimitsBadInputTest, IsRefusedAtItsLineWithTheFix) {
     const DeviceLimitsRead read = ParseDeviceLimits(GetParam().text, "phone.conf");
     EXPECT_FALSE(read.ok);
     EXPECT_EQ(Errors(read), GetParam().expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(
-        Cases, BadDeviceLimitsTest,
+        Cases, DeviceLimitsBadInputTest,
         ::testing::Values(
                 BadLimitsCase{"Misspelt", "MaxDrawBuffers 4\nMaxFragmentUniformVector 64\n",
                               "phone.conf:2:1: error: unknown limit 'MaxFragmentUniformVector'; "

@@ -19,7 +19,7 @@ struct ClockCase {
     FrameClock expected;
 };
 
-TEST(FrameClockTest, ClockFollowsTheRendererString) {
+TEST(FrameTimerTest, ClockFollowsTheRendererString) {
     const std::vector<ClockCase> cases = {
             {"llvmpipe (LLVM 15.0.6, 256 bits)", "0", true, FrameClock::kThreadCpu},
             {"llvmpipe (LLVM 15.0.6, 256 bits)", "2", true, FrameClock::kProcessCpu},
@@ -42,7 +42,7 @@ TEST(FrameClockTest, ClockFollowsTheRendererString) {
     EXPECT_EQ(FrameClockName(FrameClock::kGpuTimer), "gpu_timer_query");
 }
 
-TEST(TimeComparisonTest, SidesAlternateWhoGoesFirstAndStopAtTheResolution) {
+TEST(FrameTimerTest, SidesAlternateWhoGoesFirstAndStopAtTheResolution) {
     std::vector<bool> order;
     const TimeSide side = [&](bool candidate) {
         order.push_back(candidate);
@@ -63,7 +63,7 @@ TEST(TimeComparisonTest, SidesAlternateWhoGoesFirstAndStopAtTheResolution) {
     EXPECT_NEAR(t.estimate.ratio, 1.1, 0.01);
 }
 
-TEST(TimeComparisonTest, ACapStopsAComparisonThatCannotResolve) {
+TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     std::uint64_t state = 12345;
     const TimeSide side = [&](bool) {
         // Frame times spread uniformly over 10..20 ms: noise far above the asked resolution.

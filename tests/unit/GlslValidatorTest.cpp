@@ -595,9 +595,9 @@ struct PlainFileCase {
     std::string expected;  // the first diagnostic, with the folder left out
 };
 
-class PlainFileRuleTest : public ::testing::TestWithParam<PlainFileCase> {};
+class GlslValidatorPlainFileTest : public ::testing::TestWithParam<PlainFileCase> {};
 
-TEST_P(PlainFileRuleTest, IsAnErrorAtTheRightPlace) {
+TEST_P(GlslValidatorPlainFileTest, IsAnErrorAtTheRightPlace) {
     const PlainFileCase& c = GetParam();
     TempDir dir;
     std::vector<ShaderFile> files;
@@ -619,7 +619,7 @@ TEST_P(PlainFileRuleTest, IsAnErrorAtTheRightPlace) {
 }
 
 INSTANTIATE_TEST_SUITE_P(
-        Table, PlainFileRuleTest,
+        Table, GlslValidatorPlainFileTest,
         ::testing::Values(
                 PlainFileCase{"NUL byte", nullptr,
                               std::string("#version 100\nprecision mediump float;\nvoid main() "
@@ -677,7 +677,7 @@ constexpr const char* kFragment300 =
         "#version 300 es\nprecision mediump float;\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
 
 INSTANTIATE_TEST_SUITE_P(
-        ArrayBounds, PlainFileRuleTest,
+        ArrayBounds, GlslValidatorPlainFileTest,
         ::testing::Values(
                 PlainFileCase{"global", nullptr,
                               "#version 100\nprecision mediump float;\nfloat big[100000];\n"

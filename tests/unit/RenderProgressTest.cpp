@@ -12,7 +12,7 @@ namespace {
 
 using Clock = ProgressMeter::Clock;
 
-TEST(RenderWorkOrderTest, EachComparisonIsFollowedByItsShareOfTheConfigurations) {
+TEST(RenderProgressTest, EachComparisonIsFollowedByItsShareOfTheConfigurations) {
     const std::vector<WorkUnit> units = RenderWorkOrder(16, 147);
     ASSERT_EQ(units.size(), 16U + 147U);
     std::set<std::size_t> comparisons;
@@ -36,7 +36,7 @@ TEST(RenderWorkOrderTest, EachComparisonIsFollowedByItsShareOfTheConfigurations)
     EXPECT_FALSE(units.back().comparison);  // the queue ends on short units
 }
 
-TEST(RenderWorkOrderTest, TheReferenceConfigurationRendersFirstAndOnce) {
+TEST(RenderProgressTest, TheReferenceConfigurationRendersFirstAndOnce) {
     const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42);
     ASSERT_EQ(units.size(), 16U + 147U);
     EXPECT_FALSE(units.front().comparison);
@@ -54,7 +54,7 @@ TEST(RenderWorkOrderTest, TheReferenceConfigurationRendersFirstAndOnce) {
     EXPECT_EQ(configurations.size(), 147U);
 }
 
-TEST(RenderWorkOrderTest, WithoutComparisonsEveryConfigurationIsStillThere) {
+TEST(RenderProgressTest, WithoutComparisonsEveryConfigurationIsStillThere) {
     const std::vector<WorkUnit> units = RenderWorkOrder(0, 5);
     ASSERT_EQ(units.size(), 5U);
     std::set<std::size_t> seen;
@@ -69,7 +69,7 @@ TEST(RenderWorkOrderTest, WithoutComparisonsEveryConfigurationIsStillThere) {
 // One thread renders 100 ms frames for a minute, then the machine frees up and frames take
 // 50 ms. Half a minute later the ETA must reflect the new rate: the average over the whole run
 // (75 ms) would put it 50% late.
-TEST(ProgressMeterTest, EtaFollowsTheRecentRateAfterTheMachineFreesUp) {
+TEST(RenderProgressTest, EtaFollowsTheRecentRateAfterTheMachineFreesUp) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
@@ -94,7 +94,7 @@ TEST(ProgressMeterTest, EtaFollowsTheRecentRateAfterTheMachineFreesUp) {
 
 // Before any image is measured, images cost what a timed frame costs; once images are measured,
 // their own rate takes over.
-TEST(ProgressMeterTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
+TEST(RenderProgressTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
@@ -120,7 +120,7 @@ TEST(ProgressMeterTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
 // Comparisons not started expect the median of what the finished ones took (the first guess
 // counting as one): one that needed 300 pairs near a verdict's boundary does not make every
 // later one expect a hundred.
-TEST(ProgressMeterTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
+TEST(RenderProgressTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);

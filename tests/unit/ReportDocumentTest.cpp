@@ -1,5 +1,6 @@
-// The report document's two writers (reports/include/tidepool/report/ReportDocument.h): each
-// node kind in HTML and Markdown, and what each format must escape.
+// The report document's own helpers (reports/include/tidepool/report/ReportDocument.h): spans
+// split at backticks, and the figures a document holds. Its two writers are tested in
+// HtmlDocumentWriterTest and MarkdownDocumentWriterTest.
 #include "tidepool/report/ReportDocument.h"
 
 #include <gtest/gtest.h>
@@ -9,57 +10,6 @@
 
 namespace tidepool::report::doc {
 namespace {
-
-Section SectionOf(std::vector<Block> blocks) {
-    return Section{"1. Title", "first", "First", std::move(blocks)};
-}
-
-TEST(ReportDocumentTest, TableRendersInBothFormats) {
-    const Section section =
-            SectionOf({Table{{"a", "b"}, {{"1", "2"}, {"3", "4"}}, {"", "bad"}, ""}});
-    EXPECT_EQ(MarkdownSection(section),
-              "## 1. Title\n\n| a | b |\n|---|---|\n| 1 | 2 |\n| 3 | 4 |\n\n");
-    EXPECT_EQ(HtmlSection(section),
-              "<h2 id=\"first\">1. Title</h2><table class=\"wide\"><thead><tr><th>a</th><th>b</th>"
-              "</tr></thead><tbody><tr><td>1</td><td>2</td></tr><tr class=\"bad\"><td>3</td>"
-              "<td>4</td></tr></tbody></table>\n");
-}
-
-TEST(ReportDocumentTest, MarkdownTableCellEscapesPipesAndJoinsLines) {
-    const Section section = SectionOf({Table{{"x|y"}, {{"a|b\nc"}}, {}, ""}});
-    EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n| x\\|y |\n|---|\n| a\\|b c |\n\n");
-}
-
-TEST(ReportDocumentTest, HtmlEscapesMarkupInCellsTextAndHeadings) {
-    const Section section =
-            SectionOf({Heading{"a < b", ""},
-                       Paragraph{ParagraphStyle::kBody, {{Span::Kind::kText, "x & \"y\""}}},
-                       Table{{"<th>"}, {{"a&b"}}, {}, ""}});
-    const std::string html = HtmlSection(section);
-    EXPECT_NE(html.find("<h3>a &lt; b</h3>"), std::string::npos) << html;
-    EXPECT_NE(html.find("<p>x &amp; &quot;y&quot;</p>"), std::string::npos) << html;
-    EXPECT_NE(html.find("<th>&lt;th&gt;</th>"), std::string::npos) << html;
-    EXPECT_NE(html.find("<td>a&amp;b</td>"), std::string::npos) << html;
-    // Markdown text stays as written: a repository viewer renders it.
-    EXPECT_NE(MarkdownSection(section).find("x & \"y\""), std::string::npos);
-}
-
-TEST(ReportDocumentTest, HtmlLetsCommaJoinedCellsWrap) {
-    const std::string html = HtmlSection(SectionOf({Table{{"id"}, {{"water:A,B,C"}}, {}, ""}}));
-    EXPECT_NE(html.find("<td>water:A,<wbr>B,<wbr>C</td>"), std::string::npos) << html;
-}
-
-TEST(ReportDocumentTest, InlineSpansRenderAsStrongAndCode) {
-    const Paragraph p{ParagraphStyle::kNote,
-                      {{Span::Kind::kText, "run "},
-                       {Span::Kind::kCode, "a<b"},
-                       {Span::Kind::kText, ", got "},
-                       {Span::Kind::kStrong, "3"}}};
-    EXPECT_EQ(MarkdownSection(SectionOf({p})), "## 1. Title\n\nrun `a<b`, got **3**\n\n");
-    EXPECT_EQ(HtmlSection(SectionOf({p})),
-              "<h2 id=\"first\">1. Title</h2><p class=\"note\">run <code>a&lt;b</code>, got "
-              "<b>3</b></p>");
-}
 
 TEST(ReportDocumentTest, SpansWithCodeSplitsBackticks) {
     const std::vector<Span> spans = SpansWithCode("see `tidepool plan` or `x");
@@ -73,70 +23,20 @@ TEST(ReportDocumentTest, SpansWithCodeSplitsBackticks) {
     EXPECT_EQ(spans[3].text, "x");
 }
 
-TEST(ReportDocumentTest, FoldedTableIsDetailsInHtmlAndHeadingInMarkdown) {
-    const Section section = SectionOf({Table{{"a"}, {{"1"}}, {}, "All"}});
-    EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n### All\n\n| a |\n|---|\n| 1 |\n\n");
-    EXPECT_NE(HtmlSection(section).find("<details><summary>All</summary><table"),
-              std::string::npos);
-}
-
-TEST(ReportDocumentTest, FigureIsInlineSvgInHtmlAndAFileLinkInMarkdown) {
-    const Section section = SectionOf({Figure{"<svg></svg>", "charts/a.svg", "a chart"}});
-    EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n![a chart](charts/a.svg)\n\n");
-    EXPECT_EQ(HtmlSection(section), "<h2 id=\"first\">1. Title</h2><svg></svg>");
+TEST(ReportDocumentTest, FiguresListsEveryFigureOfEverySectionInOrder) {
     Document document;
-    document.sections = {section};
-    ASSERT_EQ(Figures(document).size(), 1u);
-    EXPECT_EQ(Figures(document)[0]->file, "charts/a.svg");
-}
-
-TEST(ReportDocumentTest, ImagePanelEmbedsInHtmlAndLinksFilesInMarkdown) {
-    ImagePanel panel{"fog & more", "view top", "water:FOG", "PSNR 30.0 dB", "", {}};
-    panel.images = {{"this", "fog this", "images/a.png", "data:image/png;base64,AA"},
-                    {"ref|erence", "fog ref", "images/r.png", ""}};
-    const std::string md = MarkdownSection(SectionOf({panel}));
-    EXPECT_NE(md.find("### fog & more — view top\n\n`water:FOG` — PSNR 30.0 dB\n\n"
-                      "| this | ref\\|erence |\n|---|---|\n| ![](images/a.png) | ![](images/r.png) "
-                      "|\n"),
-              std::string::npos)
-            << md;
-    const std::string html = HtmlSection(SectionOf({panel}));
-    EXPECT_NE(html.find("<h3>fog &amp; more <small>— view top</small></h3><code>water:FOG</code>"),
-              std::string::npos)
-            << html;
-    EXPECT_NE(html.find("<a href=\"images/a.png\"><img src=\"data:image/png;base64,AA\" "
-                        "alt=\"fog this\"></a><figcaption>this</figcaption>"),
-              std::string::npos)
-            << html;
-    // Without an embedded copy the page shows the file.
-    EXPECT_NE(html.find("<img src=\"images/r.png\""), std::string::npos) << html;
-}
-
-TEST(ReportDocumentTest, PanelWithWarningShowsItInsteadOfImages) {
-    const ImagePanel panel{"t", "view v", "(missing)", "", "MISSING", {{"c", "a", "f.png", ""}}};
-    EXPECT_EQ(MarkdownSection(SectionOf({panel})),
-              "## 1. Title\n\n### t — view v\n\n`(missing)`: **MISSING**\n\n");
-    const std::string html = HtmlSection(SectionOf({panel}));
-    EXPECT_NE(html.find("<p class=\"warn\">MISSING</p></div>"), std::string::npos) << html;
-    EXPECT_EQ(html.find("<img"), std::string::npos) << html;
-}
-
-TEST(ReportDocumentTest, PageHasTitleBylineNavigationAndLeadInOrder) {
-    Document document;
-    document.title = "report: a<b";
-    document.byline = {ParagraphStyle::kNote, {{Span::Kind::kText, "made today"}}};
-    document.lead = {Paragraph{ParagraphStyle::kLead, {{Span::Kind::kText, "in short"}}}};
-    document.sections = {SectionOf({}), Section{"2. Second", "second", "", {}}};
-    const std::string md = MarkdownPage(document);
-    EXPECT_EQ(md, "# report: a<b\n\nmade today\n\nin short\n\n## 1. Title\n\n## 2. Second\n\n");
-    const std::string html = HtmlPage(document);
-    EXPECT_NE(html.find("<title>report: a&lt;b</title>"), std::string::npos);
-    EXPECT_NE(html.find("<h1>report: a&lt;b</h1><p class=\"note\">made today</p>"
-                        "<nav><a href=\"#first\">First</a></nav><p><b>in short</b></p>"
-                        "<h2 id=\"first\">1. Title</h2><h2 id=\"second\">2. Second</h2>"
-                        "</body></html>\n"),
-              std::string::npos)
-            << html;
+    document.sections = {Section{"1. A",
+                                 "a",
+                                 "A",
+                                 {Paragraph{ParagraphStyle::kBody, {{Span::Kind::kText, "text"}}},
+                                  Figure{"<svg></svg>", "charts/a.svg", "a chart"}}},
+                         Section{"2. B", "b", "B", {Table{{"x"}, {{"1"}}, {}, ""}}},
+                         Section{"3. C", "c", "C", {Figure{"<svg/>", "charts/c.svg", "c chart"}}}};
+    const std::vector<const Figure*> figures = Figures(document);
+    ASSERT_EQ(figures.size(), 2u);
+    EXPECT_EQ(figures[0]->file, "charts/a.svg");
+    EXPECT_EQ(figures[1]->file, "charts/c.svg");
+    EXPECT_TRUE(Figures(Document{}).empty());
 }
 
 }  // namespace

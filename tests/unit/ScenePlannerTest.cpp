@@ -18,7 +18,7 @@ CandidateMeasure Candidate(double change, double low, double high, double psnr) 
     return {true, true, 10.0 * (1 + change / 100), low, high, change, psnr};
 }
 
-TEST(PlannerChoiceTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
+TEST(ScenePlannerTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
     // Candidate 1 is 20% faster, candidate 2 21% faster but less accurate; their intervals
     // overlap, so the difference is inside the measurement's own uncertainty.
     const std::vector<CandidateMeasure> candidates = {
@@ -29,7 +29,7 @@ TEST(PlannerChoiceTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {
             << choice.reason;
 }
 
-TEST(PlannerChoiceTest, ADifferenceUnderTheResolutionTiesEvenWhenTheIntervalsMiss) {
+TEST(ScenePlannerTest, ADifferenceUnderTheResolutionTiesEvenWhenTheIntervalsMiss) {
     // -35.6% [-36.4, -34.8] against -33.7% [-34.6, -32.8]: the intervals just miss each other,
     // but 1.9 points is under the planner's 3-point resolution, so the more accurate is kept.
     const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
@@ -45,13 +45,13 @@ TEST(PlannerChoiceTest, ADifferenceUnderTheResolutionTiesEvenWhenTheIntervalsMis
     EXPECT_EQ(ChooseCandidate(apart, true, std::nullopt, kTiePoints).index, 2);
 }
 
-TEST(PlannerChoiceTest, AClearlyFasterCandidateWins) {
+TEST(ScenePlannerTest, AClearlyFasterCandidateWins) {
     const std::vector<CandidateMeasure> candidates = {
             Candidate(0, 0, 0, 99), Candidate(-10, -11, -9, 40), Candidate(-30, -32, -28, 30)};
     EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt, kTiePoints).index, 2);
 }
 
-TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
+TEST(ScenePlannerTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
     // "+34% slower" and "-2% within noise" are never preferred to the full effect.
     const std::vector<CandidateMeasure> candidates = {
             Candidate(0, 0, 0, 99), Candidate(34, 30, 38, 40), Candidate(-2, -5, 1, 35)};
@@ -60,7 +60,7 @@ TEST(PlannerChoiceTest, NoCandidateFasterBeyondItsIntervalKeepsTheFullEffect) {
     EXPECT_NE(choice.reason.find("full effect is kept"), std::string::npos) << choice.reason;
 }
 
-TEST(PlannerChoiceTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
+TEST(ScenePlannerTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
     // -2.5% [-3.5, -1.0]: faster beyond the interval, but not beyond the 1.5-point margin a
     // shift under load can reach, so it is not a reason to drop an effect.
     const std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
@@ -71,7 +71,7 @@ TEST(PlannerChoiceTest, AGainWithinTheDirectionMarginKeepsTheFullEffect) {
     EXPECT_EQ(ChooseCandidate(clear, true, std::nullopt, kTiePoints).index, 1);
 }
 
-TEST(PlannerChoiceTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
+TEST(ScenePlannerTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
     std::vector<CandidateMeasure> candidates = {Candidate(0, 0, 0, 99),
                                                 Candidate(-40, -42, -38, 20)};
     candidates[1].meets_quality = false;

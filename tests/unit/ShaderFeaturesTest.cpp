@@ -89,7 +89,7 @@ TEST_F(ShaderFeaturesTest, UniformBoolRowsAreTheBoolsOfWaterUniform) {
     EXPECT_EQ(bools, rows);
 }
 
-TEST(ShaderFeatureLookupTest, EnumeratorAndDefineNameRoundTrip) {
+TEST(ShaderFeaturesLookupTest, EnumeratorAndDefineNameRoundTrip) {
     std::set<std::string_view> defines;
     for (const ShaderFeatureInfo& info : kShaderFeatures) {
         EXPECT_EQ(&ShaderFeatureInfoOf(info.feature), &info);
@@ -102,7 +102,7 @@ TEST(ShaderFeatureLookupTest, EnumeratorAndDefineNameRoundTrip) {
     EXPECT_EQ(defines.size(), kShaderFeatures.size()) << "a define name is in two rows";
 }
 
-TEST(ShaderFeatureLookupTest, NameOutsideTheTableHasNoFeature) {
+TEST(ShaderFeaturesLookupTest, NameOutsideTheTableHasNoFeature) {
     EXPECT_EQ(FeatureFromDefine(""), std::nullopt);
     EXPECT_EQ(FeatureFromDefine("REFLECTION_PLANAR"), std::nullopt);  // the default adds none
     EXPECT_EQ(FeatureFromDefine("enable_fog"), std::nullopt);         // names are case-sensitive
@@ -111,14 +111,14 @@ TEST(ShaderFeatureLookupTest, NameOutsideTheTableHasNoFeature) {
               std::nullopt);  // a stability guard, not a feature
 }
 
-TEST(ShaderFeatureLookupTest, DefineNamesKeepTheGivenOrder) {
+TEST(ShaderFeaturesLookupTest, DefineNamesKeepTheGivenOrder) {
     EXPECT_EQ(DefineNames({ShaderFeature::kFog, ShaderFeature::kClipDiscard,
                            ShaderFeature::kDistortion}),
               (std::vector<std::string>{"ENABLE_FOG", "CLIP_DISCARD", "ENABLE_DISTORTION"}));
     EXPECT_TRUE(DefineNames({}).empty());
 }
 
-TEST(ShaderFeatureLookupTest, ConfigurationHasAFeatureByItsDefine) {
+TEST(ShaderFeaturesLookupTest, ConfigurationHasAFeatureByItsDefine) {
     RenderConfiguration c;
     c.effects = {"ENABLE_FOG", "REFLECTION_FOURIER"};
     EXPECT_TRUE(c.Has(ShaderFeature::kFog));

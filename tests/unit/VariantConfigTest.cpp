@@ -178,7 +178,7 @@ TEST_F(VariantConfigTest, AWebGlTargetAloneStillNeedsTarget100) {
     EXPECT_FALSE(result.config.has_value());
 }
 
-TEST(DefineNameTest, AcceptsIdentifiersAndRejectsReservedOrMalformedNames) {
+TEST(VariantConfigDefineNameTest, AcceptsIdentifiersAndRejectsReservedOrMalformedNames) {
     EXPECT_TRUE(IsValidDefineName("ENABLE_FOG"));
     EXPECT_TRUE(IsValidDefineName("_x1"));
     EXPECT_FALSE(IsValidDefineName(""));
@@ -195,17 +195,17 @@ struct BadInputCase {
     std::string expected;  // the exact formatted diagnostics
 };
 
-class BadConfigTest : public VariantConfigTest,
-                      public ::testing::WithParamInterface<BadInputCase> {};
+class VariantConfigBadInputTest : public VariantConfigTest,
+                                  public ::testing::WithParamInterface<BadInputCase> {};
 
-TEST_P(BadConfigTest, IsRejectedWithExactDiagnostic) {
+TEST_P(VariantConfigBadInputTest, IsRejectedWithExactDiagnostic) {
     const ConfigResult result = Parse(GetParam().yaml);
     EXPECT_FALSE(result.config.has_value());
     EXPECT_EQ(Errors(GetParam().yaml), GetParam().expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(
-        Cases, BadConfigTest,
+        Cases, VariantConfigBadInputTest,
         ::testing::Values(
                 BadInputCase{"EmptyFile", "",
                              "v.yaml:1:1: error: the file is empty; it needs at least "
@@ -471,7 +471,7 @@ TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {
                       "--config PATH");
 }
 
-TEST(DefaultConfigTest, ShippedVariantsYamlLoadsWithTheWhitepaperPresets) {
+TEST(VariantConfigShippedFileTest, ShippedVariantsYamlLoadsWithTheWhitepaperPresets) {
     const ConfigResult result =
             LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
     ASSERT_TRUE(result.config.has_value());

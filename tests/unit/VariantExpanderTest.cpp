@@ -58,7 +58,7 @@ std::set<std::string> Ids(const std::vector<Variant>& variants) {
     return ids;
 }
 
-TEST(VariantIdTest, IdIsIndependentOfDefineOrder) {
+TEST(VariantExpanderTest, IdIsIndependentOfDefineOrder) {
     EXPECT_EQ(MakeVariant("water", {"ENABLE_FOG", "ENABLE_REFRACTION", "ENABLE_DISTORTION"}).Id(),
               MakeVariant("water", {"ENABLE_DISTORTION", "ENABLE_REFRACTION", "ENABLE_FOG"}).Id());
     EXPECT_EQ(MakeVariant("water", {"ENABLE_REFRACTION", "ENABLE_FOG", "ENABLE_DISTORTION"}).Id(),

@@ -1,9 +1,13 @@
-// Water geometry against hand-derived values, at float and double precision.
+// Water geometry against hand-derived values, at float and double precision; the CPU reference
+// of the extinction formula; the guards the hard cases needed (look-at straight down, the fog
+// reciprocal in mediump range).
+#include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/WaterMath.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -319,6 +323,62 @@ TYPED_TEST(WaterMathTest, TransformPlaneKeepsSignedDistanceOfTransformedPoints) 
         const glm::vec<4, T> point(p, T(1));
         EXPECT_NEAR(glm::dot(moved, m * point), glm::dot(plane, point), this->kTolerance * T(10));
     }
+}
+
+TEST(WaterMathExtinctionTest, MatchesTheFormulaAtSampledDepths) {
+    const ExtinctionModel model;
+    const glm::vec3 floor(0.8F, 0.7F, 0.5F);
+    // Depth 0: nothing changes.
+    const glm::vec3 at_surface = ExtinctionColour(floor, 0.0F, 1.0F, model);
+    EXPECT_FLOAT_EQ(at_surface.r, floor.r);
+    EXPECT_FLOAT_EQ(at_surface.b, floor.b);
+    // Looking straight down at depth 2: path 2 = 5% of visibility 40, then red 2/4.5 extinct,
+    // green 2/75, blue 2/300, each towards the deep colour.
+    const glm::vec3 seen = ExtinctionColour(floor, 2.0F, 1.0F, model);
+    const glm::vec3 tinted = glm::mix(floor, model.surface_colour, 2.0F / model.visibility);
+    EXPECT_NEAR(seen.r, glm::mix(tinted.r, model.depth_colour.r, 2.0F / 4.5F), 1e-6);
+    EXPECT_NEAR(seen.g, glm::mix(tinted.g, model.depth_colour.g, 2.0F / 75.0F), 1e-6);
+    EXPECT_NEAR(seen.b, glm::mix(tinted.b, model.depth_colour.b, 2.0F / 300.0F), 1e-6);
+    // Red is gone at 4.5, blue only at 300.
+    const glm::vec3 deep = ExtinctionColour(floor, 4.5F, 1.0F, model);
+    EXPECT_FLOAT_EQ(deep.r, model.depth_colour.r);
+    EXPECT_GT(deep.b, model.depth_colour.b);
+    // A grazing view lengthens the path (at most 20x): the surface colour takes over sooner;
+    // at depth 2 the grazing path is 40, the whole visibility.
+    const glm::vec3 grazing = ExtinctionColour(floor, 2.0F, 0.0F, model);
+    const glm::vec3 steep = ExtinctionColour(floor, 2.0F, 1.0F, model);
+    EXPECT_LT(glm::length(grazing - glm::mix(model.surface_colour, model.depth_colour,
+                                             glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))),
+              glm::length(steep - glm::mix(model.surface_colour, model.depth_colour,
+                                           glm::vec3(2.0F / 4.5F, 2.0F / 75, 2.0F / 300))));
+}
+
+TEST(WaterMathGuardTest, PlainViewMatrixIsNanStraightDownButFallbackIsNot) {
+    const CameraView down{"down", {20.0F, 60.0F, 20.0F}, {20.0F, 0.0F, 20.0F}, 0.8F, 1.0F, 2000.0F};
+    EXPECT_FALSE(std::isfinite(ViewMatrix(down)[0][0]));  // why the fallback exists
+    const glm::mat4 view = LookAtWithFallbackUp(down.eye, down.target);
+    for (int c = 0; c < 4; ++c) {
+        for (int r = 0; r < 4; ++r) {
+            EXPECT_TRUE(std::isfinite(view[c][r]));
+        }
+    }
+    // The eye maps to the origin and the target straight ahead (-z).
+    const glm::vec4 target = view * glm::vec4(down.target, 1.0F);
+    EXPECT_NEAR(target.x, 0.0F, 1e-4F);
+    EXPECT_NEAR(target.y, 0.0F, 1e-4F);
+    EXPECT_NEAR(target.z, -60.0F, 1e-3F);
+}
+
+TEST(WaterMathGuardTest, FallbackLookAtEqualsLookAtAwayFromVertical) {
+    const CameraView view = DefaultViews().front();
+    EXPECT_EQ(LookAtWithFallbackUp(view.eye, view.target), ViewMatrix(view));
+}
+
+TEST(WaterMathGuardTest, FogReciprocalIsClampedToMediumpRange) {
+    EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::infinity()), kMaxMediump);
+    EXPECT_EQ(MediumpFogReciprocal(std::numeric_limits<float>::quiet_NaN()), 0.0F);
+    EXPECT_EQ(MediumpFogReciprocal(-1.0F), 0.0F);
+    EXPECT_EQ(MediumpFogReciprocal(1.0F / 2000.0F), 1.0F / 2000.0F);
 }
 
 }  // namespace

@@ -28,9 +28,9 @@ void PrintTo(const WebGlCase& c, std::ostream* out) {
     *out << c.why;
 }
 
-class WebGlRuleTest : public ::testing::TestWithParam<WebGlCase> {};
+class WebGlRulesTest : public ::testing::TestWithParam<WebGlCase> {};
 
-TEST_P(WebGlRuleTest, GivesTheExpectedVerdictAndFirstError) {
+TEST_P(WebGlRulesTest, GivesTheExpectedVerdictAndFirstError) {
     const WebGlCase& c = GetParam();
     auto text = [](const std::string& t) {
         return t.empty() ? std::nullopt : std::optional<std::string>(t);
@@ -73,7 +73,7 @@ std::string Fragment300(const std::string& globals, const std::string& body) {
 
 // WebGL 1.0 §6.20 and WebGL 2.0 (GLSL ES 3.00 §3.8): the longest token.
 INSTANTIATE_TEST_SUITE_P(
-        TokenLength, WebGlRuleTest,
+        TokenLength, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"an identifier of 256 characters in WebGL 1", GlslTarget::kWebGl1,
                           kVertex100,
@@ -102,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // WebGL 1.0 §6.17: `webgl_` and `_webgl_` names are WebGL's.
 INSTANTIATE_TEST_SUITE_P(
-        ReservedPrefixes, WebGlRuleTest,
+        ReservedPrefixes, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"webgl inside a name is fine", GlslTarget::kWebGl1, kVertex100,
                           Fragment100("float my_webgl_tint = 0.5;\n",
@@ -123,7 +123,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // WebGL 1.0 §6.21: outside comments and inactive blocks, only the GLSL ES character set.
 INSTANTIATE_TEST_SUITE_P(
-        CharacterSet, WebGlRuleTest,
+        CharacterSet, WebGlRulesTest,
         ::testing::Values(WebGlCase{"non-ASCII text in comments and a quote in an inactive block",
                                     GlslTarget::kWebGl1, kVertex100,
                                     Fragment100("// Wasserfarbe, “gemischt” — ok\n"
@@ -142,7 +142,7 @@ INSTANTIATE_TEST_SUITE_P(
 // GLSL ES 1.00 Appendix A §4 and §5, which WebGL 1 requires (WebGL 1.0 §4.3); plain GLSL ES and
 // WebGL 2 accept these shaders.
 INSTANTIATE_TEST_SUITE_P(
-        AppendixA, WebGlRuleTest,
+        AppendixA, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"a for loop with a constant bound, indexing by its index",
                           GlslTarget::kWebGl1, kVertex100,
@@ -186,7 +186,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // The version each WebGL runs, and the preprocessor rules WebGL settles (§6.34, §6.35).
 INSTANTIATE_TEST_SUITE_P(
-        VersionsAndDirectives, WebGlRuleTest,
+        VersionsAndDirectives, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"a 3.00 shader for WebGL 1", GlslTarget::kWebGl1, kVertex300,
                           Fragment300("", "    colour = vec4(1.0);\n"),
@@ -222,7 +222,7 @@ const std::string kNestedStructs =
         "struct Swell { Wave wave; };\n";
 
 INSTANTIATE_TEST_SUITE_P(
-        StructNesting, WebGlRuleTest,
+        StructNesting, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"structures nested 4 levels deep", GlslTarget::kWebGl1, kVertex100,
                           Fragment100(kNestedStructs + "uniform Swell swell;\n",
@@ -250,7 +250,7 @@ INSTANTIATE_TEST_SUITE_P(
 // WebGL 1.0 §6.33: a WebGL 1 global initializer may use uniforms and non-const globals, not
 // varyings, built-in variables, texture lookups or assignments; plain GLSL ES 1.00 wants constants.
 INSTANTIATE_TEST_SUITE_P(
-        GlobalInitializers, WebGlRuleTest,
+        GlobalInitializers, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"uniforms, globals and built-in functions", GlslTarget::kWebGl1,
                           kVertex100,
@@ -316,7 +316,7 @@ const std::string kManyVaryingsVertex =
         "}\n";
 
 INSTANTIATE_TEST_SUITE_P(
-        Packing, WebGlRuleTest,
+        Packing, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"16 vec3 and 16 floats fill 16 rows", GlslTarget::kWebGl1, kVertex100,
                           Fragment100("uniform vec3 normals[16];\n"
@@ -372,7 +372,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // WebGL 2.0 §5.26: no `,` or `?:` over arrays, structures holding arrays or void.
 INSTANTIATE_TEST_SUITE_P(
-        Webgl2Operators, WebGlRuleTest,
+        Webgl2Operators, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"sequences and ternaries of scalars", GlslTarget::kWebGl2, kVertex300,
                           Fragment300("uniform bool wet;\n",
@@ -410,7 +410,7 @@ INSTANTIATE_TEST_SUITE_P(
 
 // WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
 INSTANTIATE_TEST_SUITE_P(
-        BlockLayouts, WebGlRuleTest,
+        BlockLayouts, WebGlRulesTest,
         ::testing::Values(
                 WebGlCase{"std140 and an unqualified block", GlslTarget::kWebGl2, kVertex300,
                           Fragment300("layout(std140) uniform Tide { vec4 level; };\n"

@@ -12,7 +12,7 @@ namespace tidepool::runner {
 /// Parses Mesa's info log, lines like `0:42(7): error: message` (source string 0, line 42 as the
 /// `#line 2` directive of AssembleDriverSource leaves it: the user's own line), into diagnostics
 /// for `file` tagged with `variant`. Mesa's column is 1-based but counted after its preprocessor
-/// has collapsed every run of blanks to one space (checked in tests/gl/BackendGlTest.cpp); given
+/// has collapsed every run of blanks to one space (checked in tests/gl/GlBackendGlTest.cpp); given
 /// the user's source, the column is mapped back to the user's text, otherwise it is kept as Mesa
 /// wrote it. Lines without a position (`error: ...`, link messages) keep line 0; other non-empty
 /// lines are appended to the previous message. Never fails: unrecognised text becomes one

@@ -28,7 +28,7 @@ StageCost AnalyzeVertex(std::string_view source) {
     return Analyze(source, false);
 }
 
-TEST(StaticCostTest, BuiltinCallsAreCountedByGlslName) {
+TEST(StaticCostAnalyzerTest, BuiltinCallsAreCountedByGlslName) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform vec3 u_light_dir;
@@ -46,7 +46,7 @@ void main() {
     EXPECT_EQ(cost.longest_path_ops, 3);
 }
 
-TEST(StaticCostTest, TextureLookupsAreSamplesAndNamedCalls) {
+TEST(StaticCostAnalyzerTest, TextureLookupsAreSamplesAndNamedCalls) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform sampler2D u_normal_map;
@@ -66,7 +66,7 @@ void main() {
     EXPECT_EQ(cost.uniforms, 0);
 }
 
-TEST(StaticCostTest, UncalledHelperContributesNothing) {
+TEST(StaticCostAnalyzerTest, UncalledHelperContributesNothing) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform float u_unused_scale;
@@ -82,7 +82,7 @@ void main() {
     EXPECT_EQ(cost.uniforms, 1);  // u_gain; u_unused_scale is only read by Unused
 }
 
-TEST(StaticCostTest, HelperIsCountedOncePerCallSite) {
+TEST(StaticCostAnalyzerTest, HelperIsCountedOncePerCallSite) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform float u_gain;
@@ -100,7 +100,7 @@ void main() {
     EXPECT_EQ(cost.uniforms, 1);
 }
 
-TEST(StaticCostTest, IfElsePathsTakeTheCheaperAndTheDearerArm) {
+TEST(StaticCostAnalyzerTest, IfElsePathsTakeTheCheaperAndTheDearerArm) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform float u_threshold;
@@ -125,7 +125,7 @@ void main() {
               (Calls{{"dot", 1}, {"max", 1}, {"normalize", 1}, {"pow", 1}, {"reflect", 1}}));
 }
 
-TEST(StaticCostTest, ConditionalExpressionAndElseIfAreBranches) {
+TEST(StaticCostAnalyzerTest, ConditionalExpressionAndElseIfAreBranches) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 varying vec4 v_a;
@@ -145,7 +145,7 @@ void main() {
     EXPECT_EQ(cost.TotalOps(), 8);
 }
 
-TEST(StaticCostTest, LoopIsCountedOnceWhateverItsTripCount) {
+TEST(StaticCostAnalyzerTest, LoopIsCountedOnceWhateverItsTripCount) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 uniform sampler2D u_waves;
@@ -166,7 +166,7 @@ void main() {
     EXPECT_EQ(cost.longest_path_ops, 7);
 }
 
-TEST(StaticCostTest, VertexInterfaceCountsReferencedDeclarations) {
+TEST(StaticCostAnalyzerTest, VertexInterfaceCountsReferencedDeclarations) {
     const StageCost cost = AnalyzeVertex(R"(
 attribute vec4 a_position;
 attribute vec2 a_uv;
@@ -192,7 +192,7 @@ void main() {
     EXPECT_EQ(cost.arithmetic_ops, 5);
 }
 
-TEST(StaticCostTest, FragmentInterfaceCountsReferencedDeclarations) {
+TEST(StaticCostAnalyzerTest, FragmentInterfaceCountsReferencedDeclarations) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 struct Light { vec3 dir; vec3 color; };
@@ -222,7 +222,7 @@ struct OperatorCase {
     Calls builtin_calls;
 };
 
-TEST(StaticCostTest, OperatorsAndBuiltinsAreClassifiedByGlslConstruct) {
+TEST(StaticCostAnalyzerTest, OperatorsAndBuiltinsAreClassifiedByGlslConstruct) {
     // clang-format off
     const OperatorCase cases[] = {
         {"gl_FragColor = mod(v_a, v_b);",
@@ -287,7 +287,7 @@ void main() {
     }
 }
 
-TEST(StaticCostTest, MissingMainCostsNothing) {
+TEST(StaticCostAnalyzerTest, MissingMainCostsNothing) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
 float Helper(float x) { return x * x; }
@@ -296,7 +296,7 @@ float Helper(float x) { return x * x; }
     EXPECT_EQ(cost.longest_path_ops, 0);
 }
 
-TEST(StaticCostTest, RecursionIsCountedOnceInsteadOfForever) {
+TEST(StaticCostAnalyzerTest, RecursionIsCountedOnceInsteadOfForever) {
     // GLSL ES forbids recursion and glslang's linker rejects it, but the parser accepts it; the
     // recursive call must contribute nothing rather than hang the analysis.
     const StageCost cost = AnalyzeFragment(R"(
@@ -309,7 +309,7 @@ void main() { gl_FragColor = vec4(Loop(v_x)); }
     EXPECT_EQ(cost.longest_path_ops, 2);
 }
 
-TEST(StaticCostTest, InvalidSourceReturnsGlslangLog) {
+TEST(StaticCostAnalyzerTest, InvalidSourceReturnsGlslangLog) {
     std::string log;
     const std::optional<StageCost> cost = AnalyzeSourceCost(
             "precision mediump float;\nvoid main() { gl_FragColor = undeclared; }\n", true, &log);
@@ -317,7 +317,7 @@ TEST(StaticCostTest, InvalidSourceReturnsGlslangLog) {
     EXPECT_NE(log.find("'undeclared' : undeclared identifier"), std::string::npos) << log;
 }
 
-TEST(StaticCostTest, ToJsonHasEveryFieldAndTotalOps) {
+TEST(StaticCostAnalyzerTest, ToJsonHasEveryFieldAndTotalOps) {
     StageCost cost;
     cost.arithmetic_ops = 4;
     cost.texture_samples = 1;

@@ -52,7 +52,7 @@ Shared& Get() {
     return shared;
 }
 
-class StabilityGlCaseTest : public ::testing::TestWithParam<std::string> {
+class StabilityReportGlCaseTest : public ::testing::TestWithParam<std::string> {
 protected:
     void SetUp() override {
         if (!Get().error.empty()) {
@@ -71,7 +71,7 @@ std::vector<std::string> GlCaseNames() {
     return names;
 }
 
-TEST_P(StabilityGlCaseTest, EveryWaterVariantIsFiniteAndInRange) {
+TEST_P(StabilityReportGlCaseTest, EveryWaterVariantIsFiniteAndInRange) {
     Shared& s = Get();
     // The default water matrix: the whitepaper's 54, the depth optics and the two other
     // reflection techniques (tests/unit/DefaultMatrixTest.cpp).
@@ -94,10 +94,10 @@ TEST_P(StabilityGlCaseTest, EveryWaterVariantIsFiniteAndInRange) {
     EXPECT_TRUE(r.passed) << r.note;
 }
 
-INSTANTIATE_TEST_SUITE_P(AllGlCases, StabilityGlCaseTest, ::testing::ValuesIn(GlCaseNames()),
+INSTANTIATE_TEST_SUITE_P(AllGlCases, StabilityReportGlCaseTest, ::testing::ValuesIn(GlCaseNames()),
                          [](const auto& param_info) { return param_info.param; });
 
-class StabilityGlTest : public ::testing::Test {
+class StabilityReportGlTest : public ::testing::Test {
 protected:
     void SetUp() override {
         if (!Get().error.empty()) {
@@ -106,7 +106,7 @@ protected:
     }
 };
 
-TEST_F(StabilityGlTest, GuardsChangeTheDefaultViewsByLessThanTheirTolerance) {
+TEST_F(StabilityReportGlTest, GuardsChangeTheDefaultViewsByLessThanTheirTolerance) {
     Shared& s = Get();
     std::string error;
     const std::vector<GuardResult> guards =
@@ -119,7 +119,7 @@ TEST_F(StabilityGlTest, GuardsChangeTheDefaultViewsByLessThanTheirTolerance) {
     }
 }
 
-TEST_F(StabilityGlTest, MediumpFallbackOfEveryShaderCompilesAndRendersFinite) {
+TEST_F(StabilityReportGlTest, MediumpFallbackOfEveryShaderCompilesAndRendersFinite) {
     Shared& s = Get();
     RenderSettings settings;
     settings.width = kWidth;

@@ -49,7 +49,7 @@ void ExpectLineMapping(GlContext& context) {
     EXPECT_TRUE(passed.compiled) << passed.log;
 }
 
-TEST(BackendGlTest, EglLineNumbersInMesasLogAreTheUsersLines) {
+TEST(GlBackendGlTest, EglLineNumbersInMesasLogAreTheUsersLines) {
     GlContextResult egl = CreateGlContext(BackendKind::kEgl);
     if (!egl.context) {
         GTEST_SKIP() << egl.error;
@@ -62,7 +62,7 @@ TEST(BackendGlTest, EglLineNumbersInMesasLogAreTheUsersLines) {
 
 // OSMesa gives a desktop compatibility context; `#version 100` compiles there because Mesa
 // exposes ARB_ES2_compatibility. The same water variant must compile, link and render.
-TEST(BackendGlTest, ForcingOsMesaCompilesAndRendersTheEsShaders) {
+TEST(GlBackendGlTest, ForcingOsMesaCompilesAndRendersTheEsShaders) {
     GlContextResult osmesa = CreateGlContext(BackendKind::kOsMesa);
     ASSERT_TRUE(osmesa.context) << osmesa.error;
     ASSERT_EQ(osmesa.attempts.size(), 1U);
@@ -92,7 +92,7 @@ TEST(BackendGlTest, ForcingOsMesaCompilesAndRendersTheEsShaders) {
     EXPECT_EQ(report.passes, 3);
 }
 
-TEST(BackendGlTest, AutoPrefersEgl) {
+TEST(GlBackendGlTest, AutoPrefersEgl) {
     GlContextResult any = CreateGlContext(BackendKind::kAuto);
     ASSERT_TRUE(any.context) << any.error;
     ASSERT_FALSE(any.attempts.empty());

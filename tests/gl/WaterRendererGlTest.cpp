@@ -112,7 +112,7 @@ glm::vec3 Pixel(const base::RgbaImage& image, int x, int y) {
     return glm::vec3(image.pixels[i], image.pixels[i + 1], image.pixels[i + 2]) / 255.0F;
 }
 
-class RendererGlTest : public ::testing::Test {
+class WaterRendererGlTest : public ::testing::Test {
 protected:
     void SetUp() override {
         if (!Get().renderer) {
@@ -188,7 +188,7 @@ glm::ivec2 ScreenPixel(const CameraView& view, const glm::vec3& world) {
     return glm::ivec2(static_cast<int>(uv.x * kWidth), static_cast<int>((1.0F - uv.y) * kHeight));
 }
 
-TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
+TEST_F(WaterRendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
     const Scene& scene = Get().renderer->GetScene();
     const Mesh& tower = FindMesh(scene, "tower");
     const glm::vec3 centre = (tower.world_bounds_min + tower.world_bounds_max) * 0.5F;
@@ -209,7 +209,7 @@ TEST_F(RendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
             << "no reflection at " << reflected.x << "," << reflected.y;
 }
 
-TEST_F(RendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot) {
+TEST_F(WaterRendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot) {
     // Magenta is about 300 degrees; no other object, nor sky or terrain, is near that hue.
     // The rocks are small at 128x96, so two views look for them.
     int with_refraction = 0;
@@ -224,7 +224,7 @@ TEST_F(RendererGlTest, RefractionShowsTheSubmergedRocksAndReflectionOnlyDoesNot)
     EXPECT_EQ(reflection_only, 0);
 }
 
-TEST_F(RendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
+TEST_F(WaterRendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
     const CameraView view = *FindView(DefaultViews(), "three_quarter");
     // Water 1500 units away along the view direction, projected onto the plane.
     glm::vec3 forward = view.target - view.eye;
@@ -244,7 +244,7 @@ TEST_F(RendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
             << "," << fogged.g << "," << fogged.b;
 }
 
-TEST_F(RendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
+TEST_F(WaterRendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
     const RenderConfiguration full = Configuration(
             {"ENABLE_REFRACTION", "ENABLE_FRESNEL", "ENABLE_DISTORTION", "ENABLE_FOG"});
     const base::RgbaImage first = Render(full, "shore");
@@ -253,7 +253,7 @@ TEST_F(RendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
     EXPECT_TRUE(first.pixels == second.pixels);
 }
 
-TEST_F(RendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
+TEST_F(WaterRendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
     Shared& s = Get();
     const ConfigurationSet set = BuildDefaultConfigurations(*s.config, s.variants);
     ASSERT_TRUE(set.diagnostics.empty());
@@ -290,7 +290,7 @@ TEST_F(RendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
     }
 }
 
-TEST_F(RendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
+TEST_F(WaterRendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
     Shared& s = Get();
     if (!s.float_renderer) {
         GTEST_SKIP() << "the context cannot render to RGBA32F";
@@ -312,7 +312,7 @@ TEST_F(RendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
     }
 }
 
-TEST_F(RendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
+TEST_F(WaterRendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
     const RenderConfiguration culled = Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"});
     PassOptions no_culling;
     no_culling.culling = false;

@@ -1,0 +1,115 @@
+// The one place that talks to glslang (compiler/src/GlslangSession.h): its info log turned into
+// diagnostics, preprocessing, parsing and linking of small stages.
+#include <gtest/gtest.h>
+
+#include <string>
+#include <vector>
+
+#include "GlslangSession.h"
+#include "PipelineFixture.h"
+
+namespace tidepool {
+namespace {
+
+using testing::Formatted;
+
+const std::vector<std::string> kNoDefines;
+
+GlslangStageInput Input(const std::string& file, const std::string& text, Stage stage,
+                        const std::vector<std::string>& defines = kNoDefines) {
+    return GlslangStageInput{file, text, stage, std::nullopt, defines, nullptr};
+}
+
+TEST(GlslangSessionTest, LogLinesBecomeDiagnosticsAtTheQuotedTokensColumn) {
+    const std::string source = "void main() {\n  float x = yy;\n}\n";
+    const std::string log =
+            "ERROR: 0:2: 'yy' : undeclared identifier\n"
+            "WARNING: 0:1: 'main' : something to note\n"
+            "ERROR: 1 compilation errors.  No code generated.\n";
+    EXPECT_EQ(Formatted(ParseGlslangLog(log, "a.fsh", source)),
+              "a.fsh:2:13: error: 'yy' : undeclared identifier\n"
+              "a.fsh:1:6: warning: 'main' : something to note\n");
+}
+
+TEST(GlslangSessionTest, ContinuationLinesJoinTheirMessageAndUnplacedMessagesKeepLineZero) {
+    const std::string log =
+            "ERROR: Linking fragment stage: Types must match:\n"
+            "    colour: \"smooth in highp 4-component vector of float\" versus "
+            "\"smooth out highp 3-component vector of float\"\n"
+            "ERROR: 0:3: '' : compilation terminated\n";
+    const std::vector<Diagnostic> diagnostics = ParseGlslangLog(log, "a.fsh", "");
+    ASSERT_EQ(diagnostics.size(), 1U) << Formatted(diagnostics);
+    EXPECT_EQ(diagnostics[0].line, 0);
+    EXPECT_EQ(diagnostics[0].message,
+              "Linking fragment stage: Types must match:; colour: \"smooth in highp 4-component "
+              "vector of float\" versus \"smooth out highp 3-component vector of float\"");
+    EXPECT_TRUE(ParseGlslangLog("\n  \n", "a.fsh", "").empty());
+}
+
+TEST(GlslangSessionTest, PreprocessingAppliesTheDefinesAndDropsInactiveBlocks) {
+    const std::string text =
+            "#version 100\n#ifdef ENABLE_FOG\nfloat fog;\n#else\nfloat clear;\n#endif\n"
+            "// a comment\n";
+    const std::vector<std::string> defines = {"ENABLE_FOG"};
+    const PreprocessResult with = PreprocessStage(Input("a.fsh", text, Stage::kFragment, defines));
+    ASSERT_TRUE(with.ok);
+    EXPECT_NE(with.text.find("float fog;"), std::string::npos) << with.text;
+    EXPECT_EQ(with.text.find("clear"), std::string::npos) << with.text;
+    EXPECT_EQ(with.text.find("comment"), std::string::npos) << with.text;
+    const PreprocessResult without = PreprocessStage(Input("a.fsh", text, Stage::kFragment));
+    ASSERT_TRUE(without.ok);
+    EXPECT_NE(without.text.find("float clear;"), std::string::npos) << without.text;
+    EXPECT_FALSE(
+            PreprocessStage(Input("a.fsh", "#version 100\n#error stop\n", Stage::kFragment)).ok);
+}
+
+TEST(GlslangSessionTest, ParseKeepsTheTreeOfAValidStageAndPlacesAnError) {
+    const std::string good =
+            "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+    const StageParse parsed = ParseStage(Input("a.fsh", good, Stage::kFragment));
+    EXPECT_TRUE(parsed.ok) << Formatted(parsed.diagnostics);
+    EXPECT_NE(parsed.intermediate, nullptr);
+    const std::string bad =
+            "#version 100\nprecision mediump float;\nvoid main() {\n  gl_FragColor = yy;\n}\n";
+    const StageParse failed = ParseStage(Input("b.fsh", bad, Stage::kFragment));
+    EXPECT_FALSE(failed.ok);
+    ASSERT_TRUE(HasErrors(failed.diagnostics));
+    EXPECT_EQ(failed.diagnostics[0].file, "b.fsh");
+    EXPECT_EQ(failed.diagnostics[0].line, 4);
+    EXPECT_EQ(failed.diagnostics[0].column, 18);
+}
+
+TEST(GlslangSessionTest, DesktopGlslIsAnError) {
+    const std::string desktop = "#version 330\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+    const StageParse parsed = ParseStage(Input("a.fsh", desktop, Stage::kFragment));
+    EXPECT_FALSE(parsed.ok);
+    EXPECT_TRUE(HasErrors(parsed.diagnostics));
+}
+
+TEST(GlslangSessionTest, LinkingChecksTheVaryingsBetweenTheStages) {
+    const std::string vertex =
+            "#version 100\nattribute vec4 p;\nvarying vec4 colour;\n"
+            "void main() { colour = p; gl_Position = p; }\n";
+    const std::string matching =
+            "#version 100\nprecision mediump float;\nvarying vec4 colour;\n"
+            "void main() { gl_FragColor = colour; }\n";
+    const std::string mismatched =
+            "#version 100\nprecision mediump float;\nvarying vec3 colour;\n"
+            "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
+    const LinkResult good = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
+                                       Input("a.fsh", matching, Stage::kFragment));
+    EXPECT_TRUE(good.ok) << Formatted(good.diagnostics);
+    const LinkResult bad = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
+                                      Input("b.fsh", mismatched, Stage::kFragment));
+    EXPECT_FALSE(bad.ok);
+    EXPECT_TRUE(HasErrors(bad.diagnostics));
+}
+
+TEST(GlslangSessionTest, IdentityIsStableAndNamesTheLimits) {
+    const std::string identity = GlslangIdentity();
+    EXPECT_EQ(identity, GlslangIdentity());
+    EXPECT_NE(identity.find("MaxDrawBuffers"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace tidepool
