@@ -23,8 +23,13 @@ std::string CpuModel() {
 }
 
 std::string GitRevision(const std::filesystem::path& folder) {
-    const std::string command =
-            fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", folder.string());
+    // The folder goes to the shell in single quotes; a quote inside it is closed, escaped and
+    // reopened ('\''), so no folder name can end the argument and run a command of its own.
+    std::string quoted;
+    for (const char c : folder.string()) {
+        quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    }
+    const std::string command = fmt::format("git -C '{}' rev-parse HEAD 2>/dev/null", quoted);
     FILE* pipe = popen(command.c_str(), "r");
     if (pipe == nullptr) {
         return "unknown";

@@ -21,6 +21,27 @@ TEST(HostTest, GitRevisionOutsideARepositoryIsUnknown) {
     EXPECT_EQ(GitRevision(dir.Path() / "no-such-folder"), "unknown");
 }
 
+TEST(HostTest, AQuoteInTheFolderNameCannotRunACommand) {
+    const testing::TempDir dir;
+    const std::filesystem::path marker = dir.Path() / "ran";
+    // Unquoted, this name would end git's argument and run `touch`.
+    const std::filesystem::path folder =
+            dir.Path() / ("x'; touch '" + marker.string() + "'; echo '");
+    EXPECT_EQ(GitRevision(folder), "unknown");
+    EXPECT_FALSE(std::filesystem::exists(marker));
+}
+
+TEST(HostTest, AFolderWithAQuoteInItsNameIsStillAskedForItsRevision) {
+    const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
+    if (!std::filesystem::exists(root / ".git") || GitRevision(root) == "unknown") {
+        GTEST_SKIP() << "the sources are not a git checkout, or git is not installed";
+    }
+    const testing::TempDir dir;
+    const std::filesystem::path link = dir.Path() / "it's here";
+    std::filesystem::create_directory_symlink(root, link);
+    EXPECT_EQ(GitRevision(link), GitRevision(root));
+}
+
 TEST(HostTest, GitRevisionOfTheSourceTreeIsAFullCommitHashWithoutTheNewline) {
     const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
     if (!std::filesystem::exists(root / ".git")) {
