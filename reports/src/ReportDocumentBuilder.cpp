@@ -46,6 +46,9 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
         std::string operator()(double value) const {
             return std::isnan(value) ? "–" : fmt::format("{:.1f}", value);
         }
+        std::string operator()(const std::optional<double>& value) const {
+            return value ? (*this)(*value) : "–";
+        }
     };
     const Text text;
     std::vector<std::pair<std::string, std::string>> facts = {

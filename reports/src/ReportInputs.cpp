@@ -321,7 +321,7 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     ChooseClock(&inputs);
     const stagefiles::ResultsTiming& timing = inputs.results.timing;
     inputs.clock_name = timing.clock;
-    inputs.resolution_points = timing.resolution_points;
+    inputs.resolution_points = timing.resolution_points.value_or(inputs.resolution_points);
     if (!inputs.clock_name.empty() && inputs.clock == TimingClock::kCpu) {
         inputs.clock_reason =
                 fmt::format("{} ({}): {}",

@@ -101,14 +101,17 @@ nlohmann::json ToJson(const ResultsConfiguration& c) {
 }
 
 nlohmann::json ToJson(const ResultsTiming& t) {
-    return {{"clock", t.clock},
-            {"clock_reason", t.clock_reason},
-            {"resolution_points", t.resolution_points},
-            {"min_pairs", t.min_pairs},
-            {"max_pairs", t.max_pairs},
-            {"batch_pairs", t.batch_pairs},
-            {"confidence", t.confidence},
-            {"estimator", t.estimator}};
+    nlohmann::json timing = {{"clock", t.clock},
+                             {"clock_reason", t.clock_reason},
+                             {"min_pairs", t.min_pairs},
+                             {"max_pairs", t.max_pairs},
+                             {"batch_pairs", t.batch_pairs},
+                             {"confidence", t.confidence},
+                             {"estimator", t.estimator}};
+    if (t.resolution_points) {
+        timing["resolution_points"] = *t.resolution_points;
+    }
+    return timing;
 }
 
 nlohmann::json ToJson(const ResultsComparison& c) {

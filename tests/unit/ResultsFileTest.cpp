@@ -113,8 +113,8 @@ TEST(ResultsFileTest, NullVerdictIsAbsentAndNullNumbersReadAsNaN) {
     EXPECT_TRUE(std::isnan(read.value->configurations[0].views[0].accuracy->psnr_db));
 }
 
-// Results written before the runner recorded CPU time, statistics, per-view draw calls or the
-// refraction's own size: those fields are absent and read as absent.
+// Results written before the runner recorded CPU time, statistics, per-view draw calls, the
+// refraction's own size or the resolution asked: those fields are absent and read as absent.
 TEST(ResultsFileTest, FieldsOlderRunnersDidNotWriteAreOptional) {
     json document = ToJson(OneOfEach());
     json& c = document["configurations"][0];
@@ -124,8 +124,10 @@ TEST(ResultsFileTest, FieldsOlderRunnersDidNotWriteAreOptional) {
     c["passes"].erase("refraction_size");
     c["views"][0].erase("draw_calls");
     c["views"][0].erase("accuracy");
+    document["timing"].erase("resolution_points");
     const ReadResult<ResultsFile> read = ResultsFileFromJson(document, "r.json");
     ASSERT_TRUE(read.value) << read.error;
+    EXPECT_FALSE(read.value->timing.resolution_points);
     const ResultsConfiguration& r = read.value->configurations[0];
     EXPECT_TRUE(r.cpu_samples_ms.empty());
     EXPECT_FALSE(r.cpu_statistics);

@@ -202,7 +202,7 @@ struct ResultsConfiguration {
 struct ResultsTiming {
     std::string clock;
     std::string clock_reason;
-    double resolution_points = 0;
+    std::optional<double> resolution_points;  // absent in older files
     int min_pairs = 0;
     int max_pairs = 0;
     int batch_pairs = 0;
