@@ -4,13 +4,12 @@
 
 namespace tidepool {
 
+stagefiles::DiagnosticEntry ToEntry(const Diagnostic& d) {
+    return {SeverityName(d.severity), d.file, d.line, d.column, d.message, d.variant, {}};
+}
+
 nlohmann::json ToJson(const Diagnostic& diagnostic) {
-    return {{"severity", SeverityName(diagnostic.severity)},
-            {"file", diagnostic.file},
-            {"line", diagnostic.line},
-            {"column", diagnostic.column},
-            {"message", diagnostic.message},
-            {"variant", diagnostic.variant}};
+    return stagefiles::ToJson(ToEntry(diagnostic));
 }
 
 nlohmann::json StepsJson(const VariantVerdict& verdict) {
@@ -27,52 +26,38 @@ nlohmann::json StepsJson(const VariantVerdict& verdict) {
 
 namespace {
 
-nlohmann::json DiagnosticsJson(const std::vector<Diagnostic>& diagnostics) {
-    nlohmann::json list = nlohmann::json::array();
-    for (const Diagnostic& d : diagnostics) {
-        list.push_back(ToJson(d));
-    }
-    return list;
+stagefiles::StageCostEntry ToEntry(const StageCost& c) {
+    stagefiles::StageCostEntry entry{c.arithmetic_ops,   c.texture_samples, {},
+                                     c.branches,         c.loops,           c.uniforms,
+                                     c.varyings,         c.samplers,        c.shortest_path_ops,
+                                     c.longest_path_ops, c.TotalOps()};
+    entry.builtin_calls.insert(c.builtin_calls.begin(), c.builtin_calls.end());
+    return entry;
 }
 
 }  // namespace
 
-nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult& expansion,
-                             const ValidationReport* validation) {
-    nlohmann::json manifest;
-    manifest["schema"] = kManifestSchema;
-    manifest["version"] = kManifestVersion;
-    manifest["config"] = config.path;
-    nlohmann::json targets = nlohmann::json::array();
+stagefiles::ManifestFile BuildManifestFile(const VariantConfig& config,
+                                           const ExpansionResult& expansion,
+                                           const ValidationReport* validation) {
+    stagefiles::ManifestFile manifest;
+    manifest.config = config.path;
     for (GlslTarget target : config.targets) {
-        targets.push_back(TargetName(target));
+        manifest.targets.emplace_back(TargetName(target));
     }
-    manifest["targets"] = targets;
-
-    nlohmann::json programs = nlohmann::json::array();
     for (const ProgramConfig& program : config.programs) {
-        programs.push_back({{"name", program.name},
-                            {"vertex", program.vertex_path},
-                            {"fragment", program.fragment_path},
-                            {"defines", program.AllDefines()}});
+        manifest.programs.push_back(
+                {program.name, program.vertex_path, program.fragment_path, program.AllDefines()});
     }
-    manifest["programs"] = programs;
-
-    nlohmann::json presets = nlohmann::json::array();
     for (const Preset& preset : config.presets) {
-        presets.push_back({{"name", preset.name},
-                           {"description", preset.description},
-                           {"variant", MakeVariant(preset.program, preset.defines).Id()},
-                           {"runtime_features", preset.runtime_features},
-                           {"passes",
-                            {{"reflection_size", preset.passes.reflection_size},
-                             {"refraction_size", preset.passes.refraction_size},
-                             {"low_res_water", preset.passes.low_res_water},
-                             {"depth_fog", preset.passes.depth_fog},
-                             {"clip", preset.passes.clip},
-                             {"culling", preset.passes.culling}}}});
+        manifest.presets.push_back({preset.name,
+                                    preset.description,
+                                    MakeVariant(preset.program, preset.defines).Id(),
+                                    preset.runtime_features,
+                                    {preset.passes.reflection_size, preset.passes.refraction_size,
+                                     preset.passes.low_res_water, preset.passes.depth_fog,
+                                     preset.passes.clip, preset.passes.culling}});
     }
-    manifest["presets"] = presets;
 
     // Stage programs by (file, hash) so each verdict can carry its stages' static cost.
     std::map<std::string, const StageProgram*> by_hash;
@@ -82,77 +67,84 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
         }
     }
 
-    nlohmann::json variants = nlohmann::json::array();
     if (validation == nullptr) {
         for (const Variant& variant : expansion.variants) {
-            variants.push_back({{"id", variant.Id()},
-                                {"program", variant.program},
-                                {"defines", variant.defines}});
+            stagefiles::ManifestVariant& entry = manifest.variants.emplace_back();
+            entry.id = variant.Id();
+            entry.program = variant.program;
+            entry.defines = variant.defines;
         }
     } else {
         for (const VariantVerdict& verdict : validation->verdicts) {
             const ProgramConfig* program = config.FindProgram(verdict.variant.program);
-            nlohmann::json entry = {{"id", verdict.variant.Id()},
-                                    {"program", verdict.variant.program},
-                                    {"defines", verdict.variant.defines},
-                                    {"target", TargetName(verdict.target)},
-                                    {"valid", verdict.valid},
-                                    {"stages",
-                                     {{"vertex", {{"hash", verdict.vertex_hash}}},
-                                      {"fragment", {{"hash", verdict.fragment_hash}}}}},
-                                    {"diagnostics", DiagnosticsJson(verdict.diagnostics)}};
-            entry.update(StepsJson(verdict));
+            stagefiles::ManifestVariant entry;
+            entry.id = verdict.variant.Id();
+            entry.program = verdict.variant.program;
+            entry.defines = verdict.variant.defines;
+            entry.target = TargetName(verdict.target);
+            entry.valid = verdict.valid;
+            entry.stages.emplace();
+            entry.stages->vertex.hash = verdict.vertex_hash;
+            entry.stages->fragment.hash = verdict.fragment_hash;
+            entry.diagnostics.emplace();
+            for (const Diagnostic& d : verdict.diagnostics) {
+                entry.diagnostics->push_back(ToEntry(d));
+            }
+            entry.steps.emplace();
+            entry.failed_steps.emplace();
+            for (const auto& [name, step] : verdict.NamedSteps()) {
+                (*entry.steps)[name] = StepStatusName(step->status);
+                if (step->status == StepStatus::kInvalid) {
+                    entry.failed_steps->emplace_back(name);
+                }
+            }
             if (program != nullptr) {
                 for (const auto& [stage, file, hash] :
-                     {std::tuple{"vertex", program->vertex_path, verdict.vertex_hash},
-                      std::tuple{"fragment", program->fragment_path, verdict.fragment_hash}}) {
-                    entry["stages"][stage]["file"] = file;
+                     {std::tuple{&entry.stages->vertex, program->vertex_path, verdict.vertex_hash},
+                      std::tuple{&entry.stages->fragment, program->fragment_path,
+                                 verdict.fragment_hash}}) {
+                    stage->file = file;
                     auto it = by_hash.find(file + "|" + hash);
                     if (it != by_hash.end()) {
-                        entry["stages"][stage]["cost"] = ToJson(it->second->cost);
+                        stage->cost = ToEntry(it->second->cost);
                     }
                 }
             }
-            variants.push_back(std::move(entry));
+            manifest.variants.push_back(std::move(entry));
         }
     }
-    manifest["variants"] = variants;
 
     // Counts per rule, not the combinations: their number grows with 2^features, while the
     // rules and their counts say all a reader needs (`expand --pruned` lists combinations).
-    nlohmann::json pruned_by_rule = nlohmann::json::array();
+    manifest.pruned_by_rule.emplace();
     for (const RulePruneCount& p : expansion.pruned_by_rule) {
-        pruned_by_rule.push_back({{"program", p.program},
-                                  {"rule", p.rule},
-                                  {"file", p.where.file},
-                                  {"line", p.where.line},
-                                  {"count", p.count}});
+        manifest.pruned_by_rule->push_back(
+                {p.program, p.rule, p.where.file, p.where.line, static_cast<long long>(p.count)});
     }
-    manifest["pruned_by_rule"] = pruned_by_rule;
 
-    nlohmann::json counts = {{"variants", expansion.variants.size()},
-                             {"pruned", expansion.pruned_total}};
+    stagefiles::ManifestCounts& counts = manifest.counts;
+    counts.variants = static_cast<long long>(expansion.variants.size());
+    counts.pruned = static_cast<long long>(expansion.pruned_total);
     if (validation != nullptr) {
-        nlohmann::json stage_programs = nlohmann::json::array();
+        manifest.stage_programs.emplace();
         for (const StageProgram& program : validation->stage_programs) {
-            stage_programs.push_back({{"stage", StageName(program.stage)},
-                                      {"target", TargetName(program.target)},
-                                      {"file", program.file},
-                                      {"hash", program.hash},
-                                      {"defines", program.defines},
-                                      {"variants", program.variants},
-                                      {"valid", program.valid},
-                                      {"cost", ToJson(program.cost)}});
+            manifest.stage_programs->push_back({StageName(program.stage),
+                                                TargetName(program.target), program.file,
+                                                program.hash, program.defines, program.variants,
+                                                program.valid, ToEntry(program.cost)});
         }
-        manifest["stage_programs"] = stage_programs;
-        counts["stage_slots"] = validation->stage_slots;
-        counts["stage_programs"] = validation->stage_programs.size();
-        counts["shared_stage_slots"] = validation->SharedStageSlots();
-        counts["links"] = validation->links;
-        counts["invalid"] = validation->InvalidCount();
+        counts.stage_slots = static_cast<long long>(validation->stage_slots);
+        counts.stage_programs = static_cast<long long>(validation->stage_programs.size());
+        counts.shared_stage_slots = static_cast<long long>(validation->SharedStageSlots());
+        counts.links = static_cast<long long>(validation->links);
+        counts.invalid = static_cast<long long>(validation->InvalidCount());
     }
-    manifest["counts"] = counts;
     return manifest;
+}
+
+nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult& expansion,
+                             const ValidationReport* validation) {
+    return stagefiles::ToJson(BuildManifestFile(config, expansion, validation));
 }
 
 }  // namespace tidepool

@@ -112,19 +112,17 @@ bool WriteVariantSources(const VariantConfig& config, const std::vector<Variant>
     return true;
 }
 
-void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manifest) {
+void AddSourcePaths(const std::vector<Variant>& variants, stagefiles::ManifestFile* manifest) {
     std::map<std::string, const Variant*> by_id;
     for (const Variant& variant : variants) {
         by_id[variant.Id()] = &variant;
     }
-    for (nlohmann::json& entry : (*manifest)["variants"]) {
-        const Variant& variant = *by_id.at(entry["id"].get<std::string>());
+    for (stagefiles::ManifestVariant& entry : manifest->variants) {
+        const Variant& variant = *by_id.at(entry.id);
         GlslTarget target = GlslTarget::kEs100;
-        TargetFromName(entry["target"].get<std::string>(), &target);
-        entry["sources"] = {
-                {"vertex", VariantSourcePath(target, variant, Stage::kVertex).generic_string()},
-                {"fragment",
-                 VariantSourcePath(target, variant, Stage::kFragment).generic_string()}};
+        TargetFromName(entry.target.value(), &target);
+        entry.sources = {VariantSourcePath(target, variant, Stage::kVertex).generic_string(),
+                         VariantSourcePath(target, variant, Stage::kFragment).generic_string()};
     }
 }
 

@@ -115,15 +115,17 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     }
     // Built only when printed or written: it costs as much as a validation the cache answers.
     if (options.manifest_wanted || !options.out.empty()) {
-        result.manifest = BuildManifest(config, result.matrix.expansion, &result.report);
-    }
-    if (!options.out.empty()) {
-        if (options.sources) {
+        stagefiles::ManifestFile manifest =
+                BuildManifestFile(config, result.matrix.expansion, &result.report);
+        if (!options.out.empty() && options.sources) {
             if (!WriteVariantSources(config, variants, options.out, &outcome)) {
                 return result;
             }
-            AddSourcePaths(variants, &result.manifest);
+            AddSourcePaths(variants, &manifest);
         }
+        result.manifest = stagefiles::ToJson(manifest);
+    }
+    if (!options.out.empty()) {
         if (Outcome write = WriteManifest(options.out, JsonText(result.manifest, 2) + "\n");
             write.Stopped()) {
             outcome.Add(write.diagnostics);

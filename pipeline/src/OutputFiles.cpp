@@ -64,7 +64,8 @@ Outcome WriteOwnJson(const std::filesystem::path& folder, const std::string& fil
 
 Outcome WriteManifest(const std::filesystem::path& folder, const std::string& text,
                       bool check_only) {
-    return WriteOwnJson(folder, "manifest.json", kManifestSchema, "manifest", text, check_only);
+    return WriteOwnJson(folder, "manifest.json", std::string(stagefiles::kManifestSchemaName),
+                        "manifest", text, check_only);
 }
 
 bool WriteFile(const std::filesystem::path& path, const std::string& text, Outcome* outcome,

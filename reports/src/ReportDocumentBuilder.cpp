@@ -34,49 +34,49 @@ std::string ConfigurationLabel(const ComparisonSide& side) {
 // Environment and settings in display order.
 
 std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& model) {
-    const nlohmann::json& results = model.inputs->results;
-    const nlohmann::json env = results.value("environment", nlohmann::json::object());
-    const nlohmann::json settings = results.value("settings", nlohmann::json::object());
-    const auto timing_entry = results.find("timing");
-    const nlohmann::json timing = timing_entry != results.end() && timing_entry->is_object()
-                                          ? *timing_entry
-                                          : nlohmann::json::object();
-    auto text = [](const nlohmann::json& object, const char* key) -> std::string {
-        auto it = object.find(key);
-        if (it == object.end() || it->is_null()) {
-            return "–";
+    const stagefiles::ResultsFile& results = model.inputs->results;
+    const stagefiles::ResultsEnvironment& env = results.environment;
+    const stagefiles::ResultsSettings& settings = results.settings;
+    const stagefiles::ResultsTiming& timing = results.timing;
+    // Each field as the file wrote it: text as it is, whole numbers as they are, fractional
+    // ones to a tenth, and a number JSON wrote as null (NaN) as a dash.
+    struct Text {
+        std::string operator()(const std::string& value) const { return value; }
+        std::string operator()(int value) const { return std::to_string(value); }
+        std::string operator()(double value) const {
+            return std::isnan(value) ? "–" : fmt::format("{:.1f}", value);
         }
-        if (it->is_number_float()) {
-            return fmt::format("{:.1f}", it->get<double>());
+        std::string operator()(const std::optional<double>& value) const {
+            return value ? (*this)(*value) : "–";
         }
-        return it->is_string() ? it->get<std::string>() : it->dump();
     };
+    const Text text;
     std::vector<std::pair<std::string, std::string>> facts = {
-            {"CPU", text(env, "cpu_model")},
-            {"Renderer", text(env, "gl_renderer")},
-            {"GL version", text(env, "gl_version")},
-            {"Mesa version", text(env, "mesa_version")},
-            {"Backend", text(env, "backend") + " (" + text(env, "context_api") + ")"},
-            {"LP_NUM_THREADS", text(env, "lp_num_threads")},
-            {"Build", text(env, "build_type")},
-            {"Git revision", text(env, "git_revision")},
-            {"Render command", text(env, "command")},
-            {"Run started (UTC)", text(results, "started_utc")},
-            {"Run wall time (s)", text(results, "wall_seconds")},
-            {"Render size", text(settings, "width") + "x" + text(settings, "height")},
-            {"Timing view", text(settings, "timing_view")},
-            {"Warm-up frames", text(settings, "warmup_frames")},
-            {"Coarse frames per configuration", text(settings, "coarse_frames")},
-            {"Instrumented frames per compared configuration", text(settings, "pass_frames")},
-            {"Rendering threads (workers)", text(settings, "workers")},
-            {"Resolution asked of each comparison (± points)", text(timing, "resolution_points")},
+            {"CPU", text(env.cpu_model)},
+            {"Renderer", text(env.gl_renderer)},
+            {"GL version", text(env.gl_version)},
+            {"Mesa version", text(env.mesa_version)},
+            {"Backend", text(env.backend) + " (" + text(env.context_api) + ")"},
+            {"LP_NUM_THREADS", text(env.lp_num_threads)},
+            {"Build", text(env.build_type)},
+            {"Git revision", text(env.git_revision)},
+            {"Render command", text(env.command)},
+            {"Run started (UTC)", text(results.started_utc)},
+            {"Run wall time (s)", text(results.wall_seconds)},
+            {"Render size", text(settings.width) + "x" + text(settings.height)},
+            {"Timing view", text(settings.timing_view)},
+            {"Warm-up frames", text(settings.warmup_frames)},
+            {"Coarse frames per configuration", text(settings.coarse_frames)},
+            {"Instrumented frames per compared configuration", text(settings.pass_frames)},
+            {"Rendering threads (workers)", text(settings.workers)},
+            {"Resolution asked of each comparison (± points)", text(timing.resolution_points)},
             {"Pairs per comparison (min, max)",
-             text(timing, "min_pairs") + ", " + text(timing, "max_pairs")},
-            {"Estimator", text(timing, "estimator")},
-            {"Timing method", text(settings, "timing_method")},
+             text(timing.min_pairs) + ", " + text(timing.max_pairs)},
+            {"Estimator", text(timing.estimator)},
+            {"Timing method", text(settings.timing_method)},
             {"Compared on", ClockName(model.clock) + " time: " + model.inputs->clock_reason},
-            {"Animation time (s)", text(settings, "animation_time_s")},
-            {"Config", text(settings, "config")},
+            {"Animation time (s)", text(settings.animation_time_s)},
+            {"Config", text(settings.config)},
     };
     return facts;
 }
@@ -696,16 +696,17 @@ std::vector<std::vector<std::string>> PrunedRuleTable(const ReportModel& model) 
 }
 
 std::string ValidationLine(const ReportModel& model) {
-    const nlohmann::json& c = model.validation.counts;
-    auto n = [&](const char* key) { return c.contains(key) ? c[key].dump() : std::string("–"); };
+    const stagefiles::ManifestCounts& c = model.validation.counts;
+    auto n = [](const std::optional<long long>& count) {
+        return count ? std::to_string(*count) : std::string("–");
+    };
     return fmt::format(
             "{} variants ({} pruned combinations); {} stage slots compiled as {} distinct stage "
             "programs ({} slots shared); {} links; glslang rejected {}. Mesa: {} configurations "
             "rendered, {} failed; glslang and Mesa disagree on {} variant(s).",
-            n("variants"), n("pruned"), n("stage_slots"), n("stage_programs"),
-            n("shared_stage_slots"), n("links"), model.validation.glslang_invalid.size(),
-            model.validation.configurations, model.validation.failed.size(),
-            model.validation.disagreements.size());
+            c.variants, c.pruned, n(c.stage_slots), n(c.stage_programs), n(c.shared_stage_slots),
+            n(c.links), model.validation.glslang_invalid.size(), model.validation.configurations,
+            model.validation.failed.size(), model.validation.disagreements.size());
 }
 
 std::string AccuracyIntro() {

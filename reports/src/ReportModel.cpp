@@ -518,32 +518,16 @@ std::string PresetTitle(const MeasuredConfiguration& c) {
 
 // The validation summary's rows from the manifest's `pruned_by_rule`; a manifest written before
 // it (a `pruned` list of combinations) is summarised the same way, by grouping its list.
-std::vector<PrunedRuleRow> PrunedRuleRows(const nlohmann::json& manifest) {
+std::vector<PrunedRuleRow> PrunedRuleRows(const stagefiles::ManifestFile& manifest) {
     std::vector<PrunedRuleRow> rows;
-    auto text = [](const nlohmann::json& item, const char* key) {
-        auto it = item.find(key);
-        return it != item.end() && it->is_string() ? it->get<std::string>() : std::string();
-    };
-    auto number = [](const nlohmann::json& item, const char* key) -> std::uint64_t {
-        auto it = item.find(key);
-        return it != item.end() && it->is_number_unsigned() ? it->get<std::uint64_t>() : 0;
-    };
-    if (auto by_rule = manifest.find("pruned_by_rule");
-        by_rule != manifest.end() && by_rule->is_array()) {
-        for (const nlohmann::json& item : *by_rule) {
-            if (item.is_object()) {
-                rows.push_back({text(item, "program"), text(item, "rule"), text(item, "file"),
-                                static_cast<int>(number(item, "line")), number(item, "count")});
-            }
+    if (manifest.pruned_by_rule) {
+        for (const stagefiles::ManifestPrunedRule& item : *manifest.pruned_by_rule) {
+            rows.push_back({item.program, item.rule, item.file, item.line,
+                            static_cast<std::uint64_t>(std::max(item.count, 0LL))});
         }
-    } else if (auto pruned = manifest.find("pruned");
-               pruned != manifest.end() && pruned->is_array()) {
-        for (const nlohmann::json& item : *pruned) {
-            if (!item.is_object()) {
-                continue;
-            }
-            PrunedRuleRow row{text(item, "program"), text(item, "rule"), text(item, "file"),
-                              static_cast<int>(number(item, "line")), 1};
+    } else {
+        for (const stagefiles::ManifestPrunedCombination& item : manifest.pruned) {
+            PrunedRuleRow row{item.program, item.rule, item.file, item.line, 1};
             auto same = std::find_if(rows.begin(), rows.end(), [&](const PrunedRuleRow& r) {
                 return r.program == row.program && r.rule == row.rule && r.line == row.line;
             });
@@ -910,11 +894,9 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
     }
 
     // Static cost versus time.
-    std::map<std::string, const nlohmann::json*> manifest_variants;
-    for (const nlohmann::json& v : inputs.manifest["variants"]) {
-        if (v.is_object() && v.contains("id") && v["id"].is_string()) {
-            manifest_variants[v["id"].get<std::string>()] = &v;
-        }
+    std::map<std::string, const stagefiles::ManifestVariant*> manifest_variants;
+    for (const stagefiles::ManifestVariant& v : inputs.manifest.variants) {
+        manifest_variants[v.id] = &v;
     }
     std::vector<StaticCostEntry> static_entries;
     for (const MeasuredConfiguration& c : inputs.configurations) {
@@ -925,18 +907,16 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
         if (it == manifest_variants.end()) {
             continue;
         }
-        const nlohmann::json& stages = it->second->value("stages", nlohmann::json::object());
-        const nlohmann::json vertex = stages.value("vertex", nlohmann::json::object())
-                                              .value("cost", nlohmann::json::object());
-        const nlohmann::json fragment = stages.value("fragment", nlohmann::json::object())
-                                                .value("cost", nlohmann::json::object());
-        if (!vertex.contains("total_ops") || !fragment.contains("total_ops")) {
+        const std::optional<stagefiles::ManifestStages>& stages = it->second->stages;
+        if (!stages || !stages->vertex.cost || !stages->fragment.cost) {
             continue;
         }
+        const stagefiles::StageCostEntry& vertex = *stages->vertex.cost;
+        const stagefiles::StageCostEntry& fragment = *stages->fragment.cost;
         StaticCostEntry entry;
         entry.configuration = &c;
-        entry.vertex_ops = vertex.value("total_ops", 0);
-        entry.fragment_ops = fragment.value("total_ops", 0);
+        entry.vertex_ops = vertex.total_ops;
+        entry.fragment_ops = fragment.total_ops;
         entry.total_ops = entry.vertex_ops + entry.fragment_ops;
         entry.median_ms = c.MedianOn(model.clock);
         static_entries.push_back(entry);
@@ -945,10 +925,10 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
 
     // Validation.
     ValidationSummary& validation = model.validation;
-    validation.counts = inputs.manifest["counts"];
-    for (const nlohmann::json& v : inputs.manifest["variants"]) {
-        if (v.is_object() && !v.value("valid", true)) {
-            validation.glslang_invalid.push_back(v.value("id", std::string("?")));
+    validation.counts = inputs.manifest.counts;
+    for (const stagefiles::ManifestVariant& v : inputs.manifest.variants) {
+        if (!v.valid.value_or(true)) {
+            validation.glslang_invalid.push_back(v.id);
         }
     }
     validation.pruned_by_rule = PrunedRuleRows(inputs.manifest);
@@ -958,21 +938,11 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             validation.failed.push_back(&c);
         }
     }
-    if (auto d = inputs.results.find("disagreements"); d != inputs.results.end() && d->is_array()) {
-        for (const nlohmann::json& item : *d) {
-            if (item.is_object()) {
-                validation.disagreements.push_back({item.value("variant", std::string()),
-                                                    item.value("glslang_valid", false),
-                                                    item.value("mesa_valid", false)});
-            }
-        }
+    for (const stagefiles::ResultsDisagreement& d : inputs.results.disagreements) {
+        validation.disagreements.push_back({d.variant, d.glslang_valid, d.mesa_valid});
     }
-    if (auto d = inputs.results.find("diagnostics"); d != inputs.results.end() && d->is_array()) {
-        for (const nlohmann::json& item : *d) {
-            validation.run_diagnostics.push_back(
-                    item.is_object() ? item.value("text", item.value("message", std::string()))
-                                     : item.dump());
-        }
+    for (const stagefiles::DiagnosticEntry& d : inputs.results.diagnostics) {
+        validation.run_diagnostics.push_back(d.text.value_or(d.message));
     }
 
     // Image panels: every whitepaper preset's configuration, once, at the chosen views.

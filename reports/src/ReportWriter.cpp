@@ -159,23 +159,22 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                                   : nlohmann::json(nullptr)},
             {"plans", model.inputs->plans ? nlohmann::json(model.inputs->plans_path.string())
                                           : nlohmann::json(nullptr)}};
-    json["method"] = {
-            {"clock", TimingClockName(model.clock)},
-            {"clock_reason", model.inputs->clock_reason},
-            {"clock_name", model.inputs->clock_name},
-            {"magnitude_factor", kMagnitudeFactor},
-            {"resolution_points", Num(model.inputs->resolution_points)},
-            {"confidence_level", kConfidenceLevel},
-            {"estimator",
-             "Hodges-Lehmann estimate of per-pair log frame-time ratios, "
-             "Wilcoxon signed-rank interval"},
-            {"visible_difference_threshold", kVisibleDifferenceThreshold},
-            {"reference_preset", kReferencePreset},
-            {"largest_split_half_disagreement_percent_points",
-             Num(model.largest_split_half_disagreement)},
-            {"largest_split_half_row", model.largest_split_half_row},
-            {"environment", model.inputs->results.value("environment", nlohmann::json::object())},
-            {"settings", model.inputs->results.value("settings", nlohmann::json::object())}};
+    json["method"] = {{"clock", TimingClockName(model.clock)},
+                      {"clock_reason", model.inputs->clock_reason},
+                      {"clock_name", model.inputs->clock_name},
+                      {"magnitude_factor", kMagnitudeFactor},
+                      {"resolution_points", Num(model.inputs->resolution_points)},
+                      {"confidence_level", kConfidenceLevel},
+                      {"estimator",
+                       "Hodges-Lehmann estimate of per-pair log frame-time ratios, "
+                       "Wilcoxon signed-rank interval"},
+                      {"visible_difference_threshold", kVisibleDifferenceThreshold},
+                      {"reference_preset", kReferencePreset},
+                      {"largest_split_half_disagreement_percent_points",
+                       Num(model.largest_split_half_disagreement)},
+                      {"largest_split_half_row", model.largest_split_half_row},
+                      {"environment", stagefiles::ToJson(model.inputs->results.environment)},
+                      {"settings", stagefiles::ToJson(model.inputs->results.settings)}};
     nlohmann::json noise = nlohmann::json::array();
     for (const ClockNoiseRow& r : model.clock_noise) {
         noise.push_back({{"label", r.label},
@@ -307,7 +306,7 @@ nlohmann::json ReportToJson(const ReportModel& model) {
                                   {"line", row.line},
                                   {"count", row.count}});
     }
-    json["validation"] = {{"counts", model.validation.counts},
+    json["validation"] = {{"counts", stagefiles::ToJson(model.validation.counts)},
                           {"glslang_invalid", model.validation.glslang_invalid},
                           {"pruned_by_rule", pruned_by_rule},
                           {"configurations", model.validation.configurations},

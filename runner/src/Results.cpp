@@ -7,9 +7,9 @@
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/base/SampleStatistics.h"
-#include "tidepool/stagefiles/StageFile.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -43,31 +43,6 @@ std::string UtcNow() {
     char text[32];
     std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
     return text;
-}
-
-nlohmann::json DiagnosticJson(const Diagnostic& d) {
-    return {{"severity", SeverityName(d.severity)},
-            {"file", d.file},
-            {"line", d.line},
-            {"column", d.column},
-            {"message", d.message},
-            {"variant", d.variant},
-            {"text", FormatDiagnostic(d)}};
-}
-
-nlohmann::json StatisticsJson(const base::SampleStatistics& s) {
-    return {{"count", s.count},
-            {"min_ms", s.min},
-            {"max_ms", s.max},
-            {"mean_ms", s.mean},
-            {"median_ms", s.median},
-            {"q1_ms", s.q1},
-            {"q3_ms", s.q3},
-            {"iqr_ms", s.iqr},
-            {"ci_low_ms", s.ci_low},
-            {"ci_high_ms", s.ci_high},
-            {"ci_coverage", s.ci_coverage},
-            {"ci_method", "order statistics of the median, binomial(n, 0.5) coverage"}};
 }
 
 }  // namespace
@@ -415,218 +390,214 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     return results;
 }
 
-nlohmann::json ResultsToJson(const RunResults& results) {
+namespace {
+
+std::array<double, 2> Array(const glm::vec2& v) {
+    return {v.x, v.y};
+}
+
+std::array<double, 3> Array(const glm::vec3& v) {
+    return {v.x, v.y, v.z};
+}
+
+// A diagnostic with its GCC-form text beside its fields.
+stagefiles::DiagnosticEntry ResultsDiagnostic(const Diagnostic& d) {
+    return {std::string(SeverityName(d.severity)),
+            d.file,
+            d.line,
+            d.column,
+            d.message,
+            d.variant,
+            FormatDiagnostic(d)};
+}
+
+std::vector<stagefiles::DiagnosticEntry> ToEntries(const std::vector<Diagnostic>& diagnostics) {
+    std::vector<stagefiles::DiagnosticEntry> entries;
+    for (const Diagnostic& d : diagnostics) {
+        entries.push_back(ResultsDiagnostic(d));
+    }
+    return entries;
+}
+
+stagefiles::ResultsStatistics ToEntry(const base::SampleStatistics& s) {
+    return {s.count,   s.min,         s.max,
+            s.mean,    s.median,      s.q1,
+            s.q3,      s.iqr,         s.ci_low,
+            s.ci_high, s.ci_coverage, "order statistics of the median, binomial(n, 0.5) coverage"};
+}
+
+stagefiles::ResultsSettings ToSettings(const RunResults& results) {
     const RunOptions& o = results.options;
     const RenderSettings& s = o.settings;
-    nlohmann::json json;
-    json["schema"] = kResultsSchema;
-    json[stagefiles::kVersionKey] = kResultsSchemaVersion;
-    json["started_utc"] = results.started_utc;
-    json["wall_seconds"] = results.wall_seconds;
-    json["environment"] = {
-            {"backend", results.gl.backend},
-            {"context_api", results.gl.context_api},
-            {"gl_renderer", results.gl.renderer},
-            {"gl_version", results.gl.version},
-            {"glsl_version", results.gl.shading_language},
-            {"mesa_version", results.gl.mesa_version},
-            {"float_render_target", results.gl.float_render_target},
-            {"timer_query", results.gl.timer_query},
-            {"cpu_model", results.host.cpu_model},
-            {"lp_num_threads", results.host.lp_num_threads},
-            {"build_type", results.host.build_type},
-            {"git_revision", results.host.git_revision},
-            {"command", results.host.command},
-    };
-    nlohmann::json views = nlohmann::json::array();
+    stagefiles::ResultsSettings out;
+    out.config = o.config_path;
+    out.width = s.width;
+    out.height = s.height;
     for (const CameraView& v : o.views) {
-        views.push_back({{"name", v.name},
-                         {"eye", {v.eye.x, v.eye.y, v.eye.z}},
-                         {"target", {v.target.x, v.target.y, v.target.z}},
-                         {"fov_y_radians", v.fov_y_radians},
-                         {"near", v.near_plane},
-                         {"far", v.far_plane}});
+        out.views.push_back({v.name, Array(v.eye), Array(v.target), v.fov_y_radians, v.near_plane,
+                             v.far_plane});
     }
-    json["settings"] = {
-            {"config", o.config_path},
-            {"width", s.width},
-            {"height", s.height},
-            {"views", views},
-            {"timing_view",
-             o.timing_view.empty() && !o.views.empty() ? o.views.front().name : o.timing_view},
-            {"warmup_frames", o.warmup_frames},
-            {"coarse_frames", o.coarse_frames},
-            {"pass_frames", o.pass_frames},
-            {"workers", results.workers},
-            {"timing_method",
-             "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
-             "it); each configuration gets coarse_frames frames on its own; each comparison is "
-             "timed in pairs of frames rendered back to back on one thread, the side going first "
-             "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as "
-             "narrow "
-             "as timing.resolution_points or timing.max_pairs is reached"},
-            {"animation_time_s", s.animation_time},
-            {"clip_plane_offset", s.clip_plane_offset},
-            {"wave_distortion", s.wave_distortion},
-            {"bump_scale",
-             {{s.bump_scale0.x, s.bump_scale0.y}, {s.bump_scale1.x, s.bump_scale1.y}}},
-            {"bump_velocity",
-             {{s.bump_velocity0.x, s.bump_velocity0.y}, {s.bump_velocity1.x, s.bump_velocity1.y}}},
-            {"fog_colour", {s.fog_colour.r, s.fog_colour.g, s.fog_colour.b}},
-            {"rcp_max_fog_distance", s.rcp_max_fog_distance},
-            {"underwater_colour",
-             {s.underwater_colour.r, s.underwater_colour.g, s.underwater_colour.b}},
-            {"rcp_max_fog_depth", s.rcp_max_fog_depth},
-            {"water_colour",
-             {s.water_colour.r, s.water_colour.g, s.water_colour.b, s.water_colour.a}},
-            {"low_res_water_size", s.low_res_water_size},
-            {"sky_size", s.sky_size},
-            {"normal_map_size", s.normal_map_size},
-            {"normalisation_cube_size", s.normalisation_cube_size},
-            {"max_water_depth", s.max_water_depth},
-            {"extinction",
-             {{"extinction",
-               {s.extinction.extinction.r, s.extinction.extinction.g, s.extinction.extinction.b}},
-              {"visibility", s.extinction.visibility},
-              {"surface_colour",
-               {s.extinction.surface_colour.r, s.extinction.surface_colour.g,
-                s.extinction.surface_colour.b}},
-              {"depth_colour",
-               {s.extinction.depth_colour.r, s.extinction.depth_colour.g,
-                s.extinction.depth_colour.b}}}},
-            {"foam_depth", {s.foam_depth.x, s.foam_depth.y}},
-            {"shore_hardness", s.shore_hardness},
-            {"shininess", s.shininess},
-            {"fourier",
-             {{"coefficients", s.fourier.coefficients},
-              {"directions", s.fourier.directions},
-              {"march_distance", s.fourier.march_distance},
-              {"integration_samples", s.fourier.integration_samples},
-              {"grid_spacing", s.fourier.grid_spacing},
-              {"grid_margin", s.fourier.grid_margin}}},
-    };
-    nlohmann::json configurations = nlohmann::json::array();
+    out.timing_view =
+            o.timing_view.empty() && !o.views.empty() ? o.views.front().name : o.timing_view;
+    out.warmup_frames = o.warmup_frames;
+    out.coarse_frames = o.coarse_frames;
+    out.pass_frames = o.pass_frames;
+    out.workers = results.workers;
+    out.timing_method =
+            "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
+            "it); each configuration gets coarse_frames frames on its own; each comparison is "
+            "timed in pairs of frames rendered back to back on one thread, the side going first "
+            "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as "
+            "narrow "
+            "as timing.resolution_points or timing.max_pairs is reached";
+    out.animation_time_s = s.animation_time;
+    out.clip_plane_offset = s.clip_plane_offset;
+    out.wave_distortion = s.wave_distortion;
+    out.bump_scale = {Array(s.bump_scale0), Array(s.bump_scale1)};
+    out.bump_velocity = {Array(s.bump_velocity0), Array(s.bump_velocity1)};
+    out.fog_colour = Array(s.fog_colour);
+    out.rcp_max_fog_distance = s.rcp_max_fog_distance;
+    out.underwater_colour = Array(s.underwater_colour);
+    out.rcp_max_fog_depth = s.rcp_max_fog_depth;
+    out.water_colour = {s.water_colour.r, s.water_colour.g, s.water_colour.b, s.water_colour.a};
+    out.low_res_water_size = s.low_res_water_size;
+    out.sky_size = s.sky_size;
+    out.normal_map_size = s.normal_map_size;
+    out.normalisation_cube_size = s.normalisation_cube_size;
+    out.max_water_depth = s.max_water_depth;
+    out.extinction = {Array(s.extinction.extinction), s.extinction.visibility,
+                      Array(s.extinction.surface_colour), Array(s.extinction.depth_colour)};
+    out.foam_depth = Array(s.foam_depth);
+    out.shore_hardness = s.shore_hardness;
+    out.shininess = s.shininess;
+    out.fourier = {s.fourier.coefficients,        s.fourier.directions,   s.fourier.march_distance,
+                   s.fourier.integration_samples, s.fourier.grid_spacing, s.fourier.grid_margin};
+    return out;
+}
+
+stagefiles::ResultsConfiguration ToEntry(const ConfigurationResult& r, const RenderSettings& s) {
+    const RenderConfiguration& c = r.configuration;
+    stagefiles::ResultsConfiguration out;
+    out.id = c.id;
+    out.variant = c.variant.Id();
+    out.program = c.variant.program;
+    out.defines = c.variant.defines;
+    out.effects = c.effects;
+    out.uniform_bools = c.UsesUniformBools();
+    out.presets = c.presets;
+    out.passes = {ReflectionSize(c.passes, s.width, s.height),
+                  RefractionSize(c.passes, s.width, s.height),
+                  c.passes.low_res_water,
+                  c.passes.depth_fog,
+                  c.passes.clip,
+                  c.passes.culling};
+    out.driver = {r.verdict.valid,
+                  r.verdict.vertex_compiled,
+                  r.verdict.fragment_compiled,
+                  r.verdict.linked,
+                  r.verdict.vertex_log,
+                  r.verdict.fragment_log,
+                  r.verdict.link_log,
+                  ToEntries(r.verdict.diagnostics)};
+    out.glslang_valid = r.glslang_valid;
+    for (const ViewResult& v : r.views) {
+        stagefiles::ResultsViewResult view;
+        view.view = v.view;
+        view.image = v.image_path;
+        view.passes = v.frame.passes;
+        view.pass_names = v.frame.pass_names;
+        view.draw_calls = v.frame.draw_calls;
+        view.oblique_fallback = v.frame.oblique_fallback;
+        view.gl_error = v.frame.gl_error;
+        if (v.accuracy) {
+            // An identical image's PSNR is infinite, which JSON writes as null.
+            view.accuracy = {v.accuracy->psnr_db, v.accuracy->ssim, v.accuracy->share_visible};
+        }
+        out.views.push_back(std::move(view));
+    }
+    out.frame_passes = r.passes;
+    out.frame_draw_calls = r.draw_calls;
+    out.samples_ms = r.samples_ms;
+    out.statistics = ToEntry(r.statistics);
+    out.cpu_samples_ms = r.cpu_samples_ms;
+    out.cpu_statistics = ToEntry(r.cpu_statistics);
+    out.plan_ms_median = r.plan_ms_median;
+    out.pass_ms.insert(r.pass_ms.begin(), r.pass_ms.end());
+    out.instrumented_frame_ms = r.instrumented_frame_ms;
+    out.gl_error = r.gl_error;
+    out.ok = r.Ok();
+    return out;
+}
+
+}  // namespace
+
+stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
+    const RunOptions& o = results.options;
+    stagefiles::ResultsFile file;
+    file.started_utc = results.started_utc;
+    file.wall_seconds = results.wall_seconds;
+    file.environment = {results.gl.backend,
+                        results.gl.context_api,
+                        results.gl.renderer,
+                        results.gl.version,
+                        results.gl.shading_language,
+                        results.gl.mesa_version,
+                        results.gl.float_render_target,
+                        results.gl.timer_query,
+                        results.host.cpu_model,
+                        results.host.lp_num_threads,
+                        results.host.build_type,
+                        results.host.git_revision,
+                        results.host.command};
+    file.settings = ToSettings(results);
     for (const ConfigurationResult& r : results.configurations) {
-        const RenderConfiguration& c = r.configuration;
-        nlohmann::json diagnostics = nlohmann::json::array();
-        for (const Diagnostic& d : r.verdict.diagnostics) {
-            diagnostics.push_back(DiagnosticJson(d));
-        }
-        nlohmann::json view_results = nlohmann::json::array();
-        for (const ViewResult& v : r.views) {
-            nlohmann::json view = {{"view", v.view},
-                                   {"image", v.image_path},
-                                   {"passes", v.frame.passes},
-                                   {"pass_names", v.frame.pass_names},
-                                   {"draw_calls", v.frame.draw_calls},
-                                   {"oblique_fallback", v.frame.oblique_fallback},
-                                   {"gl_error", v.frame.gl_error}};
-            if (v.accuracy) {
-                // An identical image's PSNR is infinite, which JSON writes as null.
-                view["accuracy"] = {{"psnr_db", v.accuracy->psnr_db},
-                                    {"ssim", v.accuracy->ssim},
-                                    {"share_visible", v.accuracy->share_visible}};
-            }
-            view_results.push_back(std::move(view));
-        }
-        nlohmann::json entry = {
-                {"id", c.id},
-                {"variant", c.variant.Id()},
-                {"program", c.variant.program},
-                {"defines", c.variant.defines},
-                {"effects", c.effects},
-                {"uniform_bools", c.UsesUniformBools()},
-                {"presets", c.presets},
-                {"passes",
-                 {{"reflection_size", ReflectionSize(c.passes, s.width, s.height)},
-                  {"refraction_size", RefractionSize(c.passes, s.width, s.height)},
-                  {"low_res_water", c.passes.low_res_water},
-                  {"depth_fog", c.passes.depth_fog},
-                  {"clip", c.passes.clip},
-                  {"culling", c.passes.culling}}},
-                {"driver",
-                 {{"valid", r.verdict.valid},
-                  {"vertex_compiled", r.verdict.vertex_compiled},
-                  {"fragment_compiled", r.verdict.fragment_compiled},
-                  {"linked", r.verdict.linked},
-                  {"vertex_log", r.verdict.vertex_log},
-                  {"fragment_log", r.verdict.fragment_log},
-                  {"link_log", r.verdict.link_log},
-                  {"diagnostics", diagnostics}}},
-                {"glslang_valid",
-                 r.glslang_valid ? nlohmann::json(*r.glslang_valid) : nlohmann::json(nullptr)},
-                {"views", view_results},
-                {"frame_passes", r.passes},
-                {"frame_draw_calls", r.draw_calls},
-                {"samples_ms", r.samples_ms},
-                {"statistics", StatisticsJson(r.statistics)},
-                {"cpu_samples_ms", r.cpu_samples_ms},
-                {"cpu_statistics", StatisticsJson(r.cpu_statistics)},
-                {"plan_ms_median", r.plan_ms_median},
-                {"pass_ms", r.pass_ms},
-                {"instrumented_frame_ms", r.instrumented_frame_ms},
-                {"gl_error", r.gl_error},
-                {"ok", r.Ok()},
-        };
-        configurations.push_back(std::move(entry));
+        file.configurations.push_back(ToEntry(r, o.settings));
     }
-    json["configurations"] = std::move(configurations);
-    json["timing"] = {{"clock", FrameClockName(results.clock.clock)},
-                      {"clock_reason", results.clock.reason},
-                      {"resolution_points", o.rule.resolution_points},
-                      {"min_pairs", o.rule.min_pairs},
-                      {"max_pairs", o.rule.max_pairs},
-                      {"batch_pairs", o.rule.batch_pairs},
-                      {"confidence", base::kConfidenceLevel},
-                      {"estimator",
-                       "Hodges-Lehmann median of Walsh averages of per-pair log "
-                       "ratios; Wilcoxon signed-rank interval"}};
-    nlohmann::json comparisons = nlohmann::json::array();
+    file.timing = {std::string(FrameClockName(results.clock.clock)),
+                   results.clock.reason,
+                   o.rule.resolution_points,
+                   o.rule.min_pairs,
+                   o.rule.max_pairs,
+                   o.rule.batch_pairs,
+                   base::kConfidenceLevel,
+                   "Hodges-Lehmann median of Walsh averages of per-pair log "
+                   "ratios; Wilcoxon signed-rank interval"};
     for (const ComparisonResult& c : results.comparisons) {
         const base::PairedEstimate& e = c.timing.estimate;
-        auto number = [](double v) {
-            return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-        };
         const bool indices_ok = c.comparison.baseline < results.configurations.size() &&
                                 c.comparison.candidate < results.configurations.size();
-        comparisons.push_back({
-                {"label", c.comparison.label},
-                {"baseline",
-                 indices_ok ? results.configurations[c.comparison.baseline].configuration.id
-                            : std::string()},
-                {"candidate",
-                 indices_ok ? results.configurations[c.comparison.candidate].configuration.id
-                            : std::string()},
-                {"error", c.error},
-                {"pairs", e.pairs},
-                {"decision", base::StopDecisionName(c.timing.decision)},
-                {"ratio", number(e.ratio)},
-                {"ratio_low", number(e.ratio_low)},
-                {"ratio_high", number(e.ratio_high)},
-                {"change_percent", number(e.change_percent)},
-                {"change_low", number(e.change_low)},
-                {"change_high", number(e.change_high)},
-                {"baseline_ms", c.timing.samples.baseline_ms},
-                {"candidate_ms", c.timing.samples.candidate_ms},
-                {"baseline_wall_ms", c.timing.samples.baseline_wall_ms},
-                {"candidate_wall_ms", c.timing.samples.candidate_wall_ms},
-        });
+        stagefiles::ResultsComparison out;
+        out.label = c.comparison.label;
+        if (indices_ok) {
+            out.baseline = results.configurations[c.comparison.baseline].configuration.id;
+            out.candidate = results.configurations[c.comparison.candidate].configuration.id;
+        }
+        out.error = c.error;
+        out.pairs = e.pairs;
+        out.decision = std::string(base::StopDecisionName(c.timing.decision));
+        // JSON has no infinity or NaN: both are written as null.
+        out.ratio = e.ratio;
+        out.ratio_low = e.ratio_low;
+        out.ratio_high = e.ratio_high;
+        out.change_percent = e.change_percent;
+        out.change_low = e.change_low;
+        out.change_high = e.change_high;
+        out.baseline_ms = c.timing.samples.baseline_ms;
+        out.candidate_ms = c.timing.samples.candidate_ms;
+        out.baseline_wall_ms = c.timing.samples.baseline_wall_ms;
+        out.candidate_wall_ms = c.timing.samples.candidate_wall_ms;
+        file.comparisons.push_back(std::move(out));
     }
-    json["comparisons"] = std::move(comparisons);
-    nlohmann::json disagreements = nlohmann::json::array();
     for (const VerdictDisagreement& d : results.disagreements) {
-        disagreements.push_back({{"variant", d.variant},
-                                 {"glslang_valid", d.glslang_valid},
-                                 {"mesa_valid", d.mesa_valid}});
+        file.disagreements.push_back({d.variant, d.glslang_valid, d.mesa_valid});
     }
-    json["disagreements"] = std::move(disagreements);
-    nlohmann::json diagnostics = nlohmann::json::array();
-    for (const Diagnostic& d : results.diagnostics) {
-        diagnostics.push_back(DiagnosticJson(d));
-    }
-    json["diagnostics"] = std::move(diagnostics);
-    json["ok"] = results.AllOk();
-    return json;
+    file.diagnostics = ToEntries(results.diagnostics);
+    file.ok = results.AllOk();
+    return file;
+}
+
+nlohmann::json ResultsToJson(const RunResults& results) {
+    return stagefiles::ToJson(ToResultsFile(results));
 }
 
 }  // namespace tidepool::runner

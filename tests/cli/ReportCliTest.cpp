@@ -194,8 +194,19 @@ TEST_F(ReportCliTest, WronglyTypedFieldInAnyStageFileExitsTwoNamingTheFileAndFie
     const std::vector<Case> cases = {
             {"manifest/manifest.json", "/counts/variants", "many",
              "'counts.variants' has the wrong type (expected number, found string)"},
+            {"manifest/manifest.json", "/variants/0/stages/fragment/cost/total_ops", "9",
+             "'variants[0].stages.fragment.cost.total_ops' has the wrong type (expected number, "
+             "found string)"},
+            {"manifest/manifest.json", "/variants/0/valid", 1,
+             "'variants[0].valid' has the wrong type (expected bool, found number)"},
             {"render/results.json", "/comparisons/0/baseline_ms/0", true,
              "'comparisons[0].baseline_ms[0]' has the wrong type (expected number, found bool)"},
+            {"render/results.json", "/configurations/0/ok", "true",
+             "'configurations[0].ok' has the wrong type (expected bool, found string)"},
+            {"render/results.json", "/settings/width", "160",
+             "'settings.width' has the wrong type (expected number, found string)"},
+            {"render/results.json", "/environment/timer_query", nullptr,
+             "'environment.timer_query' has the wrong type (expected bool, found null)"},
             {"render/stability.json", "/cases/0/passed", "yes",
              "'cases[0].passed' has the wrong type (expected bool, found string)"},
             {"render/plans.json", "/plans/0/candidates/0/psnr_db", "high",
@@ -220,6 +231,7 @@ TEST_F(ReportCliTest, WronglyTypedFieldInAnyStageFileExitsTwoNamingTheFileAndFie
         EXPECT_EQ(r.exit_code, 2) << c.file << ": " << r.err;
         EXPECT_NE(r.err.find(file.string() + ": " + c.message), std::string::npos)
                 << c.file << ": " << r.err;
+        EXPECT_EQ(r.out, "") << c.file;
         EXPECT_FALSE(std::filesystem::exists(copy.Path() / "out")) << c.file;
     }
 }

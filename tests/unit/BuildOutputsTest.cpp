@@ -81,11 +81,16 @@ TEST(BuildOutputsTest, AnUnreadableShaderIsAUsageErrorAtItsPath) {
 TEST(BuildOutputsTest, AddSourcePathsNamesBothStagesOfEveryVariant) {
     Variant variant;
     variant.program = "p";
-    nlohmann::json manifest = {{"variants", {{{"id", variant.Id()}, {"target", "100"}}}}};
+    stagefiles::ManifestFile manifest;
+    stagefiles::ManifestVariant& entry = manifest.variants.emplace_back();
+    entry.id = variant.Id();
+    entry.program = "p";
+    entry.target = "100";
     AddSourcePaths({variant}, &manifest);
-    EXPECT_EQ(manifest["variants"][0]["sources"]["vertex"],
+    ASSERT_TRUE(manifest.variants[0].sources);
+    EXPECT_EQ(manifest.variants[0].sources->vertex,
               VariantSourcePath(GlslTarget::kEs100, variant, Stage::kVertex).generic_string());
-    EXPECT_EQ(manifest["variants"][0]["sources"]["fragment"],
+    EXPECT_EQ(manifest.variants[0].sources->fragment,
               VariantSourcePath(GlslTarget::kEs100, variant, Stage::kFragment).generic_string());
 }
 

@@ -59,9 +59,7 @@ TEST(ReportInputsTest, ForeignSchemaIsAnErrorNamingTheFile) {
     dir.Write("render/results.json", R"({"schema": "something.else", "schema_version": 1})");
     const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
     EXPECT_FALSE(loaded.inputs);
-    EXPECT_EQ(loaded.error, run.results.string() +
-                                    ": schema is 'something.else', expected "
-                                    "'tidepool.render-results'");
+    EXPECT_EQ(loaded.error, run.results.string() + ": schema is not 'tidepool.render-results'");
 }
 
 // Every stage file carries its version under "version"; results.json once said

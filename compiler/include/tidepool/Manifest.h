@@ -6,16 +6,15 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
+#include "tidepool/stagefiles/ManifestFile.h"
 #include "tidepool/stagefiles/StageFile.h"  // JsonText
 
 #include <nlohmann/json.hpp>
 
 namespace tidepool {
 
-/// The schema name and version written into every manifest.
-inline constexpr const char* kManifestSchema = "tidepool.manifest";
-inline constexpr int kManifestVersion = 1;
-
+/// A diagnostic as a stage file holds it (no `text`). Never fails.
+stagefiles::DiagnosticEntry ToEntry(const Diagnostic& diagnostic);
 /// A diagnostic as a JSON object {severity, file, line, column, message, variant}.
 nlohmann::json ToJson(const Diagnostic& diagnostic);
 
@@ -25,7 +24,11 @@ nlohmann::json ToJson(const Diagnostic& diagnostic);
 nlohmann::json StepsJson(const VariantVerdict& verdict);
 
 /// Builds the manifest; `validation` may be null (then verdicts and costs are left out, as for
-/// `tidepool expand`).
+/// `tidepool expand`). Never fails.
+stagefiles::ManifestFile BuildManifestFile(const VariantConfig& config,
+                                           const ExpansionResult& expansion,
+                                           const ValidationReport* validation);
+/// ToJson(BuildManifestFile(...)): the one writer's JSON. Never fails.
 nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult& expansion,
                              const ValidationReport* validation);
 

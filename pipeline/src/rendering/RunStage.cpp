@@ -73,8 +73,8 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
     for (const std::string& e : results.write_errors) {
         written.Fail(Status::kEnvironment, e);
     }
-    if (!WriteFile(run.out_dir / "results.json", JsonText(runner::ResultsToJson(results), 2) + "\n",
-                   &written) ||
+    if (!WriteFile(run.out_dir / "results.json",
+                   stagefiles::ResultsFileText(runner::ToResultsFile(results)), &written) ||
         written.Stopped()) {
         progress.Tell(written.diagnostics);
         end.status = Status::kEnvironment;

@@ -7,6 +7,7 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/pipeline/Outcome.h"
+#include "tidepool/stagefiles/ManifestFile.h"
 
 #include <filesystem>
 #include <string>
@@ -42,9 +43,9 @@ std::filesystem::path VariantSourcePath(GlslTarget target, const Variant& varian
 bool WriteVariantSources(const VariantConfig& config, const std::vector<Variant>& variants,
                          const std::filesystem::path& folder, Outcome* outcome);
 
-/// Records in each variant entry of `manifest` where WriteVariantSources put its stages:
-/// "sources": {"vertex": PATH, "fragment": PATH}, relative to the manifest's folder. Every
-/// variant of the manifest must be among `variants`.
-void AddSourcePaths(const std::vector<Variant>& variants, nlohmann::json* manifest);
+/// Records in each variant of `manifest` where WriteVariantSources put its stages (`sources`,
+/// relative to the manifest's folder). Every variant of the manifest must be among `variants`
+/// and have its target.
+void AddSourcePaths(const std::vector<Variant>& variants, stagefiles::ManifestFile* manifest);
 
 }  // namespace tidepool::pipeline

@@ -32,7 +32,7 @@ Outcome WriteOwnJson(const std::filesystem::path& folder, const std::string& fil
                      const std::string& schema, const std::string& what, const std::string& text,
                      bool check_only = false);
 
-/// WriteOwnJson for `folder`/manifest.json (schema kManifestSchema).
+/// WriteOwnJson for `folder`/manifest.json (schema stagefiles::kManifestSchemaName).
 Outcome WriteManifest(const std::filesystem::path& folder, const std::string& text,
                       bool check_only = false);
 

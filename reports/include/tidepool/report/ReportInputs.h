@@ -1,11 +1,14 @@
 // The saved files a report is built from: the compiler's manifest (tidepool.manifest v1), the
 // runner's results (tidepool.render-results v1) and, when present, the numerical-stability
-// catalogue (tidepool.stability) next to the results. Loading checks schemas and the fields the
-// report reads, so a corrupt or foreign file is an error naming that file, never a crash.
+// catalogue (tidepool.stability) next to the results, each through its reader in stagefiles/.
+// Loading checks schemas and the type of every field, so a corrupt or foreign file is an error
+// naming that file and field, never a crash.
 #pragma once
 
 #include "tidepool/base/ImageMetrics.h"
+#include "tidepool/stagefiles/ManifestFile.h"
 #include "tidepool/stagefiles/PlansFile.h"
+#include "tidepool/stagefiles/ResultsFile.h"
 #include "tidepool/stagefiles/StabilityFile.h"
 
 #include <filesystem>
@@ -19,11 +22,6 @@
 #include <nlohmann/json.hpp>
 
 namespace tidepool::report {
-
-/// The results schema the report understands.
-inline constexpr std::string_view kResultsSchemaName = "tidepool.render-results";
-/// The manifest schema the report understands.
-inline constexpr std::string_view kManifestSchemaName = "tidepool.manifest";
 
 /// The clock whose samples the report compares configurations on.
 enum class TimingClock {
@@ -115,8 +113,8 @@ struct MeasuredComparison {
 struct ReportInputs {
     std::filesystem::path manifest_path;
     std::filesystem::path results_path;
-    nlohmann::json manifest;                            // as read (schema checked)
-    nlohmann::json results;                             // as read (schema checked)
+    stagefiles::ManifestFile manifest;                  // as read (every field's type checked)
+    stagefiles::ResultsFile results;                    // as read (every field's type checked)
     std::vector<MeasuredConfiguration> configurations;  // in run order, failed ones included
     std::string timing_view;  // the view that was timed (the report's default view)
     int width = 640;          // the render size of the run

@@ -156,7 +156,7 @@ struct PrunedRuleRow {
 
 /// The compiler's and the driver's verdicts.
 struct ValidationSummary {
-    nlohmann::json counts;                      // the manifest's counts, as written
+    stagefiles::ManifestCounts counts;          // the manifest's counts
     std::vector<std::string> glslang_invalid;   // variant ids glslang rejected
     std::vector<PrunedRuleRow> pruned_by_rule;  // every rule, declaration order
     int configurations = 0;

@@ -13,6 +13,7 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/runner/Renderer.h"
+#include "tidepool/stagefiles/ResultsFile.h"
 
 #include <filesystem>
 #include <functional>
@@ -25,10 +26,6 @@
 #include <nlohmann/json.hpp>
 
 namespace tidepool::runner {
-
-/// The results.json schema this code writes; bump it when a field changes meaning.
-inline constexpr const char* kResultsSchema = "tidepool.render-results";
-inline constexpr int kResultsSchemaVersion = 1;
 
 /// Facts about the machine and build that the library cannot read itself (the CLI supplies
 /// them: it may read /proc/cpuinfo, the environment and git).
@@ -182,7 +179,9 @@ using ProgressCallback = std::function<void(const RunProgress&)>;
 RunResults RunRender(GlContext& context, const VariantConfig& config, const RunOptions& options,
                      const ProgressCallback& progress);
 
-/// The results as JSON (schema kResultsSchema, version kResultsSchemaVersion). Never fails.
+/// The results as results.json holds them (stagefiles/ResultsFile.h). Never fails.
+stagefiles::ResultsFile ToResultsFile(const RunResults& results);
+/// ToJson(ToResultsFile(results)): the one writer's JSON. Never fails.
 nlohmann::json ResultsToJson(const RunResults& results);
 
 }  // namespace tidepool::runner

@@ -1,5 +1,4 @@
-// The one wording of a stage file's type errors, shared by the typed readers (FieldReader) and
-// the report's shape check of the files that have no reader yet.
+// The one wording of a stage file's type errors, used by the typed readers (FieldReader).
 #pragma once
 
 #include <string>

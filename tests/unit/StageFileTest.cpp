@@ -1,0 +1,69 @@
+// What every stage file shares: reading a file as JSON (missing, corrupt), the one serialiser
+// (bytes that are not UTF-8 never abort a writer), and the schema and version check every
+// reader starts with.
+#include "tidepool/stagefiles/StageFile.h"
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "FieldReader.h"
+#include "TempDir.h"
+
+namespace tidepool::stagefiles {
+namespace {
+
+using nlohmann::json;
+using tidepool::testing::TempDir;
+
+struct Empty {};
+
+void ReadFields(FieldReader& /*r*/, const json& /*o*/, const std::string& /*path*/,
+                Empty* /*out*/) {}
+
+TEST(StageFileTest, ReadJsonFileNamesAMissingOrCorruptFile) {
+    TempDir dir;
+    std::string error;
+    EXPECT_FALSE(ReadJsonFile(dir.Path() / "none.json", &error));
+    EXPECT_EQ(error, (dir.Path() / "none.json").string() + ": no such file");
+    const std::filesystem::path corrupt = dir.Write("c.json", "{\"schema\": \"tid");
+    EXPECT_FALSE(ReadJsonFile(corrupt, &error));
+    EXPECT_EQ(error, corrupt.string() + ": not valid JSON (corrupt or truncated)");
+    const std::filesystem::path good = dir.Write("g.json", "{\"a\": [1]}");
+    const std::optional<json> read = ReadJsonFile(good, &error);
+    ASSERT_TRUE(read);
+    EXPECT_EQ((*read)["a"][0], 1);
+}
+
+TEST(StageFileTest, JsonTextReplacesBytesThatAreNotUtf8) {
+    const json value = {{"message", std::string("caf\xe9")}};
+    EXPECT_EQ(JsonText(value), "{\"message\":\"caf\xef\xbf\xbd\"}");
+    EXPECT_EQ(JsonText(json::parse(R"({"a":1})"), 2), "{\n  \"a\": 1\n}");
+}
+
+TEST(StageFileTest, ADocumentOfAnotherSchemaOrVersionIsForeign) {
+    const json good = json::parse(R"({"schema": "s", "version": 1})");
+    EXPECT_TRUE(ReadStageDocument<Empty>(good, "f", "s", 1).value);
+    struct Case {
+        const char* document;
+        const char* error;
+    };
+    for (const Case& c : {Case{R"([1])", "f: schema is not 's'"},
+                          Case{R"({"schema": "t", "version": 1})", "f: schema is not 's'"},
+                          Case{R"({"schema": "s"})", "f: version must be 1"},
+                          Case{R"({"schema": "s", "version": "1"})", "f: version must be 1"},
+                          Case{R"({"schema": "s", "version": 2})", "f: version must be 1"}}) {
+        const ReadResult<Empty> read =
+                ReadStageDocument<Empty>(json::parse(c.document), "f", "s", 1);
+        EXPECT_FALSE(read.value) << c.document;
+        EXPECT_EQ(read.failure, ReadFailure::kForeign) << c.document;
+        EXPECT_EQ(read.error, c.error) << c.document;
+    }
+    // Another key, for a file that carries its version under an older name.
+    const ReadResult<Empty> old = ReadStageDocument<Empty>(
+            json::parse(R"({"schema": "s", "old": 1})"), "f", "s", 1, "old");
+    EXPECT_TRUE(old.value) << old.error;
+}
+
+}  // namespace
+}  // namespace tidepool::stagefiles
