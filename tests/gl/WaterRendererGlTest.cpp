@@ -23,68 +23,26 @@
 #include <memory>
 #include <optional>
 
-#include "GlTestEnvironment.h"
+#include "SharedWaterRenderer.h"
 #include <glm/glm.hpp>
 
 namespace tidepool::runner {
 namespace {
 
-// Small enough that the whole gl suite renders in seconds on llvmpipe, large enough that the
-// scene's objects cover several pixels at the default views.
-constexpr int kWidth = 128;
-constexpr int kHeight = 96;
+using test_support::kRendererHeight;
+using test_support::kRendererWidth;
 
-// One context, configuration and renderer for the whole file: creating them costs more than
-// most tests.
-struct Shared {
-    GlContext* context = nullptr;
-    const VariantConfig* config = nullptr;
-    std::vector<Variant> variants;
-    std::unique_ptr<WaterRenderer> renderer;
-    std::unique_ptr<WaterRenderer> float_renderer;
-    std::string error;
-};
-
-Shared& Get() {
-    static Shared shared = [] {
-        Shared s;
-        test_support::GlTestEnvironment& environment = test_support::SharedGlEnvironment();
-        if (!environment.error.empty()) {
-            s.error = environment.error;
-            return s;
-        }
-        s.context = environment.context.get();
-        s.config = &*environment.config;
-        s.variants = ExpandVariants(*s.config, ExpansionOptions{s.config->max_variants}).variants;
-        RenderSettings settings;
-        settings.width = kWidth;
-        settings.height = kHeight;
-        s.renderer = WaterRenderer::Create(*s.context, *s.config, settings, &s.error);
-        if (s.renderer && s.context->Environment().float_render_target) {
-            settings.float_target = true;
-            s.float_renderer = WaterRenderer::Create(*s.context, *s.config, settings, &s.error);
-        }
-        return s;
-    }();
-    return shared;
+test_support::SharedRenderer& Get() {
+    return test_support::SharedWaterRenderer();
 }
 
 RenderConfiguration Configuration(std::vector<std::string> defines, PassOptions passes = {}) {
-    RenderConfiguration c;
-    c.variant = MakeVariant("water", std::move(defines));
-    c.effects = c.variant.defines;
-    // The checks below are sized for 256x256 targets magnified onto a 128x96 image, as at
-    // 640x480; the demo's rule would give 64x64 here (FramePlanTest covers the rule).
-    passes.reflection_size = passes.reflection_size > 0 ? passes.reflection_size : 256;
-    passes.refraction_size = passes.refraction_size > 0 ? passes.refraction_size : 256;
-    c.passes = passes;
-    c.id = ConfigurationId(c.variant, passes);
-    return c;
+    return test_support::WaterConfiguration(std::move(defines), passes);
 }
 
 base::RgbaImage Render(const RenderConfiguration& c, const std::string& view_name,
                        WaterRenderer* renderer = nullptr) {
-    Shared& s = Get();
+    test_support::SharedRenderer& s = Get();
     WaterRenderer& r = renderer ? *renderer : *s.renderer;
     s.context->MakeCurrent();  // another test file's context may be current
     const DriverVerdict verdict = r.Prepare(c);
@@ -182,10 +140,11 @@ const Mesh& FindMesh(const Scene& scene, const std::string& name) {
 
 // The pixel (rows top to bottom) where `world` lands at `view`.
 glm::ivec2 ScreenPixel(const CameraView& view, const glm::vec3& world) {
-    const float aspect = static_cast<float>(kWidth) / static_cast<float>(kHeight);
+    const float aspect = static_cast<float>(kRendererWidth) / static_cast<float>(kRendererHeight);
     const glm::vec2 uv =
             ProjectiveTexCoord(ProjectionMatrix(view, aspect) * ViewMatrix(view), world);
-    return glm::ivec2(static_cast<int>(uv.x * kWidth), static_cast<int>((1.0F - uv.y) * kHeight));
+    return glm::ivec2(static_cast<int>(uv.x * kRendererWidth),
+                      static_cast<int>((1.0F - uv.y) * kRendererHeight));
 }
 
 TEST_F(WaterRendererGlTest, ReflectionOfTheTowerAppearsMirroredBelowTheWaterline) {
@@ -232,7 +191,7 @@ TEST_F(WaterRendererGlTest, FogMovesFarWaterTowardsTheFogColour) {
     const glm::vec3 far_water = view.eye + glm::normalize(forward) * 1500.0F;
     const glm::ivec2 pixel = ScreenPixel(view, glm::vec3(far_water.x, 0.0F, far_water.z));
     ASSERT_GE(pixel.y, 0);
-    ASSERT_LT(pixel.y, kHeight);
+    ASSERT_LT(pixel.y, kRendererHeight);
     const glm::vec3 fog = RenderSettings{}.fog_colour;
     const glm::vec3 clear = Pixel(Render(Configuration({}), "three_quarter"), pixel.x, pixel.y);
     const glm::vec3 fogged =
@@ -254,7 +213,7 @@ TEST_F(WaterRendererGlTest, TwoRendersOfOneConfigurationAreByteEqual) {
 }
 
 TEST_F(WaterRendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
-    Shared& s = Get();
+    test_support::SharedRenderer& s = Get();
     const ConfigurationSet set = BuildDefaultConfigurations(*s.config, s.variants);
     ASSERT_TRUE(set.diagnostics.empty());
     ASSERT_GT(set.configurations.size(), 10U);
@@ -291,7 +250,7 @@ TEST_F(WaterRendererGlTest, EveryDefaultConfigurationRendersWithoutGlError) {
 }
 
 TEST_F(WaterRendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
-    Shared& s = Get();
+    test_support::SharedRenderer& s = Get();
     if (!s.float_renderer) {
         GTEST_SKIP() << "the context cannot render to RGBA32F";
     }
@@ -303,7 +262,8 @@ TEST_F(WaterRendererGlTest, NoNanOrInfInAnyConfigurationAtAnyView) {
             const FrameReport report = s.float_renderer->RenderFrame(c, view);
             ASSERT_EQ(report.gl_error, "") << c.id;
             const std::vector<float> pixels = s.float_renderer->ReadFloatPixels();
-            ASSERT_EQ(pixels.size(), static_cast<std::size_t>(kWidth * kHeight * 4));
+            ASSERT_EQ(pixels.size(),
+                      static_cast<std::size_t>(kRendererWidth * kRendererHeight * 4));
             const auto bad = std::find_if(pixels.begin(), pixels.end(),
                                           [](float v) { return !std::isfinite(v); });
             EXPECT_EQ(bad, pixels.end())
@@ -318,7 +278,7 @@ TEST_F(WaterRendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
     no_culling.culling = false;
     const RenderConfiguration unculled =
             Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"}, no_culling);
-    Shared& s = Get();
+    test_support::SharedRenderer& s = Get();
     const CameraView view = *FindView(DefaultViews(), "three_quarter");
     s.context->MakeCurrent();
     ASSERT_TRUE(s.renderer->Prepare(culled).valid);
@@ -328,145 +288,6 @@ TEST_F(WaterRendererGlTest, CullingDrawsOnlyWhatEachPassNeeds) {
     EXPECT_LT(with.draw_calls, without.draw_calls);
     // Same passes either way; culling changes draws, not passes.
     EXPECT_EQ(with.pass_names, without.pass_names);
-}
-
-TEST(RunRenderTest, ComparisonsArePairedUntilTheStoppingRuleAndConfigurationsTimedCoarsely) {
-    Shared& shared = Get();
-    ASSERT_TRUE(shared.context) << shared.error;
-    RunOptions options;
-    options.configurations = {Configuration({}), Configuration({"ENABLE_FOG"}),
-                              Configuration({"ENABLE_REFRACTION"})};
-    options.views = {DefaultViews().front()};
-    options.settings.width = 32;
-    options.settings.height = 24;
-    options.warmup_frames = 0;
-    options.coarse_frames = 3;
-    options.comparisons = {{"fog", 0, 1}, {"refraction", 0, 2}};
-    // A resolution this tight is out of reach in 20 pairs, so both stop at the cap.
-    options.rule = {0.001, 10, 20, 10};
-    options.pass_frames = 2;
-    options.write_images = false;
-    options.compare_with_glslang = false;
-    const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
-    ASSERT_EQ(results.configurations.size(), 3U);
-    for (const ConfigurationResult& r : results.configurations) {
-        EXPECT_EQ(r.cpu_samples_ms.size(), 3U) << r.configuration.id;
-        EXPECT_EQ(r.samples_ms.size(), 3U) << r.configuration.id;
-    }
-    ASSERT_EQ(results.comparisons.size(), 2U);
-    for (const ComparisonResult& c : results.comparisons) {
-        EXPECT_EQ(c.error, "") << c.comparison.label;
-        EXPECT_EQ(c.timing.samples.baseline_ms.size(), 20U) << c.comparison.label;
-        EXPECT_EQ(c.timing.samples.candidate_ms.size(), 20U) << c.comparison.label;
-        EXPECT_EQ(c.timing.decision, base::StopDecision::kCapped) << c.comparison.label;
-        EXPECT_TRUE(c.timing.estimate.Valid()) << c.timing.estimate.error;
-    }
-    // Every compared configuration has per-pass times; the refraction one has that pass.
-    EXPECT_EQ(results.configurations[2].pass_ms.count("refraction"), 1U);
-    EXPECT_EQ(results.configurations[0].pass_ms.count("refraction"), 0U);
-    EXPECT_GT(results.configurations[0].pass_ms.at("main"), 0.0);
-}
-
-// Two configurations (none and fog) at one view, 32x24, timed coarsely only, no images, no
-// glslang comparison.
-RunOptions TinyRunWithoutComparisons(int coarse_frames) {
-    RunOptions options;
-    options.configurations = {Configuration({}), Configuration({"ENABLE_FOG"})};
-    options.views = {DefaultViews().front()};
-    options.settings.width = 32;
-    options.settings.height = 24;
-    options.coarse_frames = coarse_frames;
-    options.write_images = false;
-    options.compare_with_glslang = false;
-    return options;
-}
-
-TEST(RunRenderTest, GlslangVerdictsGivenByTheRunsValidationAreUsedNotFoundAgain) {
-    Shared& shared = Get();
-    ASSERT_TRUE(shared.context) << shared.error;
-    RunOptions options = TinyRunWithoutComparisons(1);
-    options.compare_with_glslang = true;
-    // A verdict glslang would never give (both variants are valid): the render must take it
-    // from here, so Mesa's acceptance shows as a disagreement for that variant only.
-    ValidationReport validated;
-    VariantVerdict said_invalid;
-    said_invalid.variant = options.configurations[1].variant;
-    said_invalid.target = GlslTarget::kEs100;
-    said_invalid.valid = false;
-    validated.verdicts.push_back(said_invalid);
-    options.validated = &validated;
-    const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
-    ASSERT_EQ(results.disagreements.size(), 1U);
-    EXPECT_EQ(results.disagreements[0].variant, options.configurations[1].variant.Id());
-    EXPECT_FALSE(results.disagreements[0].glslang_valid);
-    EXPECT_TRUE(results.disagreements[0].mesa_valid);
-}
-
-TEST(RunRenderTest, SecondWorkerRendersOnItsOwnContext) {
-    Shared& shared = Get();
-    ASSERT_TRUE(shared.context) << shared.error;
-    RunOptions options = TinyRunWithoutComparisons(2);
-    options.workers = 2;
-    options.make_context = [] { return CreateGlContext(BackendKind::kAuto).context; };
-    const RunResults results = RunRender(*shared.context, *shared.config, options, nullptr);
-    EXPECT_EQ(results.workers, 2);
-    for (const ConfigurationResult& r : results.configurations) {
-        EXPECT_TRUE(r.Ok()) << r.configuration.id << " " << r.gl_error;
-        EXPECT_EQ(r.cpu_samples_ms.size(), 2U);
-    }
-}
-
-// The per-pass times of an instrumented frame (a glFinish after each pass) add up to that
-// frame's time to within 2% (they partition it; the rest is one final glFinish), and to within
-// 30% of ordinary frames' time, interleaved with them. Why 30%: the suite runs llvmpipe with
-// worker threads (LP_NUM_THREADS=2), and each glFinish between passes wakes them, which cost up
-// to 20% extra process CPU time when the GL tests ran two at a time; rendering on the calling
-// thread, as `run` does, the two agreed within 5% (printed below).
-TEST(FrameTimerGlTest, PassTimesSumToTheFrameTime) {
-    Shared& s = Get();
-    ASSERT_TRUE(s.context) << s.error;
-    s.context->MakeCurrent();
-    const RenderConfiguration c = Configuration({"ENABLE_REFRACTION", "ENABLE_FOG"});
-    ASSERT_TRUE(s.renderer->Prepare(c).valid);
-    const CameraView view = *FindView(DefaultViews(), "three_quarter");
-    FrameTimer timer(*s.renderer, FrameClock::kProcessCpu);
-    std::vector<double> sums;
-    std::vector<double> instrumented;
-    std::vector<double> plain;
-    for (int i = 0; i < 15; ++i) {
-        const std::map<std::string, double> passes = timer.TimePasses(c, view);
-        double sum = 0;
-        for (const auto& [name, ms] : passes) {
-            sum += name == "frame" ? 0.0 : ms;
-        }
-        EXPECT_EQ(passes.count("reflection") + passes.count("refraction") + passes.count("main"),
-                  3U);
-        sums.push_back(sum);
-        instrumented.push_back(passes.at("frame"));
-        plain.push_back(timer.Time(c, view).ms);
-    }
-    std::printf("pass sum %.2f ms, instrumented frame %.2f ms, plain frame %.2f ms\n",
-                base::Median(sums), base::Median(instrumented), base::Median(plain));
-    EXPECT_NEAR(base::Median(sums), base::Median(instrumented), 0.02 * base::Median(instrumented));
-    EXPECT_NEAR(base::Median(sums), base::Median(plain), 0.30 * base::Median(plain));
-}
-
-// llvmpipe offers GL_EXT_disjoint_timer_query, so the GPU clock's path runs here too, though
-// ChooseFrameClock never picks it for a software renderer.
-TEST(FrameTimerGlTest, GpuTimerQueriesTimeFramesWhereTheDriverOffersThem) {
-    Shared& s = Get();
-    ASSERT_TRUE(s.context) << s.error;
-    if (!s.context->Environment().timer_query) {
-        GTEST_SKIP() << "this driver has no GL_EXT_disjoint_timer_query";
-    }
-    s.context->MakeCurrent();
-    const RenderConfiguration c = Configuration({"ENABLE_FOG"});
-    ASSERT_TRUE(s.renderer->Prepare(c).valid);
-    FrameTimer timer(*s.renderer, FrameClock::kGpuTimer);
-    const FrameTime t = timer.Time(c, *FindView(DefaultViews(), "three_quarter"));
-    EXPECT_TRUE(std::isfinite(t.ms));
-    EXPECT_GE(t.ms, 0.0);
-    EXPECT_TRUE(std::isnan(s.renderer->EndGpuTimerMs()));  // no query runs: no time
 }
 
 }  // namespace
