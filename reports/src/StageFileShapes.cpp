@@ -370,7 +370,7 @@ std::string CheckJsonShape(const nlohmann::json& document, const nlohmann::json&
         if (field == shape.end()) {
             continue;  // a field this shape does not know: a newer writer's
         }
-        const std::string field_path = path.empty() ? key : path + "." + key;
+        const std::string field_path = path.empty() ? key : fmt::format("{}.{}", path, key);
         if (std::string problem = CheckJsonShape(value, *field, field_path); !problem.empty()) {
             return problem;
         }
