@@ -107,7 +107,7 @@ nlohmann::json BuildManifest(const VariantConfig& config, const ExpansionResult&
                      {std::tuple{"vertex", program->vertex_path, verdict.vertex_hash},
                       std::tuple{"fragment", program->fragment_path, verdict.fragment_hash}}) {
                     entry["stages"][stage]["file"] = file;
-                    auto it = by_hash.find(file + "|" + hash);
+                    auto it = by_hash.find(std::string(file).append("|").append(hash));
                     if (it != by_hash.end()) {
                         entry["stages"][stage]["cost"] = ToJson(it->second->cost);
                     }
