@@ -18,6 +18,7 @@ packages=(
   chromium                           # headless browser: the report page test opens index.html
   clang libclang-rt-14-dev           # libFuzzer targets in fuzz/ (scripts/fuzz.sh)
   clang-format                       # the format check (scripts/check-format.sh)
+  clang-tidy                         # the libraries' clang-tidy check (scripts/clang-tidy.sh)
 )
 
 missing=()

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The test command (README.md): installs dependencies, checks the format (.clang-format), builds,
-# runs every test (unit, gl, cli), then runs the unit tests again under AddressSanitizer +
+# runs clang-tidy over the libraries (.clang-tidy, scripts/clang-tidy.sh), runs every test
+# (unit, gl, cli), then runs the unit tests again under AddressSanitizer +
 # UndefinedBehaviorSanitizer, then fuzzes each YAML loader for a minute (FUZZ_SECONDS).
 # Each phase ends with its elapsed time, so a slow CI run shows where the time went.
 set -euo pipefail
@@ -18,6 +19,7 @@ phase() {
 phase "install dependencies" "$root/scripts/install-deps.sh"
 phase "format check (.clang-format)" "$root/scripts/check-format.sh"
 phase "release build" "$root/scripts/build.sh" release
+phase "clang-tidy over the libraries (.clang-tidy)" "$root/scripts/clang-tidy.sh"
 # llvmpipe's thread count is fixed so that GL results do not depend on the machine's core count.
 export LP_NUM_THREADS="${LP_NUM_THREADS:-2}"
 phase "tests (release): unit, gl, cli" \

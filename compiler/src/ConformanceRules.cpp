@@ -377,10 +377,10 @@ std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex_stage,
                                vertex_stage.invariance.builtins.end(),
                                [&](const InvariantBuiltIn& b) { return b.name == name; });
         };
-        static const std::pair<std::string_view, std::string_view> kPairs[] = {
+        static const std::pair<std::string_view, std::string_view> pairs[] = {
                 {"gl_FragCoord", "gl_Position"}, {"gl_PointCoord", "gl_PointSize"}};
         for (const InvariantBuiltIn& builtin : fragment_stage.invariance.builtins) {
-            for (const auto& [input, output] : kPairs) {
+            for (const auto& [input, output] : pairs) {
                 if (builtin.name == input && !invariant_in_vertex(output)) {
                     errors.push_back(MakeError(
                             fragment_file, builtin.line, builtin.column,

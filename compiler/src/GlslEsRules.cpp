@@ -250,6 +250,7 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
     // Adds up one run; false (with the error added) once the shader is too large.
     auto measure = [&](bool in_file) {
         std::vector<std::string_view> texts;
+        texts.reserve(run.size());
         for (const SourceToken& token : run) {
             texts.push_back(token.text);
         }

@@ -452,7 +452,7 @@ public:
         Int(static_cast<std::int64_t>(text.size()));
         bytes_.append(text);
     }
-    std::string& bytes() { return bytes_; }
+    std::string& Bytes() { return bytes_; }
 
 private:
     std::string bytes_;
@@ -508,7 +508,7 @@ public:
         }
         return static_cast<std::size_t>(count);
     }
-    bool ok() const { return ok_; }
+    bool Ok() const { return ok_; }
     bool AtEnd() const { return ok_ && rest_.empty(); }
 
 private:
@@ -523,7 +523,7 @@ private:
 
 std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
     EntryWriter out;
-    out.bytes().append(kCachedStageTag);
+    out.Bytes().append(kCachedStageTag);
     out.Text(program.hash);
     out.Text(digest);
     out.Int(program.valid ? 1 : 0);
@@ -546,7 +546,7 @@ std::string EncodeCachedStage(const StageProgram& program, const std::string& di
         out.Text(name);
         out.Int(count);
     }
-    return std::move(out.bytes());
+    return std::move(out.Bytes());
 }
 
 // The entry's outcome, or none when it does not decode (it is then recomputed and replaced).
@@ -561,7 +561,7 @@ std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
     const std::int64_t valid = in.Int();
     stage.outcome.valid = valid == 1;
     const std::size_t diagnostics = in.Count(40);  // five fields of at least 8 bytes
-    for (std::size_t i = 0; i < diagnostics && in.ok(); ++i) {
+    for (std::size_t i = 0; i < diagnostics && in.Ok(); ++i) {
         Diagnostic d;
         const int severity = in.SmallInt();
         if (severity < 0 || severity > static_cast<int>(Severity::kNote)) {
@@ -581,7 +581,7 @@ std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
         *field = in.SmallInt();
     }
     const std::size_t calls = in.Count(16);
-    for (std::size_t i = 0; i < calls && in.ok(); ++i) {
+    for (std::size_t i = 0; i < calls && in.Ok(); ++i) {
         std::string name = in.Text();
         cost.builtin_calls[std::move(name)] = in.SmallInt();
     }

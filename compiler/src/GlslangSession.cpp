@@ -199,13 +199,16 @@ std::string GlslangIdentity() {
 }
 
 void WarmUpGlslang(const std::vector<GlslTarget>& targets) {
-    static const std::string kVertex = "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n";
-    static const std::string kFragment =
+    static const std::string vertex_source =
+            "#version 100\nvoid main() { gl_Position = vec4(0.0); }\n";
+    static const std::string fragment_source =
             "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(0.0); }\n";
-    static const std::vector<std::string> kNoDefines;
+    static const std::vector<std::string> no_defines;
     for (GlslTarget target : targets) {
-        static_cast<void>(ParseStage({"warm-up", kVertex, Stage::kVertex, target, kNoDefines}));
-        static_cast<void>(ParseStage({"warm-up", kFragment, Stage::kFragment, target, kNoDefines}));
+        static_cast<void>(
+                ParseStage({"warm-up", vertex_source, Stage::kVertex, target, no_defines}));
+        static_cast<void>(
+                ParseStage({"warm-up", fragment_source, Stage::kFragment, target, no_defines}));
     }
 }
 
@@ -565,7 +568,7 @@ int ColumnOfToken(const std::string& message, const std::vector<std::string>& so
 
 std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::string& file,
                                         const std::string& source) {
-    static const std::pair<std::string_view, Severity> kPrefixes[] = {
+    static const std::pair<std::string_view, Severity> prefixes[] = {
             {"ERROR: ", Severity::kError},         {"INTERNAL ERROR: ", Severity::kError},
             {"UNIMPLEMENTED: ", Severity::kError}, {"WARNING: ", Severity::kWarning},
             {"NOTE: ", Severity::kNote},
@@ -580,9 +583,9 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
             continue;
         }
         const auto prefix =
-                std::find_if(std::begin(kPrefixes), std::end(kPrefixes),
+                std::find_if(std::begin(prefixes), std::end(prefixes),
                              [&](const auto& p) { return line.rfind(p.first, 0) == 0; });
-        if (prefix == std::end(kPrefixes)) {
+        if (prefix == std::end(prefixes)) {
             // A continuation line (link logs list the clashing declarations below the message).
             if (!diagnostics.empty()) {
                 diagnostics.back().message += fmt::format("; {}", line);

@@ -132,6 +132,7 @@ std::vector<LengthMember> LengthMembers(std::string_view text) {
 
 bool PlanLengthMemberRenaming(const std::vector<std::string_view>& texts) {
     std::vector<RenamingScan> scans;
+    scans.reserve(texts.size());
     for (std::string_view text : texts) {
         scans.push_back(ScanForRenaming(text));
     }
@@ -237,6 +238,7 @@ KeywordRenaming PlanRenaming(const std::vector<RenamingScan>& scans, bool es100)
 
 KeywordRenaming PlanEs100Renaming(const std::vector<std::string_view>& texts) {
     std::vector<RenamingScan> scans;
+    scans.reserve(texts.size());
     for (std::string_view text : texts) {
         scans.push_back(ScanForRenaming(text));
     }

@@ -104,7 +104,7 @@ stagefiles::ManifestFile BuildManifestFile(const VariantConfig& config,
                       std::tuple{&entry.stages->fragment, program->fragment_path,
                                  verdict.fragment_hash}}) {
                     stage->file = file;
-                    auto it = by_hash.find(file + "|" + hash);
+                    auto it = by_hash.find(std::string(file).append("|").append(hash));
                     if (it != by_hash.end()) {
                         stage->cost = ToEntry(it->second->cost);
                     }

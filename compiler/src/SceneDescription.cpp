@@ -183,7 +183,7 @@ SceneResult SceneParser::Parse(std::string_view text) {
     }
     const YAML::Node& root = *loaded;
     if (!root || !root.IsMap()) {
-        Error(SourceLocation{file(), 1, 1},
+        Error(SourceLocation{FileName(), 1, 1},
               "a scene must be a mapping with water, above, below, camera and target "
               "(see docs/SCENES.md)");
         result.diagnostics = std::move(diagnostics_);
@@ -194,9 +194,9 @@ SceneResult SceneParser::Parse(std::string_view text) {
         CheckKeys(root, "the top level",
                   {"version", "description", "water", "above", "below", "camera", "target"});
         SceneDescription scene;
-        scene.path = file();
-        scene.name = std::filesystem::path(file()).stem().string();
-        scene.where = SourceLocation{file(), 1, 1};
+        scene.path = FileName();
+        scene.name = std::filesystem::path(FileName()).stem().string();
+        scene.where = SourceLocation{FileName(), 1, 1};
         if (const YAML::Node version = root["version"]) {
             if (!version.IsScalar() || version.Scalar() != "1") {
                 Error(version, "unsupported scene schema version; this tidepool reads version 1");
@@ -224,7 +224,7 @@ SceneResult SceneParser::Parse(std::string_view text) {
             }
         }
         if (!has_target) {
-            Error(SourceLocation{file(), 1, 1},
+            Error(SourceLocation{FileName(), 1, 1},
                   "no `target:`; give min_psnr_db, max_share_visible or frame_budget_ms");
         }
         if (const YAML::Node above = root["above"]) {

@@ -297,7 +297,7 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         } else if (!std::filesystem::is_regular_file(status)) {
             Error(path, fmt::format("{} shader file '{}' not found (looked for {}); paths are "
                                     "relative to the folder of {}",
-                                    stage, value, resolved.string(), file()));
+                                    stage, value, resolved.string(), FileName()));
         }
     }
 
@@ -614,7 +614,7 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
     }
     const YAML::Node& root = *loaded;
     if (!root || root.IsNull()) {
-        Error(SourceLocation{file(), 1, 1},
+        Error(SourceLocation{FileName(), 1, 1},
               "the file is empty; it needs at least `programs:` "
               "(see the variants.yaml schema in README.md)");
         result.diagnostics = std::move(diagnostics_);
@@ -630,7 +630,7 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
         CheckKeys(root, "the top level",
                   {"version", "targets", "max_variants", "programs", "presets", "description"});
         VariantConfig config;
-        config.path = file();
+        config.path = FileName();
         config.base_dir = base_dir_;
         if (root["version"]) {
             config.version = ReadInt(root["version"], "version", 1);
@@ -664,7 +664,7 @@ ConfigResult ConfigParser::Parse(std::string_view text) {
         }
         const YAML::Node programs = root["programs"];
         if (!programs) {
-            Error(SourceLocation{file(), 1, 1},
+            Error(SourceLocation{FileName(), 1, 1},
                   "no `programs:` section; declare at least one "
                   "program with its vertex and fragment files");
         } else if (ExpectMap(programs, "programs")) {

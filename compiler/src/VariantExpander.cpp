@@ -125,9 +125,9 @@ public:
     }
 
     bool OverBudget() const { return over_budget_; }
-    std::vector<Variant>& variants() { return variants_; }
-    std::vector<PrunedCombination>& listed() { return listed_; }
-    const std::vector<std::uint64_t>& counts() const { return counts_; }
+    std::vector<Variant>& Variants() { return variants_; }
+    std::vector<PrunedCombination>& Listed() { return listed_; }
+    const std::vector<std::uint64_t>& Counts() const { return counts_; }
 
 private:
     void Compile() {
@@ -423,21 +423,21 @@ ExpansionResult ExpandVariants(const VariantConfig& config, const ExpansionOptio
                                 program.name, options.max_variants, options.limit_origin)));
             break;
         }
-        if (expansion.variants().empty()) {
+        if (expansion.Variants().empty()) {
             result.diagnostics.push_back(MakeError(
                     program.where.file, program.where.line, program.where.column,
                     fmt::format("the rules leave program '{}' with no variant; relax a rule",
                                 program.name)));
         }
-        std::move(expansion.variants().begin(), expansion.variants().end(),
+        std::move(expansion.Variants().begin(), expansion.Variants().end(),
                   std::back_inserter(result.variants));
-        std::move(expansion.listed().begin(), expansion.listed().end(),
+        std::move(expansion.Listed().begin(), expansion.Listed().end(),
                   std::back_inserter(result.pruned));
         for (std::size_t r = 0; r < program.rules.size(); ++r) {
             const Rule& rule = program.rules[r];
             result.pruned_by_rule.push_back(RulePruneCount{program.name, rule.Describe(),
-                                                           rule.where, expansion.counts()[r]});
-            result.pruned_total = SaturatingAdd(result.pruned_total, expansion.counts()[r]);
+                                                           rule.where, expansion.Counts()[r]});
+            result.pruned_total = SaturatingAdd(result.pruned_total, expansion.Counts()[r]);
         }
     }
     // A stable order independent of the order decisions were made in: by id (each id made

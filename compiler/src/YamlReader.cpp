@@ -105,7 +105,7 @@ public:
     }
     void OnMapEnd() override { Close(); }
 
-    bool failed() const { return failed_; }
+    bool Failed() const { return failed_; }
 
 private:
     struct Frame {
@@ -118,7 +118,7 @@ private:
 
     void Fail(const YAML::Mark& mark, std::string message) {
         if (!failed_) {
-            reader_.diagnostics().push_back(
+            reader_.Diagnostics().push_back(
                     MakeError(file_, mark.line + 1, mark.column + 1, std::move(message)));
         }
         failed_ = true;
@@ -143,7 +143,7 @@ private:
         auto [it, inserted] = map.keys.emplace(*scalar, mark.line + 1);
         if (!inserted) {
             // yaml-cpp keeps only the first of two equal keys when looked up, silently.
-            reader_.diagnostics().push_back(
+            reader_.Diagnostics().push_back(
                     MakeError(file_, mark.line + 1, mark.column + 1,
                               fmt::format("duplicate key '{}' (first written at line {}); "
                                           "remove one of them",
@@ -219,7 +219,7 @@ public:
     TreeChecker(YamlReader& reader, const std::string& file) : reader_(reader), file_(file) {}
 
     void Check(const YAML::Node& root) { Visit(root); }
-    bool failed() const { return failed_; }
+    bool Failed() const { return failed_; }
 
 private:
     void Visit(const YAML::Node& node) {
@@ -234,7 +234,7 @@ private:
                     const YAML::Mark mark = key.Mark();
                     auto [it, inserted] = keys.emplace(text, mark.line + 1);
                     if (!inserted) {
-                        reader_.diagnostics().push_back(
+                        reader_.Diagnostics().push_back(
                                 MakeError(file_, mark.line + 1, mark.column + 1,
                                           fmt::format("duplicate key '{}' (first written at line "
                                                       "{}); remove one of them",
@@ -250,7 +250,7 @@ private:
             }
         } else if (total_ > kMaxYamlExpandedNodes && !failed_) {
             const YAML::Mark mark = node.Mark();
-            reader_.diagnostics().push_back(MakeError(
+            reader_.Diagnostics().push_back(MakeError(
                     file_, mark.line + 1, mark.column + 1,
                     fmt::format("the document expands through its aliases to more than {} "
                                 "nodes; write the repeated parts out or use fewer nested aliases",
@@ -286,7 +286,7 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
             YAML::Node root = YAML::Load(owned);
             TreeChecker checker(*this, file_);
             checker.Check(root);
-            if (checker.failed()) {
+            if (checker.Failed()) {
                 return std::nullopt;
             }
             return root;
@@ -295,7 +295,7 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
         YAML::Parser parser(events);
         AliasChecker checker(*this, file_);
         parser.HandleNextDocument(checker);
-        if (checker.failed()) {
+        if (checker.Failed()) {
             return std::nullopt;
         }
         return YAML::Load(owned);

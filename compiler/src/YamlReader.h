@@ -31,11 +31,11 @@ public:
     /// Parses the first document of `text` after checking that it is UTF-8, that no alias names
     /// a node containing it, and that its alias expansion stays within kMaxYamlExpandedNodes;
     /// reports every repeated mapping key. Returns no node when the text cannot be used (the
-    /// reason is in diagnostics()); a repeated key is reported but the node is still returned.
+    /// reason is in Diagnostics()); a repeated key is reported but the node is still returned.
     std::optional<YAML::Node> Load(std::string_view text);
 
-    std::vector<Diagnostic>& diagnostics() { return diagnostics_; }
-    const std::string& file() const { return file_; }
+    std::vector<Diagnostic>& Diagnostics() { return diagnostics_; }
+    const std::string& FileName() const { return file_; }
 
 protected:
     SourceLocation At(const YAML::Node& node) const;

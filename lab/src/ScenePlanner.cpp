@@ -780,6 +780,7 @@ stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
     };
     auto effects = [](const std::vector<DroppedEffect>& list) {
         std::vector<stagefiles::PlanEffect> out;
+        out.reserve(list.size());
         for (const DroppedEffect& d : list) {
             out.push_back({d.effect, d.reason, d.psnr_change_db, d.time_change_percent});
         }
@@ -787,6 +788,7 @@ stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
     };
     auto messages = [](const std::vector<Diagnostic>& diagnostics) {
         std::vector<std::string> out;
+        out.reserve(diagnostics.size());
         for (const Diagnostic& d : diagnostics) {
             out.push_back(FormatDiagnostic(d));
         }

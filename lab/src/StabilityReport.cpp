@@ -35,6 +35,7 @@ void CountNonFinite(const Range& values, StabilityCaseResult* result) {
 template <typename T, int N>
 std::vector<T> Components(const glm::vec<N, T>& v) {
     std::vector<T> out;
+    out.reserve(N);
     for (int i = 0; i < N; ++i) {
         out.push_back(v[i]);
     }

@@ -274,15 +274,15 @@ SceneTables BuildSceneTables(const stagefiles::PlansFile& plans) {
                 {plan.scene, (c != nullptr ? c->chosen.id : none) + errors,
                  c != nullptr ? c->full.id : none,
                  c != nullptr ? Fixed(c->time_ms_chosen, 2) + " / " + Fixed(c->time_ms_full, 2)
-                              : none + " / " + none,
+                              : fmt::format("{0} / {0}", none),
                  c != nullptr ? Signed(c->time_change_percent, 0, "%") : none,
                  c != nullptr ? PsnrText(c->error.psnr_db) + ", SSIM " + Fixed(c->error.ssim, 3) +
                                         ", " + Fixed(c->error.share_visible * 100, 1, "%")
-                              : none + ", SSIM " + none + ", " + none,
+                              : fmt::format("{0}, SSIM {0}, {0}", none),
                  target.empty() ? "–" : target, plan.met ? "met" : "NOT met",
                  c != nullptr ? fmt::format("{} / {} / {}", c->passes_saved, c->draws_saved,
                                             c->pixels_saved)
-                              : none + " / " + none + " / " + none});
+                              : fmt::format("{0} / {0} / {0}", none)});
         t.summary_css.push_back(plan.met ? "" : "bad");
         std::vector<std::vector<std::string>> effects;
         if (c != nullptr) {
@@ -323,19 +323,16 @@ std::string ScenesIntro(const stagefiles::PlansFile& plans) {
 std::string VerdictCss(Verdict verdict) {
     switch (verdict) {
         case Verdict::kSameDirectionAndMagnitude:
-            return "good";
         case Verdict::kNegligibleAsClaimed:
             return "good";
         case Verdict::kSameDirectionDifferentMagnitude:
-            return "fair";
         case Verdict::kSameDirectionOnly:
             return "fair";
         case Verdict::kOpposite:
+        case Verdict::kFailed:
             return "bad";
         case Verdict::kBelowResolution:
             return "unknown";
-        case Verdict::kFailed:
-            return "bad";
     }
     return "unknown";
 }

@@ -478,7 +478,7 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
         return written;
     };
     auto write = [&](const std::string& relative, std::string_view content) {
-        const std::string error = base::WriteFileAtomically(staging / relative, content);
+        std::string error = base::WriteFileAtomically(staging / relative, content);
         if (error.empty()) {
             written.files.emplace_back(relative);
         }

@@ -175,9 +175,9 @@ std::array<float, 8> FourierCoefficients(const std::vector<float>& samples, int 
         sums[0] += f;
         for (int n = 1; n <= 4; ++n) {
             const double angle = static_cast<double>(n) * t;
-            sums[static_cast<std::size_t>(2 * n - 1)] += f * std::cos(angle);
+            sums[2 * static_cast<std::size_t>(n) - 1] += f * std::cos(angle);
             if (n < 4) {
-                sums[static_cast<std::size_t>(2 * n)] += f * std::sin(angle);
+                sums[2 * static_cast<std::size_t>(n)] += f * std::sin(angle);
             }
         }
     }

@@ -50,8 +50,8 @@ std::vector<Diagnostic> ParseMesaInfoLog(std::string_view log, const std::string
         source_lines.push_back(user_source.substr(start, end - start));
         start = end + 1;
     }
-    static const std::regex kPositioned(R"(^\s*\d+:(\d+)\((\d+)\):\s*(error|warning)\s*:\s*(.*)$)");
-    static const std::regex kPlain(R"(^\s*(error|warning)\s*:\s*(.*)$)");
+    static const std::regex positioned(R"(^\s*\d+:(\d+)\((\d+)\):\s*(error|warning)\s*:\s*(.*)$)");
+    static const std::regex plain(R"(^\s*(error|warning)\s*:\s*(.*)$)");
     std::vector<Diagnostic> diagnostics;
     std::size_t start = 0;
     while (start <= log.size()) {
@@ -68,7 +68,7 @@ std::vector<Diagnostic> ParseMesaInfoLog(std::string_view log, const std::string
         Diagnostic diagnostic;
         diagnostic.file = file;
         diagnostic.variant = variant;
-        if (std::regex_match(line, match, kPositioned)) {
+        if (std::regex_match(line, match, positioned)) {
             diagnostic.line = std::stoi(match[1]);
             diagnostic.column = std::stoi(match[2]);
             const auto index = static_cast<std::size_t>(diagnostic.line - 1);
@@ -77,7 +77,7 @@ std::vector<Diagnostic> ParseMesaInfoLog(std::string_view log, const std::string
             }
             diagnostic.severity = SeverityFrom(match[3]);
             diagnostic.message = match[4];
-        } else if (std::regex_match(line, match, kPlain)) {
+        } else if (std::regex_match(line, match, plain)) {
             diagnostic.severity = SeverityFrom(match[1]);
             diagnostic.message = match[2];
         } else if (!diagnostics.empty()) {

@@ -111,7 +111,7 @@ TEST(YamlReaderTest, RepeatedKeyInAnAliasedMappingIsReportedOnce) {
 std::string LoadFindings(const std::string& yaml) {
     YamlReader reader("d.yaml");
     const bool loaded = reader.Load(yaml).has_value();
-    return (loaded ? "loaded\n" : "refused\n") + Formatted(reader.diagnostics());
+    return (loaded ? "loaded\n" : "refused\n") + Formatted(reader.Diagnostics());
 }
 
 // A document with no anchor is read in one parse and checked on its tree; one with an anchor

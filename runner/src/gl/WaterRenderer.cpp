@@ -33,6 +33,12 @@ constexpr GLuint kAttribColour = 2;
 constexpr GLuint kAttribFourier0 = 3;  // REFLECTION_FOURIER coefficients (a0, a1, b1, a2)
 constexpr GLuint kAttribFourier1 = 4;  // and (b2, a3, b3, a4)
 
+// A vertex attribute's byte offset into the bound buffer, which GL takes as a pointer.
+const void* BufferOffset(std::size_t bytes) {
+    // glVertexAttribPointer takes the offset as a pointer; an integer cast is the only way.
+    return reinterpret_cast<const void*>(bytes);  // NOLINT(performance-no-int-to-ptr)
+}
+
 // Texture units.
 constexpr GLint kUnitReflection = 0;
 constexpr GLint kUnitRefraction = 1;
@@ -271,7 +277,7 @@ std::string WaterRenderer::Impl::EnsureTarget(std::map<int, RenderTarget>* targe
         return "";
     }
     RenderTarget target;
-    const std::string error = MakeTarget(&target, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
+    std::string error = MakeTarget(&target, size, size, GL_RGBA8, GL_UNSIGNED_BYTE, true);
     if (!error.empty()) {
         FreeTarget(&target);
         return error;
@@ -546,7 +552,8 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, FrameReport* report) 
     for (int index : pass.meshes) {
         const Mesh& mesh =
                 index < 0 ? scene.terrain : scene.objects[static_cast<std::size_t>(index)];
-        const MeshBuffers& buffers = meshes[static_cast<std::size_t>(index + 1)];
+        // meshes holds the terrain (index -1) first, then scene.objects.
+        const MeshBuffers& buffers = meshes[index < 0 ? 0 : static_cast<std::size_t>(index) + 1];
         const glm::mat4 mvp = view_projection * mesh.model_matrix;
         gl->glUniformMatrix4fv(mvp_location, 1, GL_FALSE, glm::value_ptr(mvp));
         gl->glUniformMatrix4fv(model_location, 1, GL_FALSE, glm::value_ptr(mesh.model_matrix));
@@ -554,9 +561,9 @@ void WaterRenderer::Impl::DrawModels(const PassPlan& pass, FrameReport* report) 
         gl->glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, buffers.indices);
         gl->glVertexAttribPointer(kAttribVertex, 3, GL_FLOAT, GL_FALSE, kStride, nullptr);
         gl->glVertexAttribPointer(kAttribNormal, 3, GL_FLOAT, GL_FALSE, kStride,
-                                  reinterpret_cast<const void*>(3 * sizeof(float)));
+                                  BufferOffset(3 * sizeof(float)));
         gl->glVertexAttribPointer(kAttribColour, 3, GL_FLOAT, GL_FALSE, kStride,
-                                  reinterpret_cast<const void*>(6 * sizeof(float)));
+                                  BufferOffset(6 * sizeof(float)));
         gl->glDrawElements(GL_TRIANGLES, buffers.index_count, GL_UNSIGNED_SHORT, nullptr);
         ++report->draw_calls;
     }
@@ -684,9 +691,9 @@ void WaterRenderer::Impl::DrawWater(const FramePlan& plan, const RenderConfigura
         gl->glEnableVertexAttribArray(kAttribFourier0);
         gl->glEnableVertexAttribArray(kAttribFourier1);
         gl->glVertexAttribPointer(kAttribFourier0, 4, GL_FLOAT, GL_FALSE, kStride,
-                                  reinterpret_cast<const void*>(3 * sizeof(float)));
+                                  BufferOffset(3 * sizeof(float)));
         gl->glVertexAttribPointer(kAttribFourier1, 4, GL_FLOAT, GL_FALSE, kStride,
-                                  reinterpret_cast<const void*>(7 * sizeof(float)));
+                                  BufferOffset(7 * sizeof(float)));
         gl->glDrawElements(GL_TRIANGLES, fourier_grid.index_count, GL_UNSIGNED_SHORT, nullptr);
         gl->glDisableVertexAttribArray(kAttribFourier0);
         gl->glDisableVertexAttribArray(kAttribFourier1);
