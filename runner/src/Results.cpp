@@ -413,6 +413,7 @@ stagefiles::DiagnosticEntry ResultsDiagnostic(const Diagnostic& d) {
 
 std::vector<stagefiles::DiagnosticEntry> ToEntries(const std::vector<Diagnostic>& diagnostics) {
     std::vector<stagefiles::DiagnosticEntry> entries;
+    entries.reserve(diagnostics.size());
     for (const Diagnostic& d : diagnostics) {
         entries.push_back(ResultsDiagnostic(d));
     }
