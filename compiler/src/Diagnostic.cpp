@@ -18,6 +18,15 @@ const char* SeverityName(Severity severity) {
     return "error";
 }
 
+std::optional<Severity> SeverityFromName(std::string_view name) {
+    for (Severity severity : {Severity::kError, Severity::kWarning, Severity::kNote}) {
+        if (name == SeverityName(severity)) {
+            return severity;
+        }
+    }
+    return std::nullopt;
+}
+
 std::string FormatDiagnostic(const Diagnostic& diagnostic) {
     std::string out;
     if (!diagnostic.file.empty()) {

@@ -35,6 +35,15 @@ TEST(DiagnosticTest, SeverityNamesAreGccs) {
     EXPECT_STREQ(SeverityName(Severity::kNote), "note");
 }
 
+TEST(DiagnosticTest, SeverityFromNameReadsBackEveryNameAndNothingElse) {
+    for (Severity severity : {Severity::kError, Severity::kWarning, Severity::kNote}) {
+        EXPECT_EQ(SeverityFromName(SeverityName(severity)), severity);
+    }
+    EXPECT_EQ(SeverityFromName("Error"), std::nullopt);
+    EXPECT_EQ(SeverityFromName(""), std::nullopt);
+    EXPECT_EQ(SeverityFromName("fatal"), std::nullopt);
+}
+
 TEST(DiagnosticTest, OnlyAnErrorMakesAListHaveErrors) {
     EXPECT_FALSE(HasErrors({}));
     std::vector<Diagnostic> diagnostics = {{Severity::kWarning, "a", 1, 1, "w", ""},

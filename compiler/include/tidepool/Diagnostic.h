@@ -1,7 +1,9 @@
 // One message about the user's input: a YAML file, a shader file or the command line.
 #pragma once
 
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tidepool {
@@ -26,6 +28,8 @@ std::string FormatDiagnostic(const Diagnostic& diagnostic);
 
 /// Returns the lower-case name GCC uses for a severity ("error", "warning", "note").
 const char* SeverityName(Severity severity);
+/// The severity SeverityName gives `name`; nothing for any other text.
+std::optional<Severity> SeverityFromName(std::string_view name);
 
 /// True when any diagnostic is an error.
 bool HasErrors(const std::vector<Diagnostic>& diagnostics);
