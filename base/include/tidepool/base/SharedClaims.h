@@ -1,0 +1,71 @@
+// A list of work units that two processes forked from one parent share: each unit is done by
+// exactly one of them, claimed first come, first served. `run` uses it so that the process
+// beside the render, which has its own core, takes configurations' images off the render's
+// work list instead of leaving that core idle.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace tidepool::base {
+
+/// The claim table: one state per unit in memory shared (mmap MAP_SHARED) with every process
+/// forked after it is made. The "owner" process is the one whose results hold every unit in the
+/// end; the "helper" takes units and hands each back when it is done. The owner takes back a unit
+/// the helper claimed but stopped working on (it crashed or stalled), so a unit is never lost.
+class SharedClaims {
+public:
+    enum class State : int { kFree = 0, kOwner, kHelperWorking, kHelperDone };
+
+    /// A table of `units` free units, or null when the shared memory cannot be mapped (the caller
+    /// then runs without a helper).
+    static std::unique_ptr<SharedClaims> Create(std::size_t units);
+    ~SharedClaims();
+    SharedClaims(const SharedClaims&) = delete;
+    SharedClaims& operator=(const SharedClaims&) = delete;
+
+    std::size_t Size() const { return units_; }
+    State StateOf(std::size_t unit) const;
+
+    /// The owner claims `unit`; false when the helper has it.
+    bool ClaimForOwner(std::size_t unit);
+    /// The helper claims `unit` and beats its heartbeat; false when the unit is taken.
+    bool ClaimForHelper(std::size_t unit);
+    /// The helper finished `unit`; false when the owner took it back meanwhile (the helper's
+    /// result must then be dropped).
+    bool FinishForHelper(std::size_t unit);
+
+    /// The helper is alive and working on its claimed units: sets its heartbeat to now.
+    void Beat();
+    /// Whether the helper is taking units now (it says so; it stops when none are left for it).
+    void SetHelperTaking(bool taking);
+    bool HelperTaking() const;
+    /// Units the helper has claimed, done or not.
+    std::size_t HelperClaimed() const;
+
+    /// Waits until the helper has finished every unit it claimed, checking every `poll`. When its
+    /// heartbeat is older than `stall`, takes its unfinished units back for the owner and returns
+    /// them (the owner must then do them itself); otherwise returns nothing.
+    std::vector<std::size_t> AwaitHelper(std::chrono::milliseconds stall,
+                                         std::chrono::milliseconds poll);
+
+private:
+    struct Header {
+        std::atomic<std::int64_t> heartbeat_ns;  // steady clock, shared by every process
+        std::atomic<int> helper_taking;
+    };
+    SharedClaims(void* memory, std::size_t bytes, std::size_t units);
+    std::atomic<int>& Slot(std::size_t unit) const;
+
+    void* memory_;
+    std::size_t bytes_;
+    std::size_t units_;
+    Header* header_;
+    std::atomic<int>* states_;
+};
+
+}  // namespace tidepool::base

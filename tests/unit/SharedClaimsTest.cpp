@@ -1,0 +1,131 @@
+// The claim table two forked processes share (base/SharedClaims.h).
+#include "tidepool/base/SharedClaims.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstddef>
+#include <thread>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace tidepool::base {
+namespace {
+
+using namespace std::chrono_literals;
+using State = SharedClaims::State;
+
+// Runs `child` in a forked process and waits for it; true when it exited with 0.
+template <typename Child>
+bool InAForkedProcess(Child child) {
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        child();
+        ::_exit(0);
+    }
+    int status = 0;
+    return pid > 0 && ::waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&
+           WEXITSTATUS(status) == 0;
+}
+
+TEST(SharedClaimsTest, AUnitClaimedInAForkedProcessIsSeenClaimedByTheParent) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(8);
+    ASSERT_TRUE(claims);
+    ASSERT_TRUE(InAForkedProcess([&] {
+        for (std::size_t i = 4; i < 8; ++i) {
+            if (!claims->ClaimForHelper(i) || !claims->FinishForHelper(i)) {
+                ::_exit(1);
+            }
+        }
+    }));
+    for (std::size_t i = 0; i < 8; ++i) {
+        EXPECT_EQ(claims->ClaimForOwner(i), i < 4) << i;
+        EXPECT_EQ(claims->StateOf(i), i < 4 ? State::kOwner : State::kHelperDone) << i;
+    }
+    EXPECT_EQ(claims->HelperClaimed(), 4U);
+}
+
+TEST(SharedClaimsTest, OwnerAndHelperRacingForEveryUnitEachGetEveryUnitOnceBetweenThem) {
+    constexpr std::size_t kUnits = 20000;
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(kUnits);
+    ASSERT_TRUE(claims);
+    std::size_t owner = 0;
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        // The helper takes from the end, as the second process does.
+        for (std::size_t i = kUnits; i-- > 0;) {
+            if (claims->ClaimForHelper(i)) {
+                claims->FinishForHelper(i);
+            }
+        }
+        ::_exit(0);
+    }
+    ASSERT_GT(pid, 0);
+    for (std::size_t i = 0; i < kUnits; ++i) {
+        owner += claims->ClaimForOwner(i) ? 1U : 0U;
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    EXPECT_EQ(owner + claims->HelperClaimed(), kUnits);
+    for (std::size_t i = 0; i < kUnits; ++i) {
+        const State state = claims->StateOf(i);
+        ASSERT_TRUE(state == State::kOwner || state == State::kHelperDone) << i;
+    }
+}
+
+TEST(SharedClaimsTest, TheOwnerMayClaimItsOwnUnitAgainButNotTheHelpers) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(2);
+    ASSERT_TRUE(claims);
+    EXPECT_TRUE(claims->ClaimForOwner(0));
+    EXPECT_TRUE(claims->ClaimForOwner(0));
+    EXPECT_FALSE(claims->ClaimForHelper(0));
+    EXPECT_TRUE(claims->ClaimForHelper(1));
+    EXPECT_FALSE(claims->ClaimForHelper(1));
+    EXPECT_FALSE(claims->ClaimForOwner(1));
+}
+
+TEST(SharedClaimsTest, AwaitingAHelperThatFinishesReturnsNothingToRedo) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(3);
+    ASSERT_TRUE(claims);
+    ASSERT_TRUE(claims->ClaimForHelper(2));
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        std::this_thread::sleep_for(100ms);
+        claims->FinishForHelper(2);
+        ::_exit(0);
+    }
+    ASSERT_GT(pid, 0);
+    EXPECT_TRUE(claims->AwaitHelper(60s, 5ms).empty());
+    EXPECT_EQ(claims->StateOf(2), State::kHelperDone);
+    int status = 0;
+    ::waitpid(pid, &status, 0);
+}
+
+TEST(SharedClaimsTest, AStalledHelpersUnfinishedUnitsAreTakenBackAndItsLateFinishIsRefused) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(4);
+    ASSERT_TRUE(claims);
+    ASSERT_TRUE(claims->ClaimForHelper(1));
+    ASSERT_TRUE(claims->FinishForHelper(1));
+    ASSERT_TRUE(claims->ClaimForHelper(3));  // and then it stops beating
+    const std::vector<std::size_t> taken = claims->AwaitHelper(50ms, 5ms);
+    EXPECT_EQ(taken, std::vector<std::size_t>{3});
+    EXPECT_EQ(claims->StateOf(3), State::kOwner);
+    EXPECT_EQ(claims->StateOf(1), State::kHelperDone);  // finished work is kept
+    EXPECT_FALSE(claims->FinishForHelper(3));
+    EXPECT_EQ(claims->StateOf(3), State::kOwner);
+}
+
+TEST(SharedClaimsTest, TheHelperSaysWhetherItIsTakingUnits) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(1);
+    ASSERT_TRUE(claims);
+    EXPECT_FALSE(claims->HelperTaking());
+    ASSERT_TRUE(InAForkedProcess([&] { claims->SetHelperTaking(true); }));
+    EXPECT_TRUE(claims->HelperTaking());
+    claims->SetHelperTaking(false);
+    EXPECT_FALSE(claims->HelperTaking());
+}
+
+}  // namespace
+}  // namespace tidepool::base
