@@ -35,13 +35,16 @@ found = {
     # The stability catalogue and the scene plans are one stage of wall time, run in a second
     # process beside the render: its seconds overlap the render's and are not added up.
     "stability+plans": re.search(r"^stability and plans: (\d+) s.*$", log, re.M),
+    # The second process renders configurations' images off the render's list first.
+    "images beside": re.search(r"^images: \d+ configurations rendered (beside the render), (\d+) s",
+                               log, re.M),
     "report": re.search(r"written in ([\d.]+) s", stdout),
 }
 print(f"{label} ({what}): {total:.0f} s wall in all")
 accounted = 0.0
 for stage, m in found.items():
     if m:
-        seconds = float(m.group(1))
+        seconds = float(m.group(m.lastindex))
         beside = "beside the render" in m.group(0)
         if not beside:
             accounted += seconds

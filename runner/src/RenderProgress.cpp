@@ -22,6 +22,13 @@ constexpr double kPriorFrames = 40.0;
 
 }  // namespace
 
+double ImagesLeftHere(double comparisons_left, double images_left) {
+    if (images_left <= 0) {
+        return 0;
+    }
+    return images_left * images_left / (comparisons_left + 2 * images_left);
+}
+
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first) {
     std::vector<std::size_t> order(configurations);
@@ -107,18 +114,28 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     last = now;
     k.done += frames;
     k.total = std::max(k.total, k.done);
+    // The images a second process has claimed are its work, not this meter's.
+    const long helper_frames = shared_ != nullptr ? static_cast<long>(shared_->HelperClaimed()) *
+                                                            shared_frames_per_unit_
+                                                  : 0;
+    std::array<long, 2> totals = {kinds_[0].total,
+                                  std::max(kinds_[1].total - helper_frames, kinds_[1].done)};
     state_.stage = kind == kComparison ? "comparisons" : "images";
     state_.configuration = what;
     state_.done = kinds_[0].done + kinds_[1].done;
-    state_.total = kinds_[0].total + kinds_[1].total;
+    state_.total = totals[0] + totals[1];
     state_.elapsed_seconds = Seconds(now - start_);
     double done_seconds = 0;
-    double remaining_seconds = 0;
+    std::array<double, 2> left{};
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const double rate = SecondsPerFrame(i);
         done_seconds += rate * static_cast<double>(kinds_[i].done);
-        remaining_seconds += rate * static_cast<double>(kinds_[i].total - kinds_[i].done);
+        left[i] = rate * static_cast<double>(totals[i] - kinds_[i].done);
     }
+    if (shared_ != nullptr && shared_->HelperTaking()) {
+        left[kImage] = ImagesLeftHere(left[kComparison], left[kImage]);
+    }
+    const double remaining_seconds = left[kComparison] + left[kImage];
     const double threads = static_cast<double>(last_step_.size());
     state_.eta_seconds = remaining_seconds / threads;
     state_.percent = done_seconds + remaining_seconds > 0
@@ -127,6 +144,12 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     if (callback_) {
         callback_(state_);
     }
+}
+
+void ProgressMeter::ShareImages(const base::SharedClaims* claims, long frames_per_unit) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    shared_ = claims;
+    shared_frames_per_unit_ = frames_per_unit;
 }
 
 RunProgress ProgressMeter::Last() const {

@@ -3,6 +3,7 @@
 // library; tested on its own (tests/unit/RenderProgressTest.cpp).
 #pragma once
 
+#include "tidepool/base/SharedClaims.h"
 #include "tidepool/runner/Results.h"
 
 #include <array>
@@ -22,6 +23,14 @@ struct WorkUnit {
     bool comparison = false;
     std::size_t index = 0;
 };
+
+/// Of `images_left` seconds of images nobody has claimed, those this process will render while a
+/// second process takes images from the end of the work order at full speed, and this process
+/// goes through `comparisons_left` seconds of comparisons with its images spread among them
+/// (RenderWorkOrder). This process renders images at the share rho = images / (comparisons +
+/// images) of its time, the other at all of its time, so they meet after images / (1 + rho)
+/// seconds, of which this process spent rho on images: images * rho / (1 + rho).
+double ImagesLeftHere(double comparisons_left, double images_left);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then each comparison followed by its share of the
@@ -70,6 +79,12 @@ public:
         Step(kind, what, frames, Clock::now());
     }
 
+    /// A second process takes configurations' units off the same work order (`claims`, one unit
+    /// per configuration of `frames_per_unit` image frames), from its end. The units it claims
+    /// leave this meter's work; while it is taking units, the ETA counts on it for its share of
+    /// the images nobody has claimed yet (ImagesLeftHere).
+    void ShareImages(const base::SharedClaims* claims, long frames_per_unit);
+
     /// The last state passed to the callback.
     RunProgress Last() const;
 
@@ -88,6 +103,8 @@ private:
     void SumComparisons();
 
     const ProgressCallback& callback_;
+    const base::SharedClaims* shared_ = nullptr;
+    long shared_frames_per_unit_ = 0;
     Clock::time_point start_;
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;

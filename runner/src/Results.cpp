@@ -21,7 +21,9 @@
 #include <system_error>
 #include <thread>
 
+#include "ConfigurationImages.h"
 #include "RenderProgress.h"
+#include "SharedImages.h"
 #include <fmt/format.h>
 
 namespace tidepool::runner {
@@ -54,52 +56,6 @@ bool RunResults::AllOk() const {
 
 namespace {
 
-// The reference configuration's images, by view, with their SSIM moments; filled by the
-// thread that renders the reference, read by every thread after.
-class ReferenceImages {
-public:
-    void Keep(const std::string& view, const base::RgbaImage& image) {
-        auto kept = std::make_shared<const Kept>(image);
-        std::lock_guard<std::mutex> lock(mutex_);
-        views_[view] = std::move(kept);
-    }
-
-    // `image` against the reference's at `view`, the way the report measures accuracy;
-    // nothing when the reference has no image there (yet) or the sizes differ.
-    std::optional<base::ImageAccuracy> Compare(const std::string& view,
-                                               const base::RgbaImage& image) const {
-        std::shared_ptr<const Kept> kept;
-        {
-            std::lock_guard<std::mutex> lock(mutex_);
-            auto found = views_.find(view);
-            if (found == views_.end()) {
-                return std::nullopt;
-            }
-            kept = found->second;
-        }
-        if (kept->image.width != image.width || kept->image.height != image.height) {
-            return std::nullopt;
-        }
-        return base::MeasureAccuracy(image, kept->image, kept->ssim);
-    }
-
-private:
-    struct Kept {
-        explicit Kept(const base::RgbaImage& from) : image(from), ssim(image) {}
-        base::RgbaImage image;
-        base::SsimReference ssim;
-    };
-    mutable std::mutex mutex_;
-    std::map<std::string, std::shared_ptr<const Kept>> views_;
-};
-
-// One rendering thread's context, renderer and timer, and what it has compiled.
-struct RenderWorker {
-    std::unique_ptr<WaterRenderer> renderer;
-    std::unique_ptr<FrameTimer> timer;
-    std::map<std::size_t, DriverVerdict> prepared;  // by configuration index
-};
-
 constexpr long kInitialPairGuess = 60;  // until a comparison's first look says otherwise
 
 }  // namespace
@@ -115,13 +71,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                      results.gl.timer_query);
     const Clock::time_point start = Clock::now();
 
-    const CameraView* timing_view = nullptr;
-    for (const CameraView& view : options.views) {
-        if (options.timing_view.empty() || view.name == options.timing_view) {
-            timing_view = &view;
-            break;
-        }
-    }
+    const CameraView* timing_view = TimingView(options);
     for (const RenderConfiguration& configuration : options.configurations) {
         ConfigurationResult result;
         result.configuration = configuration;
@@ -156,46 +106,20 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     }
 
     ProgressMeter meter(progress, start);
-    const long per_configuration = static_cast<long>(options.views.size()) + options.coarse_frames;
+    const long per_configuration = FramesPerConfiguration(options);
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
     meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
 
     // The reference configuration renders first, so that every later image is compared with
     // it while in memory.
-    std::optional<std::size_t> reference;
-    for (std::size_t i = 0; i < options.configurations.size() && !reference; ++i) {
-        const std::vector<std::string>& presets = options.configurations[i].presets;
-        if (std::find(presets.begin(), presets.end(), options.reference_preset) != presets.end()) {
-            reference = i;
-        }
-    }
+    const std::optional<std::size_t> reference = ReferenceConfiguration(options);
     ReferenceImages references;
     const std::vector<WorkUnit> units =
             RenderWorkOrder(results.comparisons.size(), results.configurations.size(), reference);
     std::atomic<std::size_t> next_unit{0};
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
-
-    // Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too
-    // (llvmpipe compiles shader variants on first draw, which must not land in a timed frame).
-    // A configuration's own unit needs none: its images, every view once, come before its
-    // timed frames and warm it.
-    auto prepare = [&](RenderWorker& w, std::size_t i, bool warm) -> const DriverVerdict& {
-        auto found = w.prepared.find(i);
-        if (found != w.prepared.end()) {
-            return found->second;
-        }
-        const RenderConfiguration& c = options.configurations[i];
-        DriverVerdict verdict = w.renderer->Prepare(c);
-        if (warm && verdict.valid && timing_view != nullptr) {
-            for (int f = 0; f < options.warmup_frames; ++f) {
-                w.renderer->RenderFrame(c, *timing_view);
-                w.renderer->Finish();
-            }
-        }
-        return w.prepared.emplace(i, std::move(verdict)).first->second;
-    };
 
     auto time_passes = [&](RenderWorker& w, std::size_t i) {
         if (pass_timed[i].exchange(true) || timing_view == nullptr) {
@@ -219,62 +143,17 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
     };
 
+    base::SharedClaims* claims = options.shared.claims;
+    std::atomic<bool> collected{false};
+    std::atomic<int> threads_started{0};
+    std::atomic<int> threads_done{0};
+    if (claims != nullptr) {
+        meter.ShareImages(claims, per_configuration);
+    }
+    const ImageUnitContext image_context{options, references, &meter, results_mutex,
+                                         results.write_errors};
     auto run_configuration = [&](RenderWorker& w, std::size_t i) {
-        ConfigurationResult& r = results.configurations[i];
-        r.verdict = prepare(w, i, false);
-        if (!r.verdict.valid) {
-            meter.Step(ProgressMeter::kImage, r.configuration.id, per_configuration);
-            return;
-        }
-        for (const CameraView& view : options.views) {
-            ViewResult view_result;
-            view_result.view = view.name;
-            view_result.frame = w.renderer->RenderFrame(r.configuration, view);
-            w.renderer->Finish();
-            if (!view_result.frame.gl_error.empty() && r.gl_error.empty()) {
-                r.gl_error = fmt::format("{} (view {})", view_result.frame.gl_error, view.name);
-            }
-            const base::RgbaImage image = w.renderer->ReadImage();
-            if (reference && i == *reference) {
-                references.Keep(view.name, image);
-            }
-            view_result.accuracy = references.Compare(view.name, image);
-            if (options.write_images) {
-                const std::string name = fmt::format(
-                        "images/{}-{}.png", SanitiseFileName(r.configuration.id), view.name);
-                const std::string write_error =
-                        base::WritePngAtomically(options.out_dir / name, image);
-                if (write_error.empty()) {
-                    view_result.image_path = name;
-                } else {
-                    std::lock_guard<std::mutex> lock(results_mutex);
-                    results.write_errors.push_back(write_error);
-                }
-            }
-            if (&view == timing_view) {
-                r.passes = view_result.frame.passes;
-                r.draw_calls = view_result.frame.draw_calls;
-            }
-            r.views.push_back(std::move(view_result));
-            meter.Step(ProgressMeter::kImage, r.configuration.id, 1);
-        }
-        if (timing_view == nullptr) {
-            meter.Step(ProgressMeter::kImage, r.configuration.id, options.coarse_frames);
-            return;
-        }
-        std::vector<double> plan_ms;
-        for (int f = 0; f < options.coarse_frames; ++f) {
-            FrameReport frame;
-            const FrameTime t = w.timer->Time(r.configuration, *timing_view, &frame);
-            r.samples_ms.push_back({t.wall_ms});
-            r.cpu_samples_ms.push_back({t.ms});
-            plan_ms.push_back(frame.plan_seconds * 1000.0);
-            if (!frame.gl_error.empty() && r.gl_error.empty()) {
-                r.gl_error = frame.gl_error;
-            }
-            meter.Step(ProgressMeter::kImage, r.configuration.id, 1);
-        }
-        r.plan_ms_median = base::Median(plan_ms);
+        RenderConfigurationUnit(w, image_context, i, results.configurations[i]);
     };
 
     auto run_comparison = [&](RenderWorker& w, std::size_t k) {
@@ -285,7 +164,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
         if (out.error.empty()) {
             for (std::size_t i : {c.baseline, c.candidate}) {
-                if (!prepare(w, i, true).valid) {
+                if (!PrepareConfiguration(w, options, i, true).valid) {
                     out.error = fmt::format("configuration {} did not compile in Mesa",
                                             options.configurations[i].id);
                     break;
@@ -331,12 +210,20 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             return;
         }
         w.timer = std::make_unique<FrameTimer>(*w.renderer, results.clock.clock);
+        ++threads_started;
         for (std::size_t u = next_unit++; u < units.size(); u = next_unit++) {
             if (units[u].comparison) {
                 run_comparison(w, units[u].index);
-            } else {
+            } else if (claims == nullptr || claims->ClaimForOwner(units[u].index)) {
                 run_configuration(w, units[u].index);
             }
+        }
+        // The units a second process took, collected by the last thread out: no other thread
+        // is then writing a configuration's per-pass times.
+        if (claims != nullptr && ++threads_done == threads_started.load() &&
+            !collected.exchange(true)) {
+            results.shared_configurations =
+                    CollectSharedUnits(w, image_context, results.configurations);
         }
     };
 

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstddef>
+#include <memory>
 #include <set>
 #include <vector>
 
@@ -135,6 +136,55 @@ TEST(RenderProgressTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
     meter.ComparisonExpects(3, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(36));
     EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 40);
+}
+
+// A second process that takes images at full speed while this one also goes through its
+// comparisons: with no comparisons left they split the images in half; with no images left this
+// process has none; in between it renders its share rho = I / (C + I) of the time until they meet.
+TEST(RenderProgressTest, ImagesLeftHereFollowTheMeetingPointOfTheTwoProcesses) {
+    EXPECT_DOUBLE_EQ(ImagesLeftHere(0, 30), 15);
+    EXPECT_DOUBLE_EQ(ImagesLeftHere(60, 0), 0);
+    // C = 60 s, I = 30 s: rho = 1/3; they meet after 30 / (4/3) = 22.5 s, a third of it here.
+    EXPECT_DOUBLE_EQ(ImagesLeftHere(60, 30), 7.5);
+    // Never more than the images left, never less than none.
+    for (double c : {0.0, 1.0, 100.0}) {
+        for (double i : {0.0, 1.0, 100.0}) {
+            EXPECT_GE(ImagesLeftHere(c, i), 0.0);
+            EXPECT_LE(ImagesLeftHere(c, i), i);
+        }
+    }
+}
+
+// The units a second process claims leave the meter's totals, and while it is taking units, the
+// ETA counts on it for half of the images when no comparison is left.
+TEST(RenderProgressTest, ImagesASecondProcessTakesLeaveTheTotalsAndShortenTheEta) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    const std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(10);
+    ASSERT_TRUE(claims);
+    constexpr long kFramesPerUnit = 7;
+    meter.AddExpected(ProgressMeter::kImage, 10 * kFramesPerUnit);
+    meter.ShareImages(claims.get(), kFramesPerUnit);
+    Clock::time_point now = start;
+    ASSERT_TRUE(claims->ClaimForOwner(0));
+    for (int f = 0; f < kFramesPerUnit; ++f) {
+        now += std::chrono::milliseconds(100);
+        meter.Step(ProgressMeter::kImage, "0", 1, now);
+    }
+    // Alone: 9 units of 7 frames at 100 ms.
+    EXPECT_EQ(meter.Last().total, 10 * kFramesPerUnit);
+    EXPECT_NEAR(meter.Last().eta_seconds, 6.3, 1e-6);
+    ASSERT_TRUE(claims->ClaimForHelper(9));
+    ASSERT_TRUE(claims->ClaimForHelper(8));
+    claims->SetHelperTaking(true);
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    // The helper's 2 units are gone; of the 7 left, this process renders half.
+    EXPECT_EQ(meter.Last().total, 8 * kFramesPerUnit);
+    EXPECT_NEAR(meter.Last().eta_seconds, 0.5 * 4.9, 1e-6);
+    claims->SetHelperTaking(false);  // it stopped taking: the rest is this process's
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 4.9, 1e-6);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include "tidepool/GlslValidator.h"
 #include "tidepool/Manifest.h"
 #include "tidepool/SceneDescription.h"
+#include "tidepool/base/SharedClaims.h"
 #include "tidepool/base/WorkerProcessPool.h"
 #include "tidepool/lab/ScenePlanner.h"
 #include "tidepool/pipeline/Host.h"
@@ -17,8 +18,10 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <functional>
 #include <memory>
+#include <system_error>
 #include <utility>
 #include <vector>
 
@@ -83,9 +86,14 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
     for (const runner::ConfigurationResult& r : results.configurations) {
         end.failures += r.Ok() ? 0 : 1;
     }
-    progress.Line(fmt::format("render: {} configurations, {} failed, {:.0f} s; results in {}",
+    progress.Line(fmt::format("render: {} configurations, {} failed, {:.0f} s; results in {}{}",
                               results.configurations.size(), end.failures, results.wall_seconds,
-                              results_path.string()));
+                              results_path.string(),
+                              run.shared.claims != nullptr
+                                      ? fmt::format(" ({} configurations' images rendered by the "
+                                                    "second process)",
+                                                    results.shared_configurations)
+                                      : ""));
     return end;
 }
 
@@ -195,7 +203,8 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
     return end;
 }
 
-// The stability catalogue, then the scene plans, on one context of their own.
+// The stability catalogue, the scene plans, then configurations' images off the render's work
+// list, on one context of their own.
 StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>& variants,
                          const RunRequest& request, const runner::RunOptions& run,
                          ProgressSink& progress) {
@@ -209,8 +218,10 @@ StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>
     }
     const std::string& threads = run.host.lp_num_threads;
     if (request.stability) {
-        end = StabilityInto(*context.context, config, variants, request, threads, run.out_dir,
-                            progress);
+        const StageEnd stable = StabilityInto(*context.context, config, variants, request, threads,
+                                              run.out_dir, progress);
+        end.status = stable.status == Status::kEnvironment ? stable.status : end.status;
+        end.failures += stable.failures;
     }
     if (request.plans) {
         const StageEnd planned = PlansInto(*context.context, config, request, run, progress);
@@ -221,6 +232,25 @@ StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>
             fmt::format("stability and plans: {:.0f} s in a second process, beside the "
                         "render",
                         SecondsSince(start)));
+    if (run.shared.claims != nullptr) {
+        // Then configurations' images off the end of the render's work list: the stability
+        // catalogue and the plans are long and can only run here, the images are short units
+        // either process can take, so taking them last lets both processes end together.
+        const Clock::time_point images_start = Clock::now();
+        const runner::SharedImagesDone images =
+                runner::RenderSharedImages(*context.context, config, run);
+        if (!images.error.empty()) {
+            progress.Tell({Message(Severity::kWarning,
+                                   "images beside the render: " + images.error +
+                                           "; the render process renders every image")});
+        }
+        for (const std::string& e : images.write_errors) {
+            progress.Tell({Message(Severity::kError, e)});
+            end.status = Status::kEnvironment;
+        }
+        progress.Line(fmt::format("images: {} configurations rendered beside the render, {:.0f} s",
+                                  images.configurations, SecondsSince(images_start)));
+    }
     return end;
 }
 
@@ -236,12 +266,23 @@ std::pair<StageEnd, StageEnd> RenderBesideTheOtherStages(const VariantConfig& co
                                                          const runner::RunOptions& run,
                                                          const std::filesystem::path& results_path,
                                                          ProgressSink& progress) {
+    // The second process takes configurations' images off the render's work list while it has
+    // nothing else to do, so that neither core idles while the other renders.
+    runner::RunOptions shared_run = run;
+    std::unique_ptr<base::SharedClaims> claims;
+    if (request.stability || request.plans) {
+        claims = base::SharedClaims::Create(run.configurations.size());  // none: no sharing
+        if (claims) {
+            shared_run.shared = {claims.get(), run.out_dir / ".second-process"};
+        }
+    }
     std::vector<std::function<StageEnd()>> stages;
-    stages.emplace_back(
-            [&] { return RenderInto(config, run, request.backend, results_path, progress); });
+    stages.emplace_back([&] {
+        return RenderInto(config, shared_run, request.backend, results_path, progress);
+    });
     if (request.stability || request.plans) {
         stages.emplace_back(
-                [&] { return BesideTheRender(config, variants, request, run, progress); });
+                [&] { return BesideTheRender(config, variants, request, shared_run, progress); });
     }
     const std::vector<base::WorkerItemResult> ended = base::RunInWorkerProcesses(
             stages.size(), static_cast<int>(stages.size()), base::WorkerLimits{},
@@ -250,6 +291,11 @@ std::pair<StageEnd, StageEnd> RenderBesideTheOtherStages(const VariantConfig& co
                 std::fflush(nullptr);  // the worker process ends with _exit
                 return fmt::format("{} {}", static_cast<int>(end.status), end.failures);
             });
+    if (claims) {
+        // Each unit's results are in results.json now; the folder must not be published.
+        std::error_code ignored;
+        std::filesystem::remove_all(shared_run.shared.folder, ignored);
+    }
     std::pair<StageEnd, StageEnd> ends;
     for (std::size_t i = 0; i < ended.size(); ++i) {
         StageEnd& end = i == 0 ? ends.first : ends.second;

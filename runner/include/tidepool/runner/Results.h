@@ -25,6 +25,10 @@
 
 #include <nlohmann/json.hpp>
 
+namespace tidepool::base {
+class SharedClaims;
+}
+
 namespace tidepool::runner {
 
 /// Facts about the machine and build that the library cannot read itself (the CLI supplies
@@ -43,6 +47,16 @@ struct TimedComparison {
     std::string label;         // e.g. "row 4" or "full -> full_cubemap_reflection"
     std::size_t baseline = 0;  // indices into RunOptions::configurations
     std::size_t candidate = 0;
+};
+
+/// Configurations' units shared with a second process beside the render (`run`'s stability and
+/// plan process, which has a core of its own): it takes units from the end of the render's work
+/// order while the render takes them from the start (RenderSharedImages), and the render reads
+/// its results back before writing results.json. Comparisons are never shared: both sides of a
+/// comparison are timed in the render process.
+struct SharedImageUnits {
+    base::SharedClaims* claims = nullptr;  // one unit per configuration; null: no second process
+    std::filesystem::path folder;          // where the second process leaves each unit's results
 };
 
 /// What a run renders and how.
@@ -80,6 +94,7 @@ struct RunOptions {
     const ValidationReport* validated = nullptr;
     HostInfo host;
     std::string config_path;  // variants.yaml as named by the user
+    SharedImageUnits shared;  // none unless a second process helps with the images
 };
 
 /// One view of one configuration.
@@ -140,8 +155,9 @@ struct RunResults {
     RunOptions options;  // settings as used (configurations are repeated in `configurations`)
     std::vector<ConfigurationResult> configurations;
     std::vector<ComparisonResult> comparisons;
-    FrameClockChoice clock;  // the clock every time is on
-    int workers = 1;         // rendering threads that actually ran
+    FrameClockChoice clock;         // the clock every time is on
+    int workers = 1;                // rendering threads that actually ran
+    int shared_configurations = 0;  // configurations a second process rendered (RunOptions::shared)
     std::vector<VerdictDisagreement> disagreements;
     std::vector<Diagnostic> diagnostics;  // every driver diagnostic and run-level problem
     // Files that could not be written (a PNG, for instance): an environment failure, exit 3.
@@ -178,6 +194,21 @@ using ProgressCallback = std::function<void(const RunProgress&)>;
 /// comparison with a failed side has an error, and any problem is a diagnostic.
 RunResults RunRender(GlContext& context, const VariantConfig& config, const RunOptions& options,
                      const ProgressCallback& progress);
+
+/// What a second process's share of the images came to.
+struct SharedImagesDone {
+    int configurations = 0;                 // units it finished and handed to the render
+    std::vector<std::string> write_errors;  // PNGs it could not write
+    std::string error;                      // "" unless it could not set up a renderer
+};
+
+/// The second process's side of RunOptions::shared: renders the reference configuration's views
+/// (kept in memory only, to compare with), then takes configurations' units from the end of the
+/// render's work order until none is left, leaving each unit's results in the shared folder.
+/// Does nothing when RunOptions::shared has no claims. Fails through the result; a unit whose
+/// results it cannot write is rendered again by the render process.
+SharedImagesDone RenderSharedImages(GlContext& context, const VariantConfig& config,
+                                    const RunOptions& options);
 
 /// The results as results.json holds them (stagefiles/ResultsFile.h). Never fails.
 stagefiles::ResultsFile ToResultsFile(const RunResults& results);

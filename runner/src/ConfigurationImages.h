@@ -1,0 +1,78 @@
+// A configuration's unit of the render: compiled in Mesa, an image per view (compared with the
+// reference configuration's while in memory, written as PNG) and its coarse frames. The render's
+// threads run it (Results.cpp), and so does a second process beside the render
+// (SharedImages.cpp). Private to the runner library.
+#pragma once
+
+#include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/RgbaImage.h"
+#include "tidepool/runner/Results.h"
+
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "RenderProgress.h"
+
+namespace tidepool::runner {
+
+/// The reference configuration's images, by view, with their SSIM moments; filled by the thread
+/// that renders the reference, read by every thread after.
+class ReferenceImages {
+public:
+    void Keep(const std::string& view, const base::RgbaImage& image);
+
+    /// `image` against the reference's at `view`, the way the report measures accuracy; nothing
+    /// when the reference has no image there (yet) or the sizes differ.
+    std::optional<base::ImageAccuracy> Compare(const std::string& view,
+                                               const base::RgbaImage& image) const;
+
+private:
+    struct Kept {
+        explicit Kept(const base::RgbaImage& from) : image(from), ssim(image) {}
+        base::RgbaImage image;
+        base::SsimReference ssim;
+    };
+    mutable std::mutex mutex_;
+    std::map<std::string, std::shared_ptr<const Kept>> views_;
+};
+
+/// One rendering thread's context, renderer and timer, and what it has compiled.
+struct RenderWorker {
+    std::unique_ptr<WaterRenderer> renderer;
+    std::unique_ptr<FrameTimer> timer;
+    std::map<std::size_t, DriverVerdict> prepared;  // by configuration index
+};
+
+/// The view a run times: RunOptions::timing_view, or the first view; null when there is none.
+const CameraView* TimingView(const RunOptions& options);
+/// The index of the configuration with RunOptions::reference_preset, when one has it.
+std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options);
+
+/// Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too
+/// (llvmpipe compiles shader variants on first draw, which must not land in a timed frame).
+const DriverVerdict& PrepareConfiguration(RenderWorker& w, const RunOptions& options, std::size_t i,
+                                          bool warm);
+
+/// What rendering a configuration's unit needs beside the thread's worker.
+struct ImageUnitContext {
+    const RunOptions& options;
+    ReferenceImages& references;
+    ProgressMeter* meter;  // none in a second process, whose progress the render's meter counts
+    std::mutex& errors_mutex;
+    std::vector<std::string>& write_errors;  // PNGs that could not be written
+};
+
+/// Renders configuration `i`'s unit into `r`: its driver verdict, an image per view (kept as the
+/// reference's when `i` is the reference configuration) and its coarse frames. A configuration
+/// that does not compile gets its verdict only. Failures are in `r` and `write_errors`.
+void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, std::size_t i,
+                             ConfigurationResult& r);
+
+/// The frames a configuration's unit counts for in the progress line: its views and coarse frames.
+long FramesPerConfiguration(const RunOptions& options);
+
+}  // namespace tidepool::runner

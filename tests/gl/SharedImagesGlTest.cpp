@@ -1,0 +1,135 @@
+// Configurations' units shared with a second process (runner/src/SharedImages.cpp): what the
+// second process renders and hands over is what the render process would have recorded itself.
+// Both sides run here one after the other in one process, on the shared context: the second
+// process's side first, so that it takes every unit but the reference's.
+#include "tidepool/base/SharedClaims.h"
+#include "tidepool/runner/Results.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "FileContents.h"
+#include "SharedWaterRenderer.h"
+#include "TempDir.h"
+
+namespace tidepool::runner {
+namespace {
+
+using test_support::WaterConfiguration;
+
+// Four configurations (the first the reference) at two views, 32x24, no comparisons, images
+// written under `out`.
+RunOptions FourConfigurations(const std::filesystem::path& out) {
+    RunOptions options;
+    options.configurations = {WaterConfiguration({}), WaterConfiguration({"ENABLE_FOG"}),
+                              WaterConfiguration({"ENABLE_REFRACTION"}),
+                              WaterConfiguration({"ENABLE_FOG", "ENABLE_REFRACTION"})};
+    options.configurations[0].presets = {options.reference_preset};
+    const std::vector<CameraView> views = DefaultViews();
+    options.views = {views.at(0), views.at(1)};
+    options.settings.width = 32;
+    options.settings.height = 24;
+    options.coarse_frames = 2;
+    options.compare_with_glslang = false;
+    options.out_dir = out;
+    return options;
+}
+
+struct SharedRun {
+    std::unique_ptr<base::SharedClaims> claims;
+    RunOptions options;
+};
+
+SharedRun WithASecondProcess(const std::filesystem::path& out) {
+    SharedRun run{base::SharedClaims::Create(4), FourConfigurations(out)};
+    // A comparison of the reference with a configuration the second process takes: its per-pass
+    // times are the render process's, and must survive the second process's results.
+    run.options.comparisons = {{"fog", 0, 1}};
+    run.options.rule = {50.0, 4, 4, 4};
+    run.options.pass_frames = 1;
+    run.options.warmup_frames = 0;
+    run.options.shared = {run.claims.get(), out / ".second-process"};
+    return run;
+}
+
+// What a unit records apart from its frame times, which differ from frame to frame.
+stagefiles::ResultsConfiguration WithoutTimes(stagefiles::ResultsConfiguration entry) {
+    entry.samples_ms.clear();
+    entry.cpu_samples_ms.clear();
+    entry.statistics.reset();
+    entry.cpu_statistics.reset();
+    entry.plan_ms_median = 0;
+    entry.pass_ms.clear();
+    entry.instrumented_frame_ms = 0;
+    return entry;
+}
+
+TEST(SharedImagesGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir alone_dir;
+    const testing::TempDir shared_dir;
+    const RunResults alone = RunRender(*shared.context, *shared.config,
+                                       FourConfigurations(alone_dir.Path()), nullptr);
+    SharedRun run = WithASecondProcess(shared_dir.Path());
+    ASSERT_TRUE(run.claims);
+    const SharedImagesDone done = RenderSharedImages(*shared.context, *shared.config, run.options);
+    EXPECT_EQ(done.error, "");
+    EXPECT_EQ(done.configurations, 3);  // every unit but the reference's
+    const RunResults together = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    EXPECT_EQ(together.shared_configurations, 3);
+    for (std::size_t compared : {0U, 1U}) {
+        EXPECT_GT(together.configurations[compared].pass_ms.count("main"), 0U) << compared;
+        EXPECT_GT(together.configurations[compared].instrumented_frame_ms, 0.0) << compared;
+    }
+
+    const stagefiles::ResultsFile expected = ToResultsFile(alone);
+    const stagefiles::ResultsFile got = ToResultsFile(together);
+    ASSERT_EQ(got.configurations.size(), expected.configurations.size());
+    for (std::size_t i = 0; i < got.configurations.size(); ++i) {
+        const stagefiles::ResultsConfiguration& g = got.configurations[i];
+        EXPECT_EQ(WithoutTimes(g), WithoutTimes(expected.configurations[i])) << g.id;
+        EXPECT_EQ(g.cpu_samples_ms.size(), 2U) << g.id;
+        for (const stagefiles::ResultsViewResult& view : g.views) {
+            ASSERT_TRUE(view.accuracy) << g.id << " " << view.view;
+            EXPECT_EQ(testing::ReadText(shared_dir.Path() / view.image),
+                      testing::ReadText(alone_dir.Path() / view.image))
+                    << view.image;
+        }
+    }
+}
+
+TEST(SharedImagesGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProcess) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir out;
+    SharedRun run = WithASecondProcess(out.Path());
+    ASSERT_TRUE(run.claims);
+    ASSERT_EQ(RenderSharedImages(*shared.context, *shared.config, run.options).configurations, 3);
+    out.Write(".second-process/2.json", "{\"schema\": ");  // cut short
+    const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    EXPECT_EQ(results.shared_configurations, 2);
+    for (const ConfigurationResult& r : results.configurations) {
+        EXPECT_TRUE(r.Ok()) << r.configuration.id;
+        EXPECT_EQ(r.views.size(), 2U) << r.configuration.id;
+        EXPECT_EQ(r.cpu_samples_ms.size(), 2U) << r.configuration.id;
+    }
+}
+
+TEST(SharedImagesGlTest, WithoutClaimsTheSecondProcessRendersNothing) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir out;
+    const SharedImagesDone done =
+            RenderSharedImages(*shared.context, *shared.config, FourConfigurations(out.Path()));
+    EXPECT_EQ(done.configurations, 0);
+    EXPECT_EQ(done.error, "");
+    EXPECT_FALSE(std::filesystem::exists(out.Path() / "images"));
+}
+
+}  // namespace
+}  // namespace tidepool::runner

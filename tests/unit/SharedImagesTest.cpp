@@ -1,0 +1,73 @@
+// Reading back a unit the second process rendered (runner/src/SharedImages.h): its results file
+// of one configuration gives the render process the same entry it would have written itself.
+#include "tidepool/runner/Results.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "SharedImages.h"
+#include "TempDir.h"
+
+namespace tidepool::runner {
+namespace {
+
+// A configuration's results with every field the results file keeps set, including a warning
+// and an identical image (infinite PSNR, which the file keeps as null).
+ConfigurationResult EveryFieldSet() {
+    ConfigurationResult r;
+    r.configuration.id = "water+ENABLE_FOG";
+    r.configuration.variant = MakeVariant("water", {"ENABLE_FOG"});
+    r.verdict = {true, true, true, true, "vertex log", "fragment log", "link log", {}};
+    r.verdict.diagnostics.push_back(
+            {Severity::kWarning, "shaders/water.frag", 12, 3, "a warning", "water+ENABLE_FOG"});
+    r.verdict.diagnostics.push_back(MakeError("shaders/water.vert", 4, 0, "an error"));
+    ViewResult same;
+    same.view = "overview";
+    same.image_path = "images/water+ENABLE_FOG-overview.png";
+    same.frame.passes = 3;
+    same.frame.pass_names = {"reflection", "refraction", "main"};
+    same.frame.draw_calls = 17;
+    same.accuracy = base::ImageAccuracy{INFINITY, 1.0, 0.0};
+    ViewResult different = same;
+    different.view = "shore";
+    different.frame.oblique_fallback = true;
+    different.frame.gl_error = "GL_INVALID_OPERATION after pass main";
+    different.accuracy = base::ImageAccuracy{31.25, 0.875, 0.125};
+    r.views = {same, different};
+    r.passes = 3;
+    r.draw_calls = 17;
+    r.samples_ms = {{4.5}, {4.25}};
+    r.cpu_samples_ms = {{4.0}, {3.75}};
+    r.plan_ms_median = 0.0625;
+    r.pass_ms = {{"main", 2.5}, {"reflection", 1.5}};
+    r.instrumented_frame_ms = 4.125;
+    r.gl_error = "GL_INVALID_OPERATION after pass main (view shore)";
+    return r;
+}
+
+TEST(SharedImagesTest, AUnitReadBackFromItsFileWritesTheSameResultsEntry) {
+    RunResults results;
+    results.configurations = {EveryFieldSet()};
+    const std::string written = stagefiles::ResultsFileText(ToResultsFile(results));
+    const testing::TempDir dir;
+    const stagefiles::ReadResult<stagefiles::ResultsFile> read =
+            stagefiles::ReadResultsFile(dir.Write("unit.json", written));
+    ASSERT_TRUE(read.value) << read.error;
+    ASSERT_EQ(read.value->configurations.size(), 1U);
+
+    RunResults again;
+    again.configurations.resize(1);
+    again.configurations[0].configuration = results.configurations[0].configuration;
+    FromResultsEntry(read.value->configurations[0], again.configurations[0]);
+    EXPECT_EQ(stagefiles::ResultsFileText(ToResultsFile(again)), written);
+    const ConfigurationResult& r = again.configurations[0];
+    EXPECT_TRUE(std::isinf(r.views.at(0).accuracy->psnr_db));
+    ASSERT_EQ(r.verdict.diagnostics.size(), 2U);
+    EXPECT_EQ(r.verdict.diagnostics[0].severity, Severity::kWarning);
+    EXPECT_EQ(r.verdict.diagnostics[1].severity, Severity::kError);
+}
+
+}  // namespace
+}  // namespace tidepool::runner
