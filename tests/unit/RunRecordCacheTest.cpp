@@ -5,16 +5,17 @@
 
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
+#include "FileContents.h"
 #include "PipelineFixture.h"
 #include "TempDir.h"
 
 namespace tidepool::pipeline {
 namespace {
 
+using testing::ReadText;
 using testing::TempDir;
 
 // A time after every file the test wrote: the run "started" after its inputs were in place. The
@@ -24,13 +25,6 @@ timespec AfterTheWrites() {
     timespec later = RunRecordCache::StartTime();
     later.tv_sec += 1;
     return later;
-}
-
-std::string ReadBytes(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
 }
 
 RunRecord SampleRecord() {
@@ -125,7 +119,7 @@ TEST_F(RunRecordCacheTest, ChangingTheBytesOfAnyFileReadIsAMiss) {
     ASSERT_TRUE(records.Keep(FilesOfARun(), AfterTheWrites(), SampleRecord()));
     for (const char* name : {"v.yaml", "s.vsh", "s.fsh", "t.vsh", "t.fsh", "device.txt"}) {
         const std::filesystem::path file = dir_.Path() / name;
-        const std::string bytes = ReadBytes(file);
+        const std::string bytes = ReadText(file);
         dir_.Write(name, bytes + " ");
         EXPECT_FALSE(records.Find()) << name;
         dir_.Write(name, bytes);
@@ -152,7 +146,7 @@ TEST_F(RunRecordCacheTest, CorruptEntryIsDetectedAndTheNextKeepRewritesIt) {
     const std::vector<std::filesystem::path> files = {dir_.Path() / "v.yaml"};
     ASSERT_TRUE(records.Keep(files, AfterTheWrites(), SampleRecord()));
     const std::filesystem::path entry = cache_.EntryPath(records.Key());
-    std::string bytes = ReadBytes(entry);
+    std::string bytes = ReadText(entry);
     bytes[bytes.size() - 3] ^= 1;  // inside the record, past the checksum line
     std::ofstream(entry, std::ios::binary | std::ios::trunc) << bytes;
     EXPECT_FALSE(records.Find());
