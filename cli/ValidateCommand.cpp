@@ -1,16 +1,127 @@
 // `tidepool validate`: flags → pipeline::ValidateMatrix or pipeline::ValidateFiles → diagnostics
-// and a summary, JSON or SARIF → exit code.
+// and a summary, JSON or SARIF → exit code. A configuration's run is first looked up whole in the
+// validation cache (RunRecordCache.h) and, when found, repeated instead.
+#include "tidepool/base/AtomicFile.h"
 #include "tidepool/pipeline/CompilerStages.h"
+#include "tidepool/pipeline/OutputFiles.h"
+#include "tidepool/pipeline/RunRecordCache.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "CliSupport.h"
 #include "Commands.h"
+#include "RunSourceDigest.h"
 #include "ValidateOutput.h"
+#include <fmt/format.h>
 
 namespace tidepool::cli {
 namespace {
+
+// The key of a configuration's run record: everything besides the files read that decides what
+// the run prints and writes. Not -j (the output does not depend on it) nor the cache folder (the
+// record lives there). None when the working directory, against which paths resolve, is gone.
+std::optional<std::string> RunKeyText(const ValidateCommandOptions& options) {
+    std::error_code ec;
+    const std::filesystem::path cwd = std::filesystem::current_path(ec);
+    if (ec) {
+        return std::nullopt;
+    }
+    const pipeline::ValidateOptions& matrix = options.matrix;
+    std::string text = fmt::format("tidepool validate\n{}\n{}\n{}", kRunSourceDigest,
+                                   TIDEPOOL_VERSION, ValidationCacheIdentity());
+    // Length-prefixed, so that no value can pass for another's.
+    auto add = [&text](std::string_view name, const std::string& value) {
+        text += fmt::format("{} {}:{}\n", name, value.size(), value);
+    };
+    add("cwd", cwd.string());
+    add("config", matrix.config);
+    add("program", matrix.program);
+    add("limits", matrix.device_limits);
+    add("target", options.target);
+    add("max-variants", matrix.limits.max_variants.value_or("-"));
+    add("allow-large-matrix", matrix.limits.allow_large_matrix ? "1" : "0");
+    add("pruned", std::to_string(matrix.limits.pruned_limit));
+    add("out", matrix.out);
+    add("depfile", matrix.depfile);
+    add("format", options.Format());
+    add("output-file", options.output_file);
+    return text;
+}
+
+// Writes `text` to `stream` whole.
+void Emit(std::FILE* stream, const std::string& text) {
+    std::fwrite(text.data(), 1, text.size(), stream);
+}
+
+// Repeats `record`: the files first, as the normal path writes them before printing, then the
+// output. False, with nothing printed, when a file cannot be written: the normal path then runs
+// and reports why as it always does.
+bool Replay(const ValidateCommandOptions& options, const pipeline::RunRecord& record) {
+    if (record.manifest &&
+        pipeline::WriteManifest(options.matrix.out, *record.manifest).Stopped()) {
+        return false;
+    }
+    pipeline::Outcome written;
+    if (record.depfile &&
+        !pipeline::WriteFile(options.matrix.depfile, *record.depfile, &written, "--depfile: ")) {
+        return false;
+    }
+    if (record.report_file &&
+        !base::WriteFileAtomically(options.output_file, *record.report_file).empty()) {
+        return false;
+    }
+    Emit(stderr, record.err);
+    Emit(stdout, record.out);
+    return true;
+}
+
+// Validates a configuration: repeats its run record when the cache holds one for these options
+// and files, else runs the pipeline, prints, and keeps the record of this run.
+int RunMatrix(const ValidateCommandOptions& options) {
+    const timespec started = pipeline::RunRecordCache::StartTime();
+    const std::unique_ptr<base::ContentCache> cache =
+            options.matrix.sources ? nullptr : pipeline::OpenValidationCache(options.matrix.cache);
+    const std::optional<std::string> key = RunKeyText(options);
+    std::optional<pipeline::RunRecordCache> records;
+    if (cache && key) {
+        records.emplace(*cache, *key);
+        if (const std::optional<pipeline::RunRecord> record = records->Find();
+            record && Replay(options, *record)) {
+            return record->exit_code;
+        }
+    }
+    const pipeline::ValidateResult result = pipeline::ValidateMatrix(options.matrix);
+    const pipeline::Outcome& outcome = result.matrix.outcome;
+    pipeline::RunRecord record;
+    for (const Diagnostic& d : outcome.diagnostics) {
+        record.err += FormatDiagnostic(d) + "\n";
+    }
+    record.exit_code = pipeline::ExitCode(outcome.status);
+    if (!outcome.Stopped()) {
+        MatrixReport report = RenderMatrixReport(options, result);
+        record.out = std::move(report.out);
+        record.report_file = std::move(report.report_file);
+    }
+    record.manifest = result.manifest_text;
+    record.depfile = result.depfile_text;
+    Emit(stderr, record.err);
+    if (record.report_file) {
+        if (const std::string error =
+                    base::WriteFileAtomically(options.output_file, *record.report_file);
+            !error.empty()) {
+            std::fprintf(stderr, "error: --output-file: %s\n", error.c_str());
+            return kExitEnvironment;
+        }
+    }
+    Emit(stdout, record.out);
+    if (records && result.repeatable && records->Keep(result.files_read, started, record)) {
+        cache->Trim();
+    }
+    return record.exit_code;
+}
 
 int RunValidate(ValidateCommandOptions options) {
     if (!options.output_file.empty() && options.Format() == "text") {
@@ -40,9 +151,7 @@ int RunValidate(ValidateCommandOptions options) {
         return kExitUsage;
     }
     options.matrix.manifest_wanted = options.Format() == "json";
-    const pipeline::ValidateResult result = pipeline::ValidateMatrix(options.matrix);
-    const int code = PrintOutcome(result.matrix.outcome);
-    return result.matrix.outcome.Stopped() ? code : ReportMatrix(options, result);
+    return RunMatrix(options);
 }
 
 }  // namespace

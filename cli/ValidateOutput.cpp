@@ -6,6 +6,7 @@
 #include "tidepool/base/AtomicFile.h"
 
 #include <cstdio>
+#include <utility>
 
 #include "Commands.h"
 #include <fmt/format.h>
@@ -55,27 +56,30 @@ int ReportFiles(const ValidateCommandOptions& options,
     return code != kExitOk ? code : pipeline::ExitCode(result.outcome.status);
 }
 
-int ReportMatrix(const ValidateCommandOptions& options, const pipeline::ValidateResult& result) {
+MatrixReport RenderMatrixReport(const ValidateCommandOptions& options,
+                                const pipeline::ValidateResult& result) {
     const VariantConfig& config = *result.matrix.config;
     const ValidationReport& report = result.report;
-    int code = kExitOk;
+    std::string text;
     if (options.Format() == "sarif") {
-        code = EmitReport(options,
-                          JsonText(BuildSarifLog(report, config.base_dir, TIDEPOOL_VERSION), 2));
+        text = JsonText(BuildSarifLog(report, config.base_dir, TIDEPOOL_VERSION), 2) + "\n";
     } else if (options.Format() == "json") {
-        code = EmitReport(options, JsonText(result.manifest, 2));
+        text = JsonText(result.manifest, 2) + "\n";
     } else {
         const int invalid = report.InvalidCount();
-        std::printf(
-                "%zu variants (%llu pruned combinations) x %zu target(s): %d stage slots -> "
-                "%zu distinct stage programs (%d shared), %d links; %s\n",
-                result.matrix.expansion.variants.size(),
-                static_cast<unsigned long long>(result.matrix.expansion.pruned_total),
-                config.targets.size(), report.stage_slots, report.stage_programs.size(),
-                report.SharedStageSlots(), report.links,
-                invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid).c_str());
+        return {fmt::format("{} variants ({} pruned combinations) x {} target(s): {} stage slots "
+                            "-> {} distinct stage programs ({} shared), {} links; {}\n",
+                            result.matrix.expansion.variants.size(),
+                            result.matrix.expansion.pruned_total, config.targets.size(),
+                            report.stage_slots, report.stage_programs.size(),
+                            report.SharedStageSlots(), report.links,
+                            invalid == 0 ? "all valid" : fmt::format("{} INVALID", invalid)),
+                std::nullopt};
     }
-    return code != kExitOk ? code : pipeline::ExitCode(result.matrix.outcome.status);
+    if (options.output_file.empty()) {
+        return {std::move(text), std::nullopt};
+    }
+    return {"", std::move(text)};
 }
 
 }  // namespace tidepool::cli

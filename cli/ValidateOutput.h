@@ -4,6 +4,7 @@
 
 #include "tidepool/pipeline/CompilerStages.h"
 
+#include <optional>
 #include <string>
 
 namespace tidepool::cli {
@@ -25,8 +26,15 @@ struct ValidateCommandOptions {
 /// (kExitEnvironment when --output-file cannot be written, else the result's status).
 int ReportFiles(const ValidateCommandOptions& options, const pipeline::ValidateFilesResult& result);
 
-/// Prints the summary, or emits the manifest or SARIF report of a configuration; returns the exit
-/// code as ReportFiles does.
-int ReportMatrix(const ValidateCommandOptions& options, const pipeline::ValidateResult& result);
+/// What `validate` shows for a configuration: the text for stdout (the summary, or the JSON or
+/// SARIF report), or the report's text for --output-file (stdout then shows nothing).
+struct MatrixReport {
+    std::string out;
+    std::optional<std::string> report_file;
+};
+
+/// The summary, manifest or SARIF report of a configuration that loaded, as MatrixReport says.
+MatrixReport RenderMatrixReport(const ValidateCommandOptions& options,
+                                const pipeline::ValidateResult& result);
 
 }  // namespace tidepool::cli

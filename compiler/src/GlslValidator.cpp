@@ -613,6 +613,10 @@ void CollectStepDiagnostics(VariantVerdict& verdict) {
 
 }  // namespace
 
+const std::string& ValidationCacheIdentity() {
+    return CacheKeyPrefix();
+}
+
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options) {
     ValidationReport report;
@@ -751,6 +755,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             first.key = first.file + "|" + first.hash;
             preprocess_errors[first.key] =
                     InternalCompilerError(hashed[g], "preprocessing this stage");
+            report.internal_errors = true;
         }
         for (std::size_t i : members) {
             jobs[i].hash = first.hash;
@@ -915,6 +920,9 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                     }
                 }
                 LinkJob& link = links[i];
+                report.internal_errors =
+                        report.internal_errors || (result.failure != WorkerFailure::kNone &&
+                                                   result.failure != WorkerFailure::kSkipped);
                 const LinkResult outcome = LinkOutcome(
                         result, representative[link.fragment]->file,
                         [&](std::size_t index, const std::string& message) {

@@ -65,9 +65,12 @@ std::string DepfileText(const std::filesystem::path& target,
 }
 
 bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
-                  const VariantConfig& config, Outcome* outcome) {
+                  const VariantConfig& config, Outcome* outcome, std::string* written) {
     const std::string text =
             DepfileText(std::filesystem::absolute(target).lexically_normal(), FilesRead(config));
+    if (written != nullptr) {
+        *written = text;
+    }
     return WriteFile(depfile, text, outcome, "--depfile: ");
 }
 

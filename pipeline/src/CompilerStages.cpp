@@ -30,10 +30,15 @@ bool LoadDeviceLimits(const std::string& path, std::optional<DeviceLimits>* limi
     return true;
 }
 
-// Loads and expands `config`, narrowed to `program` when one is named.
+// Loads and expands `config`, narrowed to `program` when one is named; `files_read`, when given,
+// receives the files the loader read or checked (FilesRead before the narrowing).
 LoadedMatrix LoadProgram(const std::string& config, const MatrixLimits& limits,
-                         const std::string& program) {
+                         const std::string& program,
+                         std::vector<std::filesystem::path>* files_read = nullptr) {
     LoadedMatrix loaded = LoadMatrix(config, limits);
+    if (loaded.config && files_read != nullptr) {
+        *files_read = FilesRead(*loaded.config);
+    }
     if (loaded.config && !program.empty()) {
         KeepOnlyProgram(&loaded, program);
     }
@@ -81,12 +86,16 @@ ExpandResult Expand(const ExpandOptions& options) {
 
 ValidateResult ValidateMatrix(const ValidateOptions& options) {
     ValidateResult result;
-    result.matrix = LoadProgram(options.config, options.limits, options.program);
+    result.matrix =
+            LoadProgram(options.config, options.limits, options.program, &result.files_read);
     Outcome& outcome = result.matrix.outcome;
     std::optional<DeviceLimits> device_limits;
     if (!result.matrix.config ||
         !LoadDeviceLimits(options.device_limits, &device_limits, &outcome)) {
         return result;
+    }
+    if (!options.device_limits.empty()) {
+        result.files_read.push_back(std::filesystem::absolute(options.device_limits));
     }
     if (options.target) {
         result.matrix.config->targets = {*options.target};  // instead of the file's `targets`
@@ -126,20 +135,23 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
         result.manifest = stagefiles::ToJson(manifest);
     }
     if (!options.out.empty()) {
-        if (Outcome write = WriteManifest(options.out, JsonText(result.manifest, 2) + "\n");
-            write.Stopped()) {
+        result.manifest_text = JsonText(result.manifest, 2) + "\n";
+        if (Outcome write = WriteManifest(options.out, *result.manifest_text); write.Stopped()) {
             outcome.Add(write.diagnostics);
             outcome.status = write.status;
             return result;
         }
         if (!options.depfile.empty() &&
             !WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json",
-                          config, &outcome)) {
+                          config, &outcome, &result.depfile_text.emplace())) {
             return result;
         }
     }
     const bool valid = result.report.InvalidCount() == 0 && !HasErrors(result.report.diagnostics);
     outcome.status = valid ? Status::kOk : Status::kInvalid;
+    // Not with --sources: a record holds the manifest and the depfile, not the variants' sources.
+    result.repeatable = !options.sources && !result.report.internal_errors &&
+                        (cache == nullptr || cache->Stats().error.empty());
     return result;
 }
 

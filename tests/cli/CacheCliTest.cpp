@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "FileContents.h"
 #include "TempDir.h"
@@ -140,6 +141,57 @@ TEST_F(CacheCliTest, PlainFilesWithAWarmCacheGiveTheSameDiagnosticsAndExitCodeAs
                                        " '" TIDEPOOL_BINARY "' validate --no-cache s.vsh 2>&1");
     EXPECT_EQ(off.exit_code, 0) << off.out;
     EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg2" / "tidepool"));
+}
+
+// How many entries of `folder` are whole-run records (RunRecordCache.h).
+std::size_t RunRecordCount(const std::filesystem::path& folder) {
+    std::size_t count = 0;
+    std::error_code ec;
+    for (std::filesystem::recursive_directory_iterator it(folder, ec), end; !ec && it != end;
+         it.increment(ec)) {
+        if (it->is_regular_file() &&
+            ReadText(it->path()).find("tidepool run record 1\n") != std::string::npos) {
+            ++count;
+        }
+    }
+    return count;
+}
+
+TEST_F(CacheCliTest, RunRecordRepeatsOutputExitCodeAndWrittenFilesByteForByte) {
+    const std::string cache = Quoted(dir_.Path() / "cache");
+    const std::vector<std::string> written = {"m/manifest.json", "m.d", "r.sarif"};
+    // What a run printed, returned and wrote, the written files removed for the next run.
+    auto run = [&](const std::string& args) {
+        const CommandResult r = RunTidepool(args, dir_.Path());
+        std::string all = std::to_string(r.exit_code) + "\n--out\n" + r.out + "--err\n" + r.err;
+        for (const std::string& name : written) {
+            const std::filesystem::path file = dir_.Path() / name;
+            all += "--" + name + "\n" +
+                   (std::filesystem::exists(file) ? ReadText(file) : std::string("(none)"));
+            std::filesystem::remove(file);
+        }
+        return all;
+    };
+    std::size_t records = 0;
+    for (const char* options :
+         {"", "--json", "--format sarif", "--out m --depfile m.d", "--json --out m",
+          "--format sarif --output-file r.sarif", "--program p --target webgl1"}) {
+        SCOPED_TRACE(options);
+        const std::string args = std::string("validate --config v.yaml ") + options;
+        const std::string uncached = run(args + " --no-cache");
+        EXPECT_EQ(run(args + " --cache " + cache), uncached);  // the miss, which keeps a record
+        EXPECT_EQ(RunRecordCount(dir_.Path() / "cache"), ++records);
+        EXPECT_EQ(run(args + " --cache " + cache), uncached);  // the hit
+        EXPECT_EQ(run(args + " --cache " + cache), uncached);
+    }
+    // A shader's new bytes are a miss: the fixed shader validates.
+    dir_.Write("s.fsh",
+               "#version 100\nprecision mediump float;\n"
+               "void main() { gl_FragColor = vec4(1.0); }\n");
+    const std::string fixed = run("validate --config v.yaml --no-cache");
+    EXPECT_NE(fixed.find("all valid"), std::string::npos) << fixed;
+    EXPECT_EQ(run("validate --config v.yaml --cache " + cache), fixed);
+    EXPECT_EQ(run("validate --config v.yaml --cache " + cache), fixed);
 }
 
 TEST_F(CacheCliTest, ConcurrentProcessesShareOneCacheFolderWithoutError) {

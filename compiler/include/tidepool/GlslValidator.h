@@ -83,6 +83,9 @@ struct ValidationReport {
     int stage_slots = 0;                       // variants × targets × 2 stages
     int links = 0;                             // distinct (vertex, fragment) pairs linked
     std::vector<Diagnostic> diagnostics;       // problems not tied to a variant (unreadable files)
+    /// glslang crashed, timed out or ran out of memory on some stage or link: an "internal
+    /// compiler error" stands where another run may find a verdict.
+    bool internal_errors = false;
 
     /// How many stage slots reused a program another variant already had.
     int SharedStageSlots() const { return stage_slots - static_cast<int>(stage_programs.size()); }
@@ -129,6 +132,10 @@ struct ShaderFileOptions {
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines,
                                      const ShaderFileOptions& options = {});
+
+/// The digest every validation cache key starts from: tidepool's validation code, glslang's
+/// version and its default resource limits. Never fails.
+const std::string& ValidationCacheIdentity();
 
 /// The stage a file's extension implies (.vert/.vsh → vertex, .frag/.fsh → fragment); false when
 /// the extension says nothing.

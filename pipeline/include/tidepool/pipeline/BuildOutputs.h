@@ -26,10 +26,11 @@ std::vector<std::filesystem::path> FilesRead(const VariantConfig& config);
 std::string DepfileText(const std::filesystem::path& target,
                         const std::vector<std::filesystem::path>& dependencies);
 
-/// Writes DepfileText(target, FilesRead(config)) to `depfile` atomically; on failure records
-/// "error: --depfile: why" (kEnvironment) in `outcome` and returns false.
+/// Writes DepfileText(target, FilesRead(config)) to `depfile` atomically (and, when `written`
+/// is given, the text there); on failure records "error: --depfile: why" (kEnvironment) in
+/// `outcome` and returns false.
 bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
-                  const VariantConfig& config, Outcome* outcome);
+                  const VariantConfig& config, Outcome* outcome, std::string* written = nullptr);
 
 /// Where a variant's driver-ready stage source lives below an output folder:
 /// `<target>/<program>/<variant id, made a safe file name>.vert|.frag`.

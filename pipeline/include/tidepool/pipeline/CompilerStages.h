@@ -61,6 +61,16 @@ struct ValidateResult {
     LoadedMatrix matrix;
     ValidationReport report;
     nlohmann::json manifest;
+    /// Every file whose bytes decided the result: the configuration, the shaders of all its
+    /// programs (before --program narrows them: the loader checked each) and the --limits file.
+    std::vector<std::filesystem::path> files_read;
+    std::optional<std::string> manifest_text;  // manifest.json as written to `out`
+    std::optional<std::string> depfile_text;   // the depfile as written
+    /// The result and what was written follow from the options and `files_read` alone, and a
+    /// RunRecord can hold them: the run ended normally (valid or invalid), glslang gave every
+    /// verdict (no internal compiler error, which a timeout under load may cause), the cache
+    /// (whose failure adds a warning) worked, and no sources were written.
+    bool repeatable = false;
 };
 
 /// Loads, expands and validates every variant with glslang (each distinct stage program once,
