@@ -36,6 +36,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "BenchSupport.h"
@@ -153,7 +154,8 @@ std::vector<std::string> SplitList(const std::string& text, char separator) {
 
 // Reads manifest.tsv by column name (not position), so added columns do not break it; returns an
 // error message instead of cases when a needed column or a field is missing.
-// `corpus_name` is "<suite>, GLSL ES <version>" from the manifest's own columns.
+// `corpus_name` is "dEQP <suite>, GLSL ES <version>" from the manifest's own columns; a corpus
+// whose cases have more than one version lists each with its case count, the commonest first.
 bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* corpus_name,
                   std::string* error) {
     std::ifstream in(path);
@@ -176,6 +178,8 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
             return false;
         }
     }
+    std::string suite;
+    std::vector<std::pair<std::string, int>> versions;  // in order of first appearance
     int line_number = 1;
     while (std::getline(in, line)) {
         ++line_number;
@@ -206,12 +210,31 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         c.in_mustpass = field("in_mustpass") == "True";
         c.issue_list = field("mustpass_issue_list");
         c.origin = fmt::format("{}:{}", field("test_file"), field("line"));
-        if (corpus_name->empty() && column.count("suite") != 0 &&
-            column.count("glsl_version") != 0) {
-            *corpus_name =
-                    fmt::format("dEQP {}, GLSL ES {}", field("suite"), field("glsl_version"));
+        if (column.count("suite") != 0 && column.count("glsl_version") != 0) {
+            if (suite.empty()) {
+                suite = field("suite");
+            }
+            const std::string version = field("glsl_version");
+            auto it = std::find_if(versions.begin(), versions.end(),
+                                   [&](const auto& v) { return v.first == version; });
+            if (it == versions.end()) {
+                versions.emplace_back(version, 1);
+            } else {
+                ++it->second;
+            }
         }
         cases->push_back(std::move(c));
+    }
+    if (versions.size() == 1) {
+        *corpus_name = fmt::format("dEQP {}, GLSL ES {}", suite, versions[0].first);
+    } else if (!versions.empty()) {
+        std::stable_sort(versions.begin(), versions.end(),
+                         [](const auto& a, const auto& b) { return a.second > b.second; });
+        std::vector<std::string> parts;
+        for (const auto& [version, count] : versions) {
+            parts.push_back(fmt::format("{} ({} cases)", version, count));
+        }
+        *corpus_name = fmt::format("dEQP {}, GLSL ES {}", suite, fmt::join(parts, ", "));
     }
     return true;
 }

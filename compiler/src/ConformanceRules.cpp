@@ -857,8 +857,6 @@ std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics
                                      }),
                       diagnostics.end());
     for (Diagnostic& d : diagnostics) {
-        // In 3.00 the reserved-name warning is glslang's strict verdict too (and is made an
-        // error by PromoteReservedMacroNames); in 1.00 it is the relaxed form of the error.
         if (webgl1 && d.severity == Severity::kWarning && Mentions(d, kNonConstantGlobal)) {
             // WebGL 1.0 §6.33 asks for a warning; CheckWebGlGlobalInitializers checks the rest.
             d.message =
@@ -869,6 +867,9 @@ std::vector<Diagnostic> RestoreDemotedErrors(std::vector<Diagnostic> diagnostics
             d.column = 0;
             continue;
         }
+        // The reserved-name warning stays a warning: GLSL ES 3.00 §3.4 says defining or
+        // undefining a macro name containing "__" "does not itself result in an error", and
+        // glslang's strict verdict in 3.00 is this warning too; in 1.00 it is the relaxed form.
         if (d.severity == Severity::kWarning && !Mentions(d, kDefinedFromMacroRelaxed) &&
             !Mentions(d, kReservedMacroWarning)) {
             d.severity = Severity::kError;
@@ -1091,27 +1092,6 @@ std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
     std::string folded = folder.Run();
     *rewritten_lines = std::move(folder.lines);
     return folded;
-}
-
-std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagnostics,
-                                                  int version) {
-    if (version < 300) {
-        return diagnostics;
-    }
-    for (Diagnostic& d : diagnostics) {
-        if (d.severity == Severity::kWarning && Mentions(d, kReservedMacroWarning)) {
-            const std::size_t colon = d.message.rfind(':');
-            const std::string name =
-                    colon == std::string::npos ? std::string("?") : d.message.substr(colon + 2);
-            d.severity = Severity::kError;
-            d.message = fmt::format(
-                    "macro name '{}' contains '__'; GLSL ES 3.00 reserves such names, so a "
-                    "'#version 300 es' shader may not define or undefine them (GLSL ES 3.00 "
-                    "§3.4)",
-                    name);
-        }
-    }
-    return diagnostics;
 }
 
 }  // namespace tidepool

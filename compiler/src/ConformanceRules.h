@@ -183,9 +183,4 @@ extern const char* const kEs100FoldingPreamble;
 std::string FoldEs100ConstantExpressions(std::string_view preprocessed,
                                          std::set<int>* rewritten_lines);
 
-/// In a `#version 300 es` shader, glslang only warns when `#define` or `#undef` names a macro
-/// containing `__`; GLSL ES 3.00 §3.4 reserves those names, so each such warning becomes an
-/// error at the same place. Other versions are returned unchanged.
-std::vector<Diagnostic> PromoteReservedMacroNames(std::vector<Diagnostic> diagnostics, int version);
-
 }  // namespace tidepool

@@ -345,8 +345,6 @@ StageParse ParseStage(const GlslangStageInput& input) {
             }
         }
     }
-    result.diagnostics = PromoteReservedMacroNames(std::move(result.diagnostics), version);
-    result.ok = result.ok && !HasErrors(result.diagnostics);
     if (!webgl_errors.empty()) {
         // Reported first: a browser refuses the shader before its driver parses it.
         result.ok = false;

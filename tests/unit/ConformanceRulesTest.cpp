@@ -223,7 +223,9 @@ INSTANTIATE_TEST_SUITE_P(
                          "a.fsh:6:1: error: '#define' : names beginning with \"GL_\" can't be "
                          "(un)defined: GL_FOG"}));
 
-// GLSL ES 1.00 §3.4: a macro name with "__" is reserved, not an error; 3.00 §3.4 makes it one.
+// GLSL ES 3.00 §3.4: a macro name containing "__" is reserved, but defining or undefining one
+// "does not itself result in an error"; a macro name prefixed with "GL_" is reserved too, and
+// defining or undefining that one is a compile-time error. 1.00 reserves both (its §3.4).
 INSTANTIATE_TEST_SUITE_P(
         ReservedMacroNames, ConformanceRulesTest,
         ::testing::Values(
@@ -233,15 +235,24 @@ INSTANTIATE_TEST_SUITE_P(
                          "#define FOG__DENSITY 0.5\n"
                          "void main() { gl_FragColor = vec4(FOG__DENSITY); }\n",
                          ""},
-                RuleCase{"#define of a name with __ in 3.00", nullptr,
+                RuleCase{"#define and #undef of names with __ in 3.00", nullptr,
                          "#version 300 es\n"
                          "precision mediump float;\n"
                          "#define FOG__DENSITY 0.5\n"
+                         "#define __FOG_SCALE__ 2.0\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(FOG__DENSITY * __FOG_SCALE__); }\n"
+                         "#undef FOG__DENSITY\n",
+                         ""},
+                RuleCase{"#define of a name prefixed with GL_ in 3.00", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "#define FOG__DENSITY 0.5\n"
+                         "#define GL_FOG_DENSITY 0.5\n"
                          "out vec4 colour;\n"
                          "void main() { colour = vec4(FOG__DENSITY); }\n",
-                         "a.fsh:3:1: error: macro name 'FOG__DENSITY' contains '__'; GLSL ES "
-                         "3.00 reserves such names, so a '#version 300 es' shader may not define "
-                         "or undefine them (GLSL ES 3.00 §3.4)"}));
+                         "a.fsh:4:1: error: '#define' : names beginning with \"GL_\" can't be "
+                         "(un)defined: GL_FOG_DENSITY"}));
 
 // GLSL ES 3.00 §7.3: a `#version 300 es` shader sees the ES 3.0 minimum limits, not glslang's
 // desktop-sized defaults. An array sized from a limit shows the value the shader sees.
