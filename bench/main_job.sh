@@ -35,9 +35,8 @@ found = {
     # The stability catalogue and the scene plans are one stage of wall time, run in a second
     # process beside the render: its seconds overlap the render's and are not added up.
     "stability+plans": re.search(r"^stability and plans: (\d+) s.*$", log, re.M),
-    # The second process renders configurations' images off the render's list first.
-    "images beside": re.search(r"^images: \d+ configurations rendered (beside the render), (\d+) s",
-                               log, re.M),
+    # Then the second process takes configurations and comparisons off the render's list.
+    "units beside": re.search(r"^units beside the render: .*, (\d+) s$", log, re.M),
     "report": re.search(r"written in ([\d.]+) s", stdout),
 }
 print(f"{label} ({what}): {total:.0f} s wall in all")

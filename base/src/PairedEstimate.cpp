@@ -201,4 +201,14 @@ const char* StopDecisionName(StopDecision decision) {
     return "continue";
 }
 
+std::optional<StopDecision> StopDecisionFromName(std::string_view name) {
+    for (StopDecision d :
+         {StopDecision::kContinue, StopDecision::kResolved, StopDecision::kCapped}) {
+        if (name == StopDecisionName(d)) {
+            return d;
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace tidepool::base

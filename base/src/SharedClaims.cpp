@@ -43,6 +43,7 @@ SharedClaims::SharedClaims(void* memory, std::size_t bytes, std::size_t units)
     header_ = new (memory_) Header{};
     header_->heartbeat_ns.store(NowNs());
     header_->helper_taking.store(0);
+    header_->helper_expected_ns.store(0);
     auto* slots = reinterpret_cast<std::atomic<int>*>(static_cast<char*>(memory_) + sizeof(Header));
     for (std::size_t i = 0; i < units_; ++i) {
         new (slots + i) std::atomic<int>(Int(State::kFree));
@@ -86,11 +87,31 @@ void SharedClaims::Beat() {
 }
 
 void SharedClaims::SetHelperTaking(bool taking) {
-    header_->helper_taking.store(taking ? 1 : 0);
+    header_->helper_taking.store(taking ? 1 : 2);
 }
 
 bool SharedClaims::HelperTaking() const {
-    return header_->helper_taking.load() != 0;
+    return header_->helper_taking.load() == 1;
+}
+
+bool SharedClaims::HelperStopped() const {
+    return header_->helper_taking.load() == 2;
+}
+
+void SharedClaims::ExpectHelperAt(std::chrono::steady_clock::time_point when) {
+    header_->helper_expected_ns.store(std::max<std::int64_t>(
+            1,
+            std::chrono::duration_cast<std::chrono::nanoseconds>(when.time_since_epoch()).count()));
+}
+
+std::optional<std::chrono::steady_clock::time_point> SharedClaims::HelperExpectedAt() const {
+    const std::int64_t ns = header_->helper_expected_ns.load();
+    if (ns == 0) {
+        return std::nullopt;
+    }
+    return std::chrono::steady_clock::time_point(
+            std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                    std::chrono::nanoseconds(ns)));
 }
 
 std::size_t SharedClaims::HelperClaimed() const {

@@ -532,6 +532,10 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
         return results;
     }
     RendererPool pool{&context, &config, {}};
+    const auto gl_cases =
+            static_cast<double>(std::count_if(cases.begin(), cases.end(), [](const HardCase& c) {
+                return c.kind == HardCaseKind::kGl;
+            }));
     for (const HardCase& hard_case : cases) {
         if (hard_case.kind != HardCaseKind::kGl) {
             continue;
@@ -593,6 +597,9 @@ std::vector<StabilityCaseResult> RunGlHardCases(GlContext& context, const Varian
                 r.variants_checked, settings.width, settings.height, fallbacks);
         r.passed = failures == 0 && r.nan_count == 0 && r.inf_count == 0 && r.max_error <= r.bound;
         results.push_back(std::move(r));
+        if (options.on_case_done) {
+            options.on_case_done(static_cast<double>(results.size()) / gl_cases);
+        }
     }
     return results;
 }

@@ -141,4 +141,54 @@ void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, s
     r.plan_ms_median = base::Median(plan_ms);
 }
 
+void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
+                        const std::function<void(const ComparisonTiming& so_far)>& after_look) {
+    const TimedComparison& c = out.comparison;
+    const CameraView* timing_view = TimingView(options);
+    if (out.error.empty() && timing_view == nullptr) {
+        out.error = "no timing view";
+    }
+    if (out.error.empty()) {
+        for (std::size_t i : {c.baseline, c.candidate}) {
+            if (!PrepareConfiguration(w, options, i, true).valid) {
+                out.error = fmt::format("configuration {} did not compile in Mesa",
+                                        options.configurations[i].id);
+                break;
+            }
+        }
+    }
+    if (!out.error.empty()) {
+        return;
+    }
+    const RenderConfiguration& baseline = options.configurations[c.baseline];
+    const RenderConfiguration& candidate = options.configurations[c.candidate];
+    out.timing = TimeComparison(
+            [&](bool is_candidate) {
+                return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
+            },
+            options.rule, after_look);
+}
+
+void TimePasses(RenderWorker& w, const RunOptions& options, std::size_t i, ConfigurationResult& r) {
+    const CameraView* timing_view = TimingView(options);
+    if (timing_view == nullptr) {
+        return;
+    }
+    std::map<std::string, std::vector<double>> per_pass;
+    for (int f = 0; f < options.pass_frames; ++f) {
+        for (const auto& [pass, ms] :
+             w.timer->TimePasses(options.configurations[i], *timing_view)) {
+            per_pass[pass].push_back(ms);
+        }
+    }
+    for (auto& [pass, samples] : per_pass) {
+        const double median = base::Median(samples);
+        if (pass == "frame") {
+            r.instrumented_frame_ms = median;
+        } else {
+            r.pass_ms[pass] = median;
+        }
+    }
+}
+
 }  // namespace tidepool::runner

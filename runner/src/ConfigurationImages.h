@@ -1,13 +1,15 @@
-// A configuration's unit of the render: compiled in Mesa, an image per view (compared with the
-// reference configuration's while in memory, written as PNG) and its coarse frames. The render's
-// threads run it (Results.cpp), and so does a second process beside the render
-// (SharedImages.cpp). Private to the runner library.
+// The render's two kinds of unit. A configuration's unit: compiled in Mesa, an image per view
+// (compared with the reference configuration's while in memory, written as PNG) and its coarse
+// frames. A comparison's unit: both configurations timed pair by pair, then each one's passes.
+// The render's threads run them (Results.cpp), and so does a second process beside the render
+// (SharedUnits.cpp). Private to the runner library.
 #pragma once
 
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/runner/Results.h"
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -74,5 +76,15 @@ void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, s
 
 /// The frames a configuration's unit counts for in the progress line: its views and coarse frames.
 long FramesPerConfiguration(const RunOptions& options);
+
+/// Times comparison `out.comparison` on `w`: both configurations compiled and warmed, then pairs
+/// until RunOptions::rule stops; `after_look` (may be empty) sees the timing after every look.
+/// Sets `out.error` instead when there is no timing view or a side does not compile in Mesa.
+void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
+                        const std::function<void(const ComparisonTiming& so_far)>& after_look);
+
+/// Configuration `i`'s per-pass medians over RunOptions::pass_frames instrumented frames at the
+/// timing view into `r` (ConfigurationResult::pass_ms and instrumented_frame_ms).
+void TimePasses(RenderWorker& w, const RunOptions& options, std::size_t i, ConfigurationResult& r);
 
 }  // namespace tidepool::runner

@@ -22,11 +22,17 @@ constexpr double kPriorFrames = 40.0;
 
 }  // namespace
 
-double ImagesLeftHere(double comparisons_left, double images_left) {
-    if (images_left <= 0) {
-        return 0;
+double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in) {
+    threads = std::max(threads, 1.0);
+    work = std::max(work, 0.0);
+    if (!helper_joins_in) {
+        return work / threads;
     }
-    return images_left * images_left / (comparisons_left + 2 * images_left);
+    const double alone = std::max(*helper_joins_in, 0.0);
+    if (work <= alone * threads) {
+        return work / threads;
+    }
+    return alone + (work - alone * threads) / (threads + 1);
 }
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
@@ -114,42 +120,82 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     last = now;
     k.done += frames;
     k.total = std::max(k.total, k.done);
-    // The images a second process has claimed are its work, not this meter's.
-    const long helper_frames = shared_ != nullptr ? static_cast<long>(shared_->HelperClaimed()) *
-                                                            shared_frames_per_unit_
-                                                  : 0;
-    std::array<long, 2> totals = {kinds_[0].total,
-                                  std::max(kinds_[1].total - helper_frames, kinds_[1].done)};
+    // The units a second process has claimed are its work, not this meter's.
+    const std::array<long, 2> helper_frames = HelperClaimedFrames();
+    std::array<long, 2> totals{};
+    for (std::size_t i = 0; i < kinds_.size(); ++i) {
+        totals[i] = std::max(kinds_[i].total - helper_frames[i], kinds_[i].done);
+    }
     state_.stage = kind == kComparison ? "comparisons" : "images";
     state_.configuration = what;
     state_.done = kinds_[0].done + kinds_[1].done;
     state_.total = totals[0] + totals[1];
     state_.elapsed_seconds = Seconds(now - start_);
     double done_seconds = 0;
-    std::array<double, 2> left{};
+    double left_seconds = 0;
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const double rate = SecondsPerFrame(i);
         done_seconds += rate * static_cast<double>(kinds_[i].done);
-        left[i] = rate * static_cast<double>(totals[i] - kinds_[i].done);
+        left_seconds += rate * static_cast<double>(totals[i] - kinds_[i].done);
     }
-    if (shared_ != nullptr && shared_->HelperTaking()) {
-        left[kImage] = ImagesLeftHere(left[kComparison], left[kImage]);
-    }
-    const double remaining_seconds = left[kComparison] + left[kImage];
     const double threads = static_cast<double>(last_step_.size());
-    state_.eta_seconds = remaining_seconds / threads;
-    state_.percent = done_seconds + remaining_seconds > 0
-                             ? 100.0 * done_seconds / (done_seconds + remaining_seconds)
+    state_.eta_seconds = SecondsToFinish(left_seconds, threads, HelperJoinsIn(now));
+    // The work this process will do itself before the end: its threads for the ETA.
+    const double left_here = state_.eta_seconds * threads;
+    state_.percent = done_seconds + left_here > 0
+                             ? 100.0 * done_seconds / (done_seconds + left_here)
                              : 100.0;
     if (callback_) {
         callback_(state_);
     }
 }
 
-void ProgressMeter::ShareImages(const base::SharedClaims* claims, long frames_per_unit) {
+void ProgressMeter::ShareUnits(const base::SharedClaims* claims, long frames_per_configuration,
+                               std::size_t configurations) {
     std::lock_guard<std::mutex> lock(mutex_);
     shared_ = claims;
-    shared_frames_per_unit_ = frames_per_unit;
+    shared_frames_per_configuration_ = frames_per_configuration;
+    shared_configurations_ = configurations;
+}
+
+// Seconds until the second process starts taking units: 0 while it takes them, its own forecast
+// before, nothing when there is none or it has stopped (mutex_ held).
+std::optional<double> ProgressMeter::HelperJoinsIn(Clock::time_point now) const {
+    if (shared_ == nullptr || shared_->HelperStopped()) {
+        return std::nullopt;
+    }
+    if (shared_->HelperTaking()) {
+        return 0.0;
+    }
+    const std::optional<Clock::time_point> expected = shared_->HelperExpectedAt();
+    if (!expected) {
+        return std::nullopt;
+    }
+    return std::max(0.0, Seconds(*expected - now));
+}
+
+// The frames of each kind in units the second process has claimed (mutex_ held): a configuration
+// counts its image frames, a comparison the frames it is expected to take.
+std::array<long, 2> ProgressMeter::HelperClaimedFrames() const {
+    std::array<long, 2> frames{};
+    if (shared_ == nullptr) {
+        return frames;
+    }
+    auto helper_has = [&](std::size_t unit) {
+        if (unit >= shared_->Size()) {
+            return false;
+        }
+        const base::SharedClaims::State state = shared_->StateOf(unit);
+        return state == base::SharedClaims::State::kHelperWorking ||
+               state == base::SharedClaims::State::kHelperDone;
+    };
+    for (std::size_t i = 0; i < shared_configurations_; ++i) {
+        frames[kImage] += helper_has(i) ? shared_frames_per_configuration_ : 0;
+    }
+    for (std::size_t k = 0; k < comparison_frames_.size(); ++k) {
+        frames[kComparison] += helper_has(shared_configurations_ + k) ? comparison_frames_[k] : 0;
+    }
+    return frames;
 }
 
 RunProgress ProgressMeter::Last() const {

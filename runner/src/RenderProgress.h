@@ -24,13 +24,12 @@ struct WorkUnit {
     std::size_t index = 0;
 };
 
-/// Of `images_left` seconds of images nobody has claimed, those this process will render while a
-/// second process takes images from the end of the work order at full speed, and this process
-/// goes through `comparisons_left` seconds of comparisons with its images spread among them
-/// (RenderWorkOrder). This process renders images at the share rho = images / (comparisons +
-/// images) of its time, the other at all of its time, so they meet after images / (1 + rho)
-/// seconds, of which this process spent rho on images: images * rho / (1 + rho).
-double ImagesLeftHere(double comparisons_left, double images_left);
+/// Seconds until this process finishes `work` seconds of units (seconds of one thread) on
+/// `threads` threads, while a second process of one thread takes units from the other end of the
+/// same work order at the same speed once it joins in `helper_joins_in` seconds (0: it is taking
+/// units now; nothing: it will take none). Until it joins, this process works alone; after, the
+/// two share what is left in proportion to their threads.
+double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then each comparison followed by its share of the
@@ -79,11 +78,13 @@ public:
         Step(kind, what, frames, Clock::now());
     }
 
-    /// A second process takes configurations' units off the same work order (`claims`, one unit
-    /// per configuration of `frames_per_unit` image frames), from its end. The units it claims
-    /// leave this meter's work; while it is taking units, the ETA counts on it for its share of
-    /// the images nobody has claimed yet (ImagesLeftHere).
-    void ShareImages(const base::SharedClaims* claims, long frames_per_unit);
+    /// A second process takes units off the same work order from its end (`claims`: one unit per
+    /// configuration, `configurations` of them with `frames_per_configuration` image frames
+    /// each, then one per comparison). The units it claims leave this meter's work; the ETA
+    /// counts on it for its share of the units nobody has claimed yet from the time it said it
+    /// would start taking them (SecondsToFinish).
+    void ShareUnits(const base::SharedClaims* claims, long frames_per_configuration,
+                    std::size_t configurations);
 
     /// The last state passed to the callback.
     RunProgress Last() const;
@@ -103,8 +104,12 @@ private:
     void SumComparisons();
 
     const ProgressCallback& callback_;
+    std::optional<double> HelperJoinsIn(Clock::time_point now) const;
+    std::array<long, 2> HelperClaimedFrames() const;
+
     const base::SharedClaims* shared_ = nullptr;
-    long shared_frames_per_unit_ = 0;
+    long shared_frames_per_configuration_ = 0;
+    std::size_t shared_configurations_ = 0;
     Clock::time_point start_;
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;

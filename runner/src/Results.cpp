@@ -23,7 +23,7 @@
 
 #include "ConfigurationImages.h"
 #include "RenderProgress.h"
-#include "SharedImages.h"
+#include "SharedUnits.h"
 #include <fmt/format.h>
 
 namespace tidepool::runner {
@@ -71,7 +71,6 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                      results.gl.timer_query);
     const Clock::time_point start = Clock::now();
 
-    const CameraView* timing_view = TimingView(options);
     for (const RenderConfiguration& configuration : options.configurations) {
         ConfigurationResult result;
         result.configuration = configuration;
@@ -121,25 +120,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
 
+    // A configuration in several comparisons has its passes timed once, by the first of them.
     auto time_passes = [&](RenderWorker& w, std::size_t i) {
-        if (pass_timed[i].exchange(true) || timing_view == nullptr) {
-            return;
-        }
-        std::map<std::string, std::vector<double>> per_pass;
-        for (int f = 0; f < options.pass_frames; ++f) {
-            for (const auto& [pass, ms] :
-                 w.timer->TimePasses(options.configurations[i], *timing_view)) {
-                per_pass[pass].push_back(ms);
-            }
-        }
-        ConfigurationResult& r = results.configurations[i];
-        for (auto& [pass, samples] : per_pass) {
-            const double median = base::Median(samples);
-            if (pass == "frame") {
-                r.instrumented_frame_ms = median;
-            } else {
-                r.pass_ms[pass] = median;
-            }
+        if (!pass_timed[i].exchange(true)) {
+            TimePasses(w, options, i, results.configurations[i]);
         }
     };
 
@@ -148,7 +132,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     std::atomic<int> threads_started{0};
     std::atomic<int> threads_done{0};
     if (claims != nullptr) {
-        meter.ShareImages(claims, per_configuration);
+        meter.ShareUnits(claims, per_configuration, results.configurations.size());
     }
     const ImageUnitContext image_context{options, references, &meter, results_mutex,
                                          results.write_errors};
@@ -159,43 +143,29 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     auto run_comparison = [&](RenderWorker& w, std::size_t k) {
         ComparisonResult& out = results.comparisons[k];
         const TimedComparison& c = out.comparison;
-        if (out.error.empty() && timing_view == nullptr) {
-            out.error = "no timing view";
-        }
-        if (out.error.empty()) {
-            for (std::size_t i : {c.baseline, c.candidate}) {
-                if (!PrepareConfiguration(w, options, i, true).valid) {
-                    out.error = fmt::format("configuration {} did not compile in Mesa",
-                                            options.configurations[i].id);
-                    break;
-                }
-            }
-        }
+        long done = 0;
+        TimeComparisonUnit(w, options, out, [&](const ComparisonTiming& so_far) {
+            // Frames this look took, and a new guess of the pairs the interval needs.
+            const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
+            meter.Step(ProgressMeter::kComparison, c.label, frames - done);
+            done = frames;
+            const long needed =
+                    base::PairsExpectedAtStop(so_far.estimate, options.rule, kInitialPairGuess);
+            const bool finished = so_far.decision != base::StopDecision::kContinue;
+            meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
+        });
         if (!out.error.empty()) {
             meter.ComparisonExpects(k, 0, true);
             return;
         }
-        const RenderConfiguration& baseline = options.configurations[c.baseline];
-        const RenderConfiguration& candidate = options.configurations[c.candidate];
-        long done = 0;
-        out.timing = TimeComparison(
-                [&](bool is_candidate) {
-                    return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
-                },
-                options.rule,
-                [&](const ComparisonTiming& so_far) {
-                    // Frames this look took, and a new guess of the pairs the interval needs.
-                    const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
-                    meter.Step(ProgressMeter::kComparison, c.label, frames - done);
-                    done = frames;
-                    const long needed = base::PairsExpectedAtStop(so_far.estimate, options.rule,
-                                                                  kInitialPairGuess);
-                    const bool finished = so_far.decision != base::StopDecision::kContinue;
-                    meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
-                });
         time_passes(w, c.baseline);
         time_passes(w, c.candidate);
         meter.Step(ProgressMeter::kComparison, c.label, 0);  // the per-pass frames' time too
+    };
+
+    // Whether this process does claim-table unit `unit` (it does all but the second process's).
+    auto owner_takes = [&](std::size_t unit) {
+        return claims == nullptr || unit >= claims->Size() || claims->ClaimForOwner(unit);
     };
 
     // A rendering thread: its own context (but the calling thread's), renderer and timer; takes
@@ -212,18 +182,23 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         w.timer = std::make_unique<FrameTimer>(*w.renderer, results.clock.clock);
         ++threads_started;
         for (std::size_t u = next_unit++; u < units.size(); u = next_unit++) {
+            const std::size_t index = units[u].index;
             if (units[u].comparison) {
-                run_comparison(w, units[u].index);
-            } else if (claims == nullptr || claims->ClaimForOwner(units[u].index)) {
-                run_configuration(w, units[u].index);
+                if (owner_takes(SharedComparisonUnit(options, index))) {
+                    run_comparison(w, index);
+                }
+            } else if (owner_takes(index)) {
+                run_configuration(w, index);
             }
         }
         // The units a second process took, collected by the last thread out: no other thread
         // is then writing a configuration's per-pass times.
         if (claims != nullptr && ++threads_done == threads_started.load() &&
             !collected.exchange(true)) {
-            results.shared_configurations =
-                    CollectSharedUnits(w, image_context, results.configurations);
+            const CollectedUnits shared = CollectSharedUnits(
+                    w, image_context, results, [&](std::size_t k) { run_comparison(w, k); });
+            results.shared_configurations = shared.configurations;
+            results.shared_comparisons = shared.comparisons;
         }
     };
 

@@ -81,10 +81,14 @@ TEST_P(StabilityReportGlCaseTest, EveryWaterVariantIsFiniteAndInRange) {
     const HardCase* hard_case = FindHardCase(catalogue, GetParam());
     ASSERT_NE(hard_case, nullptr);
     std::string error;
+    std::vector<double> shares_done;
     const std::vector<StabilityCaseResult> results =
             RunGlHardCases(*s.context, *s.config, s.configurations, {*hard_case},
-                           GlStabilityOptions{kWidth, kHeight}, &error);
+                           GlStabilityOptions{kWidth, kHeight,
+                                              [&](double share) { shares_done.push_back(share); }},
+                           &error);
     ASSERT_EQ(error, "");
+    EXPECT_EQ(shares_done, std::vector<double>{1.0});  // the one case, all of the progress
     ASSERT_EQ(results.size(), 1U);
     const StabilityCaseResult& r = results.front();
     EXPECT_EQ(r.variants_checked, static_cast<int>(kWaterVariants));
@@ -110,7 +114,7 @@ TEST_F(StabilityReportGlTest, GuardsChangeTheDefaultViewsByLessThanTheirToleranc
     Shared& s = Get();
     std::string error;
     const std::vector<GuardResult> guards =
-            MeasureGuards(*s.context, *s.config, GlStabilityOptions{kWidth, kHeight}, &error);
+            MeasureGuards(*s.context, *s.config, GlStabilityOptions{kWidth, kHeight, {}}, &error);
     ASSERT_EQ(error, "");
     ASSERT_EQ(guards.size(), 4U);
     for (const GuardResult& g : guards) {

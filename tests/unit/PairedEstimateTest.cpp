@@ -207,6 +207,15 @@ TEST(PairedEstimateTest, StoppingRuleCapsWhenTheResolutionIsOutOfReach) {
     EXPECT_STREQ(StopDecisionName(decision), "capped");
 }
 
+TEST(PairedEstimateTest, EveryStopDecisionIsReadBackFromItsName) {
+    for (StopDecision d :
+         {StopDecision::kContinue, StopDecision::kResolved, StopDecision::kCapped}) {
+        EXPECT_EQ(StopDecisionFromName(StopDecisionName(d)), d) << StopDecisionName(d);
+    }
+    EXPECT_FALSE(StopDecisionFromName("Resolved"));
+    EXPECT_FALSE(StopDecisionFromName(""));
+}
+
 // An estimate with a given interval in percent points of performance change (+ = faster).
 PairedEstimate EstimateWithInterval(int pairs, double low, double high) {
     PairedEstimate e;

@@ -138,53 +138,69 @@ TEST(RenderProgressTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
     EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 40);
 }
 
-// A second process that takes images at full speed while this one also goes through its
-// comparisons: with no comparisons left they split the images in half; with no images left this
-// process has none; in between it renders its share rho = I / (C + I) of the time until they meet.
-TEST(RenderProgressTest, ImagesLeftHereFollowTheMeetingPointOfTheTwoProcesses) {
-    EXPECT_DOUBLE_EQ(ImagesLeftHere(0, 30), 15);
-    EXPECT_DOUBLE_EQ(ImagesLeftHere(60, 0), 0);
-    // C = 60 s, I = 30 s: rho = 1/3; they meet after 30 / (4/3) = 22.5 s, a third of it here.
-    EXPECT_DOUBLE_EQ(ImagesLeftHere(60, 30), 7.5);
-    // Never more than the images left, never less than none.
-    for (double c : {0.0, 1.0, 100.0}) {
-        for (double i : {0.0, 1.0, 100.0}) {
-            EXPECT_GE(ImagesLeftHere(c, i), 0.0);
-            EXPECT_LE(ImagesLeftHere(c, i), i);
+// Alone until the second process joins, then the rest split by threads: one thread here and
+// one there halve what is left at the join.
+TEST(RenderProgressTest, SecondsToFinishShareWhatIsLeftOnceTheSecondProcessJoins) {
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, std::nullopt), 60);
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 2, std::nullopt), 30);
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, 0.0), 30);
+    // 20 s alone, then the 40 s left shared: 20 s more.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, 20.0), 40);
+    // Two threads here: 40 s of work in the first 20 s, the 20 s left shared three ways.
+    EXPECT_NEAR(SecondsToFinish(60, 2, 20.0), 20 + 20.0 / 3, 1e-9);
+    // Done before it joins.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(10, 1, 20.0), 10);
+    // A join forecast in the past counts as now; no work is no time.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, -5.0), 30);
+    EXPECT_DOUBLE_EQ(SecondsToFinish(0, 1, 0.0), 0);
+    // Never more than working alone, never less than half of it with one thread each.
+    for (double work : {0.0, 1.0, 100.0}) {
+        for (double join : {0.0, 1.0, 50.0, 500.0}) {
+            EXPECT_LE(SecondsToFinish(work, 1, join), work);
+            EXPECT_GE(SecondsToFinish(work, 1, join), work / 2);
         }
     }
 }
 
-// The units a second process claims leave the meter's totals, and while it is taking units, the
-// ETA counts on it for half of the images when no comparison is left.
-TEST(RenderProgressTest, ImagesASecondProcessTakesLeaveTheTotalsAndShortenTheEta) {
+// The units a second process claims, configurations' and comparisons' alike, leave the meter's
+// totals; before it joins the ETA counts on it from the time it said, while it takes units from
+// now, and once it has stopped not at all.
+TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
-    const std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(10);
+    constexpr std::size_t kConfigurations = 10;
+    const std::unique_ptr<base::SharedClaims> claims =
+            base::SharedClaims::Create(kConfigurations + 2);
     ASSERT_TRUE(claims);
     constexpr long kFramesPerUnit = 7;
     meter.AddExpected(ProgressMeter::kImage, 10 * kFramesPerUnit);
-    meter.ShareImages(claims.get(), kFramesPerUnit);
+    meter.AddComparisons(2, 70);
+    meter.ShareUnits(claims.get(), kFramesPerUnit, kConfigurations);
     Clock::time_point now = start;
     ASSERT_TRUE(claims->ClaimForOwner(0));
     for (int f = 0; f < kFramesPerUnit; ++f) {
         now += std::chrono::milliseconds(100);
         meter.Step(ProgressMeter::kImage, "0", 1, now);
     }
-    // Alone: 9 units of 7 frames at 100 ms.
-    EXPECT_EQ(meter.Last().total, 10 * kFramesPerUnit);
-    EXPECT_NEAR(meter.Last().eta_seconds, 6.3, 1e-6);
+    // Alone: 9 units of 7 frames and 2 comparisons of 70 frames, all at 100 ms a frame.
+    EXPECT_EQ(meter.Last().total, 10 * kFramesPerUnit + 140);
+    EXPECT_NEAR(meter.Last().eta_seconds, 6.3 + 14, 1e-6);
+    // The helper says it joins in 4.3 s: 4.3 s alone, then the 16 s left are halved.
+    claims->ExpectHelperAt(now + std::chrono::milliseconds(4300));
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 4.3 + 8, 1e-3);
     ASSERT_TRUE(claims->ClaimForHelper(9));
-    ASSERT_TRUE(claims->ClaimForHelper(8));
+    ASSERT_TRUE(claims->ClaimForHelper(kConfigurations + 1));  // the second comparison
     claims->SetHelperTaking(true);
     meter.Step(ProgressMeter::kImage, "0", 0, now);
-    // The helper's 2 units are gone; of the 7 left, this process renders half.
-    EXPECT_EQ(meter.Last().total, 8 * kFramesPerUnit);
-    EXPECT_NEAR(meter.Last().eta_seconds, 0.5 * 4.9, 1e-6);
+    // Its unit and its comparison are gone; of the 8 units and 1 comparison left, this process
+    // does half.
+    EXPECT_EQ(meter.Last().total, 9 * kFramesPerUnit + 70);
+    EXPECT_NEAR(meter.Last().eta_seconds, 0.5 * (5.6 + 7), 1e-6);
     claims->SetHelperTaking(false);  // it stopped taking: the rest is this process's
     meter.Step(ProgressMeter::kImage, "0", 0, now);
-    EXPECT_NEAR(meter.Last().eta_seconds, 4.9, 1e-6);
+    EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
 }
 
 }  // namespace

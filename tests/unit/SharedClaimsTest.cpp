@@ -121,10 +121,24 @@ TEST(SharedClaimsTest, TheHelperSaysWhetherItIsTakingUnits) {
     const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(1);
     ASSERT_TRUE(claims);
     EXPECT_FALSE(claims->HelperTaking());
+    EXPECT_FALSE(claims->HelperStopped());  // not yet started is not stopped
     ASSERT_TRUE(InAForkedProcess([&] { claims->SetHelperTaking(true); }));
     EXPECT_TRUE(claims->HelperTaking());
-    claims->SetHelperTaking(false);
+    EXPECT_FALSE(claims->HelperStopped());
+    ASSERT_TRUE(InAForkedProcess([&] { claims->SetHelperTaking(false); }));
     EXPECT_FALSE(claims->HelperTaking());
+    EXPECT_TRUE(claims->HelperStopped());
+}
+
+TEST(SharedClaimsTest, TheHelpersForecastOfWhenItStartsTakingUnitsReachesTheOwner) {
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(1);
+    ASSERT_TRUE(claims);
+    EXPECT_FALSE(claims->HelperExpectedAt());  // nothing said yet
+    const std::chrono::steady_clock::time_point when =
+            std::chrono::steady_clock::now() + std::chrono::seconds(42);
+    ASSERT_TRUE(InAForkedProcess([&] { claims->ExpectHelperAt(when); }));
+    ASSERT_TRUE(claims->HelperExpectedAt());
+    EXPECT_EQ(*claims->HelperExpectedAt(), when);
 }
 
 }  // namespace

@@ -86,14 +86,15 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
     for (const runner::ConfigurationResult& r : results.configurations) {
         end.failures += r.Ok() ? 0 : 1;
     }
-    progress.Line(fmt::format("render: {} configurations, {} failed, {:.0f} s; results in {}{}",
-                              results.configurations.size(), end.failures, results.wall_seconds,
-                              results_path.string(),
-                              run.shared.claims != nullptr
-                                      ? fmt::format(" ({} configurations' images rendered by the "
-                                                    "second process)",
-                                                    results.shared_configurations)
-                                      : ""));
+    progress.Line(fmt::format(
+            "render: {} configurations, {} failed, {:.0f} s; results in {}{}",
+            results.configurations.size(), end.failures, results.wall_seconds,
+            results_path.string(),
+            run.shared.claims != nullptr
+                    ? fmt::format(" ({} configurations' images and {} "
+                                  "comparisons done by the second process)",
+                                  results.shared_configurations, results.shared_comparisons)
+                    : ""));
     return end;
 }
 
@@ -101,6 +102,7 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
 StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
                        const std::vector<Variant>& variants, const RunRequest& request,
                        const std::string& threads, const std::filesystem::path& render_dir,
+                       const std::function<void(double share_done)>& on_progress,
                        ProgressSink& progress) {
     StageEnd end;
     const Clock::time_point start = Clock::now();
@@ -110,6 +112,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
     run.size = fmt::format("{}x{}", run.width, run.height);
     run.lp_num_threads = threads;
     run.config_path = request.config;
+    run.on_progress = on_progress;
     std::string error;
     const lab::StabilityReport report =
             RunStabilityCatalogue(context, config, variants, run, &error);
@@ -145,6 +148,7 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
 // render_dir/images/.
 StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
                    const RunRequest& request, const runner::RunOptions& run,
+                   const std::function<void(double share_done)>& on_progress,
                    ProgressSink& progress) {
     const std::filesystem::path& render_dir = run.out_dir;
     StageEnd end;
@@ -184,6 +188,9 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
                                 plan.chosen < 0 ? "could not be planned" : "misses its target"));
         }
         plans.push_back(std::move(plan));
+        if (on_progress) {
+            on_progress(static_cast<double>(plans.size()) / static_cast<double>(scenes.size()));
+        }
     }
     if (const std::string error = stagefiles::WritePlansFile(
                 lab::PlansFileFor(plans, options), render_dir / stagefiles::kPlansFileName);
@@ -203,8 +210,42 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
     return end;
 }
 
-// The stability catalogue, the scene plans, then configurations' images off the render's work
-// list, on one context of their own.
+// The second process's forecast of when it will start taking the render's units
+// (SharedClaims::ExpectHelperAt), from the share of its own stages done so far: the time they have
+// taken over that share. The stability catalogue counts for a third of the two stages and the
+// scene plans for the rest: on the default matrix here the catalogue took 25 of 73 s quiet and 61
+// of 241 s with two other processes competing (the plans' timing is adaptive, so noise lengthens
+// them most).
+class JoinForecast {
+public:
+    JoinForecast(base::SharedClaims* claims, bool stability, bool plans)
+        : claims_(claims),
+          stability_share_(!plans      ? 1.0
+                           : stability ? 1.0 / 3.0
+                                       : 0.0) {}
+
+    /// `share` of the stability catalogue is done.
+    void Stability(double share) { Say(stability_share_ * share); }
+    /// `share` of the scene plans is done.
+    void Plans(double share) { Say(stability_share_ + (1.0 - stability_share_) * share); }
+
+private:
+    void Say(double share) const {
+        if (claims_ == nullptr || share <= 0) {
+            return;
+        }
+        const Clock::duration elapsed = Clock::now() - start_;
+        claims_->ExpectHelperAt(start_ + std::chrono::duration_cast<Clock::duration>(
+                                                 elapsed / std::min(share, 1.0)));
+    }
+
+    base::SharedClaims* claims_;
+    double stability_share_;
+    Clock::time_point start_ = Clock::now();
+};
+
+// The stability catalogue, the scene plans, then units off the end of the render's work list, on
+// one context of their own.
 StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>& variants,
                          const RunRequest& request, const runner::RunOptions& run,
                          ProgressSink& progress) {
@@ -217,14 +258,18 @@ StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>
         return end;
     }
     const std::string& threads = run.host.lp_num_threads;
+    JoinForecast forecast(run.shared.claims, request.stability, request.plans);
     if (request.stability) {
-        const StageEnd stable = StabilityInto(*context.context, config, variants, request, threads,
-                                              run.out_dir, progress);
+        const StageEnd stable = StabilityInto(
+                *context.context, config, variants, request, threads, run.out_dir,
+                [&](double share) { forecast.Stability(share); }, progress);
         end.status = stable.status == Status::kEnvironment ? stable.status : end.status;
         end.failures += stable.failures;
     }
     if (request.plans) {
-        const StageEnd planned = PlansInto(*context.context, config, request, run, progress);
+        const StageEnd planned = PlansInto(
+                *context.context, config, request, run,
+                [&](double share) { forecast.Plans(share); }, progress);
         end.status = planned.status == Status::kEnvironment ? planned.status : end.status;
         end.failures += planned.failures;
     }
@@ -233,23 +278,24 @@ StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>
                         "render",
                         SecondsSince(start)));
     if (run.shared.claims != nullptr) {
-        // Then configurations' images off the end of the render's work list: the stability
-        // catalogue and the plans are long and can only run here, the images are short units
-        // either process can take, so taking them last lets both processes end together.
-        const Clock::time_point images_start = Clock::now();
-        const runner::SharedImagesDone images =
-                runner::RenderSharedImages(*context.context, config, run);
-        if (!images.error.empty()) {
-            progress.Tell({Message(Severity::kWarning,
-                                   "images beside the render: " + images.error +
-                                           "; the render process renders every image")});
+        // Then units off the end of the render's work list: the stability catalogue and the plans
+        // are long and can only run here, configurations and comparisons are units either
+        // process can take, so taking them last lets both processes end together.
+        const Clock::time_point units_start = Clock::now();
+        const runner::SharedUnitsDone units =
+                runner::RenderSharedUnits(*context.context, config, run);
+        if (!units.error.empty()) {
+            progress.Tell(
+                    {Message(Severity::kWarning, "units beside the render: " + units.error +
+                                                         "; the render process does every unit")});
         }
-        for (const std::string& e : images.write_errors) {
+        for (const std::string& e : units.write_errors) {
             progress.Tell({Message(Severity::kError, e)});
             end.status = Status::kEnvironment;
         }
-        progress.Line(fmt::format("images: {} configurations rendered beside the render, {:.0f} s",
-                                  images.configurations, SecondsSince(images_start)));
+        progress.Line(fmt::format(
+                "units beside the render: {} configurations' images and {} comparisons, {:.0f} s",
+                units.configurations, units.comparisons, SecondsSince(units_start)));
     }
     return end;
 }
@@ -266,12 +312,13 @@ std::pair<StageEnd, StageEnd> RenderBesideTheOtherStages(const VariantConfig& co
                                                          const runner::RunOptions& run,
                                                          const std::filesystem::path& results_path,
                                                          ProgressSink& progress) {
-    // The second process takes configurations' images off the render's work list while it has
-    // nothing else to do, so that neither core idles while the other renders.
+    // The second process takes units off the render's work list once its own stages are done,
+    // so that neither core idles while the other renders.
     runner::RunOptions shared_run = run;
     std::unique_ptr<base::SharedClaims> claims;
     if (request.stability || request.plans) {
-        claims = base::SharedClaims::Create(run.configurations.size());  // none: no sharing
+        // A unit per configuration, then one per comparison; none: no sharing.
+        claims = base::SharedClaims::Create(run.configurations.size() + run.comparisons.size());
         if (claims) {
             shared_run.shared = {claims.get(), run.out_dir / ".second-process"};
         }

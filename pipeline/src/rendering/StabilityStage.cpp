@@ -41,6 +41,7 @@ lab::StabilityReport RunStabilityCatalogue(runner::GlContext& context, const Var
     GlStabilityOptions gl_options;
     gl_options.width = run.width;
     gl_options.height = run.height;
+    gl_options.on_case_done = run.on_progress;
     std::vector<StabilityCaseResult> gl_cases = RunGlHardCases(
             context, config, WaterVariantConfigurations(variants), catalogue, gl_options, error);
     if (!error->empty()) {

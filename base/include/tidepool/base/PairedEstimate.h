@@ -15,7 +15,9 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace tidepool::base {
@@ -134,5 +136,7 @@ int PairsBeforeNextLook(int pairs, const StoppingRule& rule);
 
 /// "resolved", "capped" or "continue"; never fails.
 const char* StopDecisionName(StopDecision decision);
+/// The decision StopDecisionName gives `name`; nothing for any other text.
+std::optional<StopDecision> StopDecisionFromName(std::string_view name);
 
 }  // namespace tidepool::base

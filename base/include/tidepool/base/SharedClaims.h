@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace tidepool::base {
@@ -41,11 +42,19 @@ public:
 
     /// The helper is alive and working on its claimed units: sets its heartbeat to now.
     void Beat();
-    /// Whether the helper is taking units now (it says so; it stops when none are left for it).
+    /// Whether the helper is taking units now (it says so; it stops when none are left for it,
+    /// or when it cannot take any), and whether it has stopped: a helper that has stopped does
+    /// not start again.
     void SetHelperTaking(bool taking);
     bool HelperTaking() const;
+    bool HelperStopped() const;
     /// Units the helper has claimed, done or not.
     std::size_t HelperClaimed() const;
+
+    /// When the helper expects to start taking units (it has other work first), as it last said;
+    /// the owner plans its own share with it. Nothing until the helper has said.
+    void ExpectHelperAt(std::chrono::steady_clock::time_point when);
+    std::optional<std::chrono::steady_clock::time_point> HelperExpectedAt() const;
 
     /// Waits until the helper has finished every unit it claimed, checking every `poll`. When its
     /// heartbeat is older than `stall`, takes its unfinished units back for the owner and returns
@@ -55,8 +64,9 @@ public:
 
 private:
     struct Header {
-        std::atomic<std::int64_t> heartbeat_ns;  // steady clock, shared by every process
-        std::atomic<int> helper_taking;
+        std::atomic<std::int64_t> heartbeat_ns;        // steady clock, shared by every process
+        std::atomic<int> helper_taking;                // 0: not yet, 1: taking, 2: stopped
+        std::atomic<std::int64_t> helper_expected_ns;  // steady clock; 0: not said
     };
     SharedClaims(void* memory, std::size_t bytes, std::size_t units);
     std::atomic<int>& Slot(std::size_t unit) const;

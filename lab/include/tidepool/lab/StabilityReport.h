@@ -10,6 +10,7 @@
 #include "tidepool/runner/RenderConfig.h"
 #include "tidepool/stagefiles/StabilityFile.h"
 
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -33,6 +34,8 @@ StabilityCaseResult RunCpuHardCase(const HardCase& hard_case);
 struct GlStabilityOptions {
     int width = 64;  // small: every variant at every case must stay fast
     int height = 48;
+    // Called after each GL case with the share of them done (0 to 1]; may be empty.
+    std::function<void(double share_done)> on_case_done;
 };
 
 /// Renders every configuration at every kGl case in `cases` into an RGBA32F target and counts

@@ -10,6 +10,7 @@
 #include "tidepool/runner/GlBackend.h"
 
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,9 @@ struct StabilityRun {
     std::string size;            // the size as the user gave it ("64x48"), recorded as is
     std::string lp_num_threads;  // LP_NUM_THREADS the context was created with, recorded
     std::string config_path;     // variants.yaml as the user named it, recorded
+    // Called as the GL cases, nearly all of the catalogue's time, go by (their share done); may
+    // be empty.
+    std::function<void(double share_done)> on_progress;
 };
 
 /// Runs the whole catalogue with `context` on the water variants among `variants`. Fails (the

@@ -49,14 +49,16 @@ struct TimedComparison {
     std::size_t candidate = 0;
 };
 
-/// Configurations' units shared with a second process beside the render (`run`'s stability and
-/// plan process, which has a core of its own): it takes units from the end of the render's work
-/// order while the render takes them from the start (RenderSharedImages), and the render reads
-/// its results back before writing results.json. Comparisons are never shared: both sides of a
-/// comparison are timed in the render process.
-struct SharedImageUnits {
-    base::SharedClaims* claims = nullptr;  // one unit per configuration; null: no second process
-    std::filesystem::path folder;          // where the second process leaves each unit's results
+/// Units shared with a second process beside the render (`run`'s stability and plan process,
+/// which has a core of its own): once its own stages are done it takes units, configurations'
+/// and comparisons' alike, from the end of the render's work order while the render takes them
+/// from the start (RenderSharedUnits), and the render reads their results back before writing
+/// results.json. Both sides of a comparison are always timed in one process, pair by pair.
+struct SharedUnits {
+    // One unit per configuration, then one per comparison (SharedComparisonUnit); null: no
+    // second process.
+    base::SharedClaims* claims = nullptr;
+    std::filesystem::path folder;  // where the second process leaves each unit's results
 };
 
 /// What a run renders and how.
@@ -94,7 +96,7 @@ struct RunOptions {
     const ValidationReport* validated = nullptr;
     HostInfo host;
     std::string config_path;  // variants.yaml as named by the user
-    SharedImageUnits shared;  // none unless a second process helps with the images
+    SharedUnits shared;       // none unless a second process helps with the units
 };
 
 /// One view of one configuration.
@@ -158,6 +160,7 @@ struct RunResults {
     FrameClockChoice clock;         // the clock every time is on
     int workers = 1;                // rendering threads that actually ran
     int shared_configurations = 0;  // configurations a second process rendered (RunOptions::shared)
+    int shared_comparisons = 0;     // comparisons a second process timed
     std::vector<VerdictDisagreement> disagreements;
     std::vector<Diagnostic> diagnostics;  // every driver diagnostic and run-level problem
     // Files that could not be written (a PNG, for instance): an environment failure, exit 3.
@@ -195,20 +198,24 @@ using ProgressCallback = std::function<void(const RunProgress&)>;
 RunResults RunRender(GlContext& context, const VariantConfig& config, const RunOptions& options,
                      const ProgressCallback& progress);
 
-/// What a second process's share of the images came to.
-struct SharedImagesDone {
-    int configurations = 0;                 // units it finished and handed to the render
+/// The claim-table unit of comparison `k` (RunOptions::comparisons): after every configuration's.
+std::size_t SharedComparisonUnit(const RunOptions& options, std::size_t k);
+
+/// What a second process's share of the units came to.
+struct SharedUnitsDone {
+    int configurations = 0;                 // configurations' units it finished and handed over
+    int comparisons = 0;                    // comparisons it timed and handed over
     std::vector<std::string> write_errors;  // PNGs it could not write
     std::string error;                      // "" unless it could not set up a renderer
 };
 
 /// The second process's side of RunOptions::shared: renders the reference configuration's views
-/// (kept in memory only, to compare with), then takes configurations' units from the end of the
-/// render's work order until none is left, leaving each unit's results in the shared folder.
-/// Does nothing when RunOptions::shared has no claims. Fails through the result; a unit whose
-/// results it cannot write is rendered again by the render process.
-SharedImagesDone RenderSharedImages(GlContext& context, const VariantConfig& config,
-                                    const RunOptions& options);
+/// (kept in memory only, to compare with), then takes units from the end of the render's work
+/// order until none is left, leaving each unit's results in the shared folder. Does nothing when
+/// RunOptions::shared has no claims. Fails through the result; a unit whose results it cannot
+/// write is done again by the render process.
+SharedUnitsDone RenderSharedUnits(GlContext& context, const VariantConfig& config,
+                                  const RunOptions& options);
 
 /// The results as results.json holds them (stagefiles/ResultsFile.h). Never fails.
 stagefiles::ResultsFile ToResultsFile(const RunResults& results);

@@ -1,4 +1,4 @@
-// Reading back a unit the second process rendered (runner/src/SharedImages.h): its results file
+// Reading back a unit the second process rendered (runner/src/SharedUnits.h): its results file
 // of one configuration gives the render process the same entry it would have written itself.
 #include "tidepool/runner/Results.h"
 
@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "SharedImages.h"
+#include "SharedUnits.h"
 #include "TempDir.h"
 
 namespace tidepool::runner {
@@ -47,7 +47,7 @@ ConfigurationResult EveryFieldSet() {
     return r;
 }
 
-TEST(SharedImagesTest, AUnitReadBackFromItsFileWritesTheSameResultsEntry) {
+TEST(SharedUnitsTest, AUnitReadBackFromItsFileWritesTheSameResultsEntry) {
     RunResults results;
     results.configurations = {EveryFieldSet()};
     const std::string written = stagefiles::ResultsFileText(ToResultsFile(results));

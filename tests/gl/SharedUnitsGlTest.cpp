@@ -1,12 +1,13 @@
-// Configurations' units shared with a second process (runner/src/SharedImages.cpp): what the
-// second process renders and hands over is what the render process would have recorded itself.
-// Both sides run here one after the other in one process, on the shared context: the second
-// process's side first, so that it takes every unit but the reference's.
+// Units shared with a second process (runner/src/SharedUnits.cpp): what the second process
+// renders or times and hands over is what the render process would have recorded itself. Both
+// sides run here one after the other in one process, on the shared context: the second process's
+// side first, so that it takes every unit but the reference's.
 #include "tidepool/base/SharedClaims.h"
 #include "tidepool/runner/Results.h"
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -44,10 +45,11 @@ struct SharedRun {
     RunOptions options;
 };
 
+// The four configurations and a comparison of the reference with the second: five units.
 SharedRun WithASecondProcess(const std::filesystem::path& out) {
-    SharedRun run{base::SharedClaims::Create(4), FourConfigurations(out)};
-    // A comparison of the reference with a configuration the second process takes: its per-pass
-    // times are the render process's, and must survive the second process's results.
+    SharedRun run{base::SharedClaims::Create(5), FourConfigurations(out)};
+    // The second process takes the comparison too: the per-pass times of its two configurations
+    // are then the second process's, and must survive the configurations' own units.
     run.options.comparisons = {{"fog", 0, 1}};
     run.options.rule = {50.0, 4, 4, 4};
     run.options.pass_frames = 1;
@@ -68,7 +70,7 @@ stagefiles::ResultsConfiguration WithoutTimes(stagefiles::ResultsConfiguration e
     return entry;
 }
 
-TEST(SharedImagesGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) {
+TEST(SharedUnitsGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) {
     test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
     ASSERT_TRUE(shared.context) << shared.error;
     const testing::TempDir alone_dir;
@@ -77,11 +79,13 @@ TEST(SharedImagesGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn)
                                        FourConfigurations(alone_dir.Path()), nullptr);
     SharedRun run = WithASecondProcess(shared_dir.Path());
     ASSERT_TRUE(run.claims);
-    const SharedImagesDone done = RenderSharedImages(*shared.context, *shared.config, run.options);
+    const SharedUnitsDone done = RenderSharedUnits(*shared.context, *shared.config, run.options);
     EXPECT_EQ(done.error, "");
     EXPECT_EQ(done.configurations, 3);  // every unit but the reference's
+    EXPECT_EQ(done.comparisons, 1);
     const RunResults together = RunRender(*shared.context, *shared.config, run.options, nullptr);
     EXPECT_EQ(together.shared_configurations, 3);
+    EXPECT_EQ(together.shared_comparisons, 1);
     for (std::size_t compared : {0U, 1U}) {
         EXPECT_GT(together.configurations[compared].pass_ms.count("main"), 0U) << compared;
         EXPECT_GT(together.configurations[compared].instrumented_frame_ms, 0.0) << compared;
@@ -103,13 +107,66 @@ TEST(SharedImagesGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn)
     }
 }
 
-TEST(SharedImagesGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProcess) {
+// Its samples in the order taken, the estimate over them, the decision and the label.
+TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
     ASSERT_TRUE(shared.context) << shared.error;
     const testing::TempDir out;
     SharedRun run = WithASecondProcess(out.Path());
     ASSERT_TRUE(run.claims);
-    ASSERT_EQ(RenderSharedImages(*shared.context, *shared.config, run.options).configurations, 3);
+    run.options.rule = {50.0, 10, 10, 10};  // enough pairs for a 95% interval
+    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, run.options).comparisons, 1);
+    const stagefiles::ReadResult<stagefiles::ResultsFile> unit =
+            stagefiles::ReadResultsFile(out.Path() / ".second-process/4.json");
+    ASSERT_TRUE(unit.value);
+    ASSERT_EQ(unit.value->comparisons.size(), 1U);
+    const stagefiles::ResultsComparison& handed = unit.value->comparisons.front();
+    EXPECT_EQ(handed.pairs, 10);
+    ASSERT_TRUE(std::isfinite(handed.change_low) && std::isfinite(handed.change_high));
+
+    const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    ASSERT_EQ(results.shared_comparisons, 1);
+    const ComparisonResult& c = results.comparisons.front();
+    EXPECT_EQ(c.error, "");
+    EXPECT_EQ(c.comparison.label, "fog");
+    EXPECT_EQ(c.comparison.baseline, 0U);
+    EXPECT_EQ(c.comparison.candidate, 1U);
+    EXPECT_EQ(c.timing.samples.baseline_ms, handed.baseline_ms);
+    EXPECT_EQ(c.timing.samples.candidate_ms, handed.candidate_ms);
+    EXPECT_EQ(c.timing.samples.candidate_wall_ms, handed.candidate_wall_ms);
+    EXPECT_EQ(base::StopDecisionName(c.timing.decision), handed.decision);
+    EXPECT_EQ(c.timing.estimate.pairs, 10);
+    EXPECT_DOUBLE_EQ(c.timing.estimate.change_percent, handed.change_percent);
+    EXPECT_DOUBLE_EQ(c.timing.estimate.change_low, handed.change_low);
+    EXPECT_DOUBLE_EQ(c.timing.estimate.change_high, handed.change_high);
+}
+
+TEST(SharedUnitsGlTest, AComparisonWhoseResultsCannotBeReadIsTimedByTheRenderProcess) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir out;
+    SharedRun run = WithASecondProcess(out.Path());
+    ASSERT_TRUE(run.claims);
+    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, run.options).comparisons, 1);
+    out.Write(".second-process/4.json", "{\"schema\": ");  // cut short
+    const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    EXPECT_EQ(results.shared_comparisons, 0);
+    EXPECT_EQ(results.shared_configurations, 3);
+    const ComparisonResult& c = results.comparisons.front();
+    EXPECT_EQ(c.error, "");
+    EXPECT_EQ(c.timing.estimate.pairs, 4);
+    for (std::size_t compared : {0U, 1U}) {
+        EXPECT_GT(results.configurations[compared].pass_ms.count("main"), 0U) << compared;
+    }
+}
+
+TEST(SharedUnitsGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProcess) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir out;
+    SharedRun run = WithASecondProcess(out.Path());
+    ASSERT_TRUE(run.claims);
+    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, run.options).configurations, 3);
     out.Write(".second-process/2.json", "{\"schema\": ");  // cut short
     const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
     EXPECT_EQ(results.shared_configurations, 2);
@@ -120,12 +177,12 @@ TEST(SharedImagesGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProce
     }
 }
 
-TEST(SharedImagesGlTest, WithoutClaimsTheSecondProcessRendersNothing) {
+TEST(SharedUnitsGlTest, WithoutClaimsTheSecondProcessRendersNothing) {
     test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
     ASSERT_TRUE(shared.context) << shared.error;
     const testing::TempDir out;
-    const SharedImagesDone done =
-            RenderSharedImages(*shared.context, *shared.config, FourConfigurations(out.Path()));
+    const SharedUnitsDone done =
+            RenderSharedUnits(*shared.context, *shared.config, FourConfigurations(out.Path()));
     EXPECT_EQ(done.configurations, 0);
     EXPECT_EQ(done.error, "");
     EXPECT_FALSE(std::filesystem::exists(out.Path() / "images"));
