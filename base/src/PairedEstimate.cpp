@@ -125,21 +125,32 @@ double FinestHalfWidthPoints(const StoppingRule& rule) {
     return std::min(rule.resolution_points, kDirectionMarginPoints) / 2.0;
 }
 
-bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rule) {
-    if (!estimate.Valid()) {
+bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
+    if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
         return false;
     }
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
     const double reach = rule.boundary_standard_errors * estimate.HalfWidthPoints() / z;
-    return std::fabs(estimate.change_high + kDirectionMarginPoints) < reach ||
-           std::fabs(estimate.change_low - kDirectionMarginPoints) < reach;
+    const double low = estimate.change_low;
+    const double high = estimate.change_high;
+    const double centre = (low + high) / 2.0;
+    const double margin = kDirectionMarginPoints;
+    if (std::fabs(high + margin) < reach || std::fabs(low - margin) < reach) {
+        return true;
+    }
+    if ((centre < -margin && high > -margin) || (centre > margin && low < margin)) {
+        return true;
+    }
+    return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
+        return (low < b && b < high) || std::fabs(low - b) < reach || std::fabs(high - b) < reach;
+    });
 }
 
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (estimate.pairs >= rule.min_pairs && estimate.Valid()) {
         const double half_width = estimate.HalfWidthPoints();
         if (half_width <= FinestHalfWidthPoints(rule) ||
-            (half_width <= rule.resolution_points && !NearDirectionMargin(estimate, rule))) {
+            (half_width <= rule.resolution_points && !NearVerdictBoundary(estimate, rule))) {
             return StopDecision::kResolved;
         }
     }
@@ -161,16 +172,20 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     const double half_width = estimate.HalfWidthPoints();
     if (estimate.Valid() && half_width > 0) {
         double wanted = rule.resolution_points;
-        if (NearDirectionMargin(estimate, rule)) {
-            // Near the margin the rule stops as soon as the end clears it by
+        if (NearVerdictBoundary(estimate, rule)) {
+            // Near a boundary the rule stops as soon as the end clears it by
             // boundary_standard_errors standard errors (half-width / z each): with the centre d
-            // points beyond the margin that is at half-width z d / (z + boundary), if the centre
-            // holds; never later than FinestHalfWidthPoints, where it stops wherever it lies.
-            // Guessing that finest half-width for every such comparison overestimated most.
+            // points from the boundary nearest it that is at half-width z d / (z + boundary), if
+            // the centre holds; never later than FinestHalfWidthPoints, where it stops wherever
+            // it lies. Guessing that finest half-width for every such comparison overestimated
+            // most.
             const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
             const double centre = (estimate.change_low + estimate.change_high) / 2.0;
-            const double beyond = std::fabs(centre) - kDirectionMarginPoints;
-            wanted = std::clamp(z * beyond / (z + rule.boundary_standard_errors),
+            double distance = std::fabs(std::fabs(centre) - kDirectionMarginPoints);
+            for (double b : rule.boundaries_points) {
+                distance = std::min(distance, std::fabs(centre - b));
+            }
+            wanted = std::clamp(z * distance / (z + rule.boundary_standard_errors),
                                 FinestHalfWidthPoints(rule), rule.resolution_points);
         }
         const double ratio = half_width / wanted;

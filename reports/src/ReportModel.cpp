@@ -546,11 +546,12 @@ std::vector<PrunedRuleRow> PrunedRuleRows(const stagefiles::ManifestFile& manife
 std::vector<PresetPair> ComparedPresetPairs() {
     std::vector<PresetPair> pairs;
     for (const WhitepaperRow& row : WhitepaperRows()) {
-        pairs.push_back(
-                {fmt::format("row {}", row.number), row.baseline_preset, row.candidate_preset});
+        pairs.push_back({fmt::format("row {}", row.number), row.baseline_preset,
+                         row.candidate_preset, VerdictBoundaries(row)});
     }
     auto add = [&](const TechniquePresets& t) {
-        pairs.push_back({fmt::format("{} ({})", t.technique, t.context), t.baseline, t.candidate});
+        pairs.push_back(
+                {fmt::format("{} ({})", t.technique, t.context), t.baseline, t.candidate, {}});
     };
     std::for_each(std::begin(kReflectionPresets), std::end(kReflectionPresets), add);
     std::for_each(std::begin(kOpticsPresets), std::end(kOpticsPresets), add);
@@ -684,6 +685,28 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
             "figure ({}): {}{}",
             band, interval, halves);
     return Verdict::kSameDirectionDifferentMagnitude;
+}
+
+std::vector<double> VerdictBoundaries(const WhitepaperRow& row) {
+    switch (row.kind) {
+        case FigureKind::kPercent: {
+            const double figure = std::fabs(row.whitepaper_percent);
+            const double sign = row.expected_sign >= 0 ? 1.0 : -1.0;
+            std::vector<double> ends;
+            for (double end :
+                 {sign * figure / kMagnitudeFactor, sign * figure * kMagnitudeFactor}) {
+                if (std::isfinite(end) && end > -100.0) {  // a frame rate cannot fall by 100%
+                    ends.push_back(end);
+                }
+            }
+            return ends;
+        }
+        case FigureKind::kNegligible:  // the whitepaper's "<1%", times the factor
+            return {-1.0 * kMagnitudeFactor, 1.0 * kMagnitudeFactor};
+        case FigureKind::kDirection:
+            return {};
+    }
+    return {};
 }
 
 StaticCostAnalysis AnalyseStaticCost(std::vector<StaticCostEntry> entries) {

@@ -141,6 +141,12 @@ void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, s
     r.plan_ms_median = base::Median(plan_ms);
 }
 
+base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparison& comparison) {
+    base::StoppingRule rule = options.rule;
+    rule.boundaries_points = comparison.boundaries_points;
+    return rule;
+}
+
 void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
                         const std::function<void(const ComparisonTiming& so_far)>& after_look) {
     const TimedComparison& c = out.comparison;
@@ -166,7 +172,7 @@ void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonRe
             [&](bool is_candidate) {
                 return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
             },
-            options.rule, after_look);
+            ComparisonRule(options, c), after_look);
 }
 
 void TimePasses(RenderWorker& w, const RunOptions& options, std::size_t i, ConfigurationResult& r) {

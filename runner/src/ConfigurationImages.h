@@ -77,8 +77,11 @@ void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, s
 /// The frames a configuration's unit counts for in the progress line: its views and coarse frames.
 long FramesPerConfiguration(const RunOptions& options);
 
+/// RunOptions::rule with `comparison`'s own verdict boundaries: the rule it is timed by.
+base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparison& comparison);
+
 /// Times comparison `out.comparison` on `w`: both configurations compiled and warmed, then pairs
-/// until RunOptions::rule stops; `after_look` (may be empty) sees the timing after every look.
+/// until its ComparisonRule stops; `after_look` (may be empty) sees the timing after every look.
 /// Sets `out.error` instead when there is no timing view or a side does not compile in Mesa.
 void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
                         const std::function<void(const ComparisonTiming& so_far)>& after_look);

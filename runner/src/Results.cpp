@@ -143,14 +143,14 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     auto run_comparison = [&](RenderWorker& w, std::size_t k) {
         ComparisonResult& out = results.comparisons[k];
         const TimedComparison& c = out.comparison;
+        const base::StoppingRule rule = ComparisonRule(options, c);
         long done = 0;
         TimeComparisonUnit(w, options, out, [&](const ComparisonTiming& so_far) {
             // Frames this look took, and a new guess of the pairs the interval needs.
             const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
             meter.Step(ProgressMeter::kComparison, c.label, frames - done);
             done = frames;
-            const long needed =
-                    base::PairsExpectedAtStop(so_far.estimate, options.rule, kInitialPairGuess);
+            const long needed = base::PairsExpectedAtStop(so_far.estimate, rule, kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
             meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
         });

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
@@ -230,10 +231,10 @@ PairedEstimate EstimateWithInterval(int pairs, double low, double high) {
 TEST(PairedEstimateTest, AnIntervalEndingOnTheMarginKeepsGoingUntilItClearsIt) {
     StoppingRule rule;  // resolution 1.5, margin 1.5, 1.5 standard errors
     // Half-width 1.25 (a standard error of 0.64): the upper end -1.4 sits 0.1 from -1.5.
-    EXPECT_TRUE(NearDirectionMargin(EstimateWithInterval(150, -3.9, -1.4), rule));
+    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(150, -3.9, -1.4), rule));
     EXPECT_EQ(DecideStop(EstimateWithInterval(150, -3.9, -1.4), rule), StopDecision::kContinue);
     // The same width well clear of both margins stops.
-    EXPECT_FALSE(NearDirectionMargin(EstimateWithInterval(150, -1.0, +1.5), rule));
+    EXPECT_FALSE(NearVerdictBoundary(EstimateWithInterval(150, -1.0, +1.5), rule));
     EXPECT_EQ(DecideStop(EstimateWithInterval(150, -1.0, +1.5), rule), StopDecision::kResolved);
     EXPECT_EQ(DecideStop(EstimateWithInterval(150, -6.5, -4.0), rule), StopDecision::kResolved);
     // The lower end near +1.5 counts too.
@@ -255,7 +256,7 @@ TEST(PairedEstimateTest, ACoarseRuleStillResolvesTheMarginAtHalfTheMargin) {
     EXPECT_EQ(DecideStop(EstimateWithInterval(40, -2.5, +2.5), coarse), StopDecision::kResolved);
     // -2.8 +/- 1.2: the upper end -1.6 sits on the margin. Half the resolution (1.5) would stop
     // here; the rule goes on until the end clears it or the half-width is 0.75.
-    EXPECT_TRUE(NearDirectionMargin(EstimateWithInterval(100, -4.0, -1.6), coarse));
+    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(100, -4.0, -1.6), coarse));
     EXPECT_EQ(DecideStop(EstimateWithInterval(100, -4.0, -1.6), coarse), StopDecision::kContinue);
     EXPECT_EQ(DecideStop(EstimateWithInterval(300, -3.5, -2.0), coarse), StopDecision::kResolved);
     EXPECT_EQ(DecideStop(EstimateWithInterval(300, -2.9, -1.5), coarse), StopDecision::kResolved);
@@ -291,6 +292,77 @@ TEST(PairedEstimateTest, AnEffectOfThreePercentIsClaimedInMostRunsNotInAboutHalf
     EXPECT_GE(with, 0.85);
 }
 
+TEST(PairedEstimateTest, ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsIt) {
+    const StoppingRule coarse{3.0, 20, 400, 10};  // the planner's
+    // -1.7 +/- 1.6 after 20 pairs (the planner's half-size reflection, quiet): the upper end
+    // -0.1 is 1.4 from the margin, beyond the reach of 1.5 standard errors (1.22), yet the
+    // centre says more pairs would clear it.
+    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(20, -3.3, -0.1), coarse));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(20, -3.3, -0.1), coarse), StopDecision::kContinue);
+    EXPECT_EQ(DecideStop(EstimateWithInterval(20, +0.1, +3.3), coarse), StopDecision::kContinue);
+    // The centre inside the margins: no direction however many pairs, so it stops.
+    EXPECT_FALSE(NearVerdictBoundary(EstimateWithInterval(20, -2.9, +0.1), coarse));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(20, -2.9, +0.1), coarse), StopDecision::kResolved);
+    // At the finest half-width it stops wherever it lies.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(300, -2.2, -0.8), coarse), StopDecision::kResolved);
+
+    // Effects a little beyond the margin at the measured noise: with the clause, most runs
+    // claim the direction; without it, many stop early and do not.
+    constexpr int kRuns = 120;
+    auto claimed_share = [&](double change, double boundary_standard_errors) {
+        StoppingRule rule = coarse;
+        rule.boundary_standard_errors = boundary_standard_errors;
+        int claimed = 0;
+        for (int run = 0; run < kRuns; ++run) {
+            StopDecision decision = StopDecision::kContinue;
+            const PairedEstimate e =
+                    RunSequential(1.0 / (1.0 + change / 100.0), rule,
+                                  static_cast<std::uint64_t>(5000 + run), &decision, 0.08);
+            claimed += e.change_high < -kDirectionMarginPoints ? 1 : 0;
+        }
+        return static_cast<double>(claimed) / kRuns;
+    };
+    for (double change : {-2.2, -2.4, -2.6, -2.8}) {
+        const double with = claimed_share(change, 1.5);
+        const double without = claimed_share(change, 0.0);
+        std::printf("%.1f%%: claimed in %.2f of runs with the clause, %.2f without\n", change, with,
+                    without);
+        if (change <= -2.6) {
+            EXPECT_GE(with, without + 0.3) << change;
+        }
+    }
+}
+
+TEST(PairedEstimateTest, AnIntervalHoldingAnotherBoundaryKeepsGoingUntilItClearsIt) {
+    StoppingRule rule;
+    rule.boundaries_points = {-6.0};
+    // Half-width 1.2, far from the margins: without the boundary it would stop.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(150, -7.0, -4.6), StoppingRule{}),
+              StopDecision::kResolved);
+    // Holding -6.0, or ending 0.6 from it (within 1.5 standard errors of 0.61): it goes on.
+    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(150, -7.0, -4.6), rule));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(150, -7.0, -4.6), rule), StopDecision::kContinue);
+    EXPECT_EQ(DecideStop(EstimateWithInterval(150, -5.4, -3.0), rule), StopDecision::kContinue);
+    // Ending 1.1 from it: clear.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(150, -4.9, -2.5), rule), StopDecision::kResolved);
+
+    // Row 2's case: an effect of -3.3% against the band that starts at -4.8%. Runs agree on
+    // whether the interval reaches the band.
+    StoppingRule row;
+    row.boundaries_points = {-4.8, -19.2};
+    constexpr int kRuns = 120;
+    int reached = 0;
+    for (int run = 0; run < kRuns; ++run) {
+        StopDecision decision = StopDecision::kContinue;
+        const PairedEstimate e = RunSequential(
+                1.0 / (1.0 - 0.033), row, static_cast<std::uint64_t>(7000 + run), &decision, 0.08);
+        reached += e.change_low <= -4.8 ? 1 : 0;
+    }
+    const double share = static_cast<double>(reached) / kRuns;
+    std::printf("the band reached in %.2f of runs\n", share);
+    EXPECT_GE(std::max(share, 1.0 - share), 0.85);
+}
+
 TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     StoppingRule rule;  // resolution 1.5, looks at 20, then every quarter
     // Half-width 3.0 at 20 pairs, clear of the margins: (3.0 / 1.5)^2 x 20 = 80, and the first
@@ -304,7 +376,7 @@ TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     // the margin, within 1.5 standard errors of 0.64), the end clears it at half-width
     // 1.96 x 1.9 / 3.46 = 1.08: (1.25 / 1.08)^2 x 150 = 202 pairs, the look at 233; waiting for
     // half the resolution would have guessed the cap.
-    EXPECT_TRUE(NearDirectionMargin(EstimateWithInterval(150, -4.65, -2.15), rule));
+    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(150, -4.65, -2.15), rule));
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60), 233);
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, +2.15, +4.65), rule, 60), 233);
     // No interval yet: the fallback, rounded to a look.

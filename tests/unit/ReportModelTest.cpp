@@ -87,6 +87,28 @@ TEST(ReportModelTest, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure
     }
 }
 
+// A measured interval of performance change [low, high] percent.
+PairedRatio Change(double low, double high) {
+    return Ratio(1.0 / (1.0 + (low + high) / 200.0), 1.0 / (1.0 + high / 100.0),
+                 1.0 / (1.0 + low / 100.0));
+}
+
+TEST(ReportModelTest, EachVerdictBoundaryIsWhereTheRowsVerdictChanges) {
+    EXPECT_EQ(VerdictBoundaries(Row(2)), (std::vector<double>{-4.5, -18.0}));  // "reduced by 9%"
+    EXPECT_EQ(VerdictBoundaries(Row(6)), (std::vector<double>{-2.0, 2.0}));    // "<1%"
+    EXPECT_TRUE(VerdictBoundaries(Row(8)).empty());                            // qualitative
+    for (const WhitepaperRow& row : WhitepaperRows()) {
+        for (double b : VerdictBoundaries(row)) {
+            // A narrow interval just on either side of the boundary gets two verdicts.
+            std::string reason;
+            const Verdict below = GradeRow(row, Change(b - 0.4, b - 0.2), nullptr, &reason);
+            const Verdict above = GradeRow(row, Change(b + 0.2, b + 0.4), nullptr, &reason);
+            EXPECT_NE(below, above)
+                    << "row " << row.number << " at " << b << ": " << VerdictName(below);
+        }
+    }
+}
+
 TEST(ReportModelTest, BelowResolutionSaysHowSmallTheChangeIs) {
     std::string reason;
     ASSERT_EQ(GradeRow(Row(3), Ratio(1.005, 0.99, 1.02), nullptr, &reason),

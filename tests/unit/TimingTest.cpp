@@ -42,7 +42,7 @@ TEST(TimingTest, SettingsBecomeTheRuleTheFramesAndOneThreadByDefault) {
 }
 
 // Only pairs whose two presets are both rendered become comparisons, each named as the report
-// names it.
+// names it and with its verdict's boundaries.
 TEST(TimingTest, ComparisonsAreTheComparedPresetPairsBothOfWhoseSidesAreRendered) {
     const report::PresetPair row = report::ComparedPresetPairs().front();
     runner::RunOptions run;
@@ -53,6 +53,9 @@ TEST(TimingTest, ComparisonsAreTheComparedPresetPairsBothOfWhoseSidesAreRendered
     EXPECT_EQ(run.comparisons[0].label, row.label);
     EXPECT_EQ(run.comparisons[0].baseline, 0U);
     EXPECT_EQ(run.comparisons[0].candidate, 2U);
+    // Row 1's magnitude band: timed until the interval clears where its verdict changes.
+    EXPECT_FALSE(row.boundaries_points.empty());
+    EXPECT_EQ(run.comparisons[0].boundaries_points, row.boundaries_points);
     run.configurations.pop_back();
     ApplyTiming(TimingSettings{}, runner::BackendKind::kAuto, &run);
     EXPECT_TRUE(run.comparisons.empty());

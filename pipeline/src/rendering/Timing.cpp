@@ -35,7 +35,7 @@ void ApplyTiming(const TimingSettings& settings, runner::BackendKind backend,
         const std::optional<std::size_t> a = find(pair.baseline);
         const std::optional<std::size_t> b = find(pair.candidate);
         if (a && b && *a != *b) {
-            run->comparisons.push_back({pair.label, *a, *b});
+            run->comparisons.push_back({pair.label, *a, *b, pair.boundaries_points});
         }
     }
 }

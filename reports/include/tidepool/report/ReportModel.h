@@ -72,6 +72,14 @@ bool IsFirmVerdict(Verdict verdict, FigureKind kind);
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
                  std::string* reason);
 
+/// The performance changes (percent points, + = faster) at which GradeRow's verdict for `row`
+/// changes besides the direction margins: the ends of a percent figure's magnitude band on its
+/// side of no change (those a frame rate can reach: a loss of 100% or more cannot be measured),
+/// +/- the "<1%" band, none for a qualitative figure. The runner keeps timing
+/// a row while its interval holds or nears one (base::StoppingRule::boundaries_points), so that
+/// the verdict does not depend on where one run happened to stop. Never fails.
+std::vector<double> VerdictBoundaries(const WhitepaperRow& row);
+
 /// One side of a comparison.
 struct ComparisonSide {
     std::string preset;
@@ -311,6 +319,7 @@ struct PresetPair {
     std::string label;     // "row 4", or "cube-map reflection (full effect)"
     std::string baseline;  // preset names
     std::string candidate;
+    std::vector<double> boundaries_points;  // VerdictBoundaries of a whitepaper row; else none
 };
 
 /// Every pair the report compares: the 11 whitepaper rows, then the reflection techniques and

@@ -47,6 +47,9 @@ struct TimedComparison {
     std::string label;         // e.g. "row 4" or "full -> full_cubemap_reflection"
     std::size_t baseline = 0;  // indices into RunOptions::configurations
     std::size_t candidate = 0;
+    // Where the report's verdict on it changes besides the direction margins (a whitepaper row's
+    // magnitude band): RunOptions::rule's boundaries_points for this comparison.
+    std::vector<double> boundaries_points = {};
 };
 
 /// Units shared with a second process beside the render (`run`'s stability and plan process,
