@@ -701,5 +701,61 @@ INSTANTIATE_TEST_SUITE_P(
                                    "a.fsh:1:1: error: '#version 120' is desktop GLSL; tidepool "
                                    "validates GLSL ES: use '#version 100' or '#version 300 es'"}));
 
+// Verdicts tidepool keeps although the dEQP-GLES3 revision of the GLES3 corpus expects the
+// opposite (README, validator section): no rule may change them without the specification.
+INSTANTIATE_TEST_SUITE_P(
+        GlslangVerdictsKeptAgainstOldDeqp, ConformanceRulesTest,
+        ::testing::Values(
+                // GLSL ES 3.00 rev 6: a reserved "__" name is no error, only glslang's warning.
+                RuleCase{"a uniform block and instance named with __", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform Light__Block { vec4 tint; } light__;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = light__.tint; }\n",
+                         ""},
+                // GLSL ES 3.00 §3.4: a pragma whose tokens are not recognised is ignored.
+                RuleCase{"debug(2.5) and an unknown pragma", nullptr,
+                         "#version 300 es\n"
+                         "#pragma debug(2.5)\n"
+                         "#pragma vendor_hint(fast, 3)\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         ""},
+                // Later dEQP revisions expect a compile failure; GLSL 4.40 wrote the rule down.
+                RuleCase{"two uniform blocks of the same name", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform Lights { vec4 key; } front;\n"
+                         "uniform Lights { vec4 key; } back;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = front.key + back.key; }\n",
+                         "a.fsh:4:9: error: 'Lights' : Cannot reuse block name within the same "
+                         "interface: uniform"},
+                // GLSL ES 3.00 §4.1.9: an array declaration without a size is an error.
+                RuleCase{"an unsized array type declaring nothing", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "void main() {\n"
+                         "    float[];\n"
+                         "    colour = vec4(1.0);\n"
+                         "}\n",
+                         "a.fsh:5: error: '' : expect an array name"},
+                // GLSL ES 3.00 §4.3.5: uniforms of one name match in precision, used or not.
+                RuleCase{"a highp uniform in the vertex stage, mediump and unused in the fragment",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "uniform float scale;\n"
+                         "void main() { gl_Position = position * scale; }\n",
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "uniform float scale;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         "a.fsh: error: Linking vertex and fragment stages: Precision qualifiers "
+                         "must match:; vertex stage: scale \"\"; fragment stage: scale \"\""}));
+
 }  // namespace
 }  // namespace tidepool
