@@ -5,7 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -83,6 +85,36 @@ TEST(RunStageTest, ARenderFolderTidepoolDidNotWriteIsRefusedAndKept) {
     EXPECT_TRUE(progress.lines.empty());
     EXPECT_EQ(ReadText(theirs), "mine");
     EXPECT_FALSE(std::filesystem::exists(result.manifest_path));
+}
+
+// The second process's forecast: its time so far over the share of its stages done, the stability
+// catalogue a third of them and the plans the rest.
+TEST(RunStageTest, TheSecondProcessForecastsItsJoinFromTheShareOfItsStagesDone) {
+    const std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(1);
+    ASSERT_TRUE(claims);
+    using std::chrono::seconds;
+    const JoinForecast::Clock::time_point start{};
+    const JoinForecast forecast(claims.get(), true, true, start);
+    // The forecast to a microsecond (a share of a third is not exact in binary).
+    auto said = [&]() -> double {
+        const auto at = claims->HelperExpectedAt();
+        return at ? std::chrono::duration<double>(*at - start).count() : -1.0;
+    };
+    forecast.Stability(0.0, start + seconds(1));  // nothing done: nothing said
+    EXPECT_FALSE(claims->HelperExpectedAt());
+    forecast.Stability(0.5, start + seconds(10));  // a sixth of the work in 10 s
+    EXPECT_NEAR(said(), 60.0, 1e-6);
+    forecast.Plans(0.5, start + seconds(40));  // two thirds in 40 s
+    EXPECT_NEAR(said(), 60.0, 1e-6);
+    forecast.Plans(1.0, start + seconds(70));  // all of it
+    EXPECT_NEAR(said(), 70.0, 1e-6);
+    // Plans alone, or the catalogue alone, are all of the work.
+    JoinForecast(claims.get(), false, true, start).Plans(0.25, start + seconds(5));
+    EXPECT_NEAR(said(), 20.0, 1e-6);
+    JoinForecast(claims.get(), true, false, start).Stability(0.5, start + seconds(5));
+    EXPECT_NEAR(said(), 10.0, 1e-6);
+    // Without a claim table there is no one to tell.
+    JoinForecast(nullptr, true, true, start).Stability(1.0, start + seconds(5));
 }
 
 }  // namespace

@@ -210,40 +210,6 @@ StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
     return end;
 }
 
-// The second process's forecast of when it will start taking the render's units
-// (SharedClaims::ExpectHelperAt), from the share of its own stages done so far: the time they have
-// taken over that share. The stability catalogue counts for a third of the two stages and the
-// scene plans for the rest: on the default matrix here the catalogue took 25 of 73 s quiet and 61
-// of 241 s with two other processes competing (the plans' timing is adaptive, so noise lengthens
-// them most).
-class JoinForecast {
-public:
-    JoinForecast(base::SharedClaims* claims, bool stability, bool plans)
-        : claims_(claims),
-          stability_share_(!plans      ? 1.0
-                           : stability ? 1.0 / 3.0
-                                       : 0.0) {}
-
-    /// `share` of the stability catalogue is done.
-    void Stability(double share) { Say(stability_share_ * share); }
-    /// `share` of the scene plans is done.
-    void Plans(double share) { Say(stability_share_ + (1.0 - stability_share_) * share); }
-
-private:
-    void Say(double share) const {
-        if (claims_ == nullptr || share <= 0) {
-            return;
-        }
-        const Clock::duration elapsed = Clock::now() - start_;
-        claims_->ExpectHelperAt(start_ + std::chrono::duration_cast<Clock::duration>(
-                                                 elapsed / std::min(share, 1.0)));
-    }
-
-    base::SharedClaims* claims_;
-    double stability_share_;
-    Clock::time_point start_ = Clock::now();
-};
-
 // The stability catalogue, the scene plans, then units off the end of the render's work list, on
 // one context of their own.
 StageEnd BesideTheRender(const VariantConfig& config, const std::vector<Variant>& variants,
@@ -360,6 +326,30 @@ std::pair<StageEnd, StageEnd> RenderBesideTheOtherStages(const VariantConfig& co
 }
 
 }  // namespace
+
+JoinForecast::JoinForecast(base::SharedClaims* claims, bool stability, bool plans,
+                           Clock::time_point start)
+    : claims_(claims),
+      stability_share_(!plans      ? 1.0
+                       : stability ? 1.0 / 3.0
+                                   : 0.0),
+      start_(start) {}
+
+void JoinForecast::Stability(double share, Clock::time_point now) const {
+    Say(stability_share_ * share, now);
+}
+
+void JoinForecast::Plans(double share, Clock::time_point now) const {
+    Say(stability_share_ + (1.0 - stability_share_) * share, now);
+}
+
+void JoinForecast::Say(double share, Clock::time_point now) const {
+    if (claims_ == nullptr || share <= 0) {
+        return;
+    }
+    claims_->ExpectHelperAt(start_ + std::chrono::duration_cast<Clock::duration>(
+                                             (now - start_) / std::min(share, 1.0)));
+}
 
 RunResult Run(const RunRequest& request, ProgressSink& progress) {
     RunResult result;
