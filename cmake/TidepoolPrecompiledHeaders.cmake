@@ -1,7 +1,8 @@
-# TIDEPOOL_FAST_COLD_BUILD: precompiled headers and a unity build of the CLI, for builds without
-# a compiler cache (CI builds from a fresh clone). Without them every file parses the standard
-# library, fmt, nlohmann/json and GoogleTest again, and every file that includes cli/Commands.h
-# compiles CLI11's validator objects again (about 10 s of CPU per file at -O3).
+# TIDEPOOL_FAST_COLD_BUILD: precompiled headers and a unity build of the CLI and of the unit and
+# CLI tests, for builds without a compiler cache (CI builds from a fresh clone). Without them
+# every file parses the standard library, fmt, nlohmann/json and GoogleTest again, and every file
+# that includes cli/Commands.h compiles CLI11's validator objects again (about 10 s of CPU per
+# file at -O3).
 #
 # Off by default when a compiler launcher (ccache) is set: ccache does not cache a file compiled
 # with a precompiled header unless its sloppiness has pch_defines,time_macros, so a warm cache
@@ -11,7 +12,7 @@ if(CMAKE_CXX_COMPILER_LAUNCHER)
 else()
   set(tidepool_fast_cold_build_default ON)
 endif()
-option(TIDEPOOL_FAST_COLD_BUILD "Precompiled headers and a unity build of the CLI"
+option(TIDEPOOL_FAST_COLD_BUILD "Precompiled headers and a unity build of the CLI and tests"
        ${tidepool_fast_cold_build_default})
 
 if(TIDEPOOL_FAST_COLD_BUILD)
@@ -41,6 +42,18 @@ if(TIDEPOOL_FAST_COLD_BUILD)
     foreach(target tidepool_gl_tests tidepool_cli_tests)
       if(TARGET ${target})
         target_precompile_headers(${target} REUSE_FROM tidepool_unit_tests)
+      endif()
+    endforeach()
+    # The unit and CLI test files are compiled eight to a file (unity): each file costs about
+    # 2 s of CPU before its own code (the precompiled header, GoogleTest's and nlohmann/json's
+    # templates and the same inline functions compiled again), so this takes the release build's
+    # unit tests from 479 to 313 s of CPU and the CLI tests from 87 to 56 s. The files of a batch
+    # share one anonymous namespace, so each test file's helpers have names of their own. The GL
+    # tests (9 files, 52 s) are left as they are: their helpers share many names and it would
+    # save little.
+    foreach(target tidepool_unit_tests tidepool_cli_tests)
+      if(TARGET ${target})
+        set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
       endif()
     endforeach()
   endif()

@@ -24,9 +24,9 @@ using tidepool::testing::RunShell;
 using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
-constexpr const char* kVertex =
+constexpr const char* kIntegrationVertex =
         "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n";
-constexpr const char* kFragment =
+constexpr const char* kIntegrationFragment =
         "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); }\n";
 
 // A folder with shaders s.vsh, "a b.vsh", s.fsh and t.fsh, for configurations to name.
@@ -34,10 +34,10 @@ class DepfileCliTest : public ::testing::Test {
 protected:
     DepfileCliTest() {
         for (const char* name : {"s.vsh", "a b.vsh"}) {
-            dir_.Write(name, kVertex);
+            dir_.Write(name, kIntegrationVertex);
         }
         for (const char* name : {"s.fsh", "t.fsh"}) {
-            dir_.Write(name, kFragment);
+            dir_.Write(name, kIntegrationFragment);
         }
     }
     // The depfile expected for o/manifest.json and these files of the folder, in this order.

@@ -19,10 +19,10 @@ using tidepool::testing::TempDir;
 
 // A: the vertex stage does not compile. B: the fragment stage does not. C: both compile, but the
 // fragment stage reads a varying the vertex stage never writes, so the link fails.
-constexpr const char* kVertex =
+constexpr const char* kCiVertex =
         "#version 100\nattribute vec4 p;\nvoid main() {\n#ifdef A\n  gl_Position = vertex_oops;\n"
         "#else\n  gl_Position = p;\n#endif\n}\n";
-constexpr const char* kFragment =
+constexpr const char* kCiFragment =
         "#version 100\nprecision mediump float;\n#ifdef C\nvarying vec4 never_written;\n#endif\n"
         "void main() {\n#ifdef B\n  gl_FragColor = fragment_oops;\n#elif defined(C)\n"
         "  gl_FragColor = never_written;\n#else\n  gl_FragColor = vec4(1.0);\n#endif\n}\n";
@@ -30,8 +30,8 @@ constexpr const char* kFragment =
 class CiReportCliTest : public ::testing::Test {
 protected:
     CiReportCliTest() {
-        dir_.Write("s.vsh", kVertex);
-        dir_.Write("s.fsh", kFragment);
+        dir_.Write("s.vsh", kCiVertex);
+        dir_.Write("s.fsh", kCiFragment);
         // One feature at a time: p: (valid), p:A, p:B, p:C.
         dir_.Write("v.yaml",
                    "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"

@@ -28,7 +28,7 @@ using tidepool::testing::RunShell;
 
 // Runs the tidepool binary with `args` (a shell fragment) in the source root, on the two threads
 // Mesa's llvmpipe may use here.
-CommandResult RunTidepool(const std::string& args) {
+CommandResult RunTidepoolInSourceRoot(const std::string& args) {
     return tidepool::testing::RunTidepool(args, TIDEPOOL_SOURCE_ROOT, "LP_NUM_THREADS=2");
 }
 
@@ -51,8 +51,8 @@ protected:
         }
         dir_ = new TempDir();
         out_ = new std::filesystem::path(dir_->Path());
-        *run_ = RunTidepool(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" + out_->string() +
-                            "'");
+        *run_ = RunTidepoolInSourceRoot(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" +
+                                        out_->string() + "'");
     }
     static void TearDownTestSuite() {
         delete run_;
@@ -151,10 +151,10 @@ TEST_F(ReportCliTest, PageRendersInHeadlessChromiumWithEveryImageAndEveryWhitepa
 
 TEST_F(ReportCliTest, ReportRebuildsFromSavedFilesWithoutRendering) {
     ASSERT_EQ(run_->exit_code, 0) << run_->err;
-    const CommandResult r =
-            RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
-                        "' --results '" + (Out() / "render/results.json").string() +
-                        "' --name again --out '" + Out().string() + "'");
+    const CommandResult r = RunTidepoolInSourceRoot(
+            "report --manifest '" + (Out() / "manifest/manifest.json").string() + "' --results '" +
+            (Out() / "render/results.json").string() + "' --name again --out '" + Out().string() +
+            "'");
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(std::filesystem::is_regular_file(Out() / "again/index.html"));
     EXPECT_EQ(r.err.find("render:"), std::string::npos) << "report must not render";
@@ -171,10 +171,10 @@ TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
     const std::string image = results["configurations"][0]["views"][0]["image"];
     const std::filesystem::path missing = copy.Path() / "render" / image;
     ASSERT_TRUE(std::filesystem::remove(missing));
-    const CommandResult r =
-            RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
-                        "' --results '" + (copy.Path() / "render/results.json").string() +
-                        "' --out '" + (copy.Path() / "out").string() + "'");
+    const CommandResult r = RunTidepoolInSourceRoot(
+            "report --manifest '" + (Out() / "manifest/manifest.json").string() + "' --results '" +
+            (copy.Path() / "render/results.json").string() + "' --out '" +
+            (copy.Path() / "out").string() + "'");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
@@ -239,18 +239,20 @@ TEST_F(ReportCliTest, WronglyTypedFieldInAnyStageFileExitsTwoNamingTheFileAndFie
 TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
     TempDir dir;
     const std::filesystem::path manifest = dir.Write("manifest.json", "{\"schema\": \"tidep");
-    CommandResult r = RunTidepool("report --manifest '" + manifest.string() + "' --results '" +
-                                  (dir.Path() / "results.json").string() + "' --out '" +
-                                  (dir.Path() / "out").string() + "'");
+    CommandResult r =
+            RunTidepoolInSourceRoot("report --manifest '" + manifest.string() + "' --results '" +
+                                    (dir.Path() / "results.json").string() + "' --out '" +
+                                    (dir.Path() / "out").string() + "'");
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(manifest.string() + ": not valid JSON"), std::string::npos) << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
 
     if (run_->exit_code == 0) {
-        r = RunTidepool("report --manifest '" + (Out() / "manifest/manifest.json").string() +
-                        "' --results '" + (dir.Path() / "nope.json").string() + "' --out '" +
-                        (dir.Path() / "out").string() + "'");
+        r = RunTidepoolInSourceRoot("report --manifest '" +
+                                    (Out() / "manifest/manifest.json").string() + "' --results '" +
+                                    (dir.Path() / "nope.json").string() + "' --out '" +
+                                    (dir.Path() / "out").string() + "'");
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_NE(r.err.find((dir.Path() / "nope.json").string() + ": no such file"),
                   std::string::npos)
@@ -259,11 +261,12 @@ TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
 }
 
 TEST_F(ReportCliTest, RunRejectsBadFlagsWithExitTwo) {
-    EXPECT_EQ(RunTidepool("run --size 0x0 --out /tmp/never").exit_code, 2);
-    EXPECT_EQ(RunTidepool("run --name render --out /tmp/never").exit_code, 2);
-    EXPECT_EQ(
-            RunTidepool("run --no-stability --no-plans --plan-size 8x8 --out /tmp/never").exit_code,
-            2);
+    EXPECT_EQ(RunTidepoolInSourceRoot("run --size 0x0 --out /tmp/never").exit_code, 2);
+    EXPECT_EQ(RunTidepoolInSourceRoot("run --name render --out /tmp/never").exit_code, 2);
+    EXPECT_EQ(RunTidepoolInSourceRoot(
+                      "run --no-stability --no-plans --plan-size 8x8 --out /tmp/never")
+                      .exit_code,
+              2);
     EXPECT_FALSE(std::filesystem::exists("/tmp/never"));
 }
 

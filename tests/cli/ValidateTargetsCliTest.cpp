@@ -13,7 +13,7 @@ using tidepool::testing::CommandResult;
 using tidepool::testing::RunTidepool;
 using tidepool::testing::TempDir;
 
-constexpr const char* kVertex =
+constexpr const char* kTargetsVertex =
         "#version 100\n"
         "attribute vec4 position;\n"
         "varying float depth;\n"
@@ -61,7 +61,7 @@ TEST(ValidateTargetsCliTest, BadLimitsFileExitsTwoNamingLineAndFix) {
 
 TEST(ValidateTargetsCliTest, WebGl1TargetRefusesAWhileLoopThatGlslEsAllows) {
     TempDir dir;
-    dir.Write("w.vsh", kVertex);
+    dir.Write("w.vsh", kTargetsVertex);
     dir.Write("w.fsh", kFragmentWithWhile);
     EXPECT_EQ(RunTidepool("validate w.vsh w.fsh", dir.Path()).exit_code, 0);
     const CommandResult r = RunTidepool("validate --target webgl1 w.vsh w.fsh", dir.Path());
@@ -74,7 +74,7 @@ TEST(ValidateTargetsCliTest, WebGl1TargetRefusesAWhileLoopThatGlslEsAllows) {
 
 TEST(ValidateTargetsCliTest, WebGlTargetsInConfigurationAndOnTheCommandLine) {
     TempDir dir;
-    dir.Write("w.vsh", kVertex);
+    dir.Write("w.vsh", kTargetsVertex);
     dir.Write("w.fsh", kFragmentWithWhile);
     const std::string program = "programs:\n  p:\n    vertex: w.vsh\n    fragment: w.fsh\n";
     dir.Write("plain.yaml", "targets: [100]\n" + program);

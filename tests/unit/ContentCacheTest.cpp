@@ -19,7 +19,7 @@ namespace {
 
 using testing::TempDir;
 
-std::string Key(const std::string& name) {
+std::string EntryKey(const std::string& name) {
     return Sha256Hex(name);
 }
 
@@ -34,12 +34,12 @@ void WriteBytes(const std::filesystem::path& path, const std::string& bytes) {
     std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
 }
 
-// Stores `count` entries of `payload` under Key("0"), Key("1"), ...; entry i was last used
-// count - i hours ago, so entry 0 is the least recently used.
+// Stores `count` entries of `payload` under EntryKey("0"), EntryKey("1"), ...; entry i was last
+// used count - i hours ago, so entry 0 is the least recently used.
 void StoreAged(ContentCache& cache, int count, const std::string& payload) {
     const auto now = std::filesystem::file_time_type::clock::now();
     for (int i = 0; i < count; ++i) {
-        const std::string key = Key(std::to_string(i));
+        const std::string key = EntryKey(std::to_string(i));
         cache.Store(key, payload);
         std::filesystem::last_write_time(cache.EntryPath(key), now - std::chrono::hours(count - i));
     }
@@ -49,8 +49,8 @@ TEST(ContentCacheTest, StoredPayloadIsLoadedBackByteForByte) {
     TempDir dir;
     ContentCache cache(dir.Path() / "cache");
     const std::string payload("binary\0payload\nwith\xff bytes", 26);
-    cache.Store(Key("a"), payload);
-    EXPECT_EQ(cache.Load(Key("a")), payload);
+    cache.Store(EntryKey("a"), payload);
+    EXPECT_EQ(cache.Load(EntryKey("a")), payload);
     const ContentCacheStats stats = cache.Stats();
     EXPECT_EQ(stats.stored, 1U);
     EXPECT_EQ(stats.hits, 1U);
@@ -61,7 +61,7 @@ TEST(ContentCacheTest, StoredPayloadIsLoadedBackByteForByte) {
 TEST(ContentCacheTest, AbsentKeyIsAMissAndNotCorrupt) {
     TempDir dir;
     ContentCache cache(dir.Path());
-    EXPECT_FALSE(cache.Load(Key("absent")));
+    EXPECT_FALSE(cache.Load(EntryKey("absent")));
     EXPECT_EQ(cache.Stats().misses, 1U);
     EXPECT_EQ(cache.Stats().corrupt, 0U);
 }
@@ -104,23 +104,23 @@ TEST(ContentCacheTest, DamagedEntryIsCorruptAndTheNextStoreReplacesIt) {
         SCOPED_TRACE(damage.why);
         TempDir dir;
         ContentCache cache(dir.Path());
-        cache.Store(Key("k"), payload);
-        const std::filesystem::path path = cache.EntryPath(Key("k"));
+        cache.Store(EntryKey("k"), payload);
+        const std::filesystem::path path = cache.EntryPath(EntryKey("k"));
         WriteBytes(path, damage.apply(ReadBytes(path)));
-        EXPECT_FALSE(cache.Load(Key("k")));
+        EXPECT_FALSE(cache.Load(EntryKey("k")));
         EXPECT_EQ(cache.Stats().corrupt, 1U);
-        cache.Store(Key("k"), payload);
-        EXPECT_EQ(cache.Load(Key("k")), payload);
+        cache.Store(EntryKey("k"), payload);
+        EXPECT_EQ(cache.Load(EntryKey("k")), payload);
     }
 }
 
 TEST(ContentCacheTest, EntryOfAnotherKeyIsNotTrusted) {
     TempDir dir;
     ContentCache cache(dir.Path());
-    cache.Store(Key("a"), "payload of a");
-    std::filesystem::create_directories(cache.EntryPath(Key("b")).parent_path());
-    std::filesystem::copy_file(cache.EntryPath(Key("a")), cache.EntryPath(Key("b")));
-    EXPECT_FALSE(cache.Load(Key("b")));
+    cache.Store(EntryKey("a"), "payload of a");
+    std::filesystem::create_directories(cache.EntryPath(EntryKey("b")).parent_path());
+    std::filesystem::copy_file(cache.EntryPath(EntryKey("a")), cache.EntryPath(EntryKey("b")));
+    EXPECT_FALSE(cache.Load(EntryKey("b")));
     EXPECT_EQ(cache.Stats().corrupt, 1U);
 }
 
@@ -133,7 +133,8 @@ TEST(ContentCacheTest, TrimEvictsLeastRecentlyUsedEntriesUntilUnderTheBound) {
     cache.Trim();
     EXPECT_EQ(cache.Stats().evicted, 7U);
     for (int i = 0; i < 10; ++i) {
-        EXPECT_EQ(std::filesystem::exists(cache.EntryPath(Key(std::to_string(i)))), i >= 7) << i;
+        EXPECT_EQ(std::filesystem::exists(cache.EntryPath(EntryKey(std::to_string(i)))), i >= 7)
+                << i;
     }
     cache.Trim();  // under the bound now: nothing more goes
     EXPECT_EQ(cache.Stats().evicted, 7U);
@@ -144,19 +145,19 @@ TEST(ContentCacheTest, HitRefreshesAnOldEntrySoTrimKeepsIt) {
     const std::string payload(1000, 'p');
     ContentCache cache(dir.Path(), 2500);
     StoreAged(cache, 3, payload);
-    ASSERT_TRUE(cache.Load(Key("0")));  // the oldest, used again
+    ASSERT_TRUE(cache.Load(EntryKey("0")));  // the oldest, used again
     cache.Trim();
-    EXPECT_TRUE(std::filesystem::exists(cache.EntryPath(Key("0"))));
-    EXPECT_FALSE(std::filesystem::exists(cache.EntryPath(Key("1"))));
+    EXPECT_TRUE(std::filesystem::exists(cache.EntryPath(EntryKey("0"))));
+    EXPECT_FALSE(std::filesystem::exists(cache.EntryPath(EntryKey("1"))));
 }
 
 TEST(ContentCacheTest, UnwritableFolderIsAnErrorAndEveryLoadAMiss) {
     TempDir dir;
     dir.Write("file", "a file where the cache folder should be");
     ContentCache cache(dir.Path() / "file" / "cache");
-    cache.Store(Key("a"), "payload");
+    cache.Store(EntryKey("a"), "payload");
     EXPECT_NE(cache.Stats().error.find("file"), std::string::npos) << cache.Stats().error;
-    EXPECT_FALSE(cache.Load(Key("a")));
+    EXPECT_FALSE(cache.Load(EntryKey("a")));
 }
 
 TEST(ContentCacheTest, ConcurrentWritersAndReadersOfOneKeyNeverSeeHalfAnEntry) {
@@ -168,8 +169,8 @@ TEST(ContentCacheTest, ConcurrentWritersAndReadersOfOneKeyNeverSeeHalfAnEntry) {
         threads.emplace_back([&cache, &payload, t] {
             for (int i = 0; i < 50; ++i) {
                 if (t % 2 == 0) {
-                    cache.Store(Key("shared"), payload);
-                } else if (std::optional<std::string> loaded = cache.Load(Key("shared"))) {
+                    cache.Store(EntryKey("shared"), payload);
+                } else if (std::optional<std::string> loaded = cache.Load(EntryKey("shared"))) {
                     EXPECT_EQ(*loaded, payload);
                 }
             }

@@ -65,7 +65,7 @@ ValidationReport ValidateAll(const VariantConfig& config, int jobs = 1,
     return ValidateVariants(config, expansion.variants, options);
 }
 
-std::vector<std::string> Formatted(const std::vector<Diagnostic>& diagnostics) {
+std::vector<std::string> FormattedEach(const std::vector<Diagnostic>& diagnostics) {
     std::vector<std::string> out;
     for (const Diagnostic& d : diagnostics) {
         out.push_back(FormatDiagnostic(d));
@@ -109,7 +109,7 @@ TEST(GlslValidatorTest, ErrorInDefineGatedBlockIsReportedAtTheUsersLineWithVaria
     ASSERT_EQ(report.verdicts.size(), 2U);
     EXPECT_TRUE(report.verdicts[0].valid);  // p: (the block is inactive)
     EXPECT_FALSE(report.verdicts[1].valid);
-    EXPECT_EQ(Formatted(report.verdicts[1].diagnostics),
+    EXPECT_EQ(FormattedEach(report.verdicts[1].diagnostics),
               std::vector<std::string>{
                       "a.fsh:8:26: error: 'FogColor' : undeclared identifier [p:ENABLE_FOG]"});
 }
@@ -166,7 +166,7 @@ std::vector<std::string> Described(const ValidationReport& report) {
     for (const VariantVerdict& verdict : report.verdicts) {
         lines.push_back(verdict.variant.Id() + (verdict.valid ? " valid " : " invalid ") +
                         verdict.vertex_hash + " " + verdict.fragment_hash);
-        for (const std::string& d : Formatted(verdict.diagnostics)) {
+        for (const std::string& d : FormattedEach(verdict.diagnostics)) {
             lines.push_back(d);
         }
     }
@@ -340,7 +340,7 @@ TEST(GlslValidatorTest, DesktopVersionIsAnErrorAtLineOne) {
     const ValidationReport report = ValidateShaderFiles({ShaderFile{path, Stage::kFragment}}, {});
     ASSERT_EQ(report.verdicts.size(), 1U);
     EXPECT_FALSE(report.verdicts[0].valid);
-    EXPECT_EQ(Formatted(report.verdicts[0].diagnostics),
+    EXPECT_EQ(FormattedEach(report.verdicts[0].diagnostics),
               std::vector<std::string>{path + ":1:1: error: '#version 330' is desktop GLSL; "
                                               "tidepool validates GLSL ES: use '#version 100' or "
                                               "'#version 300 es'"});
@@ -532,7 +532,7 @@ TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariants
     dir.Write("a.fsh", kCrashingFragment);
     const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"CRASH"}), 2);
     ASSERT_EQ(report.verdicts.size(), 2U);
-    EXPECT_TRUE(report.verdicts[0].valid) << Formatted(report.verdicts[0].diagnostics)[0];
+    EXPECT_TRUE(report.verdicts[0].valid) << FormattedEach(report.verdicts[0].diagnostics)[0];
     EXPECT_FALSE(report.verdicts[1].valid);
     ASSERT_EQ(report.verdicts[1].diagnostics.size(), 1U);
     const std::string message = FormatDiagnostic(report.verdicts[1].diagnostics[0]);
@@ -728,7 +728,7 @@ TEST(GlslValidatorTest, ArrayOfExactlyTheBoundIsAccepted) {
                     .string();
     const ValidationReport report = ValidateShaderFiles({{path, Stage::kFragment}}, {});
     ASSERT_EQ(report.verdicts.size(), 1U);
-    EXPECT_TRUE(report.verdicts[0].valid) << Formatted(report.verdicts[0].diagnostics)[0];
+    EXPECT_TRUE(report.verdicts[0].valid) << FormattedEach(report.verdicts[0].diagnostics)[0];
 }
 
 TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {

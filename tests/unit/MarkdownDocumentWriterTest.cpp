@@ -10,27 +10,27 @@
 namespace tidepool::report::doc {
 namespace {
 
-Section SectionOf(std::vector<Block> blocks) {
+Section MarkdownSection(std::vector<Block> blocks) {
     return Section{"1. Title", "first", "First", std::move(blocks)};
 }
 
 TEST(MarkdownDocumentWriterTest, TableRendersAsAPipeTable) {
     const Section section =
-            SectionOf({Table{{"a", "b"}, {{"1", "2"}, {"3", "4"}}, {"", "bad"}, ""}});
+            MarkdownSection({Table{{"a", "b"}, {{"1", "2"}, {"3", "4"}}, {"", "bad"}, ""}});
     EXPECT_EQ(MarkdownSection(section),
               "## 1. Title\n\n| a | b |\n|---|---|\n| 1 | 2 |\n| 3 | 4 |\n\n");
 }
 
 TEST(MarkdownDocumentWriterTest, TableCellEscapesPipesAndJoinsLines) {
-    const Section section = SectionOf({Table{{"x|y"}, {{"a|b\nc"}}, {}, ""}});
+    const Section section = MarkdownSection({Table{{"x|y"}, {{"a|b\nc"}}, {}, ""}});
     EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n| x\\|y |\n|---|\n| a\\|b c |\n\n");
 }
 
 // Markdown text stays as written, unlike HTML's: a repository viewer renders it.
 TEST(MarkdownDocumentWriterTest, TextAndHeadingsAreNotEscaped) {
     const Section section =
-            SectionOf({Heading{"a < b", ""},
-                       Paragraph{ParagraphStyle::kBody, {{Span::Kind::kText, "x & \"y\""}}}});
+            MarkdownSection({Heading{"a < b", ""},
+                             Paragraph{ParagraphStyle::kBody, {{Span::Kind::kText, "x & \"y\""}}}});
     EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n### a < b\n\nx & \"y\"\n\n");
 }
 
@@ -40,16 +40,16 @@ TEST(MarkdownDocumentWriterTest, InlineSpansRenderAsStrongAndCode) {
                        {Span::Kind::kCode, "a<b"},
                        {Span::Kind::kText, ", got "},
                        {Span::Kind::kStrong, "3"}}};
-    EXPECT_EQ(MarkdownSection(SectionOf({p})), "## 1. Title\n\nrun `a<b`, got **3**\n\n");
+    EXPECT_EQ(MarkdownSection(MarkdownSection({p})), "## 1. Title\n\nrun `a<b`, got **3**\n\n");
 }
 
 TEST(MarkdownDocumentWriterTest, FoldedTableIsAHeadingAndItsTable) {
-    const Section section = SectionOf({Table{{"a"}, {{"1"}}, {}, "All"}});
+    const Section section = MarkdownSection({Table{{"a"}, {{"1"}}, {}, "All"}});
     EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n### All\n\n| a |\n|---|\n| 1 |\n\n");
 }
 
 TEST(MarkdownDocumentWriterTest, FigureIsALinkToItsFile) {
-    const Section section = SectionOf({Figure{"<svg></svg>", "charts/a.svg", "a chart"}});
+    const Section section = MarkdownSection({Figure{"<svg></svg>", "charts/a.svg", "a chart"}});
     EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n![a chart](charts/a.svg)\n\n");
 }
 
@@ -57,7 +57,7 @@ TEST(MarkdownDocumentWriterTest, ImagePanelLinksTheFilesInATable) {
     ImagePanel panel{"fog & more", "view top", "water:FOG", "PSNR 30.0 dB", "", {}};
     panel.images = {{"this", "fog this", "images/a.png", "data:image/png;base64,AA"},
                     {"ref|erence", "fog ref", "images/r.png", ""}};
-    const std::string md = MarkdownSection(SectionOf({panel}));
+    const std::string md = MarkdownSection(MarkdownSection({panel}));
     EXPECT_NE(md.find("### fog & more — view top\n\n`water:FOG` — PSNR 30.0 dB\n\n"
                       "| this | ref\\|erence |\n|---|---|\n| ![](images/a.png) | ![](images/r.png) "
                       "|\n"),
@@ -67,7 +67,7 @@ TEST(MarkdownDocumentWriterTest, ImagePanelLinksTheFilesInATable) {
 
 TEST(MarkdownDocumentWriterTest, PanelWithWarningShowsItInsteadOfImages) {
     const ImagePanel panel{"t", "view v", "(missing)", "", "MISSING", {{"c", "a", "f.png", ""}}};
-    EXPECT_EQ(MarkdownSection(SectionOf({panel})),
+    EXPECT_EQ(MarkdownSection(MarkdownSection({panel})),
               "## 1. Title\n\n### t — view v\n\n`(missing)`: **MISSING**\n\n");
 }
 
@@ -76,7 +76,7 @@ TEST(MarkdownDocumentWriterTest, PageHasTitleBylineAndLeadInOrder) {
     document.title = "report: a<b";
     document.byline = {ParagraphStyle::kNote, {{Span::Kind::kText, "made today"}}};
     document.lead = {Paragraph{ParagraphStyle::kLead, {{Span::Kind::kText, "in short"}}}};
-    document.sections = {SectionOf({}), Section{"2. Second", "second", "", {}}};
+    document.sections = {MarkdownSection({}), Section{"2. Second", "second", "", {}}};
     EXPECT_EQ(MarkdownPage(document),
               "# report: a<b\n\nmade today\n\nin short\n\n## 1. Title\n\n## 2. Second\n\n");
 }

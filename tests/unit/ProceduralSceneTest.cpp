@@ -28,25 +28,25 @@ float Luminance(const glm::u8vec4& texel) {
     return glm::dot(glm::vec3(texel), glm::vec3(0.2126F, 0.7152F, 0.0722F));
 }
 
-const Scene& DefaultScene() {
+const Scene& DefaultProceduralScene() {
     static const Scene scene = BuildDefaultScene();
     return scene;
 }
 
 const Mesh& Object(const std::string& name) {
-    const auto& objects = DefaultScene().objects;
+    const auto& objects = DefaultProceduralScene().objects;
     const auto found = std::find_if(objects.begin(), objects.end(),
                                     [&](const Mesh& mesh) { return mesh.name == name; });
     if (found == objects.end()) {
         ADD_FAILURE() << "no object named " << name;
-        return DefaultScene().terrain;
+        return DefaultProceduralScene().terrain;
     }
     return *found;
 }
 
 std::vector<const Mesh*> AllMeshes() {
-    std::vector<const Mesh*> meshes{&DefaultScene().terrain};
-    for (const Mesh& mesh : DefaultScene().objects) {
+    std::vector<const Mesh*> meshes{&DefaultProceduralScene().terrain};
+    for (const Mesh& mesh : DefaultProceduralScene().objects) {
         meshes.push_back(&mesh);
     }
     return meshes;
@@ -164,10 +164,10 @@ TEST(ProceduralSceneTest, InvalidSizesGiveEmptyImages) {
 
 TEST(ProceduralSceneTest, SceneIsDeterministic) {
     const Scene again = BuildDefaultScene();
-    EXPECT_EQ(again.terrain.positions, DefaultScene().terrain.positions);
-    ASSERT_EQ(again.objects.size(), DefaultScene().objects.size());
+    EXPECT_EQ(again.terrain.positions, DefaultProceduralScene().terrain.positions);
+    ASSERT_EQ(again.objects.size(), DefaultProceduralScene().objects.size());
     for (std::size_t i = 0; i < again.objects.size(); ++i) {
-        EXPECT_EQ(again.objects[i].positions, DefaultScene().objects[i].positions);
+        EXPECT_EQ(again.objects[i].positions, DefaultProceduralScene().objects[i].positions);
     }
     EXPECT_EQ(BuildSkyCubeMap(16, {0, 1, 1}).faces[4].pixels,
               BuildSkyCubeMap(16, {0, 1, 1}).faces[4].pixels);
@@ -196,7 +196,7 @@ TEST(ProceduralSceneTest, MeshNormalsAreUnitLength) {
 }
 
 TEST(ProceduralSceneTest, ClosedObjectsAreWoundCounterClockwiseFromOutside) {
-    for (const Mesh& mesh : DefaultScene().objects) {
+    for (const Mesh& mesh : DefaultProceduralScene().objects) {
         // The divergence theorem: outward-facing (CCW) triangles of a closed surface enclose a
         // positive volume.
         double volume = 0.0;
@@ -228,7 +228,7 @@ TEST(ProceduralSceneTest, TriangleWindingAgreesWithVertexNormals) {
 }
 
 TEST(ProceduralSceneTest, TerrainIsAnIslandCrossingTheWater) {
-    const Mesh& terrain = DefaultScene().terrain;
+    const Mesh& terrain = DefaultProceduralScene().terrain;
     // The 129 x 129 grid over 200 x 200, then a seabed skirt (one vertex per border vertex) out
     // to the longest view range, so the floor has no edge before the far plane.
     EXPECT_EQ(terrain.positions.size(), 129U * 129U + 4U * 128U);
@@ -264,14 +264,14 @@ TEST(ProceduralSceneTest, SceneHasTheNamedObjects) {
                              "submerged_rock_1", "submerged_rock_2", "tower", "sphere"}) {
         EXPECT_EQ(Object(name).name, name);
     }
-    EXPECT_FLOAT_EQ(glm::length(DefaultScene().sun_direction), 1.0F);
-    EXPECT_EQ(DefaultScene().water_height, 0.0F);
+    EXPECT_FLOAT_EQ(glm::length(DefaultProceduralScene().sun_direction), 1.0F);
+    EXPECT_EQ(DefaultProceduralScene().water_height, 0.0F);
 }
 
 // ----- Culling --------------------------------------------------------------------------------
 
 TEST(ProceduralSceneTest, CullingPredicatesSortTheSceneAroundTheWater) {
-    const float water = DefaultScene().water_height;
+    const float water = DefaultProceduralScene().water_height;
     for (const char* name : {"submerged_rock_0", "submerged_rock_1", "submerged_rock_2"}) {
         EXPECT_TRUE(IsEntirelyBelow(Object(name), water)) << name;
         EXPECT_FALSE(IsEntirelyAbove(Object(name), water)) << name;
@@ -284,8 +284,8 @@ TEST(ProceduralSceneTest, CullingPredicatesSortTheSceneAroundTheWater) {
         EXPECT_FALSE(IsEntirelyAbove(Object(name), water)) << name;
         EXPECT_FALSE(IsEntirelyBelow(Object(name), water)) << name;
     }
-    EXPECT_FALSE(IsEntirelyAbove(DefaultScene().terrain, water));
-    EXPECT_FALSE(IsEntirelyBelow(DefaultScene().terrain, water));
+    EXPECT_FALSE(IsEntirelyAbove(DefaultProceduralScene().terrain, water));
+    EXPECT_FALSE(IsEntirelyBelow(DefaultProceduralScene().terrain, water));
 }
 
 TEST(ProceduralSceneTest, DepthBandSelectsWhatReachesBetweenPlaneAndMaxDepth) {
@@ -317,7 +317,7 @@ TEST(ProceduralSceneTest, DefaultViewsHaveTheFourNamedViewsAboveWater) {
     for (const char* name : {"three_quarter", "grazing", "high", "shore"}) {
         const CameraView* view = FindView(views, name);
         ASSERT_NE(view, nullptr) << name;
-        EXPECT_GT(view->eye.y, DefaultScene().water_height) << name;
+        EXPECT_GT(view->eye.y, DefaultProceduralScene().water_height) << name;
         EXPECT_GT(view->far_plane, view->near_plane) << name;
     }
     EXPECT_NEAR(FindView(views, "grazing")->eye.y, 1.5F, 0.5F);

@@ -12,7 +12,7 @@ namespace tidepool::report {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
+constexpr double kTextNan = std::numeric_limits<double>::quiet_NaN();
 
 TEST(ReportTextTest, HtmlEscapedEscapesTheFourMarkupCharactersOnly) {
     EXPECT_EQ(HtmlEscaped("a & b < c > d \"e\" 'f'"), "a &amp; b &lt; c &gt; d &quot;e&quot; 'f'");
@@ -24,18 +24,18 @@ TEST(ReportTextTest, FixedAndSignedRoundWithTheirUnitAndNameInfinityAndNan) {
     EXPECT_EQ(Fixed(-2.0 / 3.0, 3), "-0.667");
     EXPECT_EQ(Fixed(kInf, 1, " dB"), "inf");
     EXPECT_EQ(Fixed(-kInf, 1), "-inf");
-    EXPECT_EQ(Fixed(kNan, 1), "–");
+    EXPECT_EQ(Fixed(kTextNan, 1), "–");
     EXPECT_EQ(Signed(4.25, 1, "%"), "+4.2%");
     EXPECT_EQ(Signed(-4.0, 1, "%"), "-4.0%");
     EXPECT_EQ(Signed(kInf, 1), "+inf");
     EXPECT_EQ(Signed(-kInf, 1), "-inf");
-    EXPECT_EQ(Signed(kNan, 1), "–");
+    EXPECT_EQ(Signed(kTextNan, 1), "–");
 }
 
 TEST(ReportTextTest, IntervalTextIsSignedEndsOrADashWhenEitherIsUnknown) {
     EXPECT_EQ(IntervalText(Interval{-3.25, 1.5}, 1, "%"), "[-3.2%, +1.5%]");
-    EXPECT_EQ(IntervalText(Interval{kNan, 1.5}, 1, "%"), "–");
-    EXPECT_EQ(IntervalText(Interval{1.0, kNan}, 1, "%"), "–");
+    EXPECT_EQ(IntervalText(Interval{kTextNan, 1.5}, 1, "%"), "–");
+    EXPECT_EQ(IntervalText(Interval{1.0, kTextNan}, 1, "%"), "–");
 }
 
 TEST(ReportTextTest, NamesForClockDirectionAndAMissingPanel) {

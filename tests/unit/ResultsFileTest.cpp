@@ -25,7 +25,7 @@ ResultsStatistics Statistics(double median) {
 }
 
 // A run of two configurations and one comparison, every field set.
-ResultsFile OneOfEach() {
+ResultsFile OneOfEachResult() {
     ResultsFile file;
     file.started_utc = "2026-11-26T02:00:00Z";
     file.wall_seconds = 12.5;
@@ -91,7 +91,7 @@ ResultsFile OneOfEach() {
 
 TEST(ResultsFileTest, WhatIsWrittenReadsBackAsTheSameValueAndText) {
     TempDir dir;
-    const ResultsFile file = OneOfEach();
+    const ResultsFile file = OneOfEachResult();
     const std::filesystem::path path = dir.Write("results.json", ResultsFileText(file));
     const ReadResult<ResultsFile> read = ReadResultsFile(path);
     ASSERT_TRUE(read.value) << read.error;
@@ -102,7 +102,7 @@ TEST(ResultsFileTest, WhatIsWrittenReadsBackAsTheSameValueAndText) {
 
 // A verdict not compared is null; an estimate that does not exist is NaN, written as null.
 TEST(ResultsFileTest, NullVerdictIsAbsentAndNullNumbersReadAsNaN) {
-    json document = ToJson(OneOfEach());
+    json document = ToJson(OneOfEachResult());
     EXPECT_TRUE(document["configurations"][1]["glslang_valid"].is_null());
     document["comparisons"][0]["ratio"] = nullptr;
     document["configurations"][0]["views"][0]["accuracy"]["psnr_db"] = nullptr;
@@ -116,7 +116,7 @@ TEST(ResultsFileTest, NullVerdictIsAbsentAndNullNumbersReadAsNaN) {
 // Results written before the runner recorded CPU time, statistics, per-view draw calls, the
 // refraction's own size or the resolution asked: those fields are absent and read as absent.
 TEST(ResultsFileTest, FieldsOlderRunnersDidNotWriteAreOptional) {
-    json document = ToJson(OneOfEach());
+    json document = ToJson(OneOfEachResult());
     json& c = document["configurations"][0];
     for (const char* key : {"cpu_samples_ms", "cpu_statistics", "statistics", "variant"}) {
         c.erase(key);
@@ -186,7 +186,7 @@ TEST(ResultsFileTest, AWronglyTypedFieldNamesTheFileAndTheField) {
             {"/ok", 1, "'ok' has the wrong type (expected bool, found number)"},
     };
     for (const Case& c : cases) {
-        json document = ToJson(OneOfEach());
+        json document = ToJson(OneOfEachResult());
         document[json::json_pointer(c.pointer)] = c.value;
         const ReadResult<ResultsFile> read = ResultsFileFromJson(document, "run/results.json");
         EXPECT_FALSE(read.value) << c.pointer;
@@ -212,7 +212,7 @@ TEST(ResultsFileTest, MissingRequiredFieldsAreNamed) {
              "r.json: 'comparisons[0].label' is missing"},
     };
     for (const Case& c : cases) {
-        json document = ToJson(OneOfEach());
+        json document = ToJson(OneOfEachResult());
         c.edit(document);
         const ReadResult<ResultsFile> read = ResultsFileFromJson(document, "r.json");
         EXPECT_FALSE(read.value) << c.message;
@@ -224,12 +224,12 @@ TEST(ResultsFileTest, MissingRequiredFieldsAreNamed) {
 // Every stage file carries its version under "version"; results.json once said
 // "schema_version", and such files still read. A file with both is judged by "version".
 TEST(ResultsFileTest, TheOldVersionKeyStillReadsAndAWrongVersionIsNamed) {
-    json document = ToJson(OneOfEach());
+    json document = ToJson(OneOfEachResult());
     document.erase("version");
     document["schema_version"] = 1;
     ReadResult<ResultsFile> read = ResultsFileFromJson(document, "r.json");
     ASSERT_TRUE(read.value) << read.error;
-    EXPECT_EQ(*read.value, OneOfEach());
+    EXPECT_EQ(*read.value, OneOfEachResult());
     document["schema_version"] = 2;
     read = ResultsFileFromJson(document, "r.json");
     EXPECT_EQ(read.failure, ReadFailure::kForeign);
@@ -242,11 +242,11 @@ TEST(ResultsFileTest, TheOldVersionKeyStillReadsAndAWrongVersionIsNamed) {
     read = ResultsFileFromJson(document, "r.json");
     EXPECT_EQ(read.error, "r.json: version must be 1");
     // The writer writes only the one key.
-    EXPECT_FALSE(ToJson(OneOfEach()).contains("schema_version"));
+    EXPECT_FALSE(ToJson(OneOfEachResult()).contains("schema_version"));
 }
 
 TEST(ResultsFileTest, AnotherSchemaIsForeignAndAMissingFileUnreadable) {
-    json document = ToJson(OneOfEach());
+    json document = ToJson(OneOfEachResult());
     document["schema"] = "tidepool.manifest";
     ReadResult<ResultsFile> read = ResultsFileFromJson(document, "r.json");
     EXPECT_EQ(read.failure, ReadFailure::kForeign);

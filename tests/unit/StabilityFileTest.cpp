@@ -16,7 +16,7 @@ namespace {
 using nlohmann::json;
 using tidepool::testing::TempDir;
 
-StabilityFile OneOfEach() {
+StabilityFile OneOfEachStability() {
     StabilityFile file;
     file.environment = {{"backend", "egl"}, {"size", "64x48"}};
     file.cases = {{"grazing_fresnel", "cos near 0", "cpu", 0, 0, 0, 0.001, 0.01, true, "clamp",
@@ -30,7 +30,7 @@ StabilityFile OneOfEach() {
 
 TEST(StabilityFileTest, WhatIsWrittenReadsBackAsTheSameValue) {
     TempDir dir;
-    const StabilityFile file = OneOfEach();
+    const StabilityFile file = OneOfEachStability();
     const std::filesystem::path path = dir.Write("stability.json", StabilityFileText(file));
     const ReadResult<StabilityFile> read = ReadStabilityFile(path);
     ASSERT_TRUE(read.value) << read.error;
@@ -40,7 +40,7 @@ TEST(StabilityFileTest, WhatIsWrittenReadsBackAsTheSameValue) {
 }
 
 TEST(StabilityFileTest, TheTextIsIndentedWithAFinalNewline) {
-    const std::string text = StabilityFileText(OneOfEach());
+    const std::string text = StabilityFileText(OneOfEachStability());
     EXPECT_EQ(text.rfind("{\n  \"", 0), 0u) << text;
     EXPECT_EQ(text.back(), '\n');
     const json j = json::parse(text);
@@ -51,7 +51,7 @@ TEST(StabilityFileTest, TheTextIsIndentedWithAFinalNewline) {
 }
 
 TEST(StabilityFileTest, NullNumbersReadAsNaN) {
-    json j = json::parse(StabilityFileText(OneOfEach()));
+    json j = json::parse(StabilityFileText(OneOfEachStability()));
     j["cases"][0]["max_error"] = nullptr;
     const ReadResult<StabilityFile> read = StabilityFileFromJson(j, "s.json");
     ASSERT_TRUE(read.value) << read.error;
@@ -80,7 +80,7 @@ TEST(StabilityFileTest, AWronglyTypedFieldNamesTheFileAndTheField) {
              "'guards[0]' has the wrong type (expected object, found string)"},
     };
     for (const Case& c : cases) {
-        json j = json::parse(StabilityFileText(OneOfEach()));
+        json j = json::parse(StabilityFileText(OneOfEachStability()));
         j[json::json_pointer(c.pointer)] = c.value;
         const ReadResult<StabilityFile> read = StabilityFileFromJson(j, "run/stability.json");
         EXPECT_FALSE(read.value) << c.pointer;
@@ -90,7 +90,7 @@ TEST(StabilityFileTest, AWronglyTypedFieldNamesTheFileAndTheField) {
 }
 
 TEST(StabilityFileTest, AnotherSchemaOrVersionIsForeign) {
-    json j = json::parse(StabilityFileText(OneOfEach()));
+    json j = json::parse(StabilityFileText(OneOfEachStability()));
     j["version"] = "1";
     ReadResult<StabilityFile> read = StabilityFileFromJson(j, "s.json");
     EXPECT_EQ(read.failure, ReadFailure::kForeign);

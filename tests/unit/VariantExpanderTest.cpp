@@ -312,13 +312,16 @@ ProgramConfig RandomProgram(std::mt19937& random) {
     auto below = [&](int n) { return std::uniform_int_distribution<int>(0, n - 1)(random); };
     ProgramConfig program = Program({});
     const int feature_count = below(13);
+    // append, not "F" + std::to_string(f): GCC 12 at -O3 reports a false -Wstringop-overflow
+    // in the inlined insert of `const char* + std::string` when this file is compiled together
+    // with other test files (the unity build of the tests, cmake/TidepoolPrecompiledHeaders.cmake).
     for (int f = 0; f < feature_count; ++f) {
-        program.features.push_back(Feature{"F" + std::to_string(f), {}});
+        program.features.push_back(Feature{std::string("F").append(std::to_string(f)), {}});
     }
     // At most 4096 * 9 combinations, so the brute force stays quick under the sanitizers.
     const int axis_count = feature_count > 10 ? below(2) : below(3);
     for (int a = 0; a < axis_count; ++a) {
-        Axis axis{"X" + std::to_string(a), {}, {}};
+        Axis axis{std::string("X").append(std::to_string(a)), {}, {}};
         const int value_count = 1 + below(3);
         for (int v = 0; v < value_count; ++v) {
             axis.values.push_back(std::string(1, static_cast<char>('a' + v)));

@@ -10,7 +10,7 @@ namespace {
 
 using namespace tidepool::report;
 
-const WhitepaperRow& Row(int number) {
+const WhitepaperRow& TableRow(int number) {
     return WhitepaperRows()[static_cast<std::size_t>(number - 1)];
 }
 
@@ -22,11 +22,11 @@ TEST(WhitepaperTableTest, HasElevenRowsWithPresetsAndDirectionOnlyRowsEightToEle
         EXPECT_FALSE(row.llvmpipe_note.empty()) << row.number;
         EXPECT_EQ(row.kind == FigureKind::kDirection, row.number >= 8) << row.number;
     }
-    EXPECT_EQ(Row(1).whitepaper_percent, -60.0);
-    EXPECT_EQ(Row(4).baseline_preset, "full");
-    EXPECT_EQ(Row(4).candidate_preset, "full_no_fog");
-    EXPECT_EQ(Row(9).baseline_preset, "full_uniform_bools");
-    EXPECT_EQ(Row(10).baseline_preset, "full_clip_discard");
+    EXPECT_EQ(TableRow(1).whitepaper_percent, -60.0);
+    EXPECT_EQ(TableRow(4).baseline_preset, "full");
+    EXPECT_EQ(TableRow(4).candidate_preset, "full_no_fog");
+    EXPECT_EQ(TableRow(9).baseline_preset, "full_uniform_bools");
+    EXPECT_EQ(TableRow(10).baseline_preset, "full_clip_discard");
 }
 
 }  // namespace

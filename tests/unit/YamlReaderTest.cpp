@@ -15,7 +15,7 @@ namespace {
 
 using testing::TempDir;
 
-std::string Formatted(const std::vector<Diagnostic>& diagnostics) {
+std::string FormattedLines(const std::vector<Diagnostic>& diagnostics) {
     std::string out;
     for (const Diagnostic& d : diagnostics) {
         out += FormatDiagnostic(d) + "\n";
@@ -26,13 +26,13 @@ std::string Formatted(const std::vector<Diagnostic>& diagnostics) {
 std::string ConfigErrors(const std::string& yaml) {
     const ConfigResult result = ParseVariantConfig(yaml, "v.yaml", ".");
     EXPECT_FALSE(result.config.has_value());
-    return Formatted(result.diagnostics);
+    return FormattedLines(result.diagnostics);
 }
 
 std::string SceneErrors(const std::string& yaml) {
     const SceneResult result = ParseSceneDescription(yaml, "s.yaml");
     EXPECT_FALSE(result.scene.has_value());
-    return Formatted(result.diagnostics);
+    return FormattedLines(result.diagnostics);
 }
 
 // 9 levels of 10 aliases each: 865 bytes that expand to a billion nodes.
@@ -74,7 +74,7 @@ TEST(YamlReaderTest, AliasBombIsRefusedQuicklyAtTheAliasThatExceedsTheBound) {
 TEST(YamlReaderTest, AliasesOfCompleteNodesStillWork) {
     const SceneResult result = ParseSceneDescription(
             "water: &w {depth: 3}\ntarget: {min_psnr_db: 30}\ndescription: &d calm\n", "s.yaml");
-    EXPECT_TRUE(result.scene.has_value()) << Formatted(result.diagnostics);
+    EXPECT_TRUE(result.scene.has_value()) << FormattedLines(result.diagnostics);
 }
 
 TEST(YamlReaderTest, NonUtf8ByteIsAnErrorAtItsLineAndColumn) {
@@ -99,9 +99,9 @@ TEST(YamlReaderTest, OverlongAndSurrogateEncodingsAreNotUtf8) {
 TEST(YamlReaderTest, RepeatedKeyInAnAliasedMappingIsReportedOnce) {
     const ConfigResult result =
             ParseVariantConfig("x: &m {a: 1, a: 2}\ny: *m\nz: *m\nprograms: {}\n", "v.yaml", ".");
-    EXPECT_EQ(Formatted(result.diagnostics).find("duplicate key 'a'"),
-              Formatted(result.diagnostics).rfind("duplicate key 'a'"));
-    EXPECT_NE(Formatted(result.diagnostics)
+    EXPECT_EQ(FormattedLines(result.diagnostics).find("duplicate key 'a'"),
+              FormattedLines(result.diagnostics).rfind("duplicate key 'a'"));
+    EXPECT_NE(FormattedLines(result.diagnostics)
                       .find("v.yaml:1:14: error: duplicate key 'a' (first "
                             "written at line 1)"),
               std::string::npos);
@@ -111,7 +111,7 @@ TEST(YamlReaderTest, RepeatedKeyInAnAliasedMappingIsReportedOnce) {
 std::string LoadFindings(const std::string& yaml) {
     YamlReader reader("d.yaml");
     const bool loaded = reader.Load(yaml).has_value();
-    return (loaded ? "loaded\n" : "refused\n") + Formatted(reader.Diagnostics());
+    return (loaded ? "loaded\n" : "refused\n") + FormattedLines(reader.Diagnostics());
 }
 
 // A document with no anchor is read in one parse and checked on its tree; one with an anchor
@@ -145,12 +145,12 @@ TEST(YamlReaderTest, DocumentWithoutAnchorsGetsTheSameFindingsAsTheEventCheck) {
 TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {
     TempDir dir;
     const ConfigResult result = LoadVariantConfig(dir.Path());
-    EXPECT_EQ(Formatted(result.diagnostics),
+    EXPECT_EQ(FormattedLines(result.diagnostics),
               dir.Path().string() +
                       ": error: cannot read the configuration file: is a folder, "
                       "not a file; check the path or pass --config PATH\n");
     const SceneResult scene = LoadSceneDescription(dir.Path());
-    EXPECT_EQ(Formatted(scene.diagnostics),
+    EXPECT_EQ(FormattedLines(scene.diagnostics),
               dir.Path().string() +
                       ": error: cannot read the scene file: is a folder, not a "
                       "file; scenes live in scenes/NAME.yaml next to the "
