@@ -141,15 +141,23 @@ TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_high, handed.change_high);
 }
 
-TEST(SharedUnitsGlTest, AComparisonWhoseResultsCannotBeReadIsTimedByTheRenderProcess) {
+// Both sides, with the second process's results file of claim-table unit `unit` cut short: the
+// render process must do that unit itself.
+RunResults WithAUnitCutShort(std::size_t unit) {
     test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
-    ASSERT_TRUE(shared.context) << shared.error;
     const testing::TempDir out;
     SharedRun run = WithASecondProcess(out.Path());
-    ASSERT_TRUE(run.claims);
-    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, run.options).comparisons, 1);
-    out.Write(".second-process/4.json", "{\"schema\": ");  // cut short
-    const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    EXPECT_TRUE(run.claims);
+    const SharedUnitsDone done = RenderSharedUnits(*shared.context, *shared.config, run.options);
+    EXPECT_EQ(done.configurations, 3);
+    EXPECT_EQ(done.comparisons, 1);
+    out.Write(".second-process/" + std::to_string(unit) + ".json", "{\"schema\": ");
+    return RunRender(*shared.context, *shared.config, run.options, nullptr);
+}
+
+TEST(SharedUnitsGlTest, AComparisonWhoseResultsCannotBeReadIsTimedByTheRenderProcess) {
+    ASSERT_TRUE(test_support::SharedWaterRenderer().context);
+    const RunResults results = WithAUnitCutShort(4);
     EXPECT_EQ(results.shared_comparisons, 0);
     EXPECT_EQ(results.shared_configurations, 3);
     const ComparisonResult& c = results.comparisons.front();
@@ -161,15 +169,10 @@ TEST(SharedUnitsGlTest, AComparisonWhoseResultsCannotBeReadIsTimedByTheRenderPro
 }
 
 TEST(SharedUnitsGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProcess) {
-    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
-    ASSERT_TRUE(shared.context) << shared.error;
-    const testing::TempDir out;
-    SharedRun run = WithASecondProcess(out.Path());
-    ASSERT_TRUE(run.claims);
-    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, run.options).configurations, 3);
-    out.Write(".second-process/2.json", "{\"schema\": ");  // cut short
-    const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
+    ASSERT_TRUE(test_support::SharedWaterRenderer().context);
+    const RunResults results = WithAUnitCutShort(2);
     EXPECT_EQ(results.shared_configurations, 2);
+    EXPECT_EQ(results.shared_comparisons, 1);
     for (const ConfigurationResult& r : results.configurations) {
         EXPECT_TRUE(r.Ok()) << r.configuration.id;
         EXPECT_EQ(r.views.size(), 2U) << r.configuration.id;
