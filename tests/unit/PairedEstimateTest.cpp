@@ -306,9 +306,10 @@ TEST(PairedEstimateTest, ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsI
     // At the finest half-width it stops wherever it lies.
     EXPECT_EQ(DecideStop(EstimateWithInterval(300, -2.2, -0.8), coarse), StopDecision::kResolved);
 
-    // Effects a little beyond the margin at the measured noise: with the clause, most runs
-    // claim the direction; without it, many stop early and do not.
-    constexpr int kRuns = 120;
+    // Effects a little beyond the margin at the measured noise: with the clause, many more runs
+    // claim the direction; without it, most stop early and do not. (80 runs each: the sequential
+    // runs are slow under the sanitizers.)
+    constexpr int kRuns = 80;
     auto claimed_share = [&](double change, double boundary_standard_errors) {
         StoppingRule rule = coarse;
         rule.boundary_standard_errors = boundary_standard_errors;
@@ -322,14 +323,14 @@ TEST(PairedEstimateTest, ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsI
         }
         return static_cast<double>(claimed) / kRuns;
     };
-    for (double change : {-2.2, -2.4, -2.6, -2.8}) {
+    // (Closer to the margin, at -2.2 and -2.4%, it was 0.28 and 0.38 against 0.07 and 0.08: the
+    // band where runs disagree narrows but stays, about the margin plus the finest half-width.)
+    for (double change : {-2.6, -2.8}) {
         const double with = claimed_share(change, 1.5);
         const double without = claimed_share(change, 0.0);
         std::printf("%.1f%%: claimed in %.2f of runs with the clause, %.2f without\n", change, with,
                     without);
-        if (change <= -2.6) {
-            EXPECT_GE(with, without + 0.3) << change;
-        }
+        EXPECT_GE(with, without + 0.3) << change;
     }
 }
 
@@ -350,7 +351,7 @@ TEST(PairedEstimateTest, AnIntervalHoldingAnotherBoundaryKeepsGoingUntilItClears
     // whether the interval reaches the band.
     StoppingRule row;
     row.boundaries_points = {-4.8, -19.2};
-    constexpr int kRuns = 120;
+    constexpr int kRuns = 80;  // slow under the sanitizers
     int reached = 0;
     for (int run = 0; run < kRuns; ++run) {
         StopDecision decision = StopDecision::kContinue;
