@@ -114,14 +114,12 @@ std::optional<std::chrono::steady_clock::time_point> SharedClaims::HelperExpecte
                     std::chrono::nanoseconds(ns)));
 }
 
-std::size_t SharedClaims::HelperClaimed() const {
-    std::size_t claimed = 0;
-    for (std::size_t i = 0; i < units_; ++i) {
-        const int state = Slot(i).load();
-        claimed +=
-                state == Int(State::kHelperWorking) || state == Int(State::kHelperDone) ? 1U : 0U;
+bool SharedClaims::HelperHas(std::size_t unit) const {
+    if (unit >= units_) {
+        return false;
     }
-    return claimed;
+    const int state = Slot(unit).load();
+    return state == Int(State::kHelperWorking) || state == Int(State::kHelperDone);
 }
 
 std::vector<std::size_t> SharedClaims::AwaitHelper(std::chrono::milliseconds stall,

@@ -181,19 +181,12 @@ std::array<long, 2> ProgressMeter::HelperClaimedFrames() const {
     if (shared_ == nullptr) {
         return frames;
     }
-    auto helper_has = [&](std::size_t unit) {
-        if (unit >= shared_->Size()) {
-            return false;
-        }
-        const base::SharedClaims::State state = shared_->StateOf(unit);
-        return state == base::SharedClaims::State::kHelperWorking ||
-               state == base::SharedClaims::State::kHelperDone;
-    };
     for (std::size_t i = 0; i < shared_configurations_; ++i) {
-        frames[kImage] += helper_has(i) ? shared_frames_per_configuration_ : 0;
+        frames[kImage] += shared_->HelperHas(i) ? shared_frames_per_configuration_ : 0;
     }
     for (std::size_t k = 0; k < comparison_frames_.size(); ++k) {
-        frames[kComparison] += helper_has(shared_configurations_ + k) ? comparison_frames_[k] : 0;
+        frames[kComparison] +=
+                shared_->HelperHas(shared_configurations_ + k) ? comparison_frames_[k] : 0;
     }
     return frames;
 }

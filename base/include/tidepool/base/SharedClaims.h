@@ -48,8 +48,8 @@ public:
     void SetHelperTaking(bool taking);
     bool HelperTaking() const;
     bool HelperStopped() const;
-    /// Units the helper has claimed, done or not.
-    std::size_t HelperClaimed() const;
+    /// Whether the helper has claimed `unit`, done or not; false for a unit past the table.
+    bool HelperHas(std::size_t unit) const;
 
     /// When the helper expects to start taking units (it has other work first), as it last said;
     /// the owner plans its own share with it. Nothing until the helper has said.
