@@ -86,6 +86,11 @@ void SharedClaims::Beat() {
     header_->heartbeat_ns.store(NowNs());
 }
 
+bool SharedClaims::HelperSilentFor(std::chrono::milliseconds quiet) const {
+    return NowNs() - header_->heartbeat_ns.load() >
+           std::chrono::duration_cast<std::chrono::nanoseconds>(quiet).count();
+}
+
 void SharedClaims::SetHelperTaking(bool taking) {
     header_->helper_taking.store(taking ? 1 : 2);
 }

@@ -66,10 +66,9 @@ public:
 
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
-    /// still waiting then expect the median of what the finished ones took, the first guess
-    /// counting as one of them: a run whose comparisons resolve at the minimum should not
-    /// expect the guess of every later one, nor should one slow comparison near a verdict's
-    /// boundary make every later one expect its pairs.
+    /// still waiting then expect the mean of what the finished ones took, with the first guess
+    /// counting as three of them: few finished comparisons say little, and one slow
+    /// comparison near a verdict's boundary should move the rest only by its share.
     void ComparisonExpects(std::size_t k, long frames, bool finished);
 
     /// `frames` of `kind` finished on the calling thread since its last step, at `now`.
@@ -82,9 +81,15 @@ public:
     /// configuration, `configurations` of them with `frames_per_configuration` image frames
     /// each, then one per comparison). The units it claims leave this meter's work; the ETA
     /// counts on it for its share of the units nobody has claimed yet from the time it said it
-    /// would start taking them (SecondsToFinish).
+    /// would start taking them (SecondsToFinish), as long as it renews that forecast within
+    /// `forecast_silence` (a second process that goes silent may have died).
     void ShareUnits(const base::SharedClaims* claims, long frames_per_configuration,
-                    std::size_t configurations);
+                    std::size_t configurations,
+                    std::chrono::milliseconds forecast_silence = kForecastSilence);
+
+    /// How long the second process may go without renewing its forecast (it does at every
+    /// stability case and scene plan: under a minute with the machine loaded).
+    static constexpr std::chrono::milliseconds kForecastSilence{120'000};
 
     /// The last state passed to the callback.
     RunProgress Last() const;
@@ -110,6 +115,7 @@ private:
     const base::SharedClaims* shared_ = nullptr;
     long shared_frames_per_configuration_ = 0;
     std::size_t shared_configurations_ = 0;
+    std::chrono::milliseconds forecast_silence_ = kForecastSilence;
     Clock::time_point start_;
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;

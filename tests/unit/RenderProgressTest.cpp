@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <memory>
 #include <set>
+#include <thread>
 #include <vector>
 
 #include "RenderProgress.h"
@@ -118,10 +119,10 @@ TEST(RenderProgressTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
     EXPECT_NEAR(meter.Last().eta_seconds, truth, 0.1 * truth);
 }
 
-// Comparisons not started expect the median of what the finished ones took (the first guess
-// counting as one): one that needed 300 pairs near a verdict's boundary does not make every
-// later one expect a hundred.
-TEST(RenderProgressTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
+// Comparisons not started expect the mean of what the finished ones took, the first guess
+// counting as three of them: one that needed 300 pairs near a verdict's boundary moves every later
+// one by its share only, and the sum the ETA needs is not left short by a median.
+TEST(RenderProgressTest, WaitingComparisonsExpectTheShrunkMeanOfTheFinishedOnes) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
@@ -130,12 +131,17 @@ TEST(RenderProgressTest, WaitingComparisonsExpectTheMedianOfTheFinishedOnes) {
     meter.ComparisonExpects(1, 600, true);
     meter.ComparisonExpects(2, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 680, start + std::chrono::seconds(34));
-    // Finished: 40 + 600 + 40 frames; the three waiting expect median{120, 40, 600, 40} = 120
-    // (the upper middle), not the mean 200.
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * 120);
+    // Finished: 40 + 600 + 40 frames; the three waiting expect (3 x 120 + 680) / 6 = 173.3,
+    // neither the plain mean 227 nor the median 120.
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * 173);
+    // A running comparison's own guess is its own: it does not move the waiting ones.
+    meter.ComparisonExpects(3, 400, false);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(35));
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 400 + 2 * 173);
     meter.ComparisonExpects(3, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(36));
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 40);
+    // (360 + 720) / 7 = 154.3
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 154);
 }
 
 // Alone until the second process joins, then the rest split by threads: one thread here and
@@ -201,6 +207,36 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     claims->SetHelperTaking(false);  // it stopped taking: the rest is this process's
     meter.Step(ProgressMeter::kImage, "0", 0, now);
     EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
+}
+
+// A second process that stops renewing its join forecast may have died before taking a unit: the
+// ETA stops counting on it rather than wait for a join that will not come.
+TEST(RenderProgressTest, AForecastNotRenewedIsNotCountedOn) {
+    using namespace std::chrono_literals;
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    const std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(4);
+    ASSERT_TRUE(claims);
+    meter.AddExpected(ProgressMeter::kImage, 40);
+    meter.ShareUnits(claims.get(), 10, 4, 50ms);
+    Clock::time_point now = start;
+    for (int f = 0; f < 10; ++f) {
+        now += 100ms;
+        meter.Step(ProgressMeter::kImage, "0", 1, now);
+    }
+    // 30 frames left at 100 ms: 3 s alone; with the second process joining in 1 s, 1 + 2 / 2.
+    claims->Beat();
+    claims->ExpectHelperAt(now + 1s);
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 2.0, 0.05);
+    std::this_thread::sleep_for(80ms);  // silent for longer than the meter allows
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 3.0, 1e-6);
+    claims->Beat();  // it renews its forecast: counted on again
+    claims->ExpectHelperAt(now + 1s);
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 2.0, 0.05);
 }
 
 }  // namespace

@@ -140,6 +140,17 @@ TEST(SharedClaimsTest, TheHelperSaysWhetherItIsTakingUnits) {
     EXPECT_TRUE(claims->HelperStopped());
 }
 
+TEST(SharedClaimsTest, AHelperIsSilentWhenItsLastBeatIsOlderThanAsked) {
+    using namespace std::chrono_literals;
+    const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(1);
+    ASSERT_TRUE(claims);
+    std::this_thread::sleep_for(30ms);
+    EXPECT_TRUE(claims->HelperSilentFor(10ms));
+    EXPECT_FALSE(claims->HelperSilentFor(60s));
+    ASSERT_TRUE(InAForkedProcess([&] { claims->Beat(); }));  // a beat from another process
+    EXPECT_FALSE(claims->HelperSilentFor(10s));
+}
+
 TEST(SharedClaimsTest, TheHelpersForecastOfWhenItStartsTakingUnitsReachesTheOwner) {
     const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(1);
     ASSERT_TRUE(claims);

@@ -347,6 +347,7 @@ void JoinForecast::Say(double share, Clock::time_point now) const {
     if (claims_ == nullptr || share <= 0) {
         return;
     }
+    claims_->Beat();  // alive: the render counts on a forecast only while it is renewed
     claims_->ExpectHelperAt(start_ + std::chrono::duration_cast<Clock::duration>(
                                              (now - start_) / std::min(share, 1.0)));
 }

@@ -67,7 +67,8 @@ RunResult Run(const RunRequest& request, ProgressSink& progress);
 /// they have taken over that share. The stability catalogue counts for a third of the two stages
 /// and the scene plans for the rest: on the default matrix here the catalogue took 25 of 73 s
 /// quiet and 61 of 241 s with two other processes competing (the plans' timing is adaptive, so
-/// noise lengthens them most).
+/// noise lengthens them most). Each forecast also beats the claim table's heartbeat: the render
+/// counts on a forecast only while it is renewed (runner's ProgressMeter::kForecastSilence).
 class JoinForecast {
 public:
     using Clock = std::chrono::steady_clock;
