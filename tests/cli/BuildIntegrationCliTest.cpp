@@ -88,6 +88,35 @@ TEST_F(DepfileCliTest, ProgramNarrowsTheDepfileTheManifestAndTheSources) {
             << "a depfile names the output it belongs to, so it needs --out";
 }
 
+// A step's depfile must not name another program's shader, or touching it would rerun the step;
+// that is only right when the step's output does not depend on that shader, which the unchanged
+// manifest shows. The cache's miss, its run-record hit and the miss after the edit agree.
+TEST_F(DepfileCliTest, ProgramDepfileLeavesOutOtherProgramsShadersOnEveryCachePath) {
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "  q:\n    vertex: s.vsh\n    fragment: t.fsh\n");
+    const std::string cache = "--cache '" + (dir_.Path() / "cache").string() + "'";
+    const std::string narrowed = "validate --config v.yaml --program q --out o --depfile o.d ";
+    const std::string expected = Depfile({"v.yaml", "s.vsh", "t.fsh"});
+    std::string manifest;
+    for (const char* edit : {"", "", "#version 100\nprecision lowp float;\nvoid main() {}\n"}) {
+        SCOPED_TRACE(edit);
+        if (*edit != '\0') {
+            dir_.Write("s.fsh", edit);  // p's fragment shader only
+        }
+        const CommandResult r = RunTidepool(narrowed + cache, dir_.Path());
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        EXPECT_EQ(ReadText(dir_.Path() / "o.d"), expected);
+        const std::string written = ReadText(dir_.Path() / "o/manifest.json");
+        EXPECT_EQ(written, manifest.empty() ? written : manifest);
+        manifest = written;
+    }
+    const CommandResult all =
+            RunTidepool("validate --config v.yaml --out o --depfile o.d " + cache, dir_.Path());
+    ASSERT_EQ(all.exit_code, 0) << all.err;
+    EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "s.fsh", "t.fsh"}));
+}
+
 TEST_F(DepfileCliTest, ExpandWritesADepfileToo) {
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
     ASSERT_EQ(RunTidepool("expand --config v.yaml --out o --depfile o.d", dir_.Path()).exit_code,
