@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
 # Runs the unit tests of the sanitizer build (build/sanitize, ASan + UBSan) in SHARDS processes
-# side by side (default: one per core), each taking its share of the tests through GoogleTest's
-# sharding, instead of one process per test as ctest runs them.
+# (default: four per core), each taking its share of the tests through GoogleTest's sharding,
+# JOBS of them side by side (default: one per core), instead of one process per test as ctest
+# runs them. Why more shards than cores: GoogleTest deals the tests out in turn, so a few long
+# tests can land in one shard and leave the other cores idle while it finishes; with small
+# shards taken from a queue, a core that is done takes the next shard.
 # Why: an ASan process costs about 0.3 s of CPU to start (its shadow memory and a 270 MB binary),
 # which was most of the phase's time over 678 test processes. The release build's ctest run
 # still gives every test a process of its own, so a test that leans on another's leftovers
@@ -11,7 +14,8 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 binary="$root/build/sanitize/tests/tidepool_unit_tests"
-shards="${SHARDS:-$(nproc)}"
+jobs="${JOBS:-$(nproc)}"
+shards="${SHARDS:-$((4 * jobs))}"
 if [ ! -x "$binary" ]; then
   echo "sanitize-tests: no $binary; run scripts/build.sh sanitize first" >&2
   exit 2
@@ -21,18 +25,29 @@ fi
 # checks for leaks at exit; UBSan stops at its first (-fno-sanitize-recover=undefined).
 logs="$(mktemp -d)"
 trap 'rm -rf "$logs"' EXIT
-pids=()
-for ((i = 0; i < shards; ++i)); do
+# run_shard I: runs shard I into its log and leaves its exit code beside it.
+run_shard() {
+  local i="$1" code=0
   # --gtest_brief prints only the failures and the totals; a shard that crashes leaves its
   # sanitizer report in its log. The timeout matches ctest's per-test 600 s, for a whole shard.
   GTEST_TOTAL_SHARDS="$shards" GTEST_SHARD_INDEX="$i" \
-    timeout 1800 "$binary" --gtest_brief=1 > "$logs/$i.log" 2>&1 &
-  pids+=("$!")
+    timeout 1800 "$binary" --gtest_brief=1 > "$logs/$i.log" 2>&1 || code=$?
+  echo "$code" > "$logs/$i.code"
+}
+running=0
+for ((i = 0; i < shards; ++i)); do
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+  run_shard "$i" &
+  running=$((running + 1))
 done
+wait
 status=0
 for ((i = 0; i < shards; ++i)); do
   echo "-- shard $((i + 1)) of $shards"
-  if wait "${pids[$i]}"; then
+  if [ "$(cat "$logs/$i.code")" -eq 0 ]; then
     # Passed: its totals only. The whole log would show the sanitizer reports of worker
     # processes that tests crash on purpose (WorkerProcessPoolTest), which are not failures.
     grep -E '^\[(==========|  PASSED  |  SKIPPED )\]' "$logs/$i.log" || true
