@@ -27,9 +27,28 @@ if(TIDEPOOL_FAST_COLD_BUILD)
   target_precompile_headers(tidepool_base PRIVATE ${std_headers} <fmt/format.h>)
   # Sha256.cpp's SHA-extension code needs <immintrin.h> as -O0 builds declare it (_mm_alignr_epi8
   # as a macro); behind the precompiled header GCC 12 takes the inline function, whose last
-  # argument is then not an immediate, and the sanitizer build fails.
+  # argument is then not an immediate, and the sanitizer build fails. For the same reason it stays
+  # out of its library's unity file, which is compiled behind the precompiled header.
   set_source_files_properties("${PROJECT_SOURCE_DIR}/base/src/Sha256.cpp" TARGET_DIRECTORY tidepool_base
-                              PROPERTIES SKIP_PRECOMPILE_HEADERS ON)
+                              PROPERTIES SKIP_PRECOMPILE_HEADERS ON SKIP_UNITY_BUILD_INCLUSION ON)
+  # The libraries are compiled eight files to a compile (unity): a library's files include the
+  # same standard, fmt, nlohmann/json, yaml-cpp and glslang headers and instantiate the same
+  # templates, which a file-by-file build parses and compiles again for every file (e.g.
+  # stagefiles' four JSON readers, about 10 s of CPU each at -O3, most of it nlohmann/json).
+  # Eight, not the whole library in one: the fuzz build needs only base, stagefiles and compiler,
+  # and compiler as one file would keep one core busy long after the other is done. The names in
+  # a library's anonymous namespaces are unique across the library (checked with all its files in
+  # one compile), so a new file that moves the batch boundaries brings no clash but its own.
+  # clang-tidy still checks the files one by one (scripts/clang-tidy.sh takes their commands from
+  # the unity files' entries).
+  set(tidepool_libraries tidepool_base tidepool_stagefiles tidepool_compiler tidepool_runner
+                         tidepool_lab tidepool_report tidepool_pipeline tidepool_pipeline_gl)
+  set_target_properties(${tidepool_libraries} PROPERTIES UNITY_BUILD ON UNITY_BUILD_BATCH_SIZE 8)
+  # GCC takes a class defined in an #included file for a header's (-Wsubobject-linkage), so
+  # WaterRenderer::Impl, whose members are of types from the file's anonymous namespace, would
+  # fail the unity file; WaterRenderer.cpp is compiled on its own instead.
+  set_source_files_properties("${PROJECT_SOURCE_DIR}/runner/src/gl/WaterRenderer.cpp"
+                              TARGET_DIRECTORY tidepool_runner PROPERTIES SKIP_UNITY_BUILD_INCLUSION ON)
   # The CLI targets are one file each (unity), so CLI11 is compiled once per target.
   set_target_properties(tidepool_cli_common tidepool-gl PROPERTIES UNITY_BUILD ON)
   foreach(target tidepool_compiler tidepool_runner tidepool_lab tidepool_report tidepool_pipeline

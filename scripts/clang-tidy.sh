@@ -28,21 +28,32 @@ mapfile -t sources < <(ls base/src/*.cpp stagefiles/src/*.cpp compiler/src/*.cpp
 # The library files' entries of the release build's compile database, without GCC's precompiled
 # header (TIDEPOOL_FAST_COLD_BUILD, when no compiler launcher is set): clang cannot read a GCC
 # .gch and fails on it; the header only collects standard and fmt headers every file includes
-# itself. A library file missing from the database (a unity build would hide it behind
-# unity_*.cxx) is an error rather than a file silently left unchecked.
+# itself. The same build compiles each library as one unity_*.cxx that #includes its files, so
+# each file included there gets that entry's command with the unity file replaced by its own
+# path: CMake puts a file in a unity file only when it has no flags of its own, so the command
+# is the one the file would have had. A library file missing from the database is an error
+# rather than a file silently left unchecked.
 mkdir -p "$db_dir"
 python3 - "$build/compile_commands.json" "$db_dir/compile_commands.json" "$root" "${sources[@]}" <<'EOF'
-import json, os, shlex, sys
+import json, os, re, shlex, sys
 
 source_db, target_db, root, sources = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4:]
 wanted = {os.path.join(root, s) for s in sources}
-entries = []
-for entry in json.load(open(source_db)):
+
+
+# (file, command) for each file an entry compiles: its own, or each file its unity file includes.
+def files_of(entry):
     path = os.path.normpath(os.path.join(entry["directory"], entry["file"]))
-    if path not in wanted:
-        continue
     words = entry["arguments"] if "arguments" in entry else shlex.split(entry["command"])
-    # "-include <dir>/cmake_pch.hxx" and -Winvalid-pch go; everything else stays.
+    if not re.search(r"/Unity/unity_[^/]*\.cxx$", path):
+        return [(path, words)]
+    included = re.findall(r'^#include "([^"]+)"$', open(path).read(), re.MULTILINE)
+    return [(os.path.normpath(f), [f if w == entry["file"] else w for w in words])
+            for f in included]
+
+
+# "-include <dir>/cmake_pch.hxx" and -Winvalid-pch go; everything else stays.
+def without_pch(words):
     cleaned = []
     i = 0
     while i < len(words):
@@ -52,8 +63,16 @@ for entry in json.load(open(source_db)):
         if words[i] != "-Winvalid-pch":
             cleaned.append(words[i])
         i += 1
-    entries.append({"directory": entry["directory"], "file": path, "arguments": cleaned})
-    wanted.discard(path)
+    return cleaned
+
+
+entries = []
+for entry in json.load(open(source_db)):
+    for path, words in files_of(entry):
+        if path in wanted:
+            entries.append({"directory": entry["directory"], "file": path,
+                            "arguments": without_pch(words)})
+            wanted.discard(path)
 if wanted:
     sys.exit("clang-tidy: not in the compile database: " + ", ".join(sorted(wanted)))
 json.dump(entries, open(target_db, "w"), indent=1)

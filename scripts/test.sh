@@ -7,13 +7,22 @@
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 
-# phase NAME COMMAND...: announces NAME, runs COMMAND, then stamps NAME with its seconds.
+# The CPU seconds (user + system) of every finished child process of this script so far: the
+# cutime and cstime fields of its /proc/<pid>/stat, in clock ticks.
+children_cpu() {
+  awk -v hz="$(getconf CLK_TCK)" '{ printf "%d\n", ($16 + $17) / hz }' "/proc/$$/stat"
+}
+
+# phase NAME COMMAND...: announces NAME, runs COMMAND, then stamps NAME with its seconds and the
+# CPU seconds its processes used: on a shared machine the elapsed time depends on the load, the
+# CPU time much less, so the two together show whether a slow phase worked more or waited more.
 phase() {
-  local name="$1" start="$SECONDS"
+  local name="$1" start="$SECONDS" cpu_start
+  cpu_start="$(children_cpu)"
   shift
   echo "== $name"
   "$@"
-  echo "== $name (took $((SECONDS - start)) s)"
+  echo "== $name (took $((SECONDS - start)) s, CPU $(($(children_cpu) - cpu_start)) s)"
 }
 
 phase "install dependencies" "$root/scripts/install-deps.sh"
@@ -28,4 +37,4 @@ phase "sanitizer build (ASan + UBSan)" "$root/scripts/build.sh" sanitize
 phase "unit tests under ASan + UBSan" "$root/scripts/sanitize-tests.sh"
 phase "fuzzing the YAML loaders (libFuzzer, ${FUZZ_SECONDS:-60} s each)" \
   "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"
-echo "== all phases passed in $SECONDS s"
+echo "== all phases passed in $SECONDS s, CPU $(children_cpu) s"

@@ -18,7 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string SystemError(int error) {
+std::string ErrnoMessage(int error) {
     return std::error_code(error, std::generic_category()).message();
 }
 
@@ -54,7 +54,7 @@ std::string OldPrefix(const fs::path& target) {
     return Prefix(target, ".old.");
 }
 
-void SyncFolder(const fs::path& folder) {
+void FsyncFolder(const fs::path& folder) {
     const int fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd >= 0) {
         ::fsync(fd);
@@ -190,7 +190,7 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
     fs::path staging = MakeUniqueFolder(parent, StagingPrefix(target), &system_error);
     if (staging.empty()) {
         *error = Io(target.string() +
-                    ": cannot create a staging folder beside it: " + SystemError(system_error));
+                    ": cannot create a staging folder beside it: " + ErrnoMessage(system_error));
         return nullptr;
     }
     std::unique_ptr<FolderPublisher> publisher(new FolderPublisher(target, staging, writer));
@@ -226,7 +226,7 @@ PublishError FolderPublisher::Publish() {
         Abandon();
         return Io(e);
     }
-    SyncFolder(staging_);
+    FsyncFolder(staging_);
     const fs::path parent = ParentOf(target_);
     // Each round either publishes or finds that a concurrent publisher changed the target
     // between two renames; a few rounds settle any realistic number of racing runs.
@@ -238,7 +238,7 @@ PublishError FolderPublisher::Publish() {
         if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(), RENAME_NOREPLACE) ==
             0) {
             done_ = true;
-            SyncFolder(parent);
+            FsyncFolder(parent);
             return {};
         }
         int error = errno;
@@ -247,7 +247,7 @@ PublishError FolderPublisher::Publish() {
             // the previous folder, which is deleted (a crash here leaves it as stale staging).
             if (::renameat2(AT_FDCWD, staging_.c_str(), AT_FDCWD, target_.c_str(),
                             RENAME_EXCHANGE) == 0) {
-                SyncFolder(parent);
+                FsyncFolder(parent);
                 std::error_code ec;
                 fs::remove_all(staging_, ec);
                 done_ = true;
@@ -260,21 +260,21 @@ PublishError FolderPublisher::Publish() {
         }
         if (error != EINVAL && error != ENOSYS) {
             Abandon();
-            return Io(target_.string() + ": cannot publish: " + SystemError(error));
+            return Io(target_.string() + ": cannot publish: " + ErrnoMessage(error));
         }
         // A file system without renameat2's flags: move the target aside, then rename.
         int mk_error = 0;
         const fs::path old = MakeUniqueFolder(parent, OldPrefix(target_), &mk_error);
         if (old.empty()) {
             Abandon();
-            return Io(target_.string() + ": cannot publish: " + SystemError(mk_error));
+            return Io(target_.string() + ": cannot publish: " + ErrnoMessage(mk_error));
         }
         if (::rename(target_.c_str(), old.c_str()) != 0 && errno != ENOENT) {
             const int rename_error = errno;
             std::error_code ec;
             fs::remove_all(old, ec);
             Abandon();
-            return Io(target_.string() + ": cannot replace: " + SystemError(rename_error));
+            return Io(target_.string() + ": cannot replace: " + ErrnoMessage(rename_error));
         }
         const bool published = ::rename(staging_.c_str(), target_.c_str()) == 0;
         const int publish_error = errno;
@@ -282,12 +282,12 @@ PublishError FolderPublisher::Publish() {
         fs::remove_all(old, ec);
         if (published) {
             done_ = true;
-            SyncFolder(parent);
+            FsyncFolder(parent);
             return {};
         }
         if (publish_error != EEXIST && publish_error != ENOTEMPTY) {
             Abandon();
-            return Io(target_.string() + ": cannot publish: " + SystemError(publish_error));
+            return Io(target_.string() + ": cannot publish: " + ErrnoMessage(publish_error));
         }
     }
     Abandon();

@@ -10,7 +10,7 @@
 namespace tidepool::base {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 
 // Two images the metrics can compare: both well formed and of the same size.
 bool AreComparable(const RgbaImage& a, const RgbaImage& b) {
@@ -59,7 +59,7 @@ std::array<double, kSsimWindow> GaussianWindow() {
 
 double Psnr(const RgbaImage& a, const RgbaImage& b) {
     if (!AreComparable(a, b)) {
-        return kNaN;
+        return kUndefined;
     }
     // Exact in 64 bits: at most 255^2 * 3 * 16384^2 (about 5e13) for the largest image.
     std::uint64_t squared_error = 0;
@@ -213,7 +213,7 @@ SsimReference::SsimReference(const RgbaImage& reference)
 
 double SsimReference::Compare(const RgbaImage& image) const {
     if (!usable_ || !image.IsWellFormed() || image.width != width_ || image.height != height_) {
-        return kNaN;
+        return kUndefined;
     }
     const std::vector<double> x = Luma(image);
     const auto width = static_cast<std::size_t>(width_);
@@ -243,14 +243,14 @@ double SsimReference::Compare(const RgbaImage& image) const {
 
 double Ssim(const RgbaImage& a, const RgbaImage& b) {
     if (!AreComparable(a, b)) {
-        return kNaN;
+        return kUndefined;
     }
     return SsimReference(b).Compare(a);
 }
 
 double ShareAboveThreshold(const RgbaImage& a, const RgbaImage& b, double threshold) {
     if (!AreComparable(a, b) || std::isnan(threshold)) {
-        return kNaN;
+        return kUndefined;
     }
     const std::size_t pixels = a.PixelCount();
     std::size_t above = 0;

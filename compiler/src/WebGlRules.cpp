@@ -16,7 +16,7 @@
 namespace tidepool {
 namespace {
 
-bool IsIdentifierChar(char c) {
+bool IsNameChar(char c) {
     return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
 }
 
@@ -24,7 +24,7 @@ bool IsIdentifierChar(char c) {
 // vertical tab, form feed, carriage return and line feed. A backslash is in the 3.00 set only
 // (line continuation); glslang reports it in a 1.00 shader itself.
 bool InSourceCharacterSet(char c) {
-    if (IsIdentifierChar(c)) {
+    if (IsNameChar(c)) {
         return true;
     }
     return c != '\0' && std::strchr(".+-/*%<>[](){}^|&~=!:;,?# \t\v\f\r\n\\", c) != nullptr;

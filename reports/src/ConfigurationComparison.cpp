@@ -14,7 +14,7 @@
 namespace tidepool::report {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
@@ -57,7 +57,7 @@ double PerformanceChangePercent(double frame_time_ratio) {
 
 double FrameTimeRatioFromPerformanceChange(double percent) {
     if (!std::isfinite(percent) || percent <= -100) {
-        return kNaN;
+        return kUndefined;
     }
     return 1.0 / (1.0 + percent / 100.0);
 }

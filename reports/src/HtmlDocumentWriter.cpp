@@ -33,7 +33,7 @@ constexpr const char* kImageCheckScript =
         "for(var k=0;k<i.length;k++){if(i[k].complete&&i[k].naturalWidth>0)n++;}"
         "document.body.setAttribute('data-images-loaded',n+'/'+i.length);});</script>";
 
-std::string Inline(const std::vector<Span>& spans) {
+std::string SpansToHtml(const std::vector<Span>& spans) {
     std::string out;
     for (const Span& span : spans) {
         switch (span.kind) {
@@ -51,27 +51,27 @@ std::string Inline(const std::vector<Span>& spans) {
     return out;
 }
 
-std::string Render(const Paragraph& paragraph) {
+std::string ToHtml(const Paragraph& paragraph) {
     switch (paragraph.style) {
         case ParagraphStyle::kBody:
-            return "<p>" + Inline(paragraph.spans) + "</p>";
+            return "<p>" + SpansToHtml(paragraph.spans) + "</p>";
         case ParagraphStyle::kNote:
-            return "<p class=\"note\">" + Inline(paragraph.spans) + "</p>";
+            return "<p class=\"note\">" + SpansToHtml(paragraph.spans) + "</p>";
         case ParagraphStyle::kWarning:
-            return "<p class=\"warn\">" + Inline(paragraph.spans) + "</p>";
+            return "<p class=\"warn\">" + SpansToHtml(paragraph.spans) + "</p>";
         case ParagraphStyle::kLead:
-            return "<p><b>" + Inline(paragraph.spans) + "</b></p>";
+            return "<p><b>" + SpansToHtml(paragraph.spans) + "</b></p>";
     }
-    return "<p>" + Inline(paragraph.spans) + "</p>";
+    return "<p>" + SpansToHtml(paragraph.spans) + "</p>";
 }
 
-std::string Render(const Heading& heading) {
+std::string ToHtml(const Heading& heading) {
     const std::string id =
             heading.id.empty() ? std::string() : " id=\"" + HtmlEscaped(heading.id) + "\"";
     return "<h3" + id + ">" + HtmlEscaped(heading.text) + "</h3>";
 }
 
-std::string Render(const Table& table) {
+std::string ToHtml(const Table& table) {
     std::string out = "<table class=\"wide\"><thead><tr>";
     for (const std::string& h : table.header) {
         out += "<th>" + HtmlEscaped(h) + "</th>";
@@ -99,12 +99,12 @@ std::string Render(const Table& table) {
            "</details>";
 }
 
-std::string Render(const Figure& figure) {
+std::string ToHtml(const Figure& figure) {
     return figure.svg;
 }
 
 // Heading, label and figures, then each image embedded and linked to its full-size file.
-std::string Render(const ImagePanel& panel) {
+std::string ToHtml(const ImagePanel& panel) {
     std::string out = "<div class=\"panel\"><h3>" + HtmlEscaped(panel.title) + " <small>— " +
                       HtmlEscaped(panel.subtitle) + "</small></h3><code>" +
                       HtmlEscaped(panel.label) + "</code>";
@@ -124,7 +124,7 @@ std::string Render(const ImagePanel& panel) {
 std::string Blocks(const std::vector<Block>& blocks) {
     std::string out;
     for (const Block& block : blocks) {
-        out += std::visit([](const auto& node) { return Render(node); }, block);
+        out += std::visit([](const auto& node) { return ToHtml(node); }, block);
     }
     return out;
 }
@@ -143,7 +143,7 @@ std::string HtmlPage(const Document& document) {
             "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">";
     out += "<title>" + HtmlEscaped(document.title) + "</title><style>" + kCss + "</style>" +
            kImageCheckScript + "</head><body>";
-    out += "<h1>" + HtmlEscaped(document.title) + "</h1>" + Render(document.byline);
+    out += "<h1>" + HtmlEscaped(document.title) + "</h1>" + ToHtml(document.byline);
     std::string nav;
     for (const Section& section : document.sections) {
         if (!section.nav_label.empty()) {

@@ -8,7 +8,7 @@ namespace tidepool::report::doc {
 namespace {
 
 // A table cell: pipes would end the cell, newlines the row.
-std::string Cell(std::string_view text) {
+std::string MarkdownCell(std::string_view text) {
     std::string out;
     for (char c : text) {
         if (c == '|') {
@@ -25,7 +25,7 @@ std::string Cell(std::string_view text) {
 std::string Row(const std::vector<std::string>& cells) {
     std::string out = "|";
     for (const std::string& c : cells) {
-        out.append(" ").append(Cell(c)).append(" |");
+        out.append(" ").append(MarkdownCell(c)).append(" |");
     }
     return out + "\n";
 }
@@ -38,7 +38,7 @@ std::string Rule(std::size_t columns) {
     return out + "\n";
 }
 
-std::string Inline(const std::vector<Span>& spans) {
+std::string SpansToMarkdown(const std::vector<Span>& spans) {
     std::string out;
     for (const Span& span : spans) {
         switch (span.kind) {
@@ -56,15 +56,15 @@ std::string Inline(const std::vector<Span>& spans) {
     return out;
 }
 
-std::string Render(const Paragraph& paragraph) {
-    return Inline(paragraph.spans) + "\n\n";
+std::string ToMarkdown(const Paragraph& paragraph) {
+    return SpansToMarkdown(paragraph.spans) + "\n\n";
 }
 
-std::string Render(const Heading& heading) {
+std::string ToMarkdown(const Heading& heading) {
     return "### " + heading.text + "\n\n";
 }
 
-std::string Render(const Table& table) {
+std::string ToMarkdown(const Table& table) {
     std::string out =
             table.folded_under.empty() ? std::string() : "### " + table.folded_under + "\n\n";
     out += Row(table.header) + Rule(table.header.size());
@@ -74,12 +74,12 @@ std::string Render(const Table& table) {
     return out + "\n";
 }
 
-std::string Render(const Figure& figure) {
+std::string ToMarkdown(const Figure& figure) {
     return "![" + figure.alt + "](" + figure.file + ")\n\n";
 }
 
 // Heading, the label and its figures on one line, then the images as one table row.
-std::string Render(const ImagePanel& panel) {
+std::string ToMarkdown(const ImagePanel& panel) {
     std::string out = "### " + panel.title + " — " + panel.subtitle + "\n\n`" + panel.label + "`";
     if (!panel.warning.empty()) {
         return out + ": **" + panel.warning + "**\n\n";
@@ -99,15 +99,15 @@ std::string Render(const ImagePanel& panel) {
 std::string MarkdownSection(const Section& section) {
     std::string out = "## " + section.title + "\n\n";
     for (const Block& block : section.blocks) {
-        out += std::visit([](const auto& node) { return Render(node); }, block);
+        out += std::visit([](const auto& node) { return ToMarkdown(node); }, block);
     }
     return out;
 }
 
 std::string MarkdownPage(const Document& document) {
-    std::string out = "# " + document.title + "\n\n" + Render(document.byline);
+    std::string out = "# " + document.title + "\n\n" + ToMarkdown(document.byline);
     for (const Block& block : document.lead) {
-        out += std::visit([](const auto& node) { return Render(node); }, block);
+        out += std::visit([](const auto& node) { return ToMarkdown(node); }, block);
     }
     for (const Section& section : document.sections) {
         out += MarkdownSection(section);

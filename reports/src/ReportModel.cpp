@@ -302,7 +302,7 @@ std::string KnownLimitation(TechniqueKind kind) {
     return {};
 }
 
-std::string PsnrText(double psnr_db) {
+std::string PsnrLabel(double psnr_db) {
     return std::isinf(psnr_db) ? std::string("identical") : fmt::format("{:.1f} dB", psnr_db);
 }
 
@@ -412,7 +412,7 @@ void FinishError(const ViewErrors& errors, TechniqueComparison* t) {
         t->reading += fmt::format(
                 " {}: {} ({} against {} over all views).",
                 t->kind == TechniqueKind::kDepthOptics ? "Most changed view" : "Worst view",
-                worst->view, PsnrText(worst->psnr_db), PsnrText(t->psnr_db));
+                worst->view, PsnrLabel(worst->psnr_db), PsnrLabel(t->psnr_db));
     }
 }
 

@@ -15,7 +15,7 @@ namespace tidepool::runner {
 namespace {
 
 constexpr float kPi = glm::pi<float>();
-constexpr float kTwoPi = 2.0F * kPi;
+constexpr float kTwoPiF = 2.0F * kPi;
 
 // ---------------------------------------------------------------------------------------------
 // Deterministic noise: a 32-bit integer hash (Wellons' "lowbias32"), never rand().
@@ -102,7 +102,7 @@ std::vector<CloudPuff> MakeClouds() {
     constexpr std::uint32_t kPuffsPerCloud = 4;
     std::vector<CloudPuff> puffs;
     for (std::uint32_t cloud = 0; cloud < kClouds; ++cloud) {
-        const float azimuth = kTwoPi * HashUnit(cloud * 16U + 1U);
+        const float azimuth = kTwoPiF * HashUnit(cloud * 16U + 1U);
         // Between 6 and 30 degrees up: low enough to be seen (and reflected) from the views.
         const float elevation = glm::radians(6.0F + 24.0F * HashUnit(cloud * 16U + 2U));
         for (std::uint32_t puff = 0; puff < kPuffsPerCloud; ++puff) {
@@ -233,7 +233,7 @@ template <typename ProfileFn>
 void AppendLathe(Mesh& mesh, int rows, int segments, const glm::vec3& colour, ProfileFn profile) {
     AppendGrid(mesh, rows, segments, colour, [&](float s, float turn) {
         const glm::vec2 radius_y = profile(s);
-        const float angle = kTwoPi * turn;
+        const float angle = kTwoPiF * turn;
         return glm::vec3(radius_y.x * std::cos(angle), radius_y.y, radius_y.x * std::sin(angle));
     });
 }
@@ -273,11 +273,11 @@ void AppendBox(Mesh& mesh, const glm::vec3& lo, const glm::vec3& hi, const glm::
 // smooth function of direction (so the seam and the poles stay closed).
 void AppendBlob(Mesh& mesh, float radius, const glm::vec3& stretch, float bumpiness,
                 std::uint32_t seed, const glm::vec3& colour) {
-    const glm::vec3 phase(kTwoPi * HashUnit(seed), kTwoPi * HashUnit(seed + 1U),
-                          kTwoPi * HashUnit(seed + 2U));
+    const glm::vec3 phase(kTwoPiF * HashUnit(seed), kTwoPiF * HashUnit(seed + 1U),
+                          kTwoPiF * HashUnit(seed + 2U));
     AppendGrid(mesh, 16, 24, colour, [&](float s, float turn) {
         const float latitude = kPi * (s - 0.5F);
-        const float longitude = kTwoPi * turn;
+        const float longitude = kTwoPiF * turn;
         const glm::vec3 d(std::cos(latitude) * std::cos(longitude), std::sin(latitude),
                           std::cos(latitude) * std::sin(longitude));
         const float bump = std::sin(2.7F * d.x + phase.x) * std::sin(3.1F * d.y + phase.y) *
@@ -324,7 +324,7 @@ float TerrainHeight(float x, float z) {
 float LowestGroundUnder(const glm::vec2& centre, float radius) {
     float lowest = TerrainHeight(centre.x, centre.y);
     for (int k = 0; k < 16; ++k) {
-        const float a = kTwoPi * static_cast<float>(k) / 16.0F;
+        const float a = kTwoPiF * static_cast<float>(k) / 16.0F;
         lowest = std::min(lowest, TerrainHeight(centre.x + radius * std::cos(a),
                                                 centre.y + radius * std::sin(a)));
     }
@@ -556,7 +556,7 @@ base::RgbaImage BuildWaterNormalMap(int size) {
                 const glm::vec2 k(static_cast<float>(wave.frequency_s),
                                   static_cast<float>(wave.frequency_t));
                 gradient += wave.slope * glm::normalize(k) *
-                            std::cos(kTwoPi * glm::dot(k, st) + wave.phase);
+                            std::cos(kTwoPiF * glm::dot(k, st) + wave.phase);
             }
             const glm::vec3 normal = glm::normalize(glm::vec3(-gradient, 1.0F));
             StoreTexel(image, column, row, normal * 0.5F + 0.5F);

@@ -9,7 +9,7 @@
 namespace tidepool::runner {
 namespace {
 
-double Seconds(ProgressMeter::Clock::duration duration) {
+double SecondsOf(ProgressMeter::Clock::duration duration) {
     return std::chrono::duration<double>(duration).count();
 }
 
@@ -113,7 +113,7 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
         decayed_to_ = start_;
     }
     // Age what was measured so far, then add this step at full weight.
-    const double age = std::max(0.0, Seconds(now - decayed_to_));
+    const double age = std::max(0.0, SecondsOf(now - decayed_to_));
     const double keep = std::exp2(-age / kRateHalfLifeSeconds);
     for (KindState& k : kinds_) {
         k.recent_seconds *= keep;
@@ -123,7 +123,7 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     Clock::time_point& last =
             last_step_.try_emplace(std::this_thread::get_id(), start_).first->second;
     KindState& k = kinds_[kind];
-    k.recent_seconds += std::max(0.0, Seconds(now - last));
+    k.recent_seconds += std::max(0.0, SecondsOf(now - last));
     k.recent_frames += static_cast<double>(frames);
     last = now;
     k.done += frames;
@@ -138,7 +138,7 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     state_.configuration = what;
     state_.done = kinds_[0].done + kinds_[1].done;
     state_.total = totals[0] + totals[1];
-    state_.elapsed_seconds = Seconds(now - start_);
+    state_.elapsed_seconds = SecondsOf(now - start_);
     double done_seconds = 0;
     double left_seconds = 0;
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
@@ -182,7 +182,7 @@ std::optional<double> ProgressMeter::HelperJoinsIn(Clock::time_point now) const 
     if (!expected || shared_->HelperSilentFor(forecast_silence_)) {
         return std::nullopt;  // no forecast, or its process may have died since it gave one
     }
-    return std::max(0.0, Seconds(*expected - now));
+    return std::max(0.0, SecondsOf(*expected - now));
 }
 
 // The frames of each kind in units the second process has claimed (mutex_ held): a configuration

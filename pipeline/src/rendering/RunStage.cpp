@@ -43,7 +43,7 @@ struct StageEnd {
 };
 
 // A progress sink as the runner's callback.
-runner::ProgressCallback ToCallback(ProgressSink& sink) {
+runner::ProgressCallback ToProgressCallback(ProgressSink& sink) {
     return [&sink](const runner::RunProgress& p) {
         sink.Progress({p.stage, p.configuration, p.done, p.total, p.elapsed_seconds, p.eta_seconds,
                        p.percent});
@@ -69,7 +69,7 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
             context.context->Environment().renderer, run.host.lp_num_threads, run.workers,
             run.comparisons.size(), run.rule.resolution_points));
     const runner::RunResults results =
-            runner::RunRender(*context.context, config, run, ToCallback(progress));
+            runner::RunRender(*context.context, config, run, ToProgressCallback(progress));
     progress.Finish();
     progress.Tell(results.diagnostics);
     Outcome written;
