@@ -35,15 +35,14 @@ std::vector<runner::CameraView> ChooseViews(const std::vector<std::string>& name
     return views.empty() ? default_views : views;
 }
 
-// A progress sink as the runner's callback.
-runner::ProgressCallback ToCallback(ProgressSink& sink) {
+}  // namespace
+
+runner::ProgressCallback ProgressCallbackFor(ProgressSink& sink) {
     return [&sink](const runner::RunProgress& p) {
         sink.Progress({p.stage, p.configuration, p.done, p.total, p.elapsed_seconds, p.eta_seconds,
                        p.percent});
     };
 }
-
-}  // namespace
 
 PreparedRender PrepareRender(const RenderSelection& selection) {
     PreparedRender prepared;
@@ -106,8 +105,8 @@ RenderResult Render(PreparedRender& prepared, runner::BackendKind backend,
             run.host.command, run.configurations.size(), run.views.size(), run.settings.width,
             run.settings.height, gl.renderer, gl.backend, gl.version, run.host.lp_num_threads,
             run.workers, run.comparisons.size(), run.rule.resolution_points));
-    result.results =
-            runner::RunRender(*context.context, *prepared.config, run, ToCallback(progress));
+    result.results = runner::RunRender(*context.context, *prepared.config, run,
+                                       ProgressCallbackFor(progress));
     progress.Finish();
     result.rendered = true;
     result.outcome.Add(result.results.diagnostics);

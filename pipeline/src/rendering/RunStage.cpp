@@ -10,6 +10,7 @@
 #include "tidepool/pipeline/MatrixLoading.h"
 #include "tidepool/pipeline/OutputFiles.h"
 #include "tidepool/pipeline/PlanStage.h"
+#include "tidepool/pipeline/RenderStage.h"
 #include "tidepool/pipeline/StabilityStage.h"
 #include "tidepool/runner/FrameTimer.h"
 #include "tidepool/runner/ProceduralScene.h"
@@ -42,14 +43,6 @@ struct StageEnd {
     int failures = 0;  // configurations that failed, or stability cases and plans that failed
 };
 
-// A progress sink as the runner's callback.
-runner::ProgressCallback ToProgressCallback(ProgressSink& sink) {
-    return [&sink](const runner::RunProgress& p) {
-        sink.Progress({p.stage, p.configuration, p.done, p.total, p.elapsed_seconds, p.eta_seconds,
-                       p.percent});
-    };
-}
-
 // The render: images at every view, each configuration's coarse time and the comparisons,
 // into run.out_dir/results.json.
 StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
@@ -69,7 +62,7 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
             context.context->Environment().renderer, run.host.lp_num_threads, run.workers,
             run.comparisons.size(), run.rule.resolution_points));
     const runner::RunResults results =
-            runner::RunRender(*context.context, config, run, ToProgressCallback(progress));
+            runner::RunRender(*context.context, config, run, ProgressCallbackFor(progress));
     progress.Finish();
     progress.Tell(results.diagnostics);
     Outcome written;

@@ -53,6 +53,9 @@ struct RenderResult {
     std::filesystem::path results_path;  // where results.json is once published
 };
 
+/// The runner's progress callback that tells `sink` (render and run alike).
+runner::ProgressCallback ProgressCallbackFor(ProgressSink& sink);
+
 /// Renders `prepared` (whose `run` has its timing settings) with a GL context on `backend` into
 /// `out`, staged and published whole by `writer` ("tidepool render"): images, then results.json.
 /// Tells `progress` what it is about to do (configurations, views, renderer, workers) and how far
