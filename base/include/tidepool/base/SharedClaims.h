@@ -43,7 +43,8 @@ public:
     /// The helper is alive (working on its claimed units, or on its own work before them): sets
     /// its heartbeat to now.
     void Beat();
-    /// Whether the helper's heartbeat is older than `quiet` (or it never beat).
+    /// Whether the helper's heartbeat is older than `quiet` (the table's creation counts as a
+    /// beat).
     bool HelperSilentFor(std::chrono::milliseconds quiet) const;
     /// Whether the helper is taking units now (it says so; it stops when none are left for it,
     /// or when it cannot take any), and whether it has stopped: a helper that has stopped does
