@@ -41,7 +41,7 @@ without_long="-$(IFS=:; echo "${long_tests[*]}")"
 run_job() {
   local i="$1" code=0
   # --gtest_brief prints only the failures and the totals; a shard that crashes leaves its
-  # sanitizer report in its log. The timeout matches ctest's per-test 600 s, for a whole shard.
+  # sanitizer report in its log. ctest gives one test 600 s; a process here gets 1800 s.
   if [ "$i" -lt "${#long_tests[@]}" ]; then
     timeout 1800 "$binary" --gtest_brief=1 --gtest_filter="${long_tests[$i]}" \
       > "$logs/$i.log" 2>&1 || code=$?
