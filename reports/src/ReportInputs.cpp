@@ -154,9 +154,17 @@ std::string ParseConfiguration(const stagefiles::ResultsConfiguration& entry,
 
 // One `comparisons` entry as the report uses it.
 MeasuredComparison ParseComparison(const stagefiles::ResultsComparison& entry) {
-    return {entry.label,        entry.baseline,         entry.candidate,         entry.baseline_ms,
-            entry.candidate_ms, entry.baseline_wall_ms, entry.candidate_wall_ms, entry.decision,
-            entry.error};
+    return {entry.label,
+            entry.baseline,
+            entry.candidate,
+            entry.baseline_ms,
+            entry.candidate_ms,
+            entry.baseline_wall_ms,
+            entry.candidate_wall_ms,
+            entry.decision,
+            entry.error,
+            {entry.baseline_pass_ms.begin(), entry.baseline_pass_ms.end()},
+            {entry.candidate_pass_ms.begin(), entry.candidate_pass_ms.end()}};
 }
 
 }  // namespace

@@ -200,35 +200,46 @@ PairsOfFrames PairsFor(const ReportInputs& inputs, const MeasuredConfiguration& 
 }
 
 // Each pass's time in both configurations and the pass whose time changed most, with its share
-// of the frame it belongs to: the measured reason a row's change is what it is.
-std::string MeasuredWhy(const MeasuredConfiguration& base, const MeasuredConfiguration& cand) {
-    if (base.pass_ms.empty() || cand.pass_ms.empty()) {
+// of the frame it belongs to: the measured reason a row's change is what it is. The passes are
+// the comparison's own instrumented frames, taken in pairs under the same load, when the results
+// have them; otherwise each configuration's (results written before comparisons kept theirs).
+std::string MeasuredWhy(const ReportInputs& inputs, const MeasuredConfiguration& base,
+                        const MeasuredConfiguration& cand) {
+    using PassTimes = std::map<std::string, double>;
+    const PassTimes* base_ms = &base.pass_ms;
+    const PassTimes* cand_ms = &cand.pass_ms;
+    if (const MeasuredComparison* c = inputs.FindComparison(base.id, cand.id);
+        c != nullptr && !c->baseline_pass_ms.empty() && !c->candidate_pass_ms.empty()) {
+        base_ms = &c->baseline_pass_ms;
+        cand_ms = &c->candidate_pass_ms;
+    }
+    if (base_ms->empty() || cand_ms->empty()) {
         return "";
     }
+    // The passes in frame order (as the views list them), then any the views do not name.
     std::vector<std::string> passes;
+    auto add = [&](const std::string& name) {
+        if (std::find(passes.begin(), passes.end(), name) == passes.end()) {
+            passes.push_back(name);
+        }
+    };
     for (const MeasuredConfiguration* c : {&base, &cand}) {
         for (const ViewImage& v : c->views) {
-            for (const std::string& name : v.pass_names) {
-                if (std::find(passes.begin(), passes.end(), name) == passes.end()) {
-                    passes.push_back(name);
-                }
-            }
+            std::for_each(v.pass_names.begin(), v.pass_names.end(), add);
         }
     }
-    for (const auto* c : {&base, &cand}) {
-        for (const auto& [name, ms] : c->pass_ms) {
-            if (std::find(passes.begin(), passes.end(), name) == passes.end()) {
-                passes.push_back(name);
-            }
+    for (const PassTimes* times : {base_ms, cand_ms}) {
+        for (const auto& [name, ms] : *times) {
+            add(name);
         }
     }
-    auto at = [](const MeasuredConfiguration& c, const std::string& pass) {
-        auto found = c.pass_ms.find(pass);
-        return found == c.pass_ms.end() ? 0.0 : found->second;
+    auto at = [](const PassTimes& times, const std::string& pass) {
+        auto found = times.find(pass);
+        return found == times.end() ? 0.0 : found->second;
     };
-    auto total = [](const MeasuredConfiguration& c) {
+    auto total = [](const PassTimes& times) {
         double sum = 0;
-        for (const auto& [name, ms] : c.pass_ms) {
+        for (const auto& [name, ms] : times) {
             sum += ms;
         }
         return sum;
@@ -237,8 +248,8 @@ std::string MeasuredWhy(const MeasuredConfiguration& base, const MeasuredConfigu
     std::string largest;
     double largest_change = 0;
     for (const std::string& pass : passes) {
-        const double a = at(base, pass);
-        const double b = at(cand, pass);
+        const double a = at(*base_ms, pass);
+        const double b = at(*cand_ms, pass);
         list += fmt::format("{}{} {} -> {} ms", list.empty() ? "" : "; ", pass,
                             a > 0 ? fmt::format("{:.1f}", a) : std::string("none"),
                             b > 0 ? fmt::format("{:.1f}", b) : std::string("none"));
@@ -251,7 +262,7 @@ std::string MeasuredWhy(const MeasuredConfiguration& base, const MeasuredConfigu
         return "measured per pass: " + list;
     }
     // The share of the frame the changed pass takes on the side where it is larger.
-    const MeasuredConfiguration& side = largest_change > 0 ? cand : base;
+    const PassTimes& side = largest_change > 0 ? *cand_ms : *base_ms;
     const double share = 100.0 * at(side, largest) / std::max(total(side), 1e-9);
     return fmt::format(
             "measured per pass: {}. The {} pass changes most ({:+.1f} ms); it is "
@@ -879,7 +890,7 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             ChangeFromRatio(comparison.ratio, &comparison.change_percent, &comparison.change_ci);
             comparison.resolution_points =
                     (comparison.change_ci.high - comparison.change_ci.low) / 2;
-            comparison.measured_why = MeasuredWhy(*base, *cand);
+            comparison.measured_why = MeasuredWhy(inputs, *base, *cand);
             comparison.odd_change_percent = PerformanceChangePercent(comparison.split.odd.ratio);
             comparison.even_change_percent = PerformanceChangePercent(comparison.split.even.ratio);
             const double d = comparison.split.disagreement_percent_points;

@@ -173,28 +173,11 @@ void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonRe
                 return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
             },
             ComparisonRule(options, c), after_look);
-}
-
-void TimePasses(RenderWorker& w, const RunOptions& options, std::size_t i, ConfigurationResult& r) {
-    const CameraView* timing_view = TimingView(options);
-    if (timing_view == nullptr) {
-        return;
-    }
-    std::map<std::string, std::vector<double>> per_pass;
-    for (int f = 0; f < options.pass_frames; ++f) {
-        for (const auto& [pass, ms] :
-             w.timer->TimePasses(options.configurations[i], *timing_view)) {
-            per_pass[pass].push_back(ms);
-        }
-    }
-    for (auto& [pass, samples] : per_pass) {
-        const double median = base::Median(samples);
-        if (pass == "frame") {
-            r.instrumented_frame_ms = median;
-        } else {
-            r.pass_ms[pass] = median;
-        }
-    }
+    TimePassesInPairs(
+            [&](bool is_candidate) {
+                return w.timer->TimePasses(is_candidate ? candidate : baseline, *timing_view);
+            },
+            options.pass_frames, out.timing);
 }
 
 }  // namespace tidepool::runner

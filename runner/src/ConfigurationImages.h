@@ -81,13 +81,10 @@ long FramesPerConfiguration(const RunOptions& options);
 base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparison& comparison);
 
 /// Times comparison `out.comparison` on `w`: both configurations compiled and warmed, then pairs
-/// until its ComparisonRule stops; `after_look` (may be empty) sees the timing after every look.
+/// until its ComparisonRule stops, then RunOptions::pass_frames pairs of instrumented frames for
+/// each side's per-pass times; `after_look` (may be empty) sees the timing after every look.
 /// Sets `out.error` instead when there is no timing view or a side does not compile in Mesa.
 void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
                         const std::function<void(const ComparisonTiming& so_far)>& after_look);
-
-/// Configuration `i`'s per-pass medians over RunOptions::pass_frames instrumented frames at the
-/// timing view into `r` (ConfigurationResult::pass_ms and instrumented_frame_ms).
-void TimePasses(RenderWorker& w, const RunOptions& options, std::size_t i, ConfigurationResult& r);
 
 }  // namespace tidepool::runner

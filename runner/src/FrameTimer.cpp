@@ -1,10 +1,14 @@
 #include "tidepool/runner/FrameTimer.h"
 
+#include "tidepool/base/SampleStatistics.h"
+
 #include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <map>
+#include <vector>
 
 namespace tidepool::runner {
 namespace {
@@ -120,6 +124,29 @@ std::map<std::string, double> FrameTimer::TimePasses(const RenderConfiguration& 
     renderer_.Finish();
     out["frame"] = ReadMs() - start;
     return out;
+}
+
+void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTiming& out) {
+    std::map<std::string, std::vector<double>> samples[2];  // [0] baseline, [1] candidate
+    for (int k = 0; k < pairs; ++k) {
+        const bool candidate_first = k % 2 == 1;
+        for (const bool candidate : {candidate_first, !candidate_first}) {
+            for (const auto& [pass, ms] : time_side(candidate)) {
+                samples[candidate ? 1 : 0][pass].push_back(ms);
+            }
+        }
+    }
+    PassMedians* sides[2] = {&out.baseline_passes, &out.candidate_passes};
+    for (int side = 0; side < 2; ++side) {
+        *sides[side] = PassMedians{};
+        for (const auto& [pass, times] : samples[side]) {
+            if (pass == "frame") {
+                sides[side]->frame_ms = base::Median(times);
+            } else {
+                sides[side]->pass_ms[pass] = base::Median(times);
+            }
+        }
+    }
 }
 
 ComparisonTiming TimeComparison(

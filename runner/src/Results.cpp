@@ -120,10 +120,12 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
 
-    // A configuration in several comparisons has its passes timed once, by the first of them.
-    auto time_passes = [&](RenderWorker& w, std::size_t i) {
+    // A configuration in several comparisons keeps the per-pass times of the first of them to
+    // finish (each comparison keeps its own pair in its ComparisonTiming).
+    auto keep_passes = [&](std::size_t i, const PassMedians& passes) {
         if (!pass_timed[i].exchange(true)) {
-            TimePasses(w, options, i, results.configurations[i]);
+            results.configurations[i].pass_ms = passes.pass_ms;
+            results.configurations[i].instrumented_frame_ms = passes.frame_ms;
         }
     };
 
@@ -158,8 +160,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             meter.ComparisonExpects(k, 0, true);
             return;
         }
-        time_passes(w, c.baseline);
-        time_passes(w, c.candidate);
+        keep_passes(c.baseline, out.timing.baseline_passes);
+        keep_passes(c.candidate, out.timing.candidate_passes);
         meter.Step(ProgressMeter::kComparison, c.label, 0);  // the per-pass frames' time too
     };
 
@@ -449,6 +451,12 @@ stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
         out.candidate_ms = c.timing.samples.candidate_ms;
         out.baseline_wall_ms = c.timing.samples.baseline_wall_ms;
         out.candidate_wall_ms = c.timing.samples.candidate_wall_ms;
+        out.baseline_pass_ms.insert(c.timing.baseline_passes.pass_ms.begin(),
+                                    c.timing.baseline_passes.pass_ms.end());
+        out.candidate_pass_ms.insert(c.timing.candidate_passes.pass_ms.begin(),
+                                     c.timing.candidate_passes.pass_ms.end());
+        out.baseline_instrumented_frame_ms = c.timing.baseline_passes.frame_ms;
+        out.candidate_instrumented_frame_ms = c.timing.candidate_passes.frame_ms;
         file.comparisons.push_back(std::move(out));
     }
     for (const VerdictDisagreement& d : results.disagreements) {

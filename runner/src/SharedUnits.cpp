@@ -100,12 +100,14 @@ void TimeSharedComparison(RenderWorker& w, const RunOptions& options, std::size_
     // A comparison under load may take longer than the render waits for a silent helper.
     TimeComparisonUnit(w, options, out, [&](const ComparisonTiming&) { claims.Beat(); });
     frame.configurations.clear();
-    for (std::size_t i : {out.comparison.baseline, out.comparison.candidate}) {
+    for (const bool candidate : {false, true}) {
         ConfigurationResult r;
-        r.configuration = options.configurations[i];
-        if (out.error.empty()) {
-            TimePasses(w, options, i, r);
-        }
+        r.configuration = options.configurations[candidate ? out.comparison.candidate
+                                                           : out.comparison.baseline];
+        const PassMedians& passes =
+                candidate ? out.timing.candidate_passes : out.timing.baseline_passes;
+        r.pass_ms = passes.pass_ms;
+        r.instrumented_frame_ms = passes.frame_ms;
         frame.configurations.push_back(std::move(r));
     }
     out.comparison.baseline = 0;
@@ -167,6 +169,10 @@ bool FromResultsEntry(const stagefiles::ResultsComparison& entry, ComparisonResu
     out.timing.samples = {entry.baseline_ms, entry.candidate_ms, entry.baseline_wall_ms,
                           entry.candidate_wall_ms};
     out.timing.decision = *decision;
+    out.timing.baseline_passes = {{entry.baseline_pass_ms.begin(), entry.baseline_pass_ms.end()},
+                                  entry.baseline_instrumented_frame_ms};
+    out.timing.candidate_passes = {{entry.candidate_pass_ms.begin(), entry.candidate_pass_ms.end()},
+                                   entry.candidate_instrumented_frame_ms};
     if (out.error.empty()) {
         out.timing.estimate = base::EstimatePaired(entry.baseline_ms, entry.candidate_ms);
     }

@@ -130,7 +130,11 @@ nlohmann::json ToJson(const ResultsComparison& c) {
             {"baseline_ms", c.baseline_ms},
             {"candidate_ms", c.candidate_ms},
             {"baseline_wall_ms", c.baseline_wall_ms},
-            {"candidate_wall_ms", c.candidate_wall_ms}};
+            {"candidate_wall_ms", c.candidate_wall_ms},
+            {"baseline_pass_ms", c.baseline_pass_ms},
+            {"candidate_pass_ms", c.candidate_pass_ms},
+            {"baseline_instrumented_frame_ms", c.baseline_instrumented_frame_ms},
+            {"candidate_instrumented_frame_ms", c.candidate_instrumented_frame_ms}};
 }
 
 }  // namespace
@@ -417,6 +421,10 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Required(o, path, "candidate_ms", &out->candidate_ms);
     r.Field(o, path, "baseline_wall_ms", &out->baseline_wall_ms);
     r.Field(o, path, "candidate_wall_ms", &out->candidate_wall_ms);
+    r.Field(o, path, "baseline_pass_ms", &out->baseline_pass_ms);
+    r.Field(o, path, "candidate_pass_ms", &out->candidate_pass_ms);
+    r.Field(o, path, "baseline_instrumented_frame_ms", &out->baseline_instrumented_frame_ms);
+    r.Field(o, path, "candidate_instrumented_frame_ms", &out->candidate_instrumented_frame_ms);
 }
 
 void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path,

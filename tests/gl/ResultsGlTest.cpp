@@ -48,7 +48,14 @@ TEST(ResultsGlTest, ComparisonsArePairedUntilTheStoppingRuleAndConfigurationsTim
         EXPECT_EQ(c.timing.samples.candidate_ms.size(), 20U) << c.comparison.label;
         EXPECT_EQ(c.timing.decision, base::StopDecision::kCapped) << c.comparison.label;
         EXPECT_TRUE(c.timing.estimate.Valid()) << c.timing.estimate.error;
+        // Each comparison has both sides' per-pass times of its own.
+        EXPECT_GT(c.timing.baseline_passes.pass_ms.count("main"), 0U) << c.comparison.label;
+        EXPECT_GT(c.timing.candidate_passes.pass_ms.count("main"), 0U) << c.comparison.label;
+        EXPECT_GT(c.timing.baseline_passes.frame_ms, 0.0) << c.comparison.label;
+        EXPECT_GT(c.timing.candidate_passes.frame_ms, 0.0) << c.comparison.label;
     }
+    EXPECT_EQ(results.comparisons[1].timing.candidate_passes.pass_ms.count("refraction"), 1U);
+    EXPECT_EQ(results.comparisons[1].timing.baseline_passes.pass_ms.count("refraction"), 0U);
     // Every compared configuration has per-pass times; the refraction one has that pass.
     EXPECT_EQ(results.configurations[2].pass_ms.count("refraction"), 1U);
     EXPECT_EQ(results.configurations[0].pass_ms.count("refraction"), 0U);

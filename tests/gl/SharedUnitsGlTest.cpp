@@ -90,6 +90,10 @@ TEST(SharedUnitsGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) 
         EXPECT_GT(together.configurations[compared].pass_ms.count("main"), 0U) << compared;
         EXPECT_GT(together.configurations[compared].instrumented_frame_ms, 0.0) << compared;
     }
+    // The comparison's own per-pass times come back from the second process's unit too.
+    ASSERT_EQ(together.comparisons.size(), 1U);
+    EXPECT_GT(together.comparisons[0].timing.baseline_passes.pass_ms.count("main"), 0U);
+    EXPECT_GT(together.comparisons[0].timing.candidate_passes.frame_ms, 0.0);
 
     const stagefiles::ResultsFile expected = ToResultsFile(alone);
     const stagefiles::ResultsFile got = ToResultsFile(together);

@@ -1,11 +1,14 @@
 // The timing engine's parts that need no GL: the clock chosen from a renderer string, the
-// pairing order of a comparison and its stopping (runner/include/tidepool/runner/FrameTimer.h).
+// pairing order of a comparison, its stopping and its per-pass frames
+// (runner/include/tidepool/runner/FrameTimer.h).
 #include "tidepool/runner/FrameTimer.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -74,6 +77,32 @@ TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     const ComparisonTiming t = TimeComparison(side, rule);
     EXPECT_EQ(t.decision, base::StopDecision::kCapped);
     EXPECT_EQ(t.estimate.pairs, 30);
+}
+
+TEST(FrameTimerTest, PassFramesAlternateLikeThePairsAndKeepEachSidesMedians) {
+    std::vector<bool> order;
+    const TimeSidePasses side = [&](bool candidate) {
+        order.push_back(candidate);
+        // The k-th frame of a side: main 10 + k ms (baseline) or 20 + k ms (candidate); only the
+        // candidate has a low_res_water pass.
+        const double k = static_cast<double>(std::count(order.begin(), order.end(), candidate) - 1);
+        std::map<std::string, double> passes = {{"main", (candidate ? 20.0 : 10.0) + k}};
+        if (candidate) {
+            passes["low_res_water"] = 3.0;
+        }
+        passes["frame"] = passes["main"] + (candidate ? 3.0 : 0.0);
+        return passes;
+    };
+    ComparisonTiming t;
+    t.baseline_passes.pass_ms = {{"stale", 1.0}};  // replaced, not merged
+    TimePassesInPairs(side, 5, t);
+    EXPECT_EQ(order,
+              (std::vector<bool>{false, true, true, false, false, true, true, false, false, true}));
+    EXPECT_EQ(t.baseline_passes.pass_ms, (std::map<std::string, double>{{"main", 12.0}}));
+    EXPECT_DOUBLE_EQ(t.baseline_passes.frame_ms, 12.0);
+    EXPECT_EQ(t.candidate_passes.pass_ms,
+              (std::map<std::string, double>{{"low_res_water", 3.0}, {"main", 22.0}}));
+    EXPECT_DOUBLE_EQ(t.candidate_passes.frame_ms, 25.0);
 }
 
 }  // namespace

@@ -168,6 +168,50 @@ TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
     EXPECT_TRUE(std::isfinite(model.largest_split_half_disagreement));
 }
 
+// Row 7's "why" cites the per-pass times its comparison took in pairs; each configuration's own
+// per-pass times (timed in whichever comparison came first, under another moment's load) are
+// only the fallback for results that have no per-comparison ones.
+TEST(ReportModelTest, MeasuredWhyCitesTheComparisonsOwnPassTimes) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    for (nlohmann::json& c : results["configurations"]) {
+        if (c["id"] == "water:FULL") {
+            c["pass_ms"] = {{"reflection", 3.3}, {"main", 26.5}};
+        } else if (c["id"] == "water:FULL@lowres") {
+            c["pass_ms"] = {{"reflection", 4.4}, {"main", 35.6}, {"low_res_water", 11.2}};
+        }
+    }
+    auto why_of_row_7 = [&](const nlohmann::json& document) {
+        dir.Write("render/results.json", document.dump());
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        EXPECT_TRUE(loaded.inputs) << loaded.error;
+        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+        EXPECT_TRUE(built.model) << built.error;
+        return built.model->rows.at(6).measured_why;
+    };
+    const std::string fallback = why_of_row_7(results);
+    EXPECT_NE(fallback.find("main 26.5 -> 35.6 ms"), std::string::npos) << fallback;
+
+    results["comparisons"] = {{{"label", "row 7"},
+                               {"baseline", "water:FULL"},
+                               {"candidate", "water:FULL@lowres"},
+                               {"decision", "resolved"},
+                               {"baseline_ms", {30.0, 30.5}},
+                               {"candidate_ms", {26.0, 26.5}},
+                               {"baseline_pass_ms", {{"reflection", 3.2}, {"main", 26.0}}},
+                               {"candidate_pass_ms",
+                                {{"reflection", 3.3}, {"main", 12.0}, {"low_res_water", 10.5}}}}};
+    const std::string why = why_of_row_7(results);
+    EXPECT_NE(why.find("reflection 3.2 -> 3.3 ms"), std::string::npos) << why;
+    EXPECT_NE(why.find("main 26.0 -> 12.0 ms"), std::string::npos) << why;
+    EXPECT_NE(why.find("low_res_water none -> 10.5 ms"), std::string::npos) << why;
+    EXPECT_NE(why.find("The main pass changes most (-14.0 ms); it is 89% of the baseline's frame"),
+              std::string::npos)
+            << why;
+    EXPECT_EQ(why.find("35.6"), std::string::npos) << why;
+}
+
 TEST(ReportModelTest, AccuracyAndParetoFrontierOnKnownImages) {
     TempDir dir;
     // Reference slow and exact; "cheap" fast with a small error; "bad" slower and worse than

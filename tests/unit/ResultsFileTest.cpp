@@ -82,7 +82,11 @@ ResultsFile OneOfEachResult() {
                          {4.5, 4.25},
                          {5.0, 4.75},
                          {4.5, 4.5},
-                         {5.0, 5.0}}};
+                         {5.0, 5.0},
+                         {{"main", 2.5}},
+                         {{"main", 2.75}, {"low_res_water", 1.0}},
+                         4.5,
+                         5.0}};
     file.disagreements = {{"water:B", true, false}};
     file.diagnostics = {{"error", "", 0, 0, "oops", "", "error: oops"}};
     file.ok = true;

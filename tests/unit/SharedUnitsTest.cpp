@@ -69,5 +69,35 @@ TEST(SharedUnitsTest, AUnitReadBackFromItsFileWritesTheSameResultsEntry) {
     EXPECT_EQ(r.verdict.diagnostics[1].severity, Severity::kError);
 }
 
+// A comparison's unit read back keeps its pairs, its decision and each side's per-pass times.
+TEST(SharedUnitsTest, AComparisonReadBackFromItsFileWritesTheSameResultsEntry) {
+    RunResults results;
+    results.configurations = {EveryFieldSet(), EveryFieldSet()};
+    results.configurations[1].configuration.id = "water+ENABLE_FOG@lowres";
+    ComparisonResult& c = results.comparisons.emplace_back();
+    c.comparison.label = "row 7";
+    c.comparison.baseline = 0;
+    c.comparison.candidate = 1;
+    c.timing.samples = {{10.0, 10.5}, {11.0, 11.25}, {10.25, 10.75}, {11.5, 11.5}};
+    c.timing.estimate =
+            base::EstimatePaired(c.timing.samples.baseline_ms, c.timing.samples.candidate_ms);
+    c.timing.decision = base::StopDecision::kResolved;
+    c.timing.baseline_passes = {{{"main", 9.5}}, 10.25};
+    c.timing.candidate_passes = {{{"main", 8.0}, {"low_res_water", 3.0}}, 11.25};
+    const std::string written = stagefiles::ResultsFileText(ToResultsFile(results));
+    const testing::TempDir dir;
+    const stagefiles::ReadResult<stagefiles::ResultsFile> read =
+            stagefiles::ReadResultsFile(dir.Write("unit.json", written));
+    ASSERT_TRUE(read.value) << read.error;
+    ASSERT_EQ(read.value->comparisons.size(), 1U);
+
+    RunResults again = results;
+    again.comparisons[0].timing = {};
+    ASSERT_TRUE(FromResultsEntry(read.value->comparisons[0], again.comparisons[0]));
+    EXPECT_EQ(stagefiles::ResultsFileText(ToResultsFile(again)), written);
+    EXPECT_EQ(again.comparisons[0].timing.candidate_passes.pass_ms.at("low_res_water"), 3.0);
+    EXPECT_EQ(again.comparisons[0].timing.baseline_passes.frame_ms, 10.25);
+}
+
 }  // namespace
 }  // namespace tidepool::runner

@@ -107,6 +107,10 @@ struct MeasuredComparison {
     std::vector<double> candidate_wall_ms;
     std::string decision;  // "resolved" or "capped"
     std::string error;     // why the runner has no pairs ("" when it has)
+    // Each side's per-pass medians over the comparison's own instrumented frames, taken in pairs
+    // (empty in results written before they were kept).
+    std::map<std::string, double> baseline_pass_ms;
+    std::map<std::string, double> candidate_pass_ms;
 };
 
 /// Everything a report is built from.

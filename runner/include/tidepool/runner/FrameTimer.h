@@ -86,15 +86,38 @@ struct PairSamples {
     std::vector<double> candidate_wall_ms;
 };
 
+/// One configuration's instrumented frames (a glFinish after every pass): each pass's median
+/// time and the median of the frames as a whole, on the timer's clock.
+struct PassMedians {
+    std::map<std::string, double> pass_ms;  // by pass name
+    double frame_ms = 0;                    // 0 when no instrumented frame was timed
+};
+
 /// The outcome of comparing two configurations.
 struct ComparisonTiming {
     PairSamples samples;
     base::PairedEstimate estimate;  // over every pair, on the timer's clock
     base::StopDecision decision = base::StopDecision::kContinue;
+    // Each side's per-pass times, from instrumented frames taken in pairs like the samples, so
+    // that the two sides' passes are timed under the same load (TimePassesInPairs).
+    PassMedians baseline_passes;
+    PassMedians candidate_passes;
 };
 
 /// Times one side of a pair: false for the baseline, true for the candidate.
 using TimeSide = std::function<FrameTime(bool candidate)>;
+
+/// Times one side's instrumented frame: each pass's time by name plus "frame" for the whole, as
+/// FrameTimer::TimePasses returns them; false for the baseline, true for the candidate.
+using TimeSidePasses = std::function<std::map<std::string, double>(bool candidate)>;
+
+/// Times `pairs` instrumented frames of each side, in pairs ordered as TimeComparison orders
+/// them (baseline first in even pairs, candidate first in odd ones), and writes each side's
+/// medians into `out`'s baseline_passes and candidate_passes. Why pairs: instrumented frames
+/// timed seconds apart, or in another comparison, differ by the load of their moment (a pass
+/// of an identical configuration read 26.5 ms in one and 35.6 ms in another on a shared
+/// machine), and the report compares the two sides pass by pass.
+void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTiming& out);
 
 /// Compares two configurations pair by pair: pair i renders the baseline then the candidate
 /// when i is even, the other way round when odd, so neither side always goes first and the two

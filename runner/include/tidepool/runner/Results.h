@@ -78,8 +78,8 @@ struct RunOptions {
     int coarse_frames = 3;
     std::vector<TimedComparison> comparisons;
     base::StoppingRule rule;  // when a comparison has enough pairs
-    // Frames with a glFinish after each pass, per compared configuration: the per-pass times
-    // behind the report's "why" column (medians over these frames).
+    // Pairs of frames with a glFinish after each pass, per comparison (one frame of each side
+    // per pair): the per-pass times behind the report's "why" column (medians over these frames).
     int pass_frames = 5;
     // Rendering threads, each with a GL context of its own (`make_context` makes all but the
     // first, which is the context RunRender is given, used on the calling thread). Both sides
@@ -127,7 +127,8 @@ struct ConfigurationResult {
     std::vector<std::vector<double>> cpu_samples_ms;
     base::SampleStatistics cpu_statistics;
     // Per-pass medians on the run's clock over RunOptions::pass_frames instrumented frames
-    // (compared configurations only), and the median of those frames as a whole.
+    // (compared configurations only: those of the first comparison that timed it, see
+    // ComparisonTiming), and the median of those frames as a whole.
     std::map<std::string, double> pass_ms;
     double instrumented_frame_ms = 0;
     int passes = 0;  // per frame at the timing view

@@ -230,6 +230,12 @@ struct ResultsComparison {
     std::vector<double> candidate_ms;  // required
     std::vector<double> baseline_wall_ms;
     std::vector<double> candidate_wall_ms;
+    // Each side's per-pass medians over the comparison's instrumented frames, taken in pairs,
+    // and those frames' median as a whole (empty / 0 in files written before they were kept).
+    std::map<std::string, double, std::less<>> baseline_pass_ms;
+    std::map<std::string, double, std::less<>> candidate_pass_ms;
+    double baseline_instrumented_frame_ms = 0;
+    double candidate_instrumented_frame_ms = 0;
 
     bool operator==(const ResultsComparison&) const = default;
 };
