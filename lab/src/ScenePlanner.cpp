@@ -307,17 +307,6 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     return candidates;
 }
 
-base::StoppingRule CandidateRule(const base::StoppingRule& rule, bool qualifies) {
-    base::StoppingRule out = rule;
-    if (qualifies) {
-        // ChooseCandidate's test: time_change_high < -margin, i.e. the ratio's upper end below
-        // 1 - margin, i.e. the performance change's lower end above this.
-        out.boundaries_points.push_back(
-                base::PerformanceChangePercent(1.0 - base::kDirectionMarginPoints / 100.0));
-    }
-    return out;
-}
-
 CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                                 bool quality_bounds, std::optional<double> frame_budget_ms,
                                 double tie_points) {
@@ -614,7 +603,6 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     // engine on the clock the renderer calls for.
     FrameTimer timer(*renderer, options.clock);
     PlanCandidate& full_candidate = plan.candidates.front();
-    const bool quality_bounds = scene.target.min_psnr_db || scene.target.max_share_visible;
     std::vector<double> full_samples;
     for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
         PlanCandidate& c = plan.candidates[i];
@@ -627,7 +615,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                     use_settings(side);
                     return timer.Time(side.configuration, view);
                 },
-                CandidateRule(options.rule, quality_bounds && c.meets_quality));
+                options.rule);
         const base::PairedEstimate& e = timing.estimate;
         c.time_ms = base::Median(timing.samples.candidate_ms);
         c.time_change_percent = (e.ratio - 1.0) * 100.0;
@@ -648,6 +636,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
     // The choice, on the measurements only.
     plan.full = 0;
     const QualityTarget& target = scene.target;
+    const bool quality_bounds = target.min_psnr_db || target.max_share_visible;
     std::vector<CandidateMeasure> measures;
     for (const PlanCandidate& c : plan.candidates) {
         measures.push_back({c.valid, c.meets_quality, c.time_ms, c.time_change_low,

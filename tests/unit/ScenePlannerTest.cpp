@@ -1,6 +1,5 @@
 // The scene planner's parts that need no GL: its choice between measured candidates, on a tie
-// and at the margins, and the stopping rule its candidates are timed by
-// (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate and CandidateRule).
+// and at the margins (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate).
 #include "tidepool/lab/ScenePlanner.h"
 
 #include <gtest/gtest.h>
@@ -77,39 +76,6 @@ TEST(ScenePlannerTest, CandidatesMissingTheQualityTargetAreNeverChosen) {
                                                 Candidate(-40, -42, -38, 20)};
     candidates[1].meets_quality = false;
     EXPECT_EQ(ChooseCandidate(candidates, true, std::nullopt, kTiePoints).index, 0);
-}
-
-// An estimate with its performance-change interval [low, high] after 30 pairs.
-base::PairedEstimate Estimate(double low, double high) {
-    base::PairedEstimate e;
-    e.pairs = 30;
-    e.change_low = low;
-    e.change_high = high;
-    e.change_percent = (low + high) / 2;
-    e.ratio = 1 / (1 + e.change_percent / 100);
-    e.ratio_low = 1 / (1 + high / 100);
-    e.ratio_high = 1 / (1 + low / 100);
-    return e;
-}
-
-TEST(ScenePlannerTest, AQualifyingCandidateStraddlingTheMarginIsTimedOnUntilItClearsIt) {
-    const base::StoppingRule planner{3.0, 20, 200, 10};
-    // open_sea's 32-pixel reflection in one run: +1.45% [-1.38, +3.25] faster after 30 pairs.
-    // Its centre is short of the margin and both ends are far from it, so the plain rule stops;
-    // ChooseCandidate would not choose it, where the next run chose it at +3.84% [+2.6, +5.1].
-    const base::PairedEstimate straddling = Estimate(-1.38, 3.25);
-    EXPECT_EQ(base::DecideStop(straddling, planner), base::StopDecision::kResolved);
-    const base::StoppingRule qualifying = CandidateRule(planner, true);
-    EXPECT_EQ(base::DecideStop(straddling, qualifying), base::StopDecision::kContinue);
-    // A candidate that does not meet the quality target is never chosen: its rule is the plain one.
-    EXPECT_EQ(CandidateRule(planner, false).boundaries_points, planner.boundaries_points);
-    // The boundary is where ChooseCandidate's test turns: a frame-time change of -1.5%.
-    ASSERT_EQ(qualifying.boundaries_points.size(), 1U);
-    const double boundary = qualifying.boundaries_points.front();
-    EXPECT_NEAR(1 / (1 + boundary / 100), 1 - base::kDirectionMarginPoints / 100, 1e-12);
-    // Once the interval clears the boundary, or reaches the finest half-width, it stops.
-    EXPECT_EQ(base::DecideStop(Estimate(2.6, 5.1), qualifying), base::StopDecision::kResolved);
-    EXPECT_EQ(base::DecideStop(Estimate(0.8, 2.3), qualifying), base::StopDecision::kResolved);
 }
 
 }  // namespace

@@ -146,16 +146,6 @@ CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                                 bool quality_bounds, std::optional<double> frame_budget_ms,
                                 double tie_points);
 
-/// The stopping rule candidate timing uses: `rule`, and for a candidate that meets the scene's
-/// quality bounds (`qualifies`) also a verdict boundary where ChooseCandidate's test turns (a
-/// frame-time change of -kDirectionMarginPoints, as a performance change), so that its pairs go
-/// on while its interval straddles that point, down to FinestHalfWidthPoints. Why: the rule's
-/// direction-margin clause looks at the interval's ends, so an interval centred just short of
-/// the margin with both ends far from it stopped at the coarse resolution, and the choice then
-/// went either way between runs (`open_sea`'s 32-pixel reflection read -1.4% [-3.2, +1.4] after
-/// 30 pairs in one run, -3.7% [-4.9, -2.5] after 120 in the next). Never fails.
-base::StoppingRule CandidateRule(const base::StoppingRule& rule, bool qualifies);
-
 /// The candidate list the rules propose for `scene` (at most 11, the full configuration first,
 /// then every effect dropped alone, then combinations the scene suggests),
 /// each a variant of program `water` with its pass options; a candidate whose defines break a
