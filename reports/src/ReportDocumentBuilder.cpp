@@ -67,7 +67,7 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
             {"Timing view", text(settings.timing_view)},
             {"Warm-up frames", text(settings.warmup_frames)},
             {"Coarse frames per configuration", text(settings.coarse_frames)},
-            {"Instrumented frames per compared configuration", text(settings.pass_frames)},
+            {"Pairs of instrumented frames per comparison", text(settings.pass_frames)},
             {"Rendering threads (workers)", text(settings.workers)},
             {"Resolution asked of each comparison (± points)", text(timing.resolution_points)},
             {"Pairs per comparison (min, max)",
