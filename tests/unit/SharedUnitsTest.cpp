@@ -1,5 +1,6 @@
 // Reading back a unit the second process rendered (runner/src/SharedUnits.h): its results file
-// of one configuration gives the render process the same entry it would have written itself.
+// of one configuration or one comparison gives the render process the same entry it would have
+// written itself.
 #include "tidepool/runner/Results.h"
 
 #include <gtest/gtest.h>
@@ -47,13 +48,17 @@ ConfigurationResult EveryFieldSet() {
     return r;
 }
 
+// `written` as a unit file the second process left, read back as the render process reads it.
+stagefiles::ReadResult<stagefiles::ResultsFile> ThroughAUnitFile(const std::string& written) {
+    const testing::TempDir dir;
+    return stagefiles::ReadResultsFile(dir.Write("unit.json", written));
+}
+
 TEST(SharedUnitsTest, AUnitReadBackFromItsFileWritesTheSameResultsEntry) {
     RunResults results;
     results.configurations = {EveryFieldSet()};
     const std::string written = stagefiles::ResultsFileText(ToResultsFile(results));
-    const testing::TempDir dir;
-    const stagefiles::ReadResult<stagefiles::ResultsFile> read =
-            stagefiles::ReadResultsFile(dir.Write("unit.json", written));
+    const stagefiles::ReadResult<stagefiles::ResultsFile> read = ThroughAUnitFile(written);
     ASSERT_TRUE(read.value) << read.error;
     ASSERT_EQ(read.value->configurations.size(), 1U);
 
@@ -85,9 +90,7 @@ TEST(SharedUnitsTest, AComparisonReadBackFromItsFileWritesTheSameResultsEntry) {
     c.timing.baseline_passes = {{{"main", 9.5}}, 10.25};
     c.timing.candidate_passes = {{{"main", 8.0}, {"low_res_water", 3.0}}, 11.25};
     const std::string written = stagefiles::ResultsFileText(ToResultsFile(results));
-    const testing::TempDir dir;
-    const stagefiles::ReadResult<stagefiles::ResultsFile> read =
-            stagefiles::ReadResultsFile(dir.Write("unit.json", written));
+    const stagefiles::ReadResult<stagefiles::ResultsFile> read = ThroughAUnitFile(written);
     ASSERT_TRUE(read.value) << read.error;
     ASSERT_EQ(read.value->comparisons.size(), 1U);
 
