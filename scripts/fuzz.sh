@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets (fuzz/) with clang in build/fuzz and runs each for SECONDS
-# (default 60), seeded with the shipped variants.yaml and scenes/*.yaml. The corpus grows in
-# build/fuzz/corpus/<target>/ across runs; crashes, hangs and leaks land in build/fuzz/artifacts/
-# and make the script fail. The binaries are build/fuzz/fuzz/<target>. README.md ("Fuzzing")
-# describes a longer corpus-growing run.
+# Builds the libFuzzer targets (fuzz/) in the sanitizer build (scripts/build.sh sanitize, which
+# the test command has already run) and runs each for SECONDS (default 60), seeded with the
+# shipped variants.yaml and scenes/*.yaml. The corpus grows in build/fuzz/corpus/<target>/ across
+# runs; crashes, hangs and leaks land in build/fuzz/artifacts/ and make the script fail. The
+# binaries are build/sanitize/fuzz/<target>. README.md ("Fuzzing") describes a longer
+# corpus-growing run.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 seconds="${1:-60}"
@@ -14,9 +15,8 @@ if ! ls /usr/lib/llvm-*/lib/clang/*/lib/linux/libclang_rt.fuzzer-x86_64.a >/dev/
   exit 3
 fi
 
-CXX=clang++ cmake -S "$root" -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DTIDEPOOL_FUZZ=ON -DTIDEPOOL_BUILD_TESTS=OFF -DTIDEPOOL_BUILD_BENCH=OFF >/dev/null
-cmake --build "$dir" -j "$(nproc)" --target VariantConfigFuzzer SceneDescriptionFuzzer
+"$root/scripts/build.sh" sanitize
+binaries="$root/build/sanitize/fuzz"
 
 status=0
 run() {
@@ -26,7 +26,7 @@ run() {
   cp "$@" "$corpus/"   # the shipped files are always part of the seed corpus
   echo "== $target: ${seconds}s"
   # -timeout: one input taking 10 s is a hang; -rss_limit_mb: 2 GB is an allocation bomb.
-  if ! "$dir/fuzz/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+  if ! "$binaries/$target" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
        -print_final_stats=1 -artifact_prefix="$dir/artifacts/$target-" 2>"$dir/$target.log"; then
     echo "fuzz: $target found a failure; see $dir/$target.log and $dir/artifacts/" >&2
     failed=1
