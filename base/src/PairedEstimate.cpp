@@ -146,10 +146,17 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
     });
 }
 
+bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
+    return estimate.Valid() &&
+           std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
+               return estimate.change_low < b && b < estimate.change_high;
+           });
+}
+
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (estimate.pairs >= rule.min_pairs && estimate.Valid()) {
         const double half_width = estimate.HalfWidthPoints();
-        if (half_width <= FinestHalfWidthPoints(rule) ||
+        if ((half_width <= FinestHalfWidthPoints(rule) && !HoldsVerdictBoundary(estimate, rule)) ||
             (half_width <= rule.resolution_points && !NearVerdictBoundary(estimate, rule))) {
             return StopDecision::kResolved;
         }
@@ -185,8 +192,13 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
             for (double b : rule.boundaries_points) {
                 distance = std::min(distance, std::fabs(centre - b));
             }
-            wanted = std::clamp(z * distance / (z + rule.boundary_standard_errors),
-                                FinestHalfWidthPoints(rule), rule.resolution_points);
+            // An interval holding one of boundaries_points goes on past the finest half-width
+            // (DecideStop), until it clears it or reaches the cap.
+            const double finest = HoldsVerdictBoundary(estimate, rule)
+                                          ? FinestHalfWidthPoints(rule) / 16.0
+                                          : FinestHalfWidthPoints(rule);
+            wanted = std::clamp(z * distance / (z + rule.boundary_standard_errors), finest,
+                                rule.resolution_points);
         }
         const double ratio = half_width / wanted;
         needed = static_cast<long>(std::ceil(pairs * std::min(ratio * ratio, 1e6)));

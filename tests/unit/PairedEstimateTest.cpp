@@ -364,6 +364,48 @@ TEST(PairedEstimateTest, AnIntervalHoldingAnotherBoundaryKeepsGoingUntilItClears
     EXPECT_GE(std::max(share, 1.0 - share), 0.85);
 }
 
+TEST(PairedEstimateTest, AnIntervalHoldingABandEdgeGoesOnPastTheFinestHalfWidth) {
+    StoppingRule row;                     // resolution 1.5: the finest half-width is 0.75
+    row.boundaries_points = {1.75, 7.0};  // row 4: half to twice the whitepaper's +3.5%
+    // Row 4 loaded: +7.3% [+6.9, +7.7] after 20 pairs, a half-width of 0.4, holding the edge.
+    EXPECT_TRUE(HoldsVerdictBoundary(EstimateWithInterval(20, 6.9, 7.7), row));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(20, 6.9, 7.7), row), StopDecision::kContinue);
+    // Without the edge in its rule the same interval stops at the finest half-width.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(20, 6.9, 7.7), StoppingRule{}),
+              StopDecision::kResolved);
+    // Clear of the edge, even with an end close to it, it stops below the finest half-width.
+    EXPECT_FALSE(HoldsVerdictBoundary(EstimateWithInterval(80, 7.1, 7.5), row));
+    EXPECT_EQ(DecideStop(EstimateWithInterval(80, 7.1, 7.5), row), StopDecision::kResolved);
+    // Still holding it at the cap: capped.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(400, 6.9, 7.1), row), StopDecision::kCapped);
+    // The direction margin is no such boundary: holding +1.5 gives no verdict to contradict.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(300, 1.3, 1.7), row), StopDecision::kResolved);
+    // The progress guess follows it past the finest half-width.
+    EXPECT_GT(PairsExpectedAtStop(EstimateWithInterval(20, 6.9, 7.7), row, 60), 20);
+
+    // An effect of +7.4%, 0.4 points beyond the edge, at a noise where 20 pairs give a
+    // half-width of about half a point (the development machine's in 2026-11): with the edge
+    // in the rule, runs agree on whether the interval reaches the band; without it, a run stops
+    // at 20 pairs holding the edge about as often as not.
+    constexpr int kRuns = 80;  // slow under the sanitizers
+    auto reached_share = [&](const StoppingRule& rule) {
+        int reached = 0;
+        for (int run = 0; run < kRuns; ++run) {
+            StopDecision decision = StopDecision::kContinue;
+            const PairedEstimate e = RunSequential(
+                    1.0 / 1.074, rule, static_cast<std::uint64_t>(9000 + run), &decision, 0.012);
+            reached += e.change_low <= 7.0 ? 1 : 0;
+        }
+        return static_cast<double>(reached) / kRuns;
+    };
+    const double with = reached_share(row);
+    const double without = reached_share(StoppingRule{});
+    std::printf("the band reached in %.2f of runs with the edge in the rule, %.2f without\n", with,
+                without);
+    EXPECT_GE(std::max(with, 1.0 - with), 0.9);
+    EXPECT_LT(std::max(without, 1.0 - without), 0.8);
+}
+
 TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     StoppingRule rule;  // resolution 1.5, looks at 20, then every quarter
     // Half-width 3.0 at 20 pairs, clear of the margins: (3.0 / 1.5)^2 x 20 = 80, and the first

@@ -75,7 +75,8 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// When a comparison has enough pairs: its interval's half-width is at most
 /// `resolution_points` and it is not near a verdict's boundary (NearVerdictBoundary), or its
 /// half-width is at most FinestHalfWidthPoints (half the resolution or half the direction
-/// margin, whichever is smaller), or it has `max_pairs`. Never fewer than `min_pairs`.
+/// margin, whichever is smaller) and it holds none of `boundaries_points`
+/// (HoldsVerdictBoundary), or it has `max_pairs`. Never fewer than `min_pairs`.
 ///
 /// Why the boundary clause: a direction is claimed when an end of the interval clears
 /// +/-kDirectionMarginPoints. An interval that stops with that end within a standard error or so
@@ -90,6 +91,14 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// magnitude band: row 2 read -3.2% [-4.8, -2.6] quiet, overlapping the band that starts at
 /// 4.8%, and -3.4% [-4.5, -2.4] loaded, outside it). Comparisons far from every boundary, most of
 /// them, stop as before.
+///
+/// Why an interval holding one of `boundaries_points` goes on past the finest half-width: an
+/// interval that holds the direction margin gives no direction ("below resolution"), which no
+/// other run contradicts, but one that holds the edge of a magnitude band overlaps the band and
+/// so claims the same magnitude, a firm verdict. Row 4 read +8.4% [+7.7, +9.3] quiet, outside
+/// its band (up to 7%), and +7.3% [+6.9, +7.7] loaded after 20 pairs, where the half-width of 0.4
+/// was already below the finest and the rule stopped holding the edge: two firm verdicts that
+/// disagree. Such an interval takes pairs until it clears the edge or reaches the cap.
 struct StoppingRule {
     double resolution_points = 1.5;  // half-width of the 95% interval, percent points
     int min_pairs = 20;
@@ -135,6 +144,10 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 /// over it; or one of `rule.boundaries_points` lies inside the interval or within that many
 /// standard errors of an end. False when invalid.
 bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// True when one of `rule.boundaries_points` lies strictly inside the interval. False when
+/// invalid.
+bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
 
 /// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
 /// scaled by (half-width / the half-width the rule waits for)^2, rounded up to the next look
