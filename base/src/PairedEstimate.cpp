@@ -173,6 +173,18 @@ int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
     return std::max(0, std::min(target, rule.max_pairs) - pairs);
 }
 
+int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule) {
+    const double half_width = estimate.HalfWidthPoints();
+    if (!estimate.Valid() || !(half_width > 0) || !(rule.resolution_points > 0)) {
+        return 0;
+    }
+    const double ratio = half_width / rule.resolution_points;
+    const double pairs = std::ceil(estimate.pairs * std::min(ratio * ratio, 1e6));
+    return static_cast<int>(
+            std::clamp(pairs, static_cast<double>(rule.min_pairs),
+                       static_cast<double>(std::max(rule.min_pairs, rule.max_pairs))));
+}
+
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback) {
     const int pairs = estimate.pairs;
     long needed = fallback;

@@ -66,10 +66,19 @@ public:
 
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
-    /// still waiting then expect the mean of what the finished ones took, with the first guess
-    /// counting as three of them: few finished comparisons say little, and one slow
-    /// comparison near a verdict's boundary should move the rest only by its share.
-    void ComparisonExpects(std::size_t k, long frames, bool finished);
+    /// still waiting then expect the mean of what the finished ones took, with a guess counting
+    /// as three of them: few finished comparisons say little, and one slow comparison near a
+    /// verdict's boundary should move the rest only by its share. `resolution_frames`, when
+    /// given (> 0), is what `k`'s noise at this look needs for the resolution alone
+    /// (base::PairsForResolution, in frames); once any comparison has said it, the guess is
+    /// kBoundaryAllowance times their mean instead of the first guess.
+    void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
+
+    /// What the boundary clauses of the stopping rule add to the pairs a comparison needs for
+    /// the resolution alone, on average: main-job runs took 1.4 to 2.8 times the median such
+    /// pairs on the 2-core host of 2026-11-25 (32 to 88 pairs a comparison) and about 1.1 on the
+    /// faster one of 2026-11-26, where nearly every comparison stopped at the minimum 20.
+    static constexpr double kBoundaryAllowance = 1.5;
 
     /// `frames` of `kind` finished on the calling thread since its last step, at `now`.
     void Step(Kind kind, const std::string& what, long frames, Clock::time_point now);
@@ -120,8 +129,11 @@ private:
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;
     std::array<KindState, 2> kinds_;
+    void ExpectWaiting();
+
     long comparison_guess_ = 0;
     std::vector<long> comparison_frames_;
+    std::vector<long> resolution_frames_;  // per comparison, its latest look's; 0: none yet
     std::vector<ComparisonState> comparison_state_;
     std::map<std::thread::id, Clock::time_point> last_step_;
     RunProgress state_;

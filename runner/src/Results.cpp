@@ -154,7 +154,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             done = frames;
             const long needed = base::PairsExpectedAtStop(so_far.estimate, rule, kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
-            meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished);
+            meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished,
+                                    2L * base::PairsForResolution(so_far.estimate, rule));
         });
         if (!out.error.empty()) {
             meter.ComparisonExpects(k, 0, true);

@@ -406,6 +406,18 @@ TEST(PairedEstimateTest, AnIntervalHoldingABandEdgeGoesOnPastTheFinestHalfWidth)
     EXPECT_LT(std::max(without, 1.0 - without), 0.8);
 }
 
+TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
+    StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
+    // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.
+    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, 5.0, 11.0), rule), 80);
+    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, -4.5, 1.5), rule), 80);
+    // Already finer than the resolution: the minimum; far coarser: the cap.
+    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, 7.0, 7.8), rule), 20);
+    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, -30.0, 10.0), rule), 400);
+    // No interval: no figure.
+    EXPECT_EQ(PairsForResolution(PairedEstimate{}, rule), 0);
+}
+
 TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     StoppingRule rule;  // resolution 1.5, looks at 20, then every quarter
     // Half-width 3.0 at 20 pairs, clear of the margins: (3.0 / 1.5)^2 x 20 = 80, and the first

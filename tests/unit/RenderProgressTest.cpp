@@ -144,6 +144,38 @@ TEST(RenderProgressTest, WaitingComparisonsExpectTheShrunkMeanOfTheFinishedOnes)
     EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 154);
 }
 
+// Once a comparison has looked, the waiting ones start from what the noise so far needs for the
+// resolution, with the boundary clauses' allowance, not from the first guess: a host where 20
+// pairs suffice is not charged 60.
+TEST(RenderProgressTest, WaitingComparisonsStartFromWhatTheNoiseSoFarNeeds) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(4, 120);  // 60 pairs each until a look says otherwise
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(1));
+    EXPECT_EQ(meter.Last().total, 4 * 120);
+    // Comparison 0's first look: it expects 40 frames, and its noise needs 40 (the minimum).
+    meter.ComparisonExpects(0, 40, false, 40);
+    meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(2));
+    const long guess = std::lround(ProgressMeter::kBoundaryAllowance * 40);
+    EXPECT_EQ(meter.Last().total, 40 + 3 * guess);
+    // It finishes at 40; the waiting ones shrink towards 40 from the guess, not from 120.
+    meter.ComparisonExpects(0, 40, true, 40);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(3));
+    const long expected = std::lround((3.0 * ProgressMeter::kBoundaryAllowance * 40 + 40) / 4);
+    EXPECT_EQ(meter.Last().total, 40 + 3 * expected);
+    // A noisier look (a loaded machine) raises the guess by its share of the mean.
+    meter.ComparisonExpects(1, 300, false, 200);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(4));
+    const long louder =
+            std::lround((3.0 * ProgressMeter::kBoundaryAllowance * (40 + 200) / 2 + 40) / 4);
+    EXPECT_EQ(meter.Last().total, 40 + 300 + 2 * louder);
+    // A look with no interval says nothing about the noise.
+    meter.ComparisonExpects(2, 120, false, 0);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(5));
+    EXPECT_EQ(meter.Last().total, 40 + 300 + 120 + louder);
+}
+
 // Alone until the second process joins, then the rest split by threads: one thread here and
 // one there halve what is left at the join.
 TEST(RenderProgressTest, SecondsToFinishShareWhatIsLeftOnceTheSecondProcessJoins) {

@@ -157,6 +157,12 @@ bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& ru
 /// FinestHalfWidthPoints.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
+/// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
+/// boundaries aside: the pairs so far scaled by (half-width / resolution)^2, at least
+/// `rule.min_pairs` and at most `rule.max_pairs`; 0 when the estimate gives no interval. It
+/// measures the machine's noise now, for a guess at comparisons not yet started.
+int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule);
+
 /// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
 /// then max(batch_pairs, pairs / 4), never past max_pairs. Never fails (0 at max_pairs).
 int PairsBeforeNextLook(int pairs, const StoppingRule& rule);
