@@ -6,8 +6,9 @@
 # their own, started first, and the shards run without them. Why: GoogleTest deals the tests out
 # in turn, so in the CI run of 2026-11-26 the three longest (122, 51 and 26 s of 303 s of CPU)
 # all fell in one of the eight shards, which ran 213 s while the other seven took 93 s together.
-# With small shards taken from a queue, a core that is done takes the next job. (Since the
-# libraries are built at -O1 in this build, the three take 15, 12 and 3 s.)
+# With small shards taken from a queue, a core that is done takes the next job. (With the
+# libraries at -O1, on the faster host of the next session, the three took 15, 12 and 3 s and
+# the whole phase 28 s, where it took 78 s at -O0 on that host.)
 # Why: an ASan process costs about 0.3 s of CPU to start (its shadow memory and a 270 MB binary),
 # which was most of the phase's time over 678 test processes. The release build's ctest run
 # still gives every test a process of its own, so a test that leans on another's leftovers
@@ -32,7 +33,7 @@ trap 'rm -rf "$logs"' EXIT
 # that no longer exists costs nothing: its own process runs no test, and the shards exclude
 # nothing for it, so a renamed test still runs in a shard.
 long_tests=(
-  PairedEstimateTest.NinetyFivePercentIntervalCoversTheTrueEffectUnderMeasuredNoise  # 15 (122 at -O0)
+  PairedEstimateTest.NinetyFivePercentIntervalCoversTheTrueEffectUnderMeasuredNoise  # 15 (122 at -O0 in that CI run)
   VariantExpanderTest.PrunedCountsPerRuleEqualABruteForceOnRandomConfigs             # 12 (51)
   PairedEstimateTest.ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsIt        # 3 (26)
 )

@@ -164,7 +164,8 @@ MeasuredComparison ParseComparison(const stagefiles::ResultsComparison& entry) {
             entry.decision,
             entry.error,
             {entry.baseline_pass_ms.begin(), entry.baseline_pass_ms.end()},
-            {entry.candidate_pass_ms.begin(), entry.candidate_pass_ms.end()}};
+            {entry.candidate_pass_ms.begin(), entry.candidate_pass_ms.end()},
+            entry.timed_by};
 }
 
 }  // namespace

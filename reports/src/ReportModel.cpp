@@ -190,7 +190,10 @@ PairsOfFrames PairsFor(const ReportInputs& inputs, const MeasuredConfiguration& 
         }
         pairs.baseline_ms = c->baseline_ms;
         pairs.candidate_ms = c->candidate_ms;
-        pairs.source = "pairs of frames rendered back to back";
+        pairs.source = c->timed_by == "second_process"
+                               ? "pairs of frames rendered back to back, by the process beside "
+                                 "the render"
+                               : "pairs of frames rendered back to back";
         return pairs;
     }
     pairs.error = PairsFromRounds(base.SamplesOn(clock), cand.SamplesOn(clock), &pairs.baseline_ms,

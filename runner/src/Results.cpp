@@ -458,6 +458,7 @@ stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
                                      c.timing.candidate_passes.pass_ms.end());
         out.baseline_instrumented_frame_ms = c.timing.baseline_passes.frame_ms;
         out.candidate_instrumented_frame_ms = c.timing.candidate_passes.frame_ms;
+        out.timed_by = c.timed_by_second_process ? "second_process" : "render";
         file.comparisons.push_back(std::move(out));
     }
     for (const VerdictDisagreement& d : results.disagreements) {

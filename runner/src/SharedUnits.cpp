@@ -71,6 +71,7 @@ bool ReadSharedComparison(const RunOptions& options, std::size_t k, ComparisonRe
         !FromResultsEntry(entry, out)) {
         return false;
     }
+    out.timed_by_second_process = true;
     for (const stagefiles::ResultsConfiguration& timed : read.value->configurations) {
         for (std::size_t i : {c.baseline, c.candidate}) {
             ConfigurationResult& r = configurations[i];

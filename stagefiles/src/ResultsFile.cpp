@@ -134,7 +134,8 @@ nlohmann::json ToJson(const ResultsComparison& c) {
             {"baseline_pass_ms", c.baseline_pass_ms},
             {"candidate_pass_ms", c.candidate_pass_ms},
             {"baseline_instrumented_frame_ms", c.baseline_instrumented_frame_ms},
-            {"candidate_instrumented_frame_ms", c.candidate_instrumented_frame_ms}};
+            {"candidate_instrumented_frame_ms", c.candidate_instrumented_frame_ms},
+            {"timed_by", c.timed_by}};
 }
 
 }  // namespace
@@ -425,6 +426,7 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Field(o, path, "candidate_pass_ms", &out->candidate_pass_ms);
     r.Field(o, path, "baseline_instrumented_frame_ms", &out->baseline_instrumented_frame_ms);
     r.Field(o, path, "candidate_instrumented_frame_ms", &out->candidate_instrumented_frame_ms);
+    r.Field(o, path, "timed_by", &out->timed_by);
 }
 
 void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path,

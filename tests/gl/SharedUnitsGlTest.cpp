@@ -94,6 +94,10 @@ TEST(SharedUnitsGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) 
     ASSERT_EQ(together.comparisons.size(), 1U);
     EXPECT_GT(together.comparisons[0].timing.baseline_passes.pass_ms.count("main"), 0U);
     EXPECT_GT(together.comparisons[0].timing.candidate_passes.frame_ms, 0.0);
+    EXPECT_TRUE(together.comparisons[0].timed_by_second_process);
+    for (const ComparisonResult& c : alone.comparisons) {
+        EXPECT_FALSE(c.timed_by_second_process) << c.comparison.label;
+    }
 
     const stagefiles::ResultsFile expected = ToResultsFile(alone);
     const stagefiles::ResultsFile got = ToResultsFile(together);
@@ -143,6 +147,10 @@ TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_percent, handed.change_percent);
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_low, handed.change_low);
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_high, handed.change_high);
+    // The second process wrote its unit as its own render; read back here, it is its.
+    EXPECT_EQ(handed.timed_by, "render");
+    EXPECT_TRUE(c.timed_by_second_process);
+    EXPECT_EQ(ToResultsFile(results).comparisons.front().timed_by, "second_process");
 }
 
 // Both sides, with the second process's results file of claim-table unit `unit` cut short: the

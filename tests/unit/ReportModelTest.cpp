@@ -453,6 +453,33 @@ TEST(ReportModelTest, CpuSamplesOnEveryConfigurationMakeEveryComparisonUseCpuTim
     EXPECT_NE(md.find("| Compared on | CPU time: process CPU time"), std::string::npos);
 }
 
+// A row whose pairs `run`'s second process timed says so in its pairs' source (data.json), since
+// that process timed them at another moment of the machine's load.
+TEST(ReportModelTest, PairsTheSecondProcessTimedSaySo) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WithCpuTimes(WhitepaperConfigurations()));
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    auto source_of_row_7 = [&](const std::string& timed_by) {
+        results["comparisons"] = {{{"label", "row 7"},
+                                   {"baseline", "water:FULL"},
+                                   {"candidate", "water:FULL@lowres"},
+                                   {"decision", "resolved"},
+                                   {"baseline_ms", {30.0, 30.5}},
+                                   {"candidate_ms", {26.0, 26.5}},
+                                   {"timed_by", timed_by}}};
+        dir.Write("render/results.json", results.dump());
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        EXPECT_TRUE(loaded.inputs) << loaded.error;
+        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+        EXPECT_TRUE(built.model) << built.error;
+        return built.model->rows.at(6).pairs_source;
+    };
+    EXPECT_EQ(source_of_row_7("render"), "pairs of frames rendered back to back");
+    EXPECT_EQ(source_of_row_7(""), "pairs of frames rendered back to back");
+    EXPECT_EQ(source_of_row_7("second_process"),
+              "pairs of frames rendered back to back, by the process beside the render");
+}
+
 TEST(ReportModelTest, OneConfigurationWithoutCpuSamplesKeepsEveryComparisonOnWallTime) {
     TempDir dir;
     std::vector<FakeConfiguration> configurations = WithCpuTimes(WhitepaperConfigurations());

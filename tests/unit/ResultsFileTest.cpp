@@ -86,7 +86,8 @@ ResultsFile OneOfEachResult() {
                          {{"main", 2.5}},
                          {{"main", 2.75}, {"low_res_water", 1.0}},
                          4.5,
-                         5.0}};
+                         5.0,
+                         "second_process"}};
     file.disagreements = {{"water:B", true, false}};
     file.diagnostics = {{"error", "", 0, 0, "oops", "", "error: oops"}};
     file.ok = true;

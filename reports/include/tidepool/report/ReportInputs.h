@@ -111,6 +111,8 @@ struct MeasuredComparison {
     // (empty in results written before they were kept).
     std::map<std::string, double> baseline_pass_ms;
     std::map<std::string, double> candidate_pass_ms;
+    // "render", "second_process" (`run`'s process beside the render timed it) or "" (older).
+    std::string timed_by;
 };
 
 /// Everything a report is built from.

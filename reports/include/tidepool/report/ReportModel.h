@@ -95,7 +95,9 @@ struct RowComparison {
     double change_percent = std::numeric_limits<double>::quiet_NaN();     // + = faster
     Interval change_ci;                                                   // of change_percent
     double resolution_points = std::numeric_limits<double>::quiet_NaN();  // achieved half-width
-    std::string pairs_source;  // "the runner's pairs" or "one pair per round (older results)"
+    // "pairs of frames rendered back to back" (", by the process beside the render" when `run`'s
+    // second process timed them) or "one pair per timing round" (older results).
+    std::string pairs_source;
     // Measured "why": each pass's time in both configurations and the pass that changed most,
     // with its share of the frame; "" when the results have no per-pass times.
     std::string measured_why;

@@ -145,6 +145,7 @@ struct ComparisonResult {
     TimedComparison comparison;
     ComparisonTiming timing;
     std::string error;  // "" when both sides rendered; otherwise why there is no estimate
+    bool timed_by_second_process = false;  // RunOptions::shared: the process beside timed it
 };
 
 /// A variant on which glslang and Mesa reach different verdicts.

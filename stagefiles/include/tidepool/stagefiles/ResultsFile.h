@@ -236,6 +236,10 @@ struct ResultsComparison {
     std::map<std::string, double, std::less<>> candidate_pass_ms;
     double baseline_instrumented_frame_ms = 0;
     double candidate_instrumented_frame_ms = 0;
+    // Which process timed it: "render" (the process writing the file) or "second_process"
+    // (`run`'s process beside the render, which times at other moments of the machine's load);
+    // "" in files written before it was kept.
+    std::string timed_by;
 
     bool operator==(const ResultsComparison&) const = default;
 };
