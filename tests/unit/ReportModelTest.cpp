@@ -171,6 +171,26 @@ TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
 // Row 7's "why" cites the per-pass times its comparison took in pairs; each configuration's own
 // per-pass times (timed in whichever comparison came first, under another moment's load) are
 // only the fallback for results that have no per-comparison ones.
+// Row 7's comparison as results.json records it, with two pairs of frames.
+nlohmann::json Row7ComparisonEntry() {
+    return {{"label", "row 7"},
+            {"baseline", "water:FULL"},
+            {"candidate", "water:FULL@lowres"},
+            {"decision", "resolved"},
+            {"baseline_ms", {30.0, 30.5}},
+            {"candidate_ms", {26.0, 26.5}}};
+}
+
+// Row 7 of the model built from `results` written over the fake run's results.json.
+RowComparison Row7Built(TempDir& dir, const FakeRun& run, const nlohmann::json& results) {
+    dir.Write("render/results.json", results.dump());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    EXPECT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    EXPECT_TRUE(built.model) << built.error;
+    return built.model->rows.at(6);
+}
+
 TEST(ReportModelTest, MeasuredWhyCitesTheComparisonsOwnPassTimes) {
     TempDir dir;
     const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
@@ -182,27 +202,14 @@ TEST(ReportModelTest, MeasuredWhyCitesTheComparisonsOwnPassTimes) {
             c["pass_ms"] = {{"reflection", 4.4}, {"main", 35.6}, {"low_res_water", 11.2}};
         }
     }
-    auto why_of_row_7 = [&](const nlohmann::json& document) {
-        dir.Write("render/results.json", document.dump());
-        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
-        EXPECT_TRUE(loaded.inputs) << loaded.error;
-        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
-        EXPECT_TRUE(built.model) << built.error;
-        return built.model->rows.at(6).measured_why;
-    };
-    const std::string fallback = why_of_row_7(results);
+    const std::string fallback = Row7Built(dir, run, results).measured_why;
     EXPECT_NE(fallback.find("main 26.5 -> 35.6 ms"), std::string::npos) << fallback;
 
-    results["comparisons"] = {{{"label", "row 7"},
-                               {"baseline", "water:FULL"},
-                               {"candidate", "water:FULL@lowres"},
-                               {"decision", "resolved"},
-                               {"baseline_ms", {30.0, 30.5}},
-                               {"candidate_ms", {26.0, 26.5}},
-                               {"baseline_pass_ms", {{"reflection", 3.2}, {"main", 26.0}}},
-                               {"candidate_pass_ms",
-                                {{"reflection", 3.3}, {"main", 12.0}, {"low_res_water", 10.5}}}}};
-    const std::string why = why_of_row_7(results);
+    nlohmann::json entry = Row7ComparisonEntry();
+    entry["baseline_pass_ms"] = {{"reflection", 3.2}, {"main", 26.0}};
+    entry["candidate_pass_ms"] = {{"reflection", 3.3}, {"main", 12.0}, {"low_res_water", 10.5}};
+    results["comparisons"] = {entry};
+    const std::string why = Row7Built(dir, run, results).measured_why;
     EXPECT_NE(why.find("reflection 3.2 -> 3.3 ms"), std::string::npos) << why;
     EXPECT_NE(why.find("main 26.0 -> 12.0 ms"), std::string::npos) << why;
     EXPECT_NE(why.find("low_res_water none -> 10.5 ms"), std::string::npos) << why;
@@ -460,19 +467,10 @@ TEST(ReportModelTest, PairsTheSecondProcessTimedSaySo) {
     const FakeRun run = WriteFakeRun(dir, WithCpuTimes(WhitepaperConfigurations()));
     nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
     auto source_of_row_7 = [&](const std::string& timed_by) {
-        results["comparisons"] = {{{"label", "row 7"},
-                                   {"baseline", "water:FULL"},
-                                   {"candidate", "water:FULL@lowres"},
-                                   {"decision", "resolved"},
-                                   {"baseline_ms", {30.0, 30.5}},
-                                   {"candidate_ms", {26.0, 26.5}},
-                                   {"timed_by", timed_by}}};
-        dir.Write("render/results.json", results.dump());
-        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
-        EXPECT_TRUE(loaded.inputs) << loaded.error;
-        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
-        EXPECT_TRUE(built.model) << built.error;
-        return built.model->rows.at(6).pairs_source;
+        nlohmann::json entry = Row7ComparisonEntry();
+        entry["timed_by"] = timed_by;
+        results["comparisons"] = {entry};
+        return Row7Built(dir, run, results).pairs_source;
     };
     EXPECT_EQ(source_of_row_7("render"), "pairs of frames rendered back to back");
     EXPECT_EQ(source_of_row_7(""), "pairs of frames rendered back to back");
