@@ -185,9 +185,15 @@ nlohmann::json Row7ComparisonEntry() {
 RowComparison Row7Built(TempDir& dir, const FakeRun& run, const nlohmann::json& results) {
     dir.Write("render/results.json", results.dump());
     const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
-    EXPECT_TRUE(loaded.inputs) << loaded.error;
+    if (!loaded.inputs) {
+        ADD_FAILURE() << loaded.error;
+        return {};
+    }
     const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
-    EXPECT_TRUE(built.model) << built.error;
+    if (!built.model) {
+        ADD_FAILURE() << built.error;
+        return {};
+    }
     return built.model->rows.at(6);
 }
 
@@ -208,7 +214,7 @@ TEST(ReportModelTest, MeasuredWhyCitesTheComparisonsOwnPassTimes) {
     nlohmann::json entry = Row7ComparisonEntry();
     entry["baseline_pass_ms"] = {{"reflection", 3.2}, {"main", 26.0}};
     entry["candidate_pass_ms"] = {{"reflection", 3.3}, {"main", 12.0}, {"low_res_water", 10.5}};
-    results["comparisons"] = {entry};
+    results["comparisons"] = nlohmann::json::array({entry});
     const std::string why = Row7Built(dir, run, results).measured_why;
     EXPECT_NE(why.find("reflection 3.2 -> 3.3 ms"), std::string::npos) << why;
     EXPECT_NE(why.find("main 26.0 -> 12.0 ms"), std::string::npos) << why;
@@ -469,7 +475,7 @@ TEST(ReportModelTest, PairsTheSecondProcessTimedSaySo) {
     auto source_of_row_7 = [&](const std::string& timed_by) {
         nlohmann::json entry = Row7ComparisonEntry();
         entry["timed_by"] = timed_by;
-        results["comparisons"] = {entry};
+        results["comparisons"] = nlohmann::json::array({entry});
         return Row7Built(dir, run, results).pairs_source;
     };
     EXPECT_EQ(source_of_row_7("render"), "pairs of frames rendered back to back");
