@@ -205,7 +205,9 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
                 distance = std::min(distance, std::fabs(centre - b));
             }
             // An interval holding one of boundaries_points goes on past the finest half-width
-            // (DecideStop), until it clears it or reaches the cap.
+            // (DecideStop), until it clears it or reaches the cap: a sixteenth of it is only a
+            // floor that keeps the guess finite for a centre on the boundary, which max_pairs
+            // then bounds.
             const double finest = HoldsVerdictBoundary(estimate, rule)
                                           ? FinestHalfWidthPoints(rule) / 16.0
                                           : FinestHalfWidthPoints(rule);

@@ -116,6 +116,8 @@ private:
 
     double SecondsPerFrame(std::size_t kind) const;
     void SumComparisons();
+    // Sets what every waiting comparison expects: the shrunk mean of the finished ones.
+    void ExpectWaiting();
 
     const ProgressCallback& callback_;
     std::optional<double> HelperJoinsIn(Clock::time_point now) const;
@@ -129,8 +131,6 @@ private:
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;
     std::array<KindState, 2> kinds_;
-    void ExpectWaiting();
-
     long comparison_guess_ = 0;
     std::vector<long> comparison_frames_;
     std::vector<long> resolution_frames_;  // per comparison, its latest look's; 0: none yet
