@@ -173,13 +173,23 @@ int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
     return std::max(0, std::min(target, rule.max_pairs) - pairs);
 }
 
+namespace {
+
+// The pairs at which an interval of `half_width` after `pairs` narrows to `wanted`, by the
+// square-root law of an interval's width (at most a million times the pairs so far).
+double PairsAtHalfWidth(int pairs, double half_width, double wanted) {
+    const double ratio = half_width / wanted;
+    return std::ceil(pairs * std::min(ratio * ratio, 1e6));
+}
+
+}  // namespace
+
 int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule) {
     const double half_width = estimate.HalfWidthPoints();
     if (!estimate.Valid() || !(half_width > 0) || !(rule.resolution_points > 0)) {
         return 0;
     }
-    const double ratio = half_width / rule.resolution_points;
-    const double pairs = std::ceil(estimate.pairs * std::min(ratio * ratio, 1e6));
+    const double pairs = PairsAtHalfWidth(estimate.pairs, half_width, rule.resolution_points);
     return static_cast<int>(
             std::clamp(pairs, static_cast<double>(rule.min_pairs),
                        static_cast<double>(std::max(rule.min_pairs, rule.max_pairs))));
@@ -214,8 +224,7 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
             wanted = std::clamp(z * distance / (z + rule.boundary_standard_errors), finest,
                                 rule.resolution_points);
         }
-        const double ratio = half_width / wanted;
-        needed = static_cast<long>(std::ceil(pairs * std::min(ratio * ratio, 1e6)));
+        needed = static_cast<long>(PairsAtHalfWidth(pairs, half_width, wanted));
     }
     // The rule stops only at a look: the first look at or after `needed`.
     long look = pairs;
