@@ -54,6 +54,12 @@ bool RunResults::AllOk() const {
                        [](const ConfigurationResult& c) { return c.Ok(); });
 }
 
+int RunResults::SharedComparisons() const {
+    return static_cast<int>(
+            std::count_if(comparisons.begin(), comparisons.end(),
+                          [](const ComparisonResult& c) { return c.timed_by_second_process; }));
+}
+
 namespace {
 
 constexpr long kInitialPairGuess = 60;  // until a comparison's first look says otherwise
@@ -201,7 +207,6 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             const CollectedUnits shared = CollectSharedUnits(
                     w, image_context, results, [&](std::size_t k) { run_comparison(w, k); });
             results.shared_configurations = shared.configurations;
-            results.shared_comparisons = shared.comparisons;
         }
     };
 

@@ -215,9 +215,7 @@ CollectedUnits CollectSharedUnits(RenderWorker& w, const ImageUnitContext& conte
             claims.StateOf(unit) != base::SharedClaims::State::kHelperDone) {
             continue;
         }
-        if (ReadSharedComparison(options, k, results.comparisons[k], configurations)) {
-            ++collected.comparisons;
-        } else {
+        if (!ReadSharedComparison(options, k, results.comparisons[k], configurations)) {
             redo(unit);
         }
     }

@@ -18,7 +18,6 @@ std::filesystem::path SharedUnitPath(const SharedUnits& shared, std::size_t unit
 /// How many units the render read back from the second process.
 struct CollectedUnits {
     int configurations = 0;
-    int comparisons = 0;
 };
 
 /// Waits for every unit the second process claimed and puts its results into `results`: a

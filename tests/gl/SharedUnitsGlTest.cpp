@@ -85,7 +85,7 @@ TEST(SharedUnitsGlTest, UnitsTheSecondProcessRenderedEqualTheRenderProcesssOwn) 
     EXPECT_EQ(done.comparisons, 1);
     const RunResults together = RunRender(*shared.context, *shared.config, run.options, nullptr);
     EXPECT_EQ(together.shared_configurations, 3);
-    EXPECT_EQ(together.shared_comparisons, 1);
+    EXPECT_EQ(together.SharedComparisons(), 1);
     for (std::size_t compared : {0U, 1U}) {
         EXPECT_GT(together.configurations[compared].pass_ms.count("main"), 0U) << compared;
         EXPECT_GT(together.configurations[compared].instrumented_frame_ms, 0.0) << compared;
@@ -133,7 +133,7 @@ TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     ASSERT_TRUE(std::isfinite(handed.change_low) && std::isfinite(handed.change_high));
 
     const RunResults results = RunRender(*shared.context, *shared.config, run.options, nullptr);
-    ASSERT_EQ(results.shared_comparisons, 1);
+    ASSERT_EQ(results.SharedComparisons(), 1);
     const ComparisonResult& c = results.comparisons.front();
     EXPECT_EQ(c.error, "");
     EXPECT_EQ(c.comparison.label, "fog");
@@ -147,7 +147,8 @@ TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_percent, handed.change_percent);
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_low, handed.change_low);
     EXPECT_DOUBLE_EQ(c.timing.estimate.change_high, handed.change_high);
-    // The second process wrote its unit as its own render; read back here, it is its.
+    // The second process writes its unit as its own render's; the render process, reading it
+    // back, records it as the second process's.
     EXPECT_EQ(handed.timed_by, "render");
     EXPECT_TRUE(c.timed_by_second_process);
     EXPECT_EQ(ToResultsFile(results).comparisons.front().timed_by, "second_process");
@@ -170,7 +171,7 @@ RunResults WithAUnitCutShort(std::size_t unit) {
 TEST(SharedUnitsGlTest, AComparisonWhoseResultsCannotBeReadIsTimedByTheRenderProcess) {
     ASSERT_TRUE(test_support::SharedWaterRenderer().context);
     const RunResults results = WithAUnitCutShort(4);
-    EXPECT_EQ(results.shared_comparisons, 0);
+    EXPECT_EQ(results.SharedComparisons(), 0);
     EXPECT_EQ(results.shared_configurations, 3);
     const ComparisonResult& c = results.comparisons.front();
     EXPECT_EQ(c.error, "");
@@ -184,7 +185,7 @@ TEST(SharedUnitsGlTest, AUnitWhoseResultsCannotBeReadIsRenderedByTheRenderProces
     ASSERT_TRUE(test_support::SharedWaterRenderer().context);
     const RunResults results = WithAUnitCutShort(2);
     EXPECT_EQ(results.shared_configurations, 2);
-    EXPECT_EQ(results.shared_comparisons, 1);
+    EXPECT_EQ(results.SharedComparisons(), 1);
     for (const ConfigurationResult& r : results.configurations) {
         EXPECT_TRUE(r.Ok()) << r.configuration.id;
         EXPECT_EQ(r.views.size(), 2U) << r.configuration.id;

@@ -86,7 +86,7 @@ StageEnd RenderInto(const VariantConfig& config, const runner::RunOptions& run,
             run.shared.claims != nullptr
                     ? fmt::format(" ({} configurations' images and {} "
                                   "comparisons done by the second process)",
-                                  results.shared_configurations, results.shared_comparisons)
+                                  results.shared_configurations, results.SharedComparisons())
                     : ""));
     return end;
 }

@@ -165,7 +165,6 @@ struct RunResults {
     FrameClockChoice clock;         // the clock every time is on
     int workers = 1;                // rendering threads that actually ran
     int shared_configurations = 0;  // configurations a second process rendered (RunOptions::shared)
-    int shared_comparisons = 0;     // comparisons a second process timed
     std::vector<VerdictDisagreement> disagreements;
     std::vector<Diagnostic> diagnostics;  // every driver diagnostic and run-level problem
     // Files that could not be written (a PNG, for instance): an environment failure, exit 3.
@@ -175,6 +174,8 @@ struct RunResults {
 
     /// True when every configuration is Ok().
     bool AllOk() const;
+    /// Comparisons a second process timed (ComparisonResult::timed_by_second_process).
+    int SharedComparisons() const;
 };
 
 /// Where a run is, for the CLI's progress line.
