@@ -121,6 +121,37 @@ PairedEstimate EstimatePaired(const std::vector<double>& baseline_ms,
     return out;
 }
 
+PairedEstimate AcrossHostStates(const PairedEstimate& as_run, const PairedEstimate& contended) {
+    if (contended.pairs == 0) {
+        return as_run;
+    }
+    PairedEstimate out;
+    out.pairs = as_run.pairs;
+    if (!as_run.Valid() || !contended.Valid()) {
+        out.error = !as_run.Valid() ? as_run.error
+                                    : "the pairs timed with the core shared: " +
+                                              (contended.error.empty() ? std::string("too few")
+                                                                       : contended.error);
+        return out;
+    }
+    out.ratio = as_run.ratio;
+    out.change_percent = as_run.change_percent;
+    out.ratio_low = std::min(as_run.ratio_low, contended.ratio_low);
+    out.ratio_high = std::max(as_run.ratio_high, contended.ratio_high);
+    out.change_low = PerformanceChangePercent(out.ratio_high);
+    out.change_high = PerformanceChangePercent(out.ratio_low);
+    return out;
+}
+
+int ContendedPairsBeforeNextLook(int as_run_pairs, int contended_pairs, const StoppingRule& rule) {
+    if (!(rule.contended_share > 0)) {
+        return 0;
+    }
+    const double wanted = std::ceil(rule.contended_share * std::max(as_run_pairs, 0));
+    const double target = std::max(wanted, static_cast<double>(kMinimumPairs));
+    return static_cast<int>(std::max(0.0, target - contended_pairs));
+}
+
 double FinestHalfWidthPoints(const StoppingRule& rule) {
     return std::min(rule.resolution_points, kDirectionMarginPoints) / 2.0;
 }

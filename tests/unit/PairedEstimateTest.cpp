@@ -406,6 +406,70 @@ TEST(PairedEstimateTest, AnIntervalHoldingABandEdgeGoesOnPastTheFinestHalfWidth)
     EXPECT_LT(std::max(without, 1.0 - without), 0.8);
 }
 
+// A load that slows the candidate's frames by 3% more than the baseline's: the contended pairs
+// see it, and the stated interval reaches it while keeping the as-run estimate.
+TEST(PairedEstimateTest, TheStatedIntervalSpansTheAsRunAndTheContendedIntervals) {
+    FrameNoise quiet(7, 0.01);
+    FrameNoise busy(8, 0.01);
+    std::vector<double> a, b, ca, cb;
+    for (int i = 0; i < 40; ++i) {
+        const auto [x, y] = quiet.NextPair(1.10, i);
+        a.push_back(x);
+        b.push_back(y);
+    }
+    for (int i = 0; i < 20; ++i) {
+        const auto [x, y] = busy.NextPair(1.10 * 1.03, i);
+        ca.push_back(x);
+        cb.push_back(y);
+    }
+    const PairedEstimate as_run = EstimatePaired(a, b);
+    const PairedEstimate contended = EstimatePaired(ca, cb);
+    ASSERT_TRUE(as_run.Valid() && contended.Valid());
+    const PairedEstimate stated = AcrossHostStates(as_run, contended);
+    ASSERT_TRUE(stated.Valid()) << stated.error;
+    EXPECT_EQ(stated.pairs, 40);
+    EXPECT_EQ(stated.ratio, as_run.ratio);
+    EXPECT_EQ(stated.change_percent, as_run.change_percent);
+    EXPECT_EQ(stated.ratio_low, std::min(as_run.ratio_low, contended.ratio_low));
+    EXPECT_EQ(stated.ratio_high, std::max(as_run.ratio_high, contended.ratio_high));
+    EXPECT_LE(stated.change_low, std::min(as_run.change_low, contended.change_low));
+    EXPECT_GE(stated.change_high, std::max(as_run.change_high, contended.change_high));
+    // The two states' estimates both lie inside what is stated; the as-run interval alone
+    // misses the contended estimate here.
+    EXPECT_GT(contended.ratio, as_run.ratio_high);
+    EXPECT_LE(stated.ratio_low, as_run.ratio);
+    EXPECT_GE(stated.ratio_high, contended.ratio);
+}
+
+TEST(PairedEstimateTest, WithoutContendedPairsTheStatedIntervalIsTheAsRunOne) {
+    const PairedEstimate as_run = EstimateWithInterval(20, 1.0, 2.0);
+    const PairedEstimate stated = AcrossHostStates(as_run, PairedEstimate{});
+    EXPECT_EQ(stated.change_low, 1.0);
+    EXPECT_EQ(stated.change_high, 2.0);
+    EXPECT_EQ(stated.pairs, 20);
+    // Too few contended pairs for an interval: no stated interval yet, and why.
+    const PairedEstimate few = EstimatePaired({10, 10, 10}, {11, 11, 11});
+    const PairedEstimate none = AcrossHostStates(
+            EstimatePaired(std::vector<double>(20, 10.0), std::vector<double>(20, 11.0)), few);
+    EXPECT_FALSE(none.Valid());
+    EXPECT_NE(none.error.find("core shared"), std::string::npos) << none.error;
+    EXPECT_TRUE(std::isnan(none.change_low));
+    EXPECT_EQ(DecideStop(none, StoppingRule{}), StopDecision::kContinue);
+}
+
+TEST(PairedEstimateTest, ContendedPairsFollowTheShareWithAnIntervalsMinimum) {
+    StoppingRule rule;
+    EXPECT_EQ(ContendedPairsBeforeNextLook(20, 0, rule), 0);  // share 0: none
+    rule.contended_share = 0.5;
+    EXPECT_EQ(ContendedPairsBeforeNextLook(20, 0, rule), kMinimumPairs);
+    EXPECT_EQ(ContendedPairsBeforeNextLook(30, 10, rule), 5);
+    EXPECT_EQ(ContendedPairsBeforeNextLook(31, 15, rule), 1);  // ceil(15.5) - 15
+    EXPECT_EQ(ContendedPairsBeforeNextLook(100, 50, rule), 0);
+    rule.contended_share = 0.1;
+    EXPECT_EQ(ContendedPairsBeforeNextLook(40, 0, rule), kMinimumPairs);  // an interval needs 10
+    EXPECT_EQ(ContendedPairsBeforeNextLook(200, 10, rule), 10);
+}
+
 TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
     StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
     // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.

@@ -12,7 +12,7 @@ using testing::Formatted;
 
 RenderSelection DefaultMatrix() {
     RenderSelection selection;
-    selection.config = std::string(TIDEPOOL_SOURCE_ROOT) + "/variants.yaml";
+    selection.config = TIDEPOOL_SOURCE_ROOT "/variants.yaml";
     return selection;
 }
 

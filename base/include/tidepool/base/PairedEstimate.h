@@ -36,7 +36,9 @@ inline constexpr int kMinimumPairs = 10;
 /// comparison (row 7, low-resolution water) from -1.2% [-2.4, -0.1] on a quiet machine to
 /// +1.2% [+0.1, +2.5] with two competing processes: shared caches and cores slow memory-bound
 /// and arithmetic-bound passes by different amounts, a systematic shift of up to 2.4 points that
-/// no within-run interval can show. 1.5 points, the default resolution, keeps such a shift from
+/// an interval from pairs taken in one state of the machine cannot show. AcrossHostStates now
+/// states the span of two states; the margin stays for loads unlike either, and for the scene
+/// planner, which times in one. 1.5 points, the default resolution, keeps such a shift from
 /// turning into two opposite directions; effects of 3% and more still clear it.
 inline constexpr double kDirectionMarginPoints = 1.5;
 
@@ -115,7 +117,32 @@ struct StoppingRule {
     // beyond the direction margins, e.g. the ends of a whitepaper row's magnitude band; none for
     // most comparisons.
     std::vector<double> boundaries_points = {};
+    // Contended pairs (timed with a CoreCompetitor on the render thread's core,
+    // AcrossHostStates) per pair timed as the
+    // machine runs; 0 times none, and the rule then watches the as-run interval alone.
+    double contended_share = 0;
 };
+
+/// The interval a comparison states when it was also timed with its core shared: the as-run
+/// estimate, with an interval from the lower of the two intervals' ends to the higher
+/// (`contended` is the same comparison timed while a CoreCompetitor ran). `pairs` stays the
+/// as-run pairs. `as_run` unchanged when `contended` has no pairs (no contended timing, or none
+/// yet); NaN figures with `error` set when either side gives no interval.
+///
+/// Why: contention is not only noise. On the 2-core host of 2026-11-26, main-job comparisons
+/// moved systematically with the load: row 9 read +26.5 to +26.9% quiet in four runs (intervals
+/// about 0.5 points wide), +26.3% [+26.0, +26.7] beside two competing processes and +26.0%
+/// [+25.8, +26.2] beside four; row 7 read 0.0% quiet and -0.6% [-0.8, -0.4] beside four. No
+/// interval from pairs taken in one state of the machine covers the other, so each comparison
+/// is measured in both, the one it runs in and one with a competitor on its core, and states
+/// the span: a second run, loaded or not, then lands inside it.
+PairedEstimate AcrossHostStates(const PairedEstimate& as_run, const PairedEstimate& contended);
+
+/// How many contended pairs to take after a look's as-run pairs, given `as_run_pairs` after
+/// them and `contended_pairs` so far: up to `rule.contended_share` of the as-run pairs, and at
+/// least kMinimumPairs in all once there are any (an interval needs them). 0 when the share is
+/// 0. Never fails.
+int ContendedPairsBeforeNextLook(int as_run_pairs, int contended_pairs, const StoppingRule& rule);
 
 /// The half-width at which a comparison near the direction margin stops wherever its end lies:
 /// half of `rule.resolution_points` or half of kDirectionMarginPoints, whichever is smaller.
