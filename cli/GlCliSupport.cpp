@@ -50,6 +50,11 @@ void AddTimingFlags(CLI::App* command, TimingFlags* flags) {
                         "pairs of frames per comparison, at most (the resolution reached is "
                         "reported)")
             ->capture_default_str();
+    command->add_option("--contended-share", flags->contended_share,
+                        "pairs of frames timed with a competing thread on the rendering thread's "
+                        "core, per pair timed as the machine runs; each comparison's interval "
+                        "spans both (0: none)")
+            ->capture_default_str();
     command->add_option("--coarse-frames", flags->coarse_frames,
                         "timed frames of each configuration on its own (the accuracy chart)")
             ->capture_default_str();
@@ -81,6 +86,11 @@ bool CheckTimingFlags(const TimingFlags& flags) {
                      "error: --min-pairs must be at least %d and --max-pairs between "
                      "--min-pairs and 100000, not %d and %d\n",
                      base::kMinimumPairs, flags.min_pairs, flags.max_pairs);
+        return false;
+    }
+    if (!(flags.contended_share >= 0 && flags.contended_share <= 4)) {
+        std::fprintf(stderr, "error: --contended-share must be between 0 and 4, not %g\n",
+                     flags.contended_share);
         return false;
     }
     if (flags.coarse_frames < 1 || flags.warmup < 0 || flags.workers < 0 || flags.workers > 64 ||

@@ -46,16 +46,21 @@ void PrintRender(const RenderCommandOptions& options, const pipeline::RenderResu
         }
     }
     for (const ComparisonResult& c : results.comparisons) {
-        const base::PairedEstimate& e = c.timing.estimate;
+        const base::PairedEstimate& e = c.timing.stated;
         if (options.json) {
             break;
         }
         if (!c.error.empty()) {
             std::printf("%-40s no estimate: %s\n", c.comparison.label.c_str(), c.error.c_str());
         } else {
-            std::printf("%-40s %+6.1f%% [%+.1f, %+.1f] frame rate, %d pairs (%s)\n",
+            const base::PairedEstimate& busy = c.timing.contended_estimate;
+            const std::string contended =
+                    busy.pairs > 0 ? fmt::format(", {:+.1f}% with its core shared ({} pairs)",
+                                                 busy.change_percent, busy.pairs)
+                                   : std::string();
+            std::printf("%-40s %+6.1f%% [%+.1f, %+.1f] frame rate, %d pairs%s (%s)\n",
                         c.comparison.label.c_str(), e.change_percent, e.change_low, e.change_high,
-                        e.pairs, base::StopDecisionName(c.timing.decision));
+                        e.pairs, contended.c_str(), base::StopDecisionName(c.timing.decision));
         }
     }
     for (const VerdictDisagreement& d : results.disagreements) {

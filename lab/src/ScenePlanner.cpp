@@ -616,7 +616,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                     return timer.Time(side.configuration, view);
                 },
                 options.rule);
-        const base::PairedEstimate& e = timing.estimate;
+        const base::PairedEstimate& e = timing.stated;
         c.time_ms = base::Median(timing.samples.candidate_ms);
         c.time_change_percent = (e.ratio - 1.0) * 100.0;
         c.time_change_low = (e.ratio_low - 1.0) * 100.0;

@@ -1,5 +1,6 @@
 #include "tidepool/runner/FrameTimer.h"
 
+#include "tidepool/base/CoreCompetitor.h"
 #include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
@@ -153,23 +154,39 @@ ComparisonTiming TimeComparison(
         const TimeSide& time_side, const base::StoppingRule& rule,
         const std::function<void(const ComparisonTiming& so_far)>& after_look) {
     ComparisonTiming out;
-    PairSamples& s = out.samples;
+    // One pair into `s`: the baseline first in its even pairs, the candidate first in odd ones.
+    auto take_pair = [&](PairSamples& s) {
+        const bool baseline_first = s.baseline_ms.size() % 2 == 0;
+        const FrameTime first = time_side(!baseline_first);
+        const FrameTime second = time_side(baseline_first);
+        const FrameTime& baseline = baseline_first ? first : second;
+        const FrameTime& candidate = baseline_first ? second : first;
+        s.baseline_ms.push_back(baseline.ms);
+        s.candidate_ms.push_back(candidate.ms);
+        s.baseline_wall_ms.push_back(baseline.wall_ms);
+        s.candidate_wall_ms.push_back(candidate.wall_ms);
+    };
     for (;;) {
-        const int batch = base::PairsBeforeNextLook(static_cast<int>(s.baseline_ms.size()), rule);
+        const int batch =
+                base::PairsBeforeNextLook(static_cast<int>(out.samples.baseline_ms.size()), rule);
         for (int k = 0; k < batch; ++k) {
-            const bool baseline_first = s.baseline_ms.size() % 2 == 0;
-            const FrameTime first = time_side(!baseline_first);
-            const FrameTime second = time_side(baseline_first);
-            const FrameTime& baseline = baseline_first ? first : second;
-            const FrameTime& candidate = baseline_first ? second : first;
-            s.baseline_ms.push_back(baseline.ms);
-            s.candidate_ms.push_back(candidate.ms);
-            s.baseline_wall_ms.push_back(baseline.wall_ms);
-            s.candidate_wall_ms.push_back(candidate.wall_ms);
+            take_pair(out.samples);
         }
-        out.estimate = base::EstimatePaired(s.baseline_ms, s.candidate_ms);
+        const int contended = base::ContendedPairsBeforeNextLook(
+                static_cast<int>(out.samples.baseline_ms.size()),
+                static_cast<int>(out.contended.baseline_ms.size()), rule);
+        if (contended > 0) {
+            const base::CoreCompetitor competitor;
+            for (int k = 0; k < contended; ++k) {
+                take_pair(out.contended);
+            }
+        }
+        out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);
+        out.contended_estimate =
+                base::EstimatePaired(out.contended.baseline_ms, out.contended.candidate_ms);
+        out.stated = base::AcrossHostStates(out.estimate, out.contended_estimate);
         out.decision =
-                batch == 0 ? base::StopDecision::kCapped : base::DecideStop(out.estimate, rule);
+                batch == 0 ? base::StopDecision::kCapped : base::DecideStop(out.stated, rule);
         if (after_look) {
             after_look(out);
         }

@@ -114,7 +114,17 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     const long per_configuration = FramesPerConfiguration(options);
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
-    meter.AddComparisons(results.comparisons.size(), 2 * kInitialPairGuess);
+    // Frames of a comparison with `pairs` as-run pairs: both sides of those and of the contended
+    // pairs taken beside them (0 for none).
+    auto frames_at = [&](long pairs) -> long {
+        if (pairs <= 0) {
+            return 0;
+        }
+        const int contended =
+                base::ContendedPairsBeforeNextLook(static_cast<int>(pairs), 0, options.rule);
+        return 2 * (pairs + contended);
+    };
+    meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess));
 
     // The reference configuration renders first, so that every later image is compared with
     // it while in memory.
@@ -155,13 +165,14 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         long done = 0;
         TimeComparisonUnit(w, options, out, [&](const ComparisonTiming& so_far) {
             // Frames this look took, and a new guess of the pairs the interval needs.
-            const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size());
+            const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size() +
+                                                       so_far.contended.baseline_ms.size());
             meter.Step(ProgressMeter::kComparison, c.label, frames - done);
             done = frames;
-            const long needed = base::PairsExpectedAtStop(so_far.estimate, rule, kInitialPairGuess);
+            const long needed = base::PairsExpectedAtStop(so_far.stated, rule, kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
-            meter.ComparisonExpects(k, finished ? frames : 2 * needed, finished,
-                                    2L * base::PairsForResolution(so_far.estimate, rule));
+            meter.ComparisonExpects(k, finished ? frames : frames_at(needed), finished,
+                                    frames_at(base::PairsForResolution(so_far.estimate, rule)));
         });
         if (!out.error.empty()) {
             meter.ComparisonExpects(k, 0, true);
@@ -430,6 +441,7 @@ stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
                    o.rule.min_pairs,
                    o.rule.max_pairs,
                    o.rule.batch_pairs,
+                   o.rule.contended_share,
                    base::kConfidenceLevel,
                    "Hodges-Lehmann median of Walsh averages of per-pair log "
                    "ratios; Wilcoxon signed-rank interval"};
@@ -457,6 +469,10 @@ stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
         out.candidate_ms = c.timing.samples.candidate_ms;
         out.baseline_wall_ms = c.timing.samples.baseline_wall_ms;
         out.candidate_wall_ms = c.timing.samples.candidate_wall_ms;
+        out.contended_baseline_ms = c.timing.contended.baseline_ms;
+        out.contended_candidate_ms = c.timing.contended.candidate_ms;
+        out.stated_change_low = c.timing.stated.change_low;
+        out.stated_change_high = c.timing.stated.change_high;
         out.baseline_pass_ms.insert(c.timing.baseline_passes.pass_ms.begin(),
                                     c.timing.baseline_passes.pass_ms.end());
         out.candidate_pass_ms.insert(c.timing.candidate_passes.pass_ms.begin(),

@@ -174,8 +174,13 @@ bool FromResultsEntry(const stagefiles::ResultsComparison& entry, ComparisonResu
                                   entry.baseline_instrumented_frame_ms};
     out.timing.candidate_passes = {{entry.candidate_pass_ms.begin(), entry.candidate_pass_ms.end()},
                                    entry.candidate_instrumented_frame_ms};
+    out.timing.contended = {entry.contended_baseline_ms, entry.contended_candidate_ms, {}, {}};
     if (out.error.empty()) {
         out.timing.estimate = base::EstimatePaired(entry.baseline_ms, entry.candidate_ms);
+        out.timing.contended_estimate =
+                base::EstimatePaired(entry.contended_baseline_ms, entry.contended_candidate_ms);
+        out.timing.stated =
+                base::AcrossHostStates(out.timing.estimate, out.timing.contended_estimate);
     }
     return true;
 }

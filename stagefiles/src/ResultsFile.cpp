@@ -106,6 +106,7 @@ nlohmann::json ToJson(const ResultsTiming& t) {
                              {"min_pairs", t.min_pairs},
                              {"max_pairs", t.max_pairs},
                              {"batch_pairs", t.batch_pairs},
+                             {"contended_share", t.contended_share},
                              {"confidence", t.confidence},
                              {"estimator", t.estimator}};
     if (t.resolution_points) {
@@ -131,6 +132,10 @@ nlohmann::json ToJson(const ResultsComparison& c) {
             {"candidate_ms", c.candidate_ms},
             {"baseline_wall_ms", c.baseline_wall_ms},
             {"candidate_wall_ms", c.candidate_wall_ms},
+            {"contended_baseline_ms", c.contended_baseline_ms},
+            {"contended_candidate_ms", c.contended_candidate_ms},
+            {"stated_change_low", c.stated_change_low},
+            {"stated_change_high", c.stated_change_high},
             {"baseline_pass_ms", c.baseline_pass_ms},
             {"candidate_pass_ms", c.candidate_pass_ms},
             {"baseline_instrumented_frame_ms", c.baseline_instrumented_frame_ms},
@@ -400,6 +405,7 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Field(o, path, "min_pairs", &out->min_pairs);
     r.Field(o, path, "max_pairs", &out->max_pairs);
     r.Field(o, path, "batch_pairs", &out->batch_pairs);
+    r.Field(o, path, "contended_share", &out->contended_share);
     r.Field(o, path, "confidence", &out->confidence);
     r.Field(o, path, "estimator", &out->estimator);
 }
@@ -422,6 +428,10 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Required(o, path, "candidate_ms", &out->candidate_ms);
     r.Field(o, path, "baseline_wall_ms", &out->baseline_wall_ms);
     r.Field(o, path, "candidate_wall_ms", &out->candidate_wall_ms);
+    r.Field(o, path, "contended_baseline_ms", &out->contended_baseline_ms);
+    r.Field(o, path, "contended_candidate_ms", &out->contended_candidate_ms);
+    r.Field(o, path, "stated_change_low", &out->stated_change_low);
+    r.Field(o, path, "stated_change_high", &out->stated_change_high);
     r.Field(o, path, "baseline_pass_ms", &out->baseline_pass_ms);
     r.Field(o, path, "candidate_pass_ms", &out->candidate_pass_ms);
     r.Field(o, path, "baseline_instrumented_frame_ms", &out->baseline_instrumented_frame_ms);

@@ -8,6 +8,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
+#include <iterator>
 #include <map>
 #include <string>
 #include <vector>
@@ -64,6 +66,40 @@ TEST(FrameTimerTest, SidesAlternateWhoGoesFirstAndStopAtTheResolution) {
     EXPECT_EQ(t.decision, base::StopDecision::kResolved);
     EXPECT_EQ(t.estimate.pairs, rule.min_pairs);  // this little noise needs no more
     EXPECT_NEAR(t.estimate.ratio, 1.1, 0.01);
+}
+
+// Threads of this process now, from /proc: one more while a CoreCompetitor runs.
+long ThreadsNow() {
+    return std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                         std::filesystem::directory_iterator{});
+}
+
+TEST(FrameTimerTest, ContendedPairsAreTimedWithTheCoreSharedAndTheIntervalSpansBoth) {
+    const long alone = ThreadsNow();
+    int contended_frames = 0;
+    int frames = 0;
+    const TimeSide side = [&](bool candidate) {
+        // The candidate is 10% slower as the machine runs and 12% slower with its core shared
+        // (the competitor is a thread of this process).
+        const bool busy = ThreadsNow() > alone;
+        contended_frames += busy ? 1 : 0;
+        ++frames;
+        const double jitter = 1.0 + 0.002 * static_cast<double>(frames % 5);
+        return FrameTime{(candidate ? (busy ? 11.2 : 11.0) : 10.0) * jitter, 0.0};
+    };
+    base::StoppingRule rule;
+    rule.contended_share = 0.5;
+    const ComparisonTiming t = TimeComparison(side, rule);
+    EXPECT_EQ(t.decision, base::StopDecision::kResolved);
+    EXPECT_EQ(t.samples.baseline_ms.size(), 20U);
+    EXPECT_EQ(t.contended.baseline_ms.size(), 10U);
+    EXPECT_EQ(contended_frames, 20);  // every contended frame, and only those, saw the competitor
+    EXPECT_NEAR(t.estimate.ratio, 1.10, 0.01);
+    EXPECT_NEAR(t.contended_estimate.ratio, 1.12, 0.01);
+    EXPECT_EQ(t.stated.ratio, t.estimate.ratio);
+    EXPECT_LT(t.stated.ratio_low, 1.10);
+    EXPECT_GT(t.stated.ratio_high, 1.12);
+    EXPECT_EQ(ThreadsNow(), alone);  // the competitor is gone
 }
 
 TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {

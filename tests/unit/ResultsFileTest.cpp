@@ -66,7 +66,7 @@ ResultsFile OneOfEachResult() {
         c.ok = true;
     }
     file.configurations[1].glslang_valid.reset();
-    file.timing = {"thread_cpu", "software", 1.5, 20, 400, 10, 0.95, "Hodges-Lehmann"};
+    file.timing = {"thread_cpu", "software", 1.5, 20, 400, 10, 0.5, 0.95, "Hodges-Lehmann"};
     file.comparisons = {{"row 1",
                          "water:A",
                          "water:B",
@@ -83,6 +83,10 @@ ResultsFile OneOfEachResult() {
                          {5.0, 4.75},
                          {4.5, 4.5},
                          {5.0, 5.0},
+                         {4.75, 4.5},
+                         {5.25, 5.0},
+                         -17.5,
+                         0.5,
                          {{"main", 2.5}},
                          {{"main", 2.75}, {"low_res_water", 1.0}},
                          4.5,

@@ -86,6 +86,10 @@ TEST(SharedUnitsTest, AComparisonReadBackFromItsFileWritesTheSameResultsEntry) {
     c.timing.samples = {{10.0, 10.5}, {11.0, 11.25}, {10.25, 10.75}, {11.5, 11.5}};
     c.timing.estimate =
             base::EstimatePaired(c.timing.samples.baseline_ms, c.timing.samples.candidate_ms);
+    c.timing.contended = {{10.0, 10.25}, {11.5, 11.75}, {}, {}};
+    c.timing.contended_estimate =
+            base::EstimatePaired(c.timing.contended.baseline_ms, c.timing.contended.candidate_ms);
+    c.timing.stated = base::AcrossHostStates(c.timing.estimate, c.timing.contended_estimate);
     c.timing.decision = base::StopDecision::kResolved;
     c.timing.baseline_passes = {{{"main", 9.5}}, 10.25};
     c.timing.candidate_passes = {{{"main", 8.0}, {"low_res_water", 3.0}}, 11.25};
@@ -100,6 +104,9 @@ TEST(SharedUnitsTest, AComparisonReadBackFromItsFileWritesTheSameResultsEntry) {
     EXPECT_EQ(stagefiles::ResultsFileText(ToResultsFile(again)), written);
     EXPECT_EQ(again.comparisons[0].timing.candidate_passes.pass_ms.at("low_res_water"), 3.0);
     EXPECT_EQ(again.comparisons[0].timing.baseline_passes.frame_ms, 10.25);
+    EXPECT_EQ(again.comparisons[0].timing.contended.candidate_ms,
+              (std::vector<double>{11.5, 11.75}));
+    EXPECT_EQ(again.comparisons[0].timing.contended_estimate.pairs, 2);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@ void ApplyTiming(const TimingSettings& settings, runner::BackendKind backend,
     run->rule.resolution_points = settings.resolution;
     run->rule.min_pairs = settings.min_pairs;
     run->rule.max_pairs = settings.max_pairs;
+    run->rule.contended_share = settings.contended_share;
     run->coarse_frames = settings.coarse_frames;
     run->warmup_frames = settings.warmup;
     run->workers = settings.workers > 0 ? settings.workers : DefaultJobs();

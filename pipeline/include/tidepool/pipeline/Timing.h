@@ -16,6 +16,10 @@ struct TimingSettings {
     double resolution = 1.5;  // half-width of a comparison's 95% interval, percent points
     int min_pairs = 20;
     int max_pairs = 400;
+    // Pairs timed with a competing thread on the rendering thread's core per pair timed as the
+    // machine runs: each
+    // comparison's interval then spans both states of the machine (base::AcrossHostStates).
+    double contended_share = 0.5;
     int coarse_frames = 3;
     int warmup = 2;
     // Rendering threads; 0: one per core. One by default: llvmpipe's contexts in one process

@@ -95,8 +95,15 @@ struct PassMedians {
 
 /// The outcome of comparing two configurations.
 struct ComparisonTiming {
-    PairSamples samples;
-    base::PairedEstimate estimate;  // over every pair, on the timer's clock
+    PairSamples samples;            // as the machine runs
+    base::PairedEstimate estimate;  // over those pairs, on the timer's clock
+    // Pairs timed with a base::CoreCompetitor on the rendering thread's core
+    // (rule.contended_share), their
+    // estimate, and the interval the comparison states across both (base::AcrossHostStates),
+    // which the stopping rule watches; `stated` is `estimate` when there are none.
+    PairSamples contended;
+    base::PairedEstimate contended_estimate;
+    base::PairedEstimate stated;
     base::StopDecision decision = base::StopDecision::kContinue;
     // Each side's per-pass times, from instrumented frames taken in pairs like the samples, so
     // that the two sides' passes are timed under the same load (TimePassesInPairs).
@@ -122,9 +129,12 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
 /// Compares two configurations pair by pair: pair i renders the baseline then the candidate
 /// when i is even, the other way round when odd, so neither side always goes first and the two
 /// frames of a pair lie milliseconds apart (drift on a shared machine cancels in their ratio).
-/// Looks at the interval after PairsBeforeNextLook pairs each time and stops as `rule` says.
-/// `after_look` (may be empty) sees the timing so far (samples, estimate, decision) after every
-/// look. Never fails: a side whose frames cannot be timed makes the estimate's error say so.
+/// After each look's PairsBeforeNextLook pairs it takes ContendedPairsBeforeNextLook pairs,
+/// ordered the same way, with a base::CoreCompetitor sharing the calling thread's core, then
+/// looks at the
+/// stated interval (AcrossHostStates) and stops as `rule` says. `after_look` (may be empty)
+/// sees the timing so far (samples, estimates, decision) after every look. Never fails: a side
+/// whose frames cannot be timed makes the estimate's error say so.
 ComparisonTiming TimeComparison(
         const TimeSide& time_side, const base::StoppingRule& rule,
         const std::function<void(const ComparisonTiming& so_far)>& after_look = {});

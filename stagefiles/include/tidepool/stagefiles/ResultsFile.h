@@ -206,6 +206,8 @@ struct ResultsTiming {
     int min_pairs = 0;
     int max_pairs = 0;
     int batch_pairs = 0;
+    // Pairs timed with the core shared per pair timed as the machine ran (0 in older files).
+    double contended_share = 0;
     double confidence = 0;
     std::string estimator;
 
@@ -230,6 +232,13 @@ struct ResultsComparison {
     std::vector<double> candidate_ms;  // required
     std::vector<double> baseline_wall_ms;
     std::vector<double> candidate_wall_ms;
+    // Pairs timed with the core shared (base::AcrossHostStates; empty when none, and
+    // in older files), on the run's clock, and the interval stated across both sets of pairs
+    // (the as-run interval when there are none).
+    std::vector<double> contended_baseline_ms;
+    std::vector<double> contended_candidate_ms;
+    double stated_change_low = 0;
+    double stated_change_high = 0;
     // Each side's per-pass medians over the comparison's instrumented frames, taken in pairs,
     // and those frames' median as a whole (empty / 0 in files written before they were kept).
     std::map<std::string, double, std::less<>> baseline_pass_ms;
