@@ -19,8 +19,13 @@ constexpr double kUndefined = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 PairedRatio ComparePairs(const std::vector<double>& baseline_ms,
-                         const std::vector<double>& candidate_ms) {
-    const base::PairedEstimate e = base::EstimatePaired(baseline_ms, candidate_ms);
+                         const std::vector<double>& candidate_ms,
+                         const std::vector<double>& contended_baseline_ms,
+                         const std::vector<double>& contended_candidate_ms) {
+    const base::PairedEstimate as_run = base::EstimatePaired(baseline_ms, candidate_ms);
+    const base::PairedEstimate contended =
+            base::EstimatePaired(contended_baseline_ms, contended_candidate_ms);
+    const base::PairedEstimate e = base::AcrossHostStates(as_run, contended);
     PairedRatio out;
     if (!e.Valid()) {
         out.error = e.error.empty() ? "no interval" : e.error;
@@ -29,6 +34,12 @@ PairedRatio ComparePairs(const std::vector<double>& baseline_ms,
     out.ratio = e.ratio;
     out.ci = {e.ratio_low, e.ratio_high};
     out.pairs = e.pairs;
+    out.as_run_ci = {as_run.ratio_low, as_run.ratio_high};
+    if (contended.pairs > 0) {
+        out.contended_ratio = contended.ratio;
+        out.contended_ci = {contended.ratio_low, contended.ratio_high};
+        out.contended_pairs = contended.pairs;
+    }
     return out;
 }
 

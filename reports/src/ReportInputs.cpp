@@ -161,6 +161,8 @@ MeasuredComparison ParseComparison(const stagefiles::ResultsComparison& entry) {
             entry.candidate_ms,
             entry.baseline_wall_ms,
             entry.candidate_wall_ms,
+            entry.contended_baseline_ms,
+            entry.contended_candidate_ms,
             entry.decision,
             entry.error,
             {entry.baseline_pass_ms.begin(), entry.baseline_pass_ms.end()},

@@ -171,6 +171,8 @@ double LogRatioSd(const std::vector<double>& a, const std::vector<double>& b) {
 struct PairsOfFrames {
     std::vector<double> baseline_ms;
     std::vector<double> candidate_ms;
+    std::vector<double> contended_baseline_ms;  // timed with the core shared (may be empty)
+    std::vector<double> contended_candidate_ms;
     std::string source;  // where the pairs come from, for the method text
     std::string error;   // why there are none
 };
@@ -190,6 +192,8 @@ PairsOfFrames PairsFor(const ReportInputs& inputs, const MeasuredConfiguration& 
         }
         pairs.baseline_ms = c->baseline_ms;
         pairs.candidate_ms = c->candidate_ms;
+        pairs.contended_baseline_ms = c->contended_baseline_ms;
+        pairs.contended_candidate_ms = c->contended_candidate_ms;
         pairs.source = c->timed_by == "second_process"
                                ? "pairs of frames rendered back to back, by the process beside "
                                  "the render"
@@ -374,8 +378,10 @@ TechniqueComparison CompareTechnique(const TechniquePresets& presets, const Repo
     }
     if (t.note.empty()) {
         const PairsOfFrames pairs = PairsFor(inputs, *base, *cand, clock);
-        t.ratio = pairs.error.empty() ? ComparePairs(pairs.baseline_ms, pairs.candidate_ms)
-                                      : PairedRatio{};
+        t.ratio = pairs.error.empty()
+                          ? ComparePairs(pairs.baseline_ms, pairs.candidate_ms,
+                                         pairs.contended_baseline_ms, pairs.contended_candidate_ms)
+                          : PairedRatio{};
         if (!pairs.error.empty() || !t.ratio.error.empty()) {
             t.note = fmt::format("no paired time on the {} clock: {}", TimingClockName(clock),
                                  pairs.error.empty() ? t.ratio.error : pairs.error);
@@ -883,7 +889,9 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
             const PairsOfFrames pairs = PairsFor(inputs, *base, *cand, model.clock);
             comparison.pairs_source = pairs.source;
             if (pairs.error.empty()) {
-                comparison.ratio = ComparePairs(pairs.baseline_ms, pairs.candidate_ms);
+                comparison.ratio =
+                        ComparePairs(pairs.baseline_ms, pairs.candidate_ms,
+                                     pairs.contended_baseline_ms, pairs.contended_candidate_ms);
                 comparison.split = CompareSplitPairs(pairs.baseline_ms, pairs.candidate_ms);
             } else {
                 comparison.ratio.error = pairs.error;

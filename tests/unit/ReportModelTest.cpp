@@ -466,6 +466,43 @@ TEST(ReportModelTest, CpuSamplesOnEveryConfigurationMakeEveryComparisonUseCpuTim
     EXPECT_NE(md.find("| Compared on | CPU time: process CPU time"), std::string::npos);
 }
 
+// Pairs timed with the core shared widen the row's stated interval to reach them, keep the
+// as-run change, and the verdict follows the stated interval: here the contended pairs see no
+// gain, so no direction is claimed.
+TEST(ReportModelTest, ContendedPairsWidenTheStatedIntervalAndTheVerdictFollowsIt) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WithCpuTimes(WhitepaperConfigurations()));
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    nlohmann::json entry = Row7ComparisonEntry();
+    std::vector<double> base, cand, busy_base, busy_cand;
+    for (int i = 0; i < 12; ++i) {
+        const double jitter = 1.0 + 0.001 * (i % 4);
+        base.push_back(30.0 * jitter);
+        cand.push_back(27.0 * jitter);  // 11% faster as run
+        busy_base.push_back(30.0 * jitter);
+        busy_cand.push_back(29.9 * jitter);  // 0.3% faster with the core shared
+    }
+    entry["baseline_ms"] = base;
+    entry["candidate_ms"] = cand;
+    results["comparisons"] = nlohmann::json::array({entry});
+    const RowComparison as_run = Row7Built(dir, run, results);
+    EXPECT_EQ(as_run.ratio.contended_pairs, 0);
+    EXPECT_GT(as_run.change_ci.low, 10.0);
+    EXPECT_NE(as_run.verdict, Verdict::kBelowResolution);
+
+    entry["contended_baseline_ms"] = busy_base;
+    entry["contended_candidate_ms"] = busy_cand;
+    results["comparisons"] = nlohmann::json::array({entry});
+    const RowComparison both = Row7Built(dir, run, results);
+    EXPECT_EQ(both.ratio.contended_pairs, 12);
+    EXPECT_NEAR(both.change_percent, as_run.change_percent, 1e-9);
+    EXPECT_NEAR(PerformanceChangePercent(both.ratio.contended_ratio), 0.33, 0.05);
+    EXPECT_LT(both.change_ci.low, 0.4);
+    EXPECT_NEAR(both.change_ci.high, as_run.change_ci.high, 1e-9);
+    EXPECT_EQ(both.verdict, Verdict::kBelowResolution) << both.verdict_reason;
+    EXPECT_NEAR(both.resolution_points, (both.change_ci.high - both.change_ci.low) / 2, 1e-9);
+}
+
 // A row whose pairs `run`'s second process timed says so in its pairs' source (data.json), since
 // that process timed them at another moment of the machine's load.
 TEST(ReportModelTest, PairsTheSecondProcessTimedSaySo) {

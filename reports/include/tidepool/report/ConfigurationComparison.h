@@ -37,16 +37,28 @@ struct Interval {
 /// A paired frame-time ratio (candidate / baseline) with its interval, as the report shows it.
 struct PairedRatio {
     double ratio = std::numeric_limits<double>::quiet_NaN();  // NaN when the comparison failed
-    Interval ci;        // kConfidenceLevel Wilcoxon signed-rank interval of `ratio`
-    int pairs = 0;      // pairs of frames compared; 0 when the comparison failed
-    std::string error;  // "" on success, otherwise why ratio is NaN
+    // The interval stated: the kConfidenceLevel Wilcoxon signed-rank interval of `ratio`, or,
+    // when the comparison was also timed with its core shared, the span of that interval and
+    // the contended one (base::AcrossHostStates).
+    Interval ci;
+    int pairs = 0;       // pairs of frames compared as the machine ran; 0 when it failed
+    std::string error;   // "" on success, otherwise why ratio is NaN
+    Interval as_run_ci;  // the as-run pairs' own interval
+    // The pairs timed with the core shared: their estimate, interval and count (NaN and 0 when
+    // none).
+    double contended_ratio = std::numeric_limits<double>::quiet_NaN();
+    Interval contended_ci;
+    int contended_pairs = 0;
 };
 
 /// Compares paired frame times (base::EstimatePaired: the Hodges-Lehmann estimate of the
-/// per-pair log ratios and its signed-rank interval). Fails (ratio NaN, pairs 0, `error` set)
-/// when EstimatePaired gives no interval.
+/// per-pair log ratios and its signed-rank interval), and with the pairs timed with the core
+/// shared when there are any (base::AcrossHostStates). Fails (ratio NaN, pairs 0, `error`
+/// set) when EstimatePaired gives no interval for either set.
 PairedRatio ComparePairs(const std::vector<double>& baseline_ms,
-                         const std::vector<double>& candidate_ms);
+                         const std::vector<double>& candidate_ms,
+                         const std::vector<double>& contended_baseline_ms = {},
+                         const std::vector<double>& contended_candidate_ms = {});
 
 /// One pair per timing round from the medians of round r of each side: how results written
 /// before the runner recorded pairs are compared. Returns "" or why not (the round counts

@@ -105,6 +105,9 @@ struct MeasuredComparison {
     std::vector<double> candidate_ms;      // candidate_ms[i])
     std::vector<double> baseline_wall_ms;  // the same frames on the wall clock (may be empty)
     std::vector<double> candidate_wall_ms;
+    // Pairs timed with the core shared (empty when none), on the run's clock.
+    std::vector<double> contended_baseline_ms;
+    std::vector<double> contended_candidate_ms;
     std::string decision;  // "resolved" or "capped"
     std::string error;     // why the runner has no pairs ("" when it has)
     // Each side's per-pass medians over the comparison's own instrumented frames, taken in pairs
