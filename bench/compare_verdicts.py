@@ -4,7 +4,10 @@ agreement, the contradictions and each row's interval width. A contradiction is 
 firm in both runs (a claim a second run could refute: a magnitude, the opposite direction, or
 the direction of a qualitative figure; `firm` in data.json) with different verdicts, or
 `opposite` in one run and not firm in the other (stricter than issue 11's wording, which needs
-both runs firm; both counts are printed). Prints figures only; never pass/fail."""
+both runs firm; both counts are printed). Also counts the rows that contention moved by more
+than their stated intervals (issue 11, Deliver 1): the two runs' stated 95% intervals are
+disjoint, so the shift between the estimates exceeds what both intervals together allow.
+Prints figures only; never pass/fail."""
 import json
 import statistics
 import sys
@@ -36,6 +39,7 @@ def main():
           f"{label_b + ' change [95%]':<28} {'verdict':<36} agreement")
     same = contradictions = firm_pairs_differ = 0
     firm_big = []
+    moved = []
     for n in sorted(a):
         ra, rb = a[n], b.get(n, {})
         va, vb = ra.get("verdict"), rb.get("verdict")
@@ -51,6 +55,10 @@ def main():
             agreement = "differs (not both firm)"
         print(f"{n:>2}  {ra.get('whitepaper_figure', '')[:22]:<22} {cell(ra):<28} {va:<36} "
               f"{cell(rb):<28} {vb:<36} {agreement}")
+        ca = ra.get("measured_percent_ci") or [None, None]
+        cb = rb.get("measured_percent_ci") or [None, None]
+        if None not in ca and None not in cb and (ca[1] < cb[0] or cb[1] < ca[0]):
+            moved.append((n, ra["measured_percent"] - rb["measured_percent"]))
         for r, f in ((ra, fa), (rb, fb)):
             change = r.get("measured_percent")
             if change is not None and abs(change) >= 3:
@@ -63,6 +71,9 @@ def main():
           f"one run, opposite or another firm category in the other): {firm_pairs_differ}; "
           f"the rest are 'opposite' in one run and not firm in the other, which this script "
           f"counts too")
+    print(f"rows moved by more than their stated intervals (the two intervals disjoint): "
+          f"{', '.join(f'row {n} ({d:+.1f} points)' for n, d in moved) if moved else 'none'} "
+          f"(target none)")
     not_firm = sorted({n for n, f in firm_big if not f})
     print(f"rows with an effect of at least 3% that are not firm in some run: "
           f"{not_firm if not_firm else 'none'} (target none)")
