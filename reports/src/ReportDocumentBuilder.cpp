@@ -1,6 +1,7 @@
 #include "ReportDocumentBuilder.h"
 
 #include "tidepool/Manifest.h"
+#include "tidepool/base/CoreCompetitor.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/report/ReportCharts.h"
 #include "tidepool/report/WhitepaperTable.h"
@@ -148,14 +149,13 @@ std::string HostStatesText(const ReportModel& model) {
             "(bench/main_job.sh times the main job both ways). So every comparison is timed in "
             "two states: as the machine runs, and, after each look's pairs, {:.2g} pairs per "
             "as-run pair (at least {}) while a thread of tidepool's own shares the rendering "
-            "thread's core (both pinned to it), walking a 1 MiB buffer without a pause the way "
-            "another job would, and the other cores stay free. The change stated is the "
-            "as-run "
+            "thread's core (both pinned to it), walking a {} MiB buffer without a pause the way "
+            "another job would, and the other cores stay free. The change stated is the as-run "
             "estimate; its interval runs from the lower end of the two states' 95% intervals to "
             "the higher, and the stopping rule and the verdicts use that interval, so a run on a "
-            "quiet machine and one on a loaded machine state intervals that each reach the "
-            "other's state. The table shows both states for each whitepaper row.",
-            share, base::kMinimumPairs);
+            "quiet machine states an interval that reaches a busier state too. The table shows "
+            "both states for each whitepaper row.",
+            share, base::kMinimumPairs, base::CoreCompetitor::kBufferBytes >> 20);
 }
 
 std::vector<std::vector<std::string>> HostStatesTable(const ReportModel& model) {

@@ -501,6 +501,26 @@ TEST(ReportModelTest, ContendedPairsWidenTheStatedIntervalAndTheVerdictFollowsIt
     EXPECT_NEAR(both.change_ci.high, as_run.change_ci.high, 1e-9);
     EXPECT_EQ(both.verdict, Verdict::kBelowResolution) << both.verdict_reason;
     EXPECT_NEAR(both.resolution_points, (both.change_ci.high - both.change_ci.low) / 2, 1e-9);
+
+    // The report shows both states: data.json's row and the Method section's table and text.
+    results["timing"]["contended_share"] = 0.5;
+    dir.Write("render/results.json", results.dump());
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    ASSERT_TRUE(built.model) << built.error;
+    const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+    ASSERT_EQ(written.error, "");
+    const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
+    const nlohmann::json& row = data["whitepaper_rows"][6];
+    EXPECT_EQ(row["contended_pairs"], 12);
+    EXPECT_NEAR(row["contended_percent"].get<double>(), 0.33, 0.05);
+    EXPECT_NEAR(row["as_run_percent_ci"][0].get<double>(), as_run.change_ci.low, 1e-9);
+    EXPECT_NEAR(row["measured_percent_ci"][0].get<double>(), both.change_ci.low, 1e-9);
+    const std::string md = ReadText(written.folder / "report.md");
+    EXPECT_NE(md.find("Host states. Contention is not only noise"), std::string::npos);
+    EXPECT_NE(md.find("| core shared [95%] |"), std::string::npos);
+    EXPECT_NE(md.find("| Pairs with the core shared, per as-run pair | 0.5 |"), std::string::npos);
 }
 
 // A row whose pairs `run`'s second process timed says so in its pairs' source (data.json), since

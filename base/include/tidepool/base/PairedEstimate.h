@@ -117,9 +117,9 @@ struct StoppingRule {
     // beyond the direction margins, e.g. the ends of a whitepaper row's magnitude band; none for
     // most comparisons.
     std::vector<double> boundaries_points = {};
-    // Contended pairs (timed with a CoreCompetitor on the render thread's core,
-    // AcrossHostStates) per pair timed as the
-    // machine runs; 0 times none, and the rule then watches the as-run interval alone.
+    // Contended pairs (timed with a CoreCompetitor on the render thread's core, see
+    // AcrossHostStates) per pair timed as the machine runs; 0 times none, and the rule then
+    // watches the as-run interval alone.
     double contended_share = 0;
 };
 
@@ -135,7 +135,8 @@ struct StoppingRule {
 /// [+25.8, +26.2] beside four; row 7 read 0.0% quiet and -0.6% [-0.8, -0.4] beside four. No
 /// interval from pairs taken in one state of the machine covers the other, so each comparison
 /// is measured in both, the one it runs in and one with a competitor on its core, and states
-/// the span: a second run, loaded or not, then lands inside it.
+/// the span, which a second run under another load then reaches (bench/main_job.sh: no row's
+/// quiet and loaded intervals disjoint in four runs, two or four `yes` beside the loaded one).
 PairedEstimate AcrossHostStates(const PairedEstimate& as_run, const PairedEstimate& contended);
 
 /// How many contended pairs to take after a look's as-run pairs, given `as_run_pairs` after
