@@ -329,9 +329,10 @@ stagefiles::ResultsSettings ToSettings(const RunResults& results) {
             "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
             "it); each configuration gets coarse_frames frames on its own; each comparison is "
             "timed in pairs of frames rendered back to back on one thread, the side going first "
-            "alternating, until the 95% Wilcoxon interval of the Hodges-Lehmann ratio is as "
-            "narrow "
-            "as timing.resolution_points or timing.max_pairs is reached";
+            "alternating, as the machine runs and (timing.contended_share of them) with a "
+            "competing thread on the rendering thread's core, until the interval spanning both "
+            "states' 95% Wilcoxon intervals of the Hodges-Lehmann ratio is as narrow as "
+            "timing.resolution_points or timing.max_pairs is reached";
     out.animation_time_s = s.animation_time;
     out.clip_plane_offset = s.clip_plane_offset;
     out.wave_distortion = s.wave_distortion;

@@ -17,8 +17,8 @@ struct TimingSettings {
     int min_pairs = 20;
     int max_pairs = 400;
     // Pairs timed with a competing thread on the rendering thread's core per pair timed as the
-    // machine runs: each
-    // comparison's interval then spans both states of the machine (base::AcrossHostStates).
+    // machine runs: each comparison's interval then spans both states of the machine
+    // (base::AcrossHostStates).
     double contended_share = 0.5;
     int coarse_frames = 3;
     int warmup = 2;

@@ -98,9 +98,9 @@ struct ComparisonTiming {
     PairSamples samples;            // as the machine runs
     base::PairedEstimate estimate;  // over those pairs, on the timer's clock
     // Pairs timed with a base::CoreCompetitor on the rendering thread's core
-    // (rule.contended_share), their
-    // estimate, and the interval the comparison states across both (base::AcrossHostStates),
-    // which the stopping rule watches; `stated` is `estimate` when there are none.
+    // (rule.contended_share), their estimate, and the interval the comparison states across
+    // both (base::AcrossHostStates), which the stopping rule watches; `stated` is `estimate`
+    // when there are none.
     PairSamples contended;
     base::PairedEstimate contended_estimate;
     base::PairedEstimate stated;
@@ -131,10 +131,9 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
 /// frames of a pair lie milliseconds apart (drift on a shared machine cancels in their ratio).
 /// After each look's PairsBeforeNextLook pairs it takes ContendedPairsBeforeNextLook pairs,
 /// ordered the same way, with a base::CoreCompetitor sharing the calling thread's core, then
-/// looks at the
-/// stated interval (AcrossHostStates) and stops as `rule` says. `after_look` (may be empty)
-/// sees the timing so far (samples, estimates, decision) after every look. Never fails: a side
-/// whose frames cannot be timed makes the estimate's error say so.
+/// looks at the stated interval (AcrossHostStates) and stops as `rule` says. `after_look` (may be
+/// empty) sees the timing so far (samples, estimates, decision) after every look. Never fails: a
+/// side whose frames cannot be timed makes the estimate's error say so.
 ComparisonTiming TimeComparison(
         const TimeSide& time_side, const base::StoppingRule& rule,
         const std::function<void(const ComparisonTiming& so_far)>& after_look = {});

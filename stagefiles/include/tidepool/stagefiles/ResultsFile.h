@@ -232,9 +232,9 @@ struct ResultsComparison {
     std::vector<double> candidate_ms;  // required
     std::vector<double> baseline_wall_ms;
     std::vector<double> candidate_wall_ms;
-    // Pairs timed with the core shared (base::AcrossHostStates; empty when none, and
-    // in older files), on the run's clock, and the interval stated across both sets of pairs
-    // (the as-run interval when there are none).
+    // Pairs timed with the core shared (base::AcrossHostStates; empty when none, and in older
+    // files), on the run's clock, and the interval stated across both sets of pairs (the
+    // as-run interval when there are none).
     std::vector<double> contended_baseline_ms;
     std::vector<double> contended_candidate_ms;
     double stated_change_low = 0;
