@@ -484,24 +484,70 @@ TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRul
 
 TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     StoppingRule rule;  // resolution 1.5, looks at 20, then every quarter
-    // Half-width 3.0 at 20 pairs, clear of the margins: (3.0 / 1.5)^2 x 20 = 80, and the first
-    // look at or after 80 is 20, 30, 40, 50, 62, 77, 96.
+    // Half-width 3.0 at 20 pairs, centre 8, clear of the margins wherever the change lies within
+    // the interval's reach: (3.0 / 1.5)^2 x 20 = 80, and the first look at or after 80 is 20,
+    // 30, 40, 50, 62, 77, 96.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(20, 5.0, 11.0), rule, 60), 96);
-    // Near the margin with the centre only 1.15 points beyond it, the end clears the margin
-    // by 1.5 standard errors at no wider than half the resolution: (1.25 / 0.75)^2 x 150 =
-    // 417, beyond the cap of 400.
-    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -3.9, -1.4), rule, 60), 400);
-    // With the centre 1.9 points beyond the margin (-3.4 +/- 1.25, upper end -2.15, 0.65 from
-    // the margin, within 1.5 standard errors of 0.64), the end clears it at half-width
-    // 1.96 x 1.9 / 3.46 = 1.08: (1.25 / 1.08)^2 x 150 = 202 pairs, the look at 233; waiting for
-    // half the resolution would have guessed the cap.
-    EXPECT_TRUE(NearVerdictBoundary(EstimateWithInterval(150, -4.65, -2.15), rule));
-    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60), 233);
-    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, +2.15, +4.65), rule, 60), 233);
+    // Already narrow enough and far from the margins: the pairs so far.
+    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(62, 4.0, 5.0), rule, 60), 62);
+    // The same width near the margin (centre -2.65, upper end 0.65 from it) needs more: the end
+    // must clear the margin by 1.5 standard errors, and a change nearer the margin than the
+    // centre needs more still, up to the cap. Mirrored, the same.
+    const int near = PairsExpectedAtStop(EstimateWithInterval(150, -3.9, -1.4), rule, 60);
+    const int far = PairsExpectedAtStop(EstimateWithInterval(150, -11.15, -8.65), rule, 60);
+    EXPECT_EQ(far, 150);
+    EXPECT_GT(near, far);
+    EXPECT_LE(near, rule.max_pairs);
+    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60),
+              PairsExpectedAtStop(EstimateWithInterval(150, +2.15, +4.65), rule, 60));
+    // The closer the centre to the margin, the more pairs.
+    EXPECT_GT(near, PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60));
     // No interval yet: the fallback, rounded to a look.
     EXPECT_EQ(PairsExpectedAtStop(PairedEstimate{}, rule, 60), 62);
-    // Already narrow enough: the pairs so far.
-    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(62, 4.0, 5.0), rule, 60), 62);
+    // At the cap: the cap.
+    EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(400, 6.9, 7.1), rule, 60), 400);
+}
+
+// The guess at a comparison's first look against where the rule then stops, over simulated runs
+// with a known effect near row 4's band edge (+7%), at a noise where 20 pairs give a half-width
+// of about a point: the progress line's ETA adds these guesses, so their mean must follow the
+// mean stop, although a single comparison's stop may lie anywhere from 20 pairs to the cap.
+TEST(PairedEstimateTest, ExpectedPairsAtTheFirstLookFollowTheRulesStops) {
+    StoppingRule row;
+    row.boundaries_points = {1.75, 7.0};
+    constexpr int kRuns = 60;  // slow under the sanitizers
+    double guessed = 0;
+    double stopped = 0;
+    for (int run = 0; run < kRuns; ++run) {
+        // The effect: +6.0% to +9.0% across the runs, the edge inside that range.
+        const double change = 6.0 + 3.0 * run / (kRuns - 1);
+        FrameNoise noise(static_cast<std::uint64_t>(11000 + run), 0.016);
+        std::vector<double> a;
+        std::vector<double> b;
+        int first_guess = 0;
+        for (;;) {
+            const int batch = PairsBeforeNextLook(static_cast<int>(a.size()), row);
+            for (int k = 0; k < batch; ++k) {
+                const auto [x, y] =
+                        noise.NextPair(1.0 / (1.0 + change / 100.0), static_cast<int>(a.size()));
+                a.push_back(x);
+                b.push_back(y);
+            }
+            const PairedEstimate e = EstimatePaired(a, b);
+            if (first_guess == 0) {
+                first_guess = PairsExpectedAtStop(e, row, 60);
+            }
+            if (DecideStop(e, row) != StopDecision::kContinue) {
+                stopped += e.pairs;
+                break;
+            }
+        }
+        guessed += first_guess;
+    }
+    std::printf("first looks guessed %.0f pairs on average; the rule stopped at %.0f\n",
+                guessed / kRuns, stopped / kRuns);
+    EXPECT_GT(stopped / kRuns, 2.0 * row.min_pairs) << "the edge should cost pairs here";
+    EXPECT_NEAR(guessed / stopped, 1.0, 0.3);
 }
 
 }  // namespace

@@ -177,12 +177,11 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
 /// invalid.
 bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
 
-/// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
-/// scaled by (half-width / the half-width the rule waits for)^2, rounded up to the next look
-/// and clamped to [pairs so far, max_pairs]; `fallback` when the estimate gives no interval.
-/// Near a verdict's boundary the half-width waited for is the one at which the interval's end
-/// would clear the boundary nearest its centre (the centre assumed to hold), at least
-/// FinestHalfWidthPoints.
+/// A guess, for progress reports, of the pairs the rule will have stopped at: the mean, over
+/// where the true change may lie (normal about the interval's centre, with its standard error),
+/// of the look at which DecideStop would stop if later intervals narrowed by the square-root law
+/// about that change; at least the pairs so far, at most max_pairs. Without an interval, the
+/// first look at or after `fallback`.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
 /// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
