@@ -52,6 +52,20 @@ std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options) {
     return std::nullopt;
 }
 
+std::vector<WorkUnit> RunWorkOrder(const RunOptions& options) {
+    std::vector<std::size_t> compared;
+    for (const TimedComparison& c : options.comparisons) {
+        for (std::size_t i : {c.baseline, c.candidate}) {
+            if (i < options.configurations.size() &&
+                std::find(compared.begin(), compared.end(), i) == compared.end()) {
+                compared.push_back(i);
+            }
+        }
+    }
+    return RenderWorkOrder(options.comparisons.size(), options.configurations.size(),
+                           ReferenceConfiguration(options), compared);
+}
+
 const DriverVerdict& PrepareConfiguration(RenderWorker& w, const RunOptions& options, std::size_t i,
                                           bool warm) {
     auto found = w.prepared.find(i);
@@ -139,6 +153,13 @@ void RenderConfigurationUnit(RenderWorker& w, const ImageUnitContext& context, s
         step(1);
     }
     r.plan_ms_median = base::Median(plan_ms);
+    std::vector<double> wall_ms;
+    for (const std::vector<double>& sample : r.samples_ms) {
+        wall_ms.insert(wall_ms.end(), sample.begin(), sample.end());
+    }
+    if (context.meter != nullptr && !wall_ms.empty()) {
+        context.meter->ConfigurationCost(i, base::Median(wall_ms) / 1000.0);
+    }
 }
 
 base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparison& comparison) {

@@ -54,6 +54,11 @@ const CameraView* TimingView(const RunOptions& options);
 /// The index of the configuration with RunOptions::reference_preset, when one has it.
 std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options);
 
+/// The order a run's units are taken in (RenderWorkOrder): the reference configuration, then the
+/// configurations its comparisons time, in the comparisons' order, then each comparison among
+/// the rest. The render process takes units from the front, a second process from the end.
+std::vector<WorkUnit> RunWorkOrder(const RunOptions& options);
+
 /// Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too
 /// (llvmpipe compiles shader variants on first draw, which must not land in a timed frame).
 const DriverVerdict& PrepareConfiguration(RenderWorker& w, const RunOptions& options, std::size_t i,

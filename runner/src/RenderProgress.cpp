@@ -20,12 +20,6 @@ double SecondsOf(ProgressMeter::Clock::duration duration) {
 // its ETA was 21% short.)
 constexpr double kPriorFrames = 40.0;
 
-// How many comparisons the first guess of a comparison's frames counts for in the expectation of
-// the ones still waiting. Replayed over the pair counts of 15 main-job runs (2026-11-25/26, 16
-// comparisons each, 20 to 233 pairs), the predicted sum from the third comparison on was off by at
-// most 25% in the median run with this weight, 28% with 1 and 34% with the median of the finished.
-constexpr double kPriorComparisons = 3.0;
-
 }  // namespace
 
 double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in) {
@@ -42,16 +36,26 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
 }
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
-                                      std::optional<std::size_t> first) {
+                                      std::optional<std::size_t> first,
+                                      const std::vector<std::size_t>& early) {
     std::vector<std::size_t> order(configurations);
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), std::mt19937(20161));
     std::vector<WorkUnit> units;
     units.reserve(comparisons + configurations);
-    if (first && *first < configurations) {
-        order.erase(std::find(order.begin(), order.end(), *first));
-        units.push_back({false, *first});
-        configurations -= 1;
+    auto take = [&](std::size_t i) {
+        const auto at = std::find(order.begin(), order.end(), i);
+        if (at != order.end()) {
+            order.erase(at);
+            units.push_back({false, i});
+            configurations -= 1;
+        }
+    };
+    if (first) {
+        take(*first);
+    }
+    for (std::size_t i : early) {
+        take(i);
     }
     std::size_t next = 0;
     for (std::size_t k = 0; k < comparisons; ++k) {
@@ -80,7 +84,34 @@ void ProgressMeter::AddComparisons(std::size_t count, long guess) {
     comparison_frames_.assign(count, guess);
     resolution_frames_.assign(count, 0);
     comparison_state_.assign(count, ComparisonState::kWaiting);
+    comparison_done_.assign(count, 0);
     SumComparisons();
+}
+
+void ProgressMeter::ComparisonConfigurations(std::size_t k, std::size_t baseline,
+                                             std::size_t candidate) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (comparison_configurations_.size() < comparison_frames_.size()) {
+        const std::size_t none = static_cast<std::size_t>(-1);
+        comparison_configurations_.resize(comparison_frames_.size(), {none, none});
+    }
+    if (k < comparison_configurations_.size()) {
+        comparison_configurations_[k] = {baseline, candidate};
+    }
+}
+
+void ProgressMeter::ConfigurationCost(std::size_t i, double seconds) {
+    if (!(seconds > 0) || !std::isfinite(seconds)) {
+        return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    configuration_cost_[i] = seconds;
+}
+
+void ProgressMeter::StepComparison(std::size_t k, const std::string& what, long frames,
+                                   Clock::time_point now) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    StepLocked(kComparison, what, frames, now, k);
 }
 
 void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished,
@@ -134,6 +165,11 @@ void ProgressMeter::ExpectWaiting() {
 
 void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock::time_point now) {
     std::lock_guard<std::mutex> lock(mutex_);
+    StepLocked(kind, what, frames, now, std::nullopt);
+}
+
+void ProgressMeter::StepLocked(Kind kind, const std::string& what, long frames,
+                               Clock::time_point now, std::optional<std::size_t> comparison) {
     if (decayed_to_ == Clock::time_point{}) {
         decayed_to_ = start_;
     }
@@ -144,15 +180,25 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
         k.recent_seconds *= keep;
         k.recent_frames *= keep;
     }
+    priced_seconds_ *= keep;
+    priced_estimate_ *= keep;
     decayed_to_ = std::max(decayed_to_, now);
     Clock::time_point& last =
             last_step_.try_emplace(std::this_thread::get_id(), start_).first->second;
+    const double seconds = std::max(0.0, SecondsOf(now - last));
     KindState& k = kinds_[kind];
-    k.recent_seconds += std::max(0.0, SecondsOf(now - last));
+    k.recent_seconds += seconds;
     k.recent_frames += static_cast<double>(frames);
     last = now;
     k.done += frames;
     k.total = std::max(k.total, k.done);
+    if (comparison && *comparison < comparison_done_.size()) {
+        comparison_done_[*comparison] += frames;
+        if (const std::optional<double> cost = CostOf(*comparison)) {
+            priced_seconds_ += seconds;
+            priced_estimate_ += *cost * static_cast<double>(frames);
+        }
+    }
     // The units a second process has claimed are its work, not this meter's.
     const std::array<long, 2> helper_frames = HelperClaimedFrames();
     std::array<long, 2> totals{};
@@ -169,7 +215,9 @@ void ProgressMeter::Step(Kind kind, const std::string& what, long frames, Clock:
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const double rate = SecondsPerFrame(i);
         done_seconds += rate * static_cast<double>(kinds_[i].done);
-        left_seconds += rate * static_cast<double>(totals[i] - kinds_[i].done);
+        left_seconds += i == kComparison && !comparison_configurations_.empty()
+                                ? ComparisonSecondsLeft()
+                                : rate * static_cast<double>(totals[i] - kinds_[i].done);
     }
     const double threads = static_cast<double>(last_step_.size());
     state_.eta_seconds = SecondsToFinish(left_seconds, threads, HelperJoinsIn(now));
@@ -248,6 +296,44 @@ double ProgressMeter::SecondsPerFrame(std::size_t kind) const {
     const double weight =
             kPriorFrames * kPriorFrames / (kPriorFrames + static_cast<double>(k.done));
     return (k.recent_seconds + prior * weight) / (k.recent_frames + weight);
+}
+
+// The mean of comparison k's two configurations' costs, once both are known (mutex_ held).
+std::optional<double> ProgressMeter::CostOf(std::size_t k) const {
+    if (k >= comparison_configurations_.size()) {
+        return std::nullopt;
+    }
+    const auto a = configuration_cost_.find(comparison_configurations_[k][0]);
+    const auto b = configuration_cost_.find(comparison_configurations_[k][1]);
+    if (a == configuration_cost_.end() || b == configuration_cost_.end()) {
+        return std::nullopt;
+    }
+    return (a->second + b->second) / 2.0;
+}
+
+// Seconds comparison frames took per second of their price, recently (mutex_ held). A few
+// seconds of prior at 1 keep the first look's warm-up from setting it alone.
+double ProgressMeter::Calibration() const {
+    constexpr double kPriorSeconds = 2.0;
+    return (priced_seconds_ + kPriorSeconds) / (priced_estimate_ + kPriorSeconds);
+}
+
+double ProgressMeter::PriceOf(std::size_t k) const {
+    const std::optional<double> cost = CostOf(k);
+    return cost ? *cost * Calibration() : SecondsPerFrame(kComparison);
+}
+
+double ProgressMeter::ComparisonSecondsLeft() const {
+    double seconds = 0;
+    for (std::size_t k = 0; k < comparison_frames_.size(); ++k) {
+        const bool helpers = shared_ != nullptr && shared_->HelperHas(shared_configurations_ + k);
+        if (helpers || comparison_state_[k] == ComparisonState::kFinished) {
+            continue;
+        }
+        const long left = std::max(0L, comparison_frames_[k] - comparison_done_[k]);
+        seconds += static_cast<double>(left) * PriceOf(k);
+    }
+    return seconds;
 }
 
 // The comparison kind's total: the frames every comparison expects (mutex_ held).

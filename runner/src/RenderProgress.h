@@ -37,15 +37,23 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
 /// ones). Both kinds of frame are then measured from the first seconds on, so the ETA knows
 /// what an image frame costs long before the comparisons are done, and the queue still ends on
 /// short units, which keeps several threads busy to the end.
+///
+/// `early` (the configurations the comparisons time) come right after `first`: their coarse
+/// frames price each comparison's frames for the ETA (ProgressMeter::ConfigurationCost) before
+/// the comparisons start. On the default matrix the first three whitepaper rows' frames cost
+/// about 40 ms and the later rows' about 70 ms (two `yes` beside the run), so a rate measured on
+/// the first rows left the ETA 15 to 20% short for the first third of the run.
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
-                                      std::optional<std::size_t> first = std::nullopt);
+                                      std::optional<std::size_t> first = std::nullopt,
+                                      const std::vector<std::size_t>& early = {});
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected
-/// frames follow its interval (pairs needed ~ pairs so far x (half-width / resolution)^2, the
-/// square-root law of an interval's width). Frames of the two kinds cost very differently (an
-/// image frame compiles on first use and encodes a PNG), so the share done and the ETA weigh
-/// each kind by its measured seconds per frame (SecondsPerFrame), which follows the recent rate:
+/// frames follow its interval (base::PairsExpectedAtStop). Frames of the two kinds cost very
+/// differently (an image frame compiles on first use and encodes a PNG), so the share done and
+/// the ETA weigh each kind by its measured seconds per frame (SecondsPerFrame), and the
+/// comparisons' frames left by their own configurations' cost once known (PriceOf). Both
+/// follow the recent rate:
 /// a process that shares the machine (`run`'s stability and plan stages, another user's job)
 /// may end or start halfway, and the rate before it says little about the rate after.
 class ProgressMeter {
@@ -67,12 +75,24 @@ public:
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
     /// still waiting then expect the mean of what the finished ones took, with a guess counting
-    /// as three of them: few finished comparisons say little, and one slow comparison near a
-    /// verdict's boundary should move the rest only by its share. `resolution_frames`, when
+    /// as kPriorComparisons of them. `resolution_frames`, when
     /// given (> 0), is what `k`'s noise at this look needs for the resolution alone
     /// (base::PairsForResolution, in frames); once any comparison has said it, the guess is
     /// kBoundaryAllowance times their mean instead of the first guess.
     void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
+
+    /// How many comparisons the guess (from the noise, below) counts for in the expectation of
+    /// the comparisons still waiting, against the mean of the finished ones. A whole default
+    /// matrix's worth: the extra pairs a comparison takes near a verdict's boundary are its own
+    /// (its effect lies near the edge of its own band), so the finished ones say little about
+    /// the rest. Replayed over the comparisons' frames in 15 main-job runs with contended pairs
+    /// (2026-11-26; rows 2 to 4 and 8, near their bands' edges, took up to 874 frames where most
+    /// took the minimum 60), the predicted frames of the waiting comparisons missed by at most
+    /// 19% of the run's work (the comparisons taken as half of it) in the worst run and 14% in the
+    /// median one with this weight,
+    /// against 42% and 20% with the weight of 3 used before: the heavy rows come first in the
+    /// default order, and a mean over few finished ones then charges every later row for them.
+    static constexpr double kPriorComparisons = 16.0;
 
     /// What the boundary clauses of the stopping rule add to the pairs a comparison needs for
     /// the resolution alone, on average: main-job runs took 1.4 to 2.8 times the median such
@@ -84,6 +104,23 @@ public:
     void Step(Kind kind, const std::string& what, long frames, Clock::time_point now);
     void Step(Kind kind, const std::string& what, long frames) {
         Step(kind, what, frames, Clock::now());
+    }
+
+    /// Comparison k times configurations `baseline` and `candidate`. Once both have a cost
+    /// (ConfigurationCost), the frames k has left are priced at the mean of the two costs times
+    /// the calibration, instead of at the comparisons' recent rate. The calibration is the ratio
+    /// of the seconds recent comparison frames took (with their warm-up, per-pass frames and
+    /// contended frames, which share a core) to their price, aged like the rates, 1 before any.
+    void ComparisonConfigurations(std::size_t k, std::size_t baseline, std::size_t candidate);
+
+    /// Configuration i's timed frame takes `seconds` (the median of its coarse frames).
+    void ConfigurationCost(std::size_t i, double seconds);
+
+    /// As Step(kComparison, ...), for frames of comparison k: they also count as k's frames done
+    /// and calibrate the prices.
+    void StepComparison(std::size_t k, const std::string& what, long frames, Clock::time_point now);
+    void StepComparison(std::size_t k, const std::string& what, long frames) {
+        StepComparison(k, what, frames, Clock::now());
     }
 
     /// A second process takes units off the same work order from its end (`claims`: one unit per
@@ -114,7 +151,17 @@ private:
 
     enum class ComparisonState { kWaiting, kRunning, kFinished };
 
+    void StepLocked(Kind kind, const std::string& what, long frames, Clock::time_point now,
+                    std::optional<std::size_t> comparison);
     double SecondsPerFrame(std::size_t kind) const;
+    // Seconds of the comparison frames left in this process (those the second process has not
+    // claimed), each comparison priced by PriceOf.
+    double ComparisonSecondsLeft() const;
+    // Seconds a frame of comparison k is expected to take: its configurations' cost times the
+    // calibration, or the comparisons' recent rate while a cost is missing.
+    double PriceOf(std::size_t k) const;
+    std::optional<double> CostOf(std::size_t k) const;
+    double Calibration() const;
     void SumComparisons();
     // Sets what every waiting comparison expects: the shrunk mean of the finished ones.
     void ExpectWaiting();
@@ -135,6 +182,12 @@ private:
     std::vector<long> comparison_frames_;
     std::vector<long> resolution_frames_;  // per comparison, its latest look's; 0: none yet
     std::vector<ComparisonState> comparison_state_;
+    std::vector<long> comparison_done_;  // frames stepped through StepComparison
+    std::vector<std::array<std::size_t, 2>> comparison_configurations_;  // empty: not priced
+    std::map<std::size_t, double> configuration_cost_;                   // seconds a frame
+    // Comparison frames' seconds and their price, aged like the kinds' recent sums.
+    double priced_seconds_ = 0;
+    double priced_estimate_ = 0;
     std::map<std::thread::id, Clock::time_point> last_step_;
     RunProgress state_;
 };

@@ -125,13 +125,15 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         return 2 * (pairs + contended);
     };
     meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess));
+    for (std::size_t k = 0; k < results.comparisons.size(); ++k) {
+        const TimedComparison& c = results.comparisons[k].comparison;
+        meter.ComparisonConfigurations(k, c.baseline, c.candidate);
+    }
 
     // The reference configuration renders first, so that every later image is compared with
     // it while in memory.
-    const std::optional<std::size_t> reference = ReferenceConfiguration(options);
     ReferenceImages references;
-    const std::vector<WorkUnit> units =
-            RenderWorkOrder(results.comparisons.size(), results.configurations.size(), reference);
+    const std::vector<WorkUnit> units = RunWorkOrder(options);
     std::atomic<std::size_t> next_unit{0};
     std::mutex results_mutex;  // diagnostics and write errors, appended from every thread
     std::vector<std::atomic<bool>> pass_timed(results.configurations.size());
@@ -167,7 +169,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // Frames this look took, and a new guess of the pairs the interval needs.
             const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size() +
                                                        so_far.contended.baseline_ms.size());
-            meter.Step(ProgressMeter::kComparison, c.label, frames - done);
+            meter.StepComparison(k, c.label, frames - done);
             done = frames;
             const long needed = base::PairsExpectedAtStop(so_far.stated, rule, kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
@@ -180,7 +182,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
         keep_passes(c.baseline, out.timing.baseline_passes);
         keep_passes(c.candidate, out.timing.candidate_passes);
-        meter.Step(ProgressMeter::kComparison, c.label, 0);  // the per-pass frames' time too
+        meter.StepComparison(k, c.label, 0);  // the per-pass frames' time too
     };
 
     // Whether this process does claim-table unit `unit` (it does all but the second process's).

@@ -267,8 +267,7 @@ SharedUnitsDone RenderSharedUnits(GlContext& context, const VariantConfig& confi
     }
     const ImageUnitContext unit_context{options, references, nullptr, errors_mutex,
                                         done.write_errors};
-    const std::vector<WorkUnit> order =
-            RenderWorkOrder(options.comparisons.size(), options.configurations.size(), reference);
+    const std::vector<WorkUnit> order = RunWorkOrder(options);
     claims->SetHelperTaking(true);
     for (auto unit = order.rbegin(); unit != order.rend(); ++unit) {
         const std::size_t claim =

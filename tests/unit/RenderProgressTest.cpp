@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstddef>
 #include <memory>
 #include <set>
@@ -54,6 +55,29 @@ TEST(RenderProgressTest, TheReferenceConfigurationRendersFirstAndOnce) {
     }
     EXPECT_EQ(comparisons, 16U);
     EXPECT_EQ(configurations.size(), 147U);
+}
+
+// The configurations the comparisons time come right after the reference, once each and in the
+// order given, so their coarse frames price the comparisons before any starts.
+TEST(RenderProgressTest, EarlyConfigurationsFollowTheReference) {
+    const std::vector<std::size_t> early = {7, 3, 42, 7, 200};  // 42 is the reference, 200 none
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, early);
+    ASSERT_EQ(units.size(), 16U + 147U);
+    ASSERT_FALSE(units[0].comparison);
+    EXPECT_EQ(units[0].index, 42U);
+    ASSERT_FALSE(units[1].comparison);
+    EXPECT_EQ(units[1].index, 7U);
+    ASSERT_FALSE(units[2].comparison);
+    EXPECT_EQ(units[2].index, 3U);
+    EXPECT_TRUE(units[3].comparison);
+    std::set<std::size_t> configurations;
+    for (const WorkUnit& unit : units) {
+        if (!unit.comparison) {
+            EXPECT_TRUE(configurations.insert(unit.index).second) << unit.index;
+        }
+    }
+    EXPECT_EQ(configurations.size(), 147U);
+    EXPECT_FALSE(units.back().comparison);
 }
 
 TEST(RenderProgressTest, WithoutComparisonsEveryConfigurationIsStillThere) {
@@ -120,28 +144,33 @@ TEST(RenderProgressTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
 }
 
 // Comparisons not started expect the mean of what the finished ones took, the first guess
-// counting as three of them: one that needed 300 pairs near a verdict's boundary moves every later
-// one by its share only, and the sum the ETA needs is not left short by a median.
+// counting as kPriorComparisons of them: one that needed 300 pairs near a verdict's boundary
+// moves every later one by its share only.
 TEST(RenderProgressTest, WaitingComparisonsExpectTheShrunkMeanOfTheFinishedOnes) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
+    constexpr double kPrior = ProgressMeter::kPriorComparisons;
     meter.AddComparisons(6, 120);  // 6 comparisons, 120 frames each until they say otherwise
     meter.ComparisonExpects(0, 40, true);
     meter.ComparisonExpects(1, 600, true);
     meter.ComparisonExpects(2, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 680, start + std::chrono::seconds(34));
-    // Finished: 40 + 600 + 40 frames; the three waiting expect (3 x 120 + 680) / 6 = 173.3,
-    // neither the plain mean 227 nor the median 120.
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * 173);
+    // Finished: 40 + 600 + 40 frames; the three waiting expect (k x 120 + 680) / (k + 3),
+    // between the guess and the plain mean 227.
+    const long first = std::lround((kPrior * 120 + 680) / (kPrior + 3));
+    EXPECT_GT(first, 120);
+    EXPECT_LT(first, 227);
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * first);
     // A running comparison's own guess is its own: it does not move the waiting ones.
     meter.ComparisonExpects(3, 400, false);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(35));
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 400 + 2 * 173);
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 400 + 2 * first);
     meter.ComparisonExpects(3, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(36));
-    // (360 + 720) / 7 = 154.3
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * 154);
+    const long second = std::lround((kPrior * 120 + 720) / (kPrior + 4));
+    EXPECT_LT(second, first);
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * second);
 }
 
 // Once a comparison has looked, the waiting ones start from what the noise so far needs for the
@@ -162,18 +191,79 @@ TEST(RenderProgressTest, WaitingComparisonsStartFromWhatTheNoiseSoFarNeeds) {
     // It finishes at 40; the waiting ones shrink towards 40 from the guess, not from 120.
     meter.ComparisonExpects(0, 40, true, 40);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(3));
-    const long expected = std::lround((3.0 * ProgressMeter::kBoundaryAllowance * 40 + 40) / 4);
+    constexpr double kPrior = ProgressMeter::kPriorComparisons;
+    const long expected =
+            std::lround((kPrior * ProgressMeter::kBoundaryAllowance * 40 + 40) / (kPrior + 1));
     EXPECT_EQ(meter.Last().total, 40 + 3 * expected);
     // A noisier look (a loaded machine) raises the guess by its share of the mean.
     meter.ComparisonExpects(1, 300, false, 200);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(4));
-    const long louder =
-            std::lround((3.0 * ProgressMeter::kBoundaryAllowance * (40 + 200) / 2 + 40) / 4);
+    const long louder = std::lround(
+            (kPrior * ProgressMeter::kBoundaryAllowance * (40 + 200) / 2 + 40) / (kPrior + 1));
     EXPECT_EQ(meter.Last().total, 40 + 300 + 2 * louder);
     // A look with no interval says nothing about the noise.
     meter.ComparisonExpects(2, 120, false, 0);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(5));
     EXPECT_EQ(meter.Last().total, 40 + 300 + 120 + louder);
+}
+
+// Comparisons whose configurations have a cost are priced by it: a comparison of 80 ms frames
+// waiting behind one of 40 ms frames is not charged the 40 ms the first one measured.
+TEST(RenderProgressTest, ComparisonsArePricedByTheirConfigurationsCosts) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(2, 100);
+    meter.ComparisonConfigurations(0, 0, 1);
+    meter.ComparisonConfigurations(1, 2, 3);
+    meter.ConfigurationCost(0, 0.040);
+    meter.ConfigurationCost(1, 0.040);
+    meter.ConfigurationCost(2, 0.060);
+    meter.ConfigurationCost(3, 0.100);
+    Clock::time_point now = start;
+    for (int f = 0; f < 50; ++f) {
+        now += std::chrono::milliseconds(40);
+        meter.StepComparison(0, "cheap", 1, now);
+    }
+    // 50 frames of comparison 0 left at 40 ms, 100 of comparison 1 at (60 + 100) / 2 = 80 ms;
+    // the calibration is 1 (frames took their price).
+    EXPECT_NEAR(meter.Last().eta_seconds, 50 * 0.040 + 100 * 0.080, 1e-6);
+    // The recent rate alone would have said 150 x 40 ms.
+    EXPECT_GT(meter.Last().eta_seconds, 1.5 * 150 * 0.040);
+}
+
+// Comparison frames that take longer than their configurations' coarse frames (contended
+// frames share a core; warm-up and per-pass frames add to a comparison) raise every price by
+// the same ratio; a comparison whose configurations have no cost yet takes the recent rate.
+TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(3, 100);
+    meter.ComparisonConfigurations(0, 0, 1);
+    meter.ComparisonConfigurations(1, 2, 3);
+    meter.ComparisonConfigurations(2, 4, 5);  // no costs for 4 and 5
+    for (std::size_t i = 0; i < 4; ++i) {
+        meter.ConfigurationCost(i, i < 2 ? 0.040 : 0.080);
+    }
+    Clock::time_point now = start;
+    for (int f = 0; f < 100; ++f) {
+        now += std::chrono::milliseconds(60);  // 1.5 times the price
+        meter.StepComparison(0, "row", 1, now);
+    }
+    meter.ComparisonExpects(0, 100, true);
+    meter.StepComparison(0, "row", 0, now);
+    // The calibration: about (6 s + 2 s of prior) / (4 s + 2 s) = 1.33 (less a little, as
+    // the sums age); comparison 1 is priced at 80 ms x 1.33, comparison 2 at the recent rate,
+    // 60 ms.
+    const double calibration = (6.0 + 2.0) / (4.0 + 2.0);
+    const double eta = 100 * 0.080 * calibration + 100 * 0.060;
+    EXPECT_NEAR(meter.Last().eta_seconds, eta, 0.02 * eta);
+    // Ignored: costs that are not a positive time.
+    meter.ConfigurationCost(4, 0.0);
+    meter.ConfigurationCost(5, std::nan(""));
+    meter.StepComparison(0, "row", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, eta, 0.02 * eta);
 }
 
 // Alone until the second process joins, then the rest split by threads: one thread here and
