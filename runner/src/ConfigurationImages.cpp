@@ -54,6 +54,7 @@ std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options) {
 
 std::vector<WorkUnit> RunWorkOrder(const RunOptions& options) {
     std::vector<std::size_t> compared;
+    std::size_t lead = 0;  // the first comparison's own configurations, at the front
     for (const TimedComparison& c : options.comparisons) {
         for (std::size_t i : {c.baseline, c.candidate}) {
             if (i < options.configurations.size() &&
@@ -61,9 +62,12 @@ std::vector<WorkUnit> RunWorkOrder(const RunOptions& options) {
                 compared.push_back(i);
             }
         }
+        if (&c == &options.comparisons.front()) {
+            lead = compared.size();
+        }
     }
     return RenderWorkOrder(options.comparisons.size(), options.configurations.size(),
-                           ReferenceConfiguration(options), compared);
+                           ReferenceConfiguration(options), compared, lead);
 }
 
 const DriverVerdict& PrepareConfiguration(RenderWorker& w, const RunOptions& options, std::size_t i,

@@ -55,8 +55,9 @@ const CameraView* TimingView(const RunOptions& options);
 std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options);
 
 /// The order a run's units are taken in (RenderWorkOrder): the reference configuration, then the
-/// configurations its comparisons time, in the comparisons' order, then each comparison among
-/// the rest. The render process takes units from the front, a second process from the end.
+/// configurations its comparisons time, in the comparisons' order (the first comparison right
+/// after its own), then each comparison among the rest. The render process takes units from
+/// the front, a second process from the end.
 std::vector<WorkUnit> RunWorkOrder(const RunOptions& options);
 
 /// Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too

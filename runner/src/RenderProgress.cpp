@@ -37,7 +37,7 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first,
-                                      const std::vector<std::size_t>& early) {
+                                      const std::vector<std::size_t>& early, std::size_t lead) {
     std::vector<std::size_t> order(configurations);
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), std::mt19937(20161));
@@ -54,12 +54,18 @@ std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t confi
     if (first) {
         take(*first);
     }
-    for (std::size_t i : early) {
-        take(i);
+    for (std::size_t e = 0; e < early.size(); ++e) {
+        if (e == lead && comparisons > 0) {
+            units.push_back({true, 0});
+        }
+        take(early[e]);
     }
+    const bool led = lead < early.size() && comparisons > 0;
     std::size_t next = 0;
     for (std::size_t k = 0; k < comparisons; ++k) {
-        units.push_back({true, k});
+        if (k > 0 || !led) {
+            units.push_back({true, k});
+        }
         // Comparison k is followed by configurations up to its share of the whole, (k + 1) / n;
         // the last comparison's share ends the queue.
         const std::size_t until = (k + 1) * configurations / comparisons;

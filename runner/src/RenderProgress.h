@@ -38,14 +38,21 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
 /// what an image frame costs long before the comparisons are done, and the queue still ends on
 /// short units, which keeps several threads busy to the end.
 ///
+inline constexpr std::size_t kNoLead = static_cast<std::size_t>(-1);  // comparisons after `early`
+
 /// `early` (the configurations the comparisons time) come right after `first`: their coarse
 /// frames price each comparison's frames for the ETA (ProgressMeter::ConfigurationCost) before
 /// the comparisons start. On the default matrix the first three whitepaper rows' frames cost
 /// about 40 ms and the later rows' about 70 ms (two `yes` beside the run), so a rate measured on
-/// the first rows left the ETA 15 to 20% short for the first third of the run.
+/// the first rows left the ETA 15 to 20% short for the first third of the run. The first
+/// comparison goes after the first `lead` of them (its own configurations): its first look
+/// measures the noise, which sets what the other comparisons expect, within seconds instead of
+/// after every early image (the first guess, 60 pairs, was twice what most comparisons took on
+/// the host of 2026-11-26, and put the ETA 15% long until that look).
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first = std::nullopt,
-                                      const std::vector<std::size_t>& early = {});
+                                      const std::vector<std::size_t>& early = {},
+                                      std::size_t lead = kNoLead);
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected

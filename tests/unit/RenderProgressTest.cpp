@@ -80,6 +80,24 @@ TEST(RenderProgressTest, EarlyConfigurationsFollowTheReference) {
     EXPECT_FALSE(units.back().comparison);
 }
 
+// The first comparison goes right after its own configurations (the first `lead` early ones),
+// before the other early ones: its first look sets what the others expect within seconds.
+TEST(RenderProgressTest, TheFirstComparisonFollowsItsOwnConfigurations) {
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, {7, 3, 9, 11}, 2);
+    ASSERT_EQ(units.size(), 16U + 147U);
+    const std::vector<std::pair<bool, std::size_t>> front = {{false, 42}, {false, 7}, {false, 3},
+                                                             {true, 0},   {false, 9}, {false, 11}};
+    for (std::size_t u = 0; u < front.size(); ++u) {
+        EXPECT_EQ(units[u].comparison, front[u].first) << u;
+        EXPECT_EQ(units[u].index, front[u].second) << u;
+    }
+    std::size_t first_comparisons = 0;
+    for (const WorkUnit& unit : units) {
+        first_comparisons += unit.comparison && unit.index == 0 ? 1 : 0;
+    }
+    EXPECT_EQ(first_comparisons, 1U);
+}
+
 TEST(RenderProgressTest, WithoutComparisonsEveryConfigurationIsStillThere) {
     const std::vector<WorkUnit> units = RenderWorkOrder(0, 5);
     ASSERT_EQ(units.size(), 5U);
