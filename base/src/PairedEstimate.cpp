@@ -228,12 +228,17 @@ int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule)
 
 namespace {
 
-// The first look at which the rule stops a comparison whose true change is `change` percent,
-// from an interval of `half_width` points after `pairs`: each later look's half-width follows
-// the square-root law, centred on `change`, and goes through DecideStop itself.
+// The first look after `pairs` at which the rule stops a comparison whose true change is
+// `change` percent, from an interval of `half_width` points after `pairs`: each later look's
+// half-width follows the square-root law, centred on `change`, and goes through DecideStop
+// itself. (The look at `pairs` is the real one, already decided.)
 int PairsAtStopIf(double change, int pairs, double half_width, const StoppingRule& rule) {
     PairedEstimate look;
-    look.pairs = pairs;
+    const int first = PairsBeforeNextLook(pairs, rule);
+    if (first <= 0) {
+        return pairs;
+    }
+    look.pairs = pairs + first;
     for (;;) {
         const double h = half_width * std::sqrt(static_cast<double>(pairs) / look.pairs);
         look.change_low = change - h;
@@ -274,6 +279,9 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     // progress trace (2026-11-26, two `yes` beside it) row 11's first look guessed 363 pairs for
     // a comparison that stopped at 40, and the ETA was 25% long for that look.
     // PairedEstimateTest's ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
+    if (DecideStop(estimate, rule) != StopDecision::kContinue) {
+        return estimate.pairs;  // it stops at this look
+    }
     constexpr int kQuantiles = 32;
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
     const double centre = (estimate.change_low + estimate.change_high) / 2.0;

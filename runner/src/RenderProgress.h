@@ -31,15 +31,16 @@ struct WorkUnit {
 /// two share what is left in proportion to their threads.
 double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in);
 
-/// The order the rendering threads take units in: `first` (the reference configuration, whose
-/// images the others are compared with), then each comparison followed by its share of the
-/// other configurations, in a fixed shuffled order (the matrix runs from heavy variants to light
-/// ones). Both kinds of frame are then measured from the first seconds on, so the ETA knows
-/// what an image frame costs long before the comparisons are done, and the queue still ends on
-/// short units, which keeps several threads busy to the end.
-///
-inline constexpr std::size_t kNoLead = static_cast<std::size_t>(-1);  // comparisons after `early`
+/// RenderWorkOrder's `lead` when every comparison comes after all of `early`.
+inline constexpr std::size_t kNoLead = static_cast<std::size_t>(-1);
 
+/// The order the rendering threads take units in: `first` (the reference configuration, whose
+/// images the others are compared with), then `early`, then each comparison followed by its
+/// share of the other configurations, in a fixed shuffled order (the matrix runs from heavy
+/// variants to light ones). Both kinds of frame are then measured from the first seconds on, so
+/// the ETA knows what an image frame costs long before the comparisons are done, and the queue
+/// still ends on short units, which keeps several threads busy to the end.
+///
 /// `early` (the configurations the comparisons time) come right after `first`: their coarse
 /// frames price each comparison's frames for the ETA (ProgressMeter::ConfigurationCost) before
 /// the comparisons start. On the default matrix the first three whitepaper rows' frames cost
@@ -88,17 +89,17 @@ public:
     /// kBoundaryAllowance times their mean instead of the first guess.
     void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
 
-    /// How many comparisons the guess (from the noise, below) counts for in the expectation of
-    /// the comparisons still waiting, against the mean of the finished ones. A whole default
-    /// matrix's worth: the extra pairs a comparison takes near a verdict's boundary are its own
-    /// (its effect lies near the edge of its own band), so the finished ones say little about
-    /// the rest. Replayed over the comparisons' frames in 15 main-job runs with contended pairs
-    /// (2026-11-26; rows 2 to 4 and 8, near their bands' edges, took up to 874 frames where most
-    /// took the minimum 60), the predicted frames of the waiting comparisons missed by at most
-    /// 19% of the run's work (the comparisons taken as half of it) in the worst run and 14% in the
-    /// median one with this weight,
-    /// against 42% and 20% with the weight of 3 used before: the heavy rows come first in the
-    /// default order, and a mean over few finished ones then charges every later row for them.
+    /// How many comparisons the guess (from the noise, below) counts for in the expectation of the
+    /// comparisons still waiting, against the mean of the finished ones. A whole default matrix's
+    /// worth: the extra pairs a comparison takes near a verdict's boundary are its own (its effect
+    /// lies near the edge of its own band), so the finished ones say little about the rest.
+    /// Replayed over the comparisons' frames in 15 main-job runs with contended pairs (2026-11-26;
+    /// rows 2 to 4 and 8, near their bands' edges, took up to 874 frames where most took the
+    /// minimum 60), the predicted frames of the waiting comparisons missed by at most 19% of the
+    /// run's work (the comparisons taken as half of it) in the worst run and 14% in the median one
+    /// with this weight, against 42% and 20% with the weight of 3 used before: the heavy rows come
+    /// first in the default order, and a mean over few finished ones then charges every later row
+    /// for them.
     static constexpr double kPriorComparisons = 16.0;
 
     /// What the boundary clauses of the stopping rule add to the pairs a comparison needs for
@@ -113,11 +114,14 @@ public:
         Step(kind, what, frames, Clock::now());
     }
 
-    /// Comparison k times configurations `baseline` and `candidate`. Once both have a cost
-    /// (ConfigurationCost), the frames k has left are priced at the mean of the two costs times
-    /// the calibration, instead of at the comparisons' recent rate. The calibration is the ratio
-    /// of the seconds recent comparison frames took (with their warm-up, per-pass frames and
-    /// contended frames, which share a core) to their price, aged like the rates, 1 before any.
+    /// Comparison k (of those AddComparisons made; nothing before it) times configurations
+    /// `baseline` and `candidate`. Once any comparison has been given its configurations, the
+    /// comparisons' frames must all be counted through StepComparison, which counts each one's
+    /// frames done: frames counted by Step(kComparison, ...) would still count as left. Once both
+    /// have a cost (ConfigurationCost), the frames k has left are priced at the mean of the two
+    /// costs times the calibration, instead of at the comparisons' recent rate. The calibration is
+    /// the ratio of the seconds recent comparison frames took (with their warm-up, per-pass frames
+    /// and contended frames, which share a core) to their price, aged like the rates, 1 before any.
     void ComparisonConfigurations(std::size_t k, std::size_t baseline, std::size_t candidate);
 
     /// Configuration i's timed frame takes `seconds` (the median of its coarse frames).

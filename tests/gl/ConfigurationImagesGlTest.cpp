@@ -43,6 +43,30 @@ TEST(ConfigurationImagesGlTest, TheTimingViewAndTheReferenceAreFoundByName) {
     EXPECT_EQ(ReferenceConfiguration(options), std::nullopt);
 }
 
+// The run's order: the reference, the first comparison's other configuration, the first
+// comparison, then the other compared configurations, then the rest of the comparisons (there
+// are no other configurations here to share out).
+TEST(ConfigurationImagesGlTest, TheRunsOrderPutsTheFirstComparisonAfterItsOwnConfigurations) {
+    RunOptions options = TwoConfigurationsAtTwoViews();
+    options.configurations.resize(5, options.configurations[0]);  // the reference stays at 1
+    auto compare = [](std::size_t baseline, std::size_t candidate) {
+        TimedComparison c;
+        c.baseline = baseline;
+        c.candidate = candidate;
+        return c;
+    };
+    options.comparisons = {compare(1, 3), compare(4, 2), compare(3, 0), compare(9, 0)};
+    const std::vector<WorkUnit> units = RunWorkOrder(options);
+    const std::vector<std::pair<bool, std::size_t>> expected = {{false, 1}, {false, 3}, {true, 0},
+                                                                {false, 4}, {false, 2}, {false, 0},
+                                                                {true, 1},  {true, 2},  {true, 3}};
+    ASSERT_EQ(units.size(), expected.size());
+    for (std::size_t u = 0; u < units.size(); ++u) {
+        EXPECT_EQ(units[u].comparison, expected[u].first) << u;
+        EXPECT_EQ(units[u].index, expected[u].second) << u;
+    }
+}
+
 TEST(ConfigurationImagesGlTest, ImagesAreComparedWithTheReferencesOnceItHasRendered) {
     test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
     ASSERT_TRUE(shared.context) << shared.error;

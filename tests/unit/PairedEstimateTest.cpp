@@ -490,18 +490,22 @@ TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(20, 5.0, 11.0), rule, 60), 96);
     // Already narrow enough and far from the margins: the pairs so far.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(62, 4.0, 5.0), rule, 60), 62);
-    // The same width near the margin (centre -2.65, upper end 0.65 from it) needs more: the end
-    // must clear the margin by 1.5 standard errors, and a change nearer the margin than the
-    // centre needs more still, up to the cap. Mirrored, the same.
+    // The same width with the interval holding the margin (centre -2.65, upper end -1.4, 0.1
+    // beyond it) needs more: the end must clear the margin by 1.5 standard errors, and a change
+    // nearer the margin than the centre needs more still, up to the cap. Far from it, it stops
+    // now. Mirrored, the same.
     const int near = PairsExpectedAtStop(EstimateWithInterval(150, -3.9, -1.4), rule, 60);
     const int far = PairsExpectedAtStop(EstimateWithInterval(150, -11.15, -8.65), rule, 60);
     EXPECT_EQ(far, 150);
     EXPECT_GT(near, far);
-    EXPECT_LE(near, rule.max_pairs);
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60),
               PairsExpectedAtStop(EstimateWithInterval(150, +2.15, +4.65), rule, 60));
-    // The closer the centre to the margin, the more pairs.
+    // The closer the centre to the margin, the more pairs (centre -3.4, upper end 0.65 beyond
+    // the margin).
     EXPECT_GT(near, PairsExpectedAtStop(EstimateWithInterval(150, -4.65, -2.15), rule, 60));
+    // An estimate that does not stop now expects at least the next look.
+    EXPECT_EQ(DecideStop(EstimateWithInterval(150, -3.9, -1.4), rule), StopDecision::kContinue);
+    EXPECT_GE(near, 150 + PairsBeforeNextLook(150, rule));
     // No interval yet: the fallback, rounded to a look.
     EXPECT_EQ(PairsExpectedAtStop(PairedEstimate{}, rule, 60), 62);
     // At the cap: the cap.

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <set>
 #include <thread>
@@ -225,19 +227,27 @@ TEST(RenderProgressTest, WaitingComparisonsStartFromWhatTheNoiseSoFarNeeds) {
     EXPECT_EQ(meter.Last().total, 40 + 300 + 120 + louder);
 }
 
+// Gives `meter` one comparison per pair of configurations, 100 frames each until they say
+// otherwise, and configurations 0, 1, ... the costs in `seconds`.
+void PriceComparisons(ProgressMeter& meter,
+                      const std::vector<std::array<std::size_t, 2>>& comparisons,
+                      const std::vector<double>& seconds) {
+    meter.AddComparisons(comparisons.size(), 100);
+    for (std::size_t k = 0; k < comparisons.size(); ++k) {
+        meter.ComparisonConfigurations(k, comparisons[k][0], comparisons[k][1]);
+    }
+    for (std::size_t i = 0; i < seconds.size(); ++i) {
+        meter.ConfigurationCost(i, seconds[i]);
+    }
+}
+
 // Comparisons whose configurations have a cost are priced by it: a comparison of 80 ms frames
 // waiting behind one of 40 ms frames is not charged the 40 ms the first one measured.
 TEST(RenderProgressTest, ComparisonsArePricedByTheirConfigurationsCosts) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
-    meter.AddComparisons(2, 100);
-    meter.ComparisonConfigurations(0, 0, 1);
-    meter.ComparisonConfigurations(1, 2, 3);
-    meter.ConfigurationCost(0, 0.040);
-    meter.ConfigurationCost(1, 0.040);
-    meter.ConfigurationCost(2, 0.060);
-    meter.ConfigurationCost(3, 0.100);
+    PriceComparisons(meter, {{0, 1}, {2, 3}}, {0.040, 0.040, 0.060, 0.100});
     Clock::time_point now = start;
     for (int f = 0; f < 50; ++f) {
         now += std::chrono::milliseconds(40);
@@ -257,13 +267,7 @@ TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
-    meter.AddComparisons(3, 100);
-    meter.ComparisonConfigurations(0, 0, 1);
-    meter.ComparisonConfigurations(1, 2, 3);
-    meter.ComparisonConfigurations(2, 4, 5);  // no costs for 4 and 5
-    for (std::size_t i = 0; i < 4; ++i) {
-        meter.ConfigurationCost(i, i < 2 ? 0.040 : 0.080);
-    }
+    PriceComparisons(meter, {{0, 1}, {2, 3}, {4, 5}}, {0.040, 0.040, 0.080, 0.080});  // 4, 5: none
     Clock::time_point now = start;
     for (int f = 0; f < 100; ++f) {
         now += std::chrono::milliseconds(60);  // 1.5 times the price
@@ -277,11 +281,18 @@ TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost
     const double calibration = (6.0 + 2.0) / (4.0 + 2.0);
     const double eta = 100 * 0.080 * calibration + 100 * 0.060;
     EXPECT_NEAR(meter.Last().eta_seconds, eta, 0.02 * eta);
-    // Ignored: costs that are not a positive time.
-    meter.ConfigurationCost(4, 0.0);
-    meter.ConfigurationCost(5, std::nan(""));
+    // Ignored: costs that are not a positive time. With 5's cost known, any accepted cost of 4
+    // would price comparison 2.
+    meter.ConfigurationCost(5, 0.080);
+    for (double bad : {0.0, -0.040, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        meter.ConfigurationCost(4, bad);
+        meter.StepComparison(0, "row", 0, now);
+        EXPECT_NEAR(meter.Last().eta_seconds, eta, 0.02 * eta) << bad;
+    }
+    // A real one does.
+    meter.ConfigurationCost(4, 0.080);
     meter.StepComparison(0, "row", 0, now);
-    EXPECT_NEAR(meter.Last().eta_seconds, eta, 0.02 * eta);
+    EXPECT_NEAR(meter.Last().eta_seconds, 200 * 0.080 * calibration, 0.02 * eta);
 }
 
 // Alone until the second process joins, then the rest split by threads: one thread here and

@@ -177,11 +177,11 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
 /// invalid.
 bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
 
-/// A guess, for progress reports, of the pairs the rule will have stopped at: the mean, over
-/// where the true change may lie (normal about the interval's centre, with its standard error),
-/// of the look at which DecideStop would stop if later intervals narrowed by the square-root law
-/// about that change; at least the pairs so far, at most max_pairs. Without an interval, the
-/// first look at or after `fallback`.
+/// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
+/// when DecideStop stops at this estimate; otherwise the mean, over where the true change may
+/// lie (normal about the interval's centre, with its standard error), of the first later look at
+/// which DecideStop would stop if the interval narrowed by the square-root law about that change;
+/// at most max_pairs. Without an interval, the first look at or after `fallback`.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
 
 /// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
