@@ -270,18 +270,18 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
         }
         return std::max(look, std::max(estimate.pairs, 0));
     }
-    // The mean over where the true change may lie, normal about the interval's centre with the
-    // interval's standard error, at kQuantiles equal-probability points. Why the mean over the
-    // change and not the pairs at the centre: the pairs a boundary needs grow as 1 / distance^2,
-    // so the centre's guess is short whenever the change lies nearer the boundary than the
-    // centre does, and a sum of work needs the mean. Why not the formula used before (wait for a
-    // sixteenth of the finest half-width whenever the interval held an edge): in the main job's
-    // progress trace (2026-11-26, two `yes` beside it) row 11's first look guessed 363 pairs for
-    // a comparison that stopped at 40, and the ETA was 25% long for that look.
-    // PairedEstimateTest's ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
     if (DecideStop(estimate, rule) != StopDecision::kContinue) {
         return estimate.pairs;  // it stops at this look
     }
+    // Otherwise the mean over where the true change may lie, normal about the interval's centre
+    // with the interval's standard error, at kQuantiles equal-probability points. Why the mean over
+    // the change and not the pairs at the centre: the pairs a boundary needs grow as the inverse
+    // square of the distance, so the centre's guess is short whenever the change lies nearer the
+    // boundary than the centre does, and a sum of work needs the mean. Why not the formula used
+    // before (wait for a sixteenth of the finest half-width whenever the interval held an edge): in
+    // the main job's progress trace (2026-11-26, two `yes` beside it) row 11's first look guessed
+    // 363 pairs for a comparison that stopped at 40, and the ETA was 25% long for that look.
+    // PairedEstimateTest's ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
     constexpr int kQuantiles = 32;
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
     const double centre = (estimate.change_low + estimate.change_high) / 2.0;
