@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstring>
+#include <deque>
 #include <new>
 
 #include <fmt/format.h>
@@ -154,9 +155,11 @@ bool SendRecord(int fd, char type, const std::string& bytes) {
 struct Worker {
     pid_t pid = -1;
     int fd = -1;
-    long item = -1;  // the item in flight, -1 when idle
-    Clock::time_point started;
-    std::string buffer;  // bytes received and not yet parsed into records
+    // The items handed to it, in the order it runs them: the front one is running, the others
+    // wait in its socket (WorkerLimits::items_ahead).
+    std::deque<std::size_t> items;
+    Clock::time_point started;  // when the front item started, as the parent saw it
+    std::string buffer;         // bytes received and not yet parsed into records
 };
 
 std::string DescribeStatus(int status) {
@@ -185,11 +188,15 @@ public:
 
     std::vector<WorkerItemResult> Run(int worker_count) {
         workers_.resize(static_cast<std::size_t>(std::max(worker_count, 1)));
+        // One item each first, so that a few long items spread over the workers.
         for (Worker& worker : workers_) {
-            Dispatch(worker);
+            Fill(worker, 1);
+        }
+        for (Worker& worker : workers_) {
+            Fill(worker, Depth());
         }
         while (std::any_of(workers_.begin(), workers_.end(),
-                           [](const Worker& w) { return w.item >= 0; })) {
+                           [](const Worker& w) { return !w.items.empty(); })) {
             Wait();
         }
         for (Worker& worker : workers_) {
@@ -199,14 +206,24 @@ public:
     }
 
 private:
+    std::size_t Depth() const {
+        return 1 + static_cast<std::size_t>(std::max(limits_.items_ahead, 0));
+    }
+
     void Ended(std::size_t i) {
         if (on_result_) {
             on_result_(i, results_[i]);
         }
     }
 
-    // The next item to run, marking skipped ones on the way; -1 when none is left.
+    // The next item to run: one a failed worker left unstarted, else the next one in order,
+    // marking skipped ones on the way; -1 when none is left.
     long NextItem() {
+        if (!unstarted_.empty()) {
+            const std::size_t i = unstarted_.front();
+            unstarted_.pop_front();
+            return static_cast<long>(i);
+        }
         while (next_ < count_) {
             const std::size_t i = next_++;
             if (!should_run_ || should_run_(i)) {
@@ -247,26 +264,35 @@ private:
         return true;
     }
 
-    void Dispatch(Worker& worker) {
-        const long item = NextItem();
-        if (item < 0) {
-            Stop(worker, false);
-            return;
-        }
-        if (worker.pid < 0 && !Start(worker)) {
-            // No process to isolate it in: run it here rather than not at all.
+    // Hands `worker` items until it holds `depth` (starting it when needed); ends it when no item
+    // is left for it.
+    void Fill(Worker& worker, std::size_t depth) {
+        while (worker.items.size() < depth) {
+            const long item = NextItem();
+            if (item < 0) {
+                break;
+            }
             const auto i = static_cast<std::size_t>(item);
-            results_[i].payload = work_(i, [](const std::string&) {});
-            results_[i].detail = "run without isolation: no worker process could be started";
-            Ended(i);
-            Dispatch(worker);
-            return;
+            if (worker.pid < 0 && !Start(worker)) {
+                // No process to isolate it in: run it here rather than not at all.
+                results_[i].payload = work_(i, [](const std::string&) {});
+                results_[i].detail = "run without isolation: no worker process could be started";
+                Ended(i);
+                continue;
+            }
+            if (worker.items.empty()) {
+                worker.started = Clock::now();
+            }
+            worker.items.push_back(i);
+            const auto index = static_cast<std::uint64_t>(i);
+            if (!SendAll(worker.fd, &index, sizeof index) && worker.items.size() == 1) {
+                // (Behind a running item, the worker's end shows when its socket closes.)
+                Fail(worker, WorkerFailure::kCrashed, "the worker process ended before its item");
+                return;
+            }
         }
-        const auto index = static_cast<std::uint64_t>(item);
-        worker.item = item;
-        worker.started = Clock::now();
-        if (!SendAll(worker.fd, &index, sizeof index)) {
-            Fail(worker, WorkerFailure::kCrashed, "the worker process ended before its item");
+        if (worker.items.empty()) {
+            Stop(worker, false);
         }
     }
 
@@ -284,12 +310,14 @@ private:
         }
         worker.pid = -1;
         worker.fd = -1;
-        worker.item = -1;
+        worker.items.clear();
         return status;
     }
 
+    // The worker's running item failed; the items behind it go to the next worker that asks.
     void Fail(Worker& worker, WorkerFailure failure, std::string detail) {
-        const auto i = static_cast<std::size_t>(worker.item);
+        const std::size_t i = worker.items.front();
+        unstarted_.insert(unstarted_.begin(), worker.items.begin() + 1, worker.items.end());
         const int status = Stop(worker, true);
         if (failure == WorkerFailure::kCrashed && WIFEXITED(status) &&
             WEXITSTATUS(status) == kOutOfMemoryExit) {
@@ -301,13 +329,13 @@ private:
         results_[i].failure = failure;
         results_[i].detail = std::move(detail);
         Ended(i);
-        Dispatch(worker);
+        Fill(worker, Depth());
     }
 
     // Parses whole records out of the worker's buffer.
     void TakeRecords(Worker& worker) {
         constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
-        while (worker.item >= 0 && worker.buffer.size() >= kHeader) {
+        while (!worker.items.empty() && worker.buffer.size() >= kHeader) {
             std::uint64_t size = 0;
             std::memcpy(&size, worker.buffer.data() + 1, sizeof size);
             if (worker.buffer.size() < kHeader + size) {
@@ -316,14 +344,15 @@ private:
             const char type = worker.buffer[0];
             std::string bytes = worker.buffer.substr(kHeader, size);
             worker.buffer.erase(0, kHeader + size);
-            const auto i = static_cast<std::size_t>(worker.item);
+            const std::size_t i = worker.items.front();
             if (type == 'P') {
                 results_[i].notes.push_back(std::move(bytes));
             } else {
                 results_[i].payload = std::move(bytes);
-                worker.item = -1;
+                worker.items.pop_front();
+                worker.started = Clock::now();
                 Ended(i);
-                Dispatch(worker);
+                Fill(worker, Depth());
             }
         }
     }
@@ -334,7 +363,7 @@ private:
         auto timeout = std::chrono::milliseconds(-1);
         const Clock::time_point now = Clock::now();
         for (Worker& worker : workers_) {
-            if (worker.item < 0) {
+            if (worker.items.empty()) {
                 continue;
             }
             fds.push_back(pollfd{worker.fd, POLLIN, 0});
@@ -357,7 +386,7 @@ private:
         }
         for (std::size_t k = 0; k < fds.size(); ++k) {
             Worker& worker = *polled[k];
-            if ((fds[k].revents & (POLLIN | POLLHUP | POLLERR)) != 0) {
+            if ((fds[k].revents & (POLLIN | POLLHUP | POLLERR)) != 0 && !worker.items.empty()) {
                 char chunk[65536];
                 const ssize_t got = ::recv(worker.fd, chunk, sizeof chunk, 0);
                 if (got > 0) {
@@ -371,7 +400,7 @@ private:
         if (limits_.seconds_per_item > 0) {
             const Clock::time_point later = Clock::now();
             for (Worker& worker : workers_) {
-                if (worker.item >= 0 &&
+                if (!worker.items.empty() &&
                     std::chrono::duration<double>(later - worker.started).count() >
                             limits_.seconds_per_item) {
                     Fail(worker, WorkerFailure::kTimedOut,
@@ -388,6 +417,7 @@ private:
     const std::function<void(std::size_t, const WorkerItemResult&)>& on_result_;
     std::vector<WorkerItemResult> results_;
     std::vector<Worker> workers_;
+    std::deque<std::size_t> unstarted_;  // handed to a worker that failed before starting them
     std::size_t next_ = 0;
 };
 

@@ -7,8 +7,11 @@
 #include <future>
 #include <memory>
 #include <new>
+#include <string>
 #include <thread>
 #include <vector>
+
+#include <unistd.h>
 
 namespace tidepool::base {
 namespace {
@@ -68,6 +71,46 @@ TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
     EXPECT_FALSE(results[1].detail.empty());
     EXPECT_EQ(results[2].payload, "ok");  // a fresh worker took over
     EXPECT_EQ(results[3].payload, "ok");
+}
+
+TEST(WorkerProcessPoolTest, ItemsHandedAheadOfAFailureRunInAFreshWorker) {
+    // Each worker holds two items beyond the one it runs; item 1 crashes with 2 and 3 waiting
+    // behind it, item 4 hangs with 5 and 6 behind it. Every other item runs once, in a process
+    // that did not fail, and reports its own notes.
+    WorkerLimits limits;
+    limits.seconds_per_item = 0.5;
+    limits.items_ahead = 2;
+    const std::vector<WorkerItemResult> results =
+            RunInWorkerProcesses(8, 1, limits, [](std::size_t i, const ProgressNote& note) {
+                note("item " + std::to_string(i));
+                if (i == 1) {
+                    std::raise(SIGSEGV);
+                }
+                if (i == 4) {
+                    std::this_thread::sleep_for(std::chrono::seconds(30));
+                }
+                return "done " + std::to_string(i);
+            });
+    ASSERT_EQ(results.size(), 8U);
+    EXPECT_EQ(results[1].failure, WorkerFailure::kCrashed);
+    EXPECT_EQ(results[1].notes, std::vector<std::string>{"item 1"});
+    EXPECT_EQ(results[4].failure, WorkerFailure::kTimedOut);
+    for (const std::size_t i : {0U, 2U, 3U, 5U, 6U, 7U}) {
+        EXPECT_EQ(results[i].failure, WorkerFailure::kNone) << i;
+        EXPECT_EQ(results[i].payload, "done " + std::to_string(i));
+        EXPECT_EQ(results[i].notes, std::vector<std::string>{"item " + std::to_string(i)});
+    }
+}
+
+TEST(WorkerProcessPoolTest, ItemsAheadStillSpreadFewItemsOverTheWorkers) {
+    // Two items and two workers: each worker gets one, although each may hold two.
+    WorkerLimits limits;
+    limits.items_ahead = 1;
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            2, 2, limits,
+            [](std::size_t, const ProgressNote&) { return std::to_string(::getpid()); });
+    ASSERT_EQ(results.size(), 2U);
+    EXPECT_NE(results[0].payload, results[1].payload);
 }
 
 TEST(WorkerProcessPoolTest, ItemThatTakesTooLongIsKilledAndReportedAsTimedOut) {
