@@ -194,14 +194,36 @@ struct ItemStage {
     GlslangStageInput input;
 };
 
+// Parses a worker keeps for its later links, by stage program index. Most links of a matrix share
+// their vertex stage with others (163 links of 18 vertex and 155 fragment stages in the default
+// matrix), and a parse is most of a link item's cost.
+struct KeptParses {
+    // Links not yet run that use each stage program, as this worker knows them.
+    std::vector<int> uses;
+    std::map<std::size_t, StageParse> parses;
+};
+
+// At most this many parses are kept per worker (a parse of shaders/water.fsh holds 0.1 to
+// 0.35 MB; a worker may use 1 GiB).
+constexpr std::size_t kMaxKeptParses = 64;
+
 // Worker side of a link item: parses each stage (reporting it through a note unless this worker
-// already did: its cost analysis is not free) and, when all parsed, links them; returns the
-// link's outcome, or "" when no link ran.
+// already did: its cost analysis is not free) or takes the parse `kept` holds, and when all
+// parsed, links them; returns the link's outcome, or "" when no link ran. With `kept`, a parse a
+// later link may use and that the link left reusable is kept for it.
 std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note,
-                         std::vector<bool>* reported) {
+                         std::vector<bool>* reported, KeptParses* kept = nullptr) {
     std::vector<StageParse> parses;
     bool all_ok = true;
     for (const ItemStage& stage : stages) {
+        if (kept != nullptr) {
+            --kept->uses[stage.index];
+            if (auto it = kept->parses.find(stage.index); it != kept->parses.end()) {
+                parses.push_back(std::move(it->second));
+                kept->parses.erase(it);
+                continue;  // kept only when it parsed, so reported and valid
+            }
+        }
         note(fmt::format("P{}", stage.index));
         parses.push_back(ParseStage(stage.input));
         if (!(*reported)[stage.index]) {
@@ -214,10 +236,21 @@ std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNot
         return {};
     }
     note("L");
-    const LinkResult link = stages.size() == 2
-                                    ? LinkStages(stages[0].input, stages[1].input,
-                                                 std::move(parses[0]), std::move(parses[1]))
-                                    : LinkSingleStage(stages[0].input);
+    std::vector<const GlslangStageInput*> inputs;
+    std::vector<StageParse*> parsed;
+    for (std::size_t i = 0; i < stages.size(); ++i) {
+        inputs.push_back(&stages[i].input);
+        parsed.push_back(&parses[i]);
+    }
+    const LinkResult link = LinkParsed(inputs, parsed);
+    if (kept != nullptr) {
+        for (std::size_t i = 0; i < stages.size(); ++i) {
+            if (kept->uses[stages[i].index] > 0 && kept->parses.size() < kMaxKeptParses &&
+                ReusableForLink(parses[i])) {
+                kept->parses.emplace(stages[i].index, std::move(parses[i]));
+            }
+        }
+    }
     const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(
             nlohmann::json{{"ok", link.ok}, {"diagnostics", DiagnosticsToJson(link.diagnostics)}});
     return std::string(bytes.begin(), bytes.end());
@@ -836,8 +869,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
         verdict_link[v] = it->second;
     }
-    // Which stage programs this process (a worker, after fork) has already reported.
+    // Which stage programs this process (a worker, after fork) has already reported, and the
+    // parses it keeps for later links.
     std::vector<bool> reported(report.stage_programs.size(), false);
+    KeptParses kept;
+    kept.uses.assign(report.stage_programs.size(), 0);
     // A decided stage that is invalid: no link with it can succeed, so none is attempted.
     auto broken = [&](std::size_t index) {
         return decided[index] && !report.stage_programs[index].valid;
@@ -880,9 +916,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         return !link.cached && !((broken(link.vertex) || broken(link.fragment)) &&
                                  decided[link.vertex] && decided[link.fragment]);
     };
-    for (std::size_t i = 0; i < links.size() && !warm; ++i) {
+    for (std::size_t i = 0; i < links.size(); ++i) {
         if (link_runs(i)) {
             warm_up();
+            ++kept.uses[links[i].vertex];
+            ++kept.uses[links[i].fragment];
         }
     }
     RunInWorkerProcesses(
@@ -903,7 +941,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 }
                 return ParseAndLink({{link.vertex, input_of(link.vertex)},
                                      {link.fragment, input_of(link.fragment)}},
-                                    note, &reported);
+                                    note, &reported, &kept);
             },
             link_runs,
             [&](std::size_t i, const WorkerItemResult& result) {

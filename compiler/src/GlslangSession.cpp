@@ -438,45 +438,61 @@ StageParse ParseStage(const GlslangStageInput& input) {
 
 namespace {
 
-// `parsed[i]`, when it holds a shader, is the already-parsed stage i; it is consumed (a glslang
-// shader's tree is finalised by the link that uses it, so it must serve exactly one program).
+// A pool allocator of the thread's own for the length of a link. A link's checks allocate glslang
+// strings from the thread's pool, and when both stages were parsed before (LinkParsed) that may
+// still be the pool of a shader destroyed since.
+class ScratchThreadPool {
+public:
+    ScratchThreadPool() : saved_(glslang::GetThreadPoolAllocator()) {
+        glslang::SetThreadPoolAllocator(&pool_);
+    }
+    ~ScratchThreadPool() { glslang::SetThreadPoolAllocator(&saved_); }
+    ScratchThreadPool(const ScratchThreadPool&) = delete;
+    ScratchThreadPool& operator=(const ScratchThreadPool&) = delete;
+
+private:
+    glslang::TPoolAllocator pool_;
+    glslang::TPoolAllocator& saved_;
+};
+
+// Links the parsed stages `parses[i]` of `inputs[i]`. glslang keeps the uncalled functions
+// (EShMsgKeepUncalled; it reports the same errors either way), so a tree no link found an error
+// in is still the tree ParseStage made and may serve another link (ReusableForLink).
 LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
-                std::vector<StageParse> parsed) {
+                const std::vector<StageParse*>& parses) {
     LinkResult result;
-    parsed.resize(inputs.size());
-    std::vector<StageParse> parses;
-    parses.reserve(inputs.size());
+    const ScratchThreadPool scratch;
     glslang::TProgram program;  // declared after the shaders it links, so destroyed before them
-    for (std::size_t i = 0; i < inputs.size(); ++i) {
-        parses.push_back(parsed[i].shader != nullptr ? std::move(parsed[i])
-                                                     : ParseStage(*inputs[i]));
-        if (!parses.back().ok) {
-            result.diagnostics = parses.back().diagnostics;
+    for (const StageParse* parse : parses) {
+        if (!parse->ok) {
+            result.diagnostics = parse->diagnostics;
             return result;
         }
-        program.addShader(parses.back().shader.get());
+        program.addShader(parse->shader.get());
     }
     // Both stages rename a word to the same stand-in, so each stage's renaming restores it.
     auto restore = [&](std::string text) {
-        for (const StageParse& parse : parses) {
-            text = parse.renaming.Restore(text);
+        for (const StageParse* parse : parses) {
+            text = parse->renaming.Restore(text);
         }
         return text;
     };
     if (inputs.size() == 2) {
-        result.diagnostics = CheckLinkRules(*parses[0].shader->getIntermediate(), inputs[0]->file,
-                                            *parses[1].shader->getIntermediate(), inputs[1]->file);
+        const StageParse& vertex = *parses[0];
+        const StageParse& fragment = *parses[1];
+        result.diagnostics = CheckLinkRules(*vertex.shader->getIntermediate(), inputs[0]->file,
+                                            *fragment.shader->getIntermediate(), inputs[1]->file);
         if (!HasErrors(result.diagnostics)) {
             result.diagnostics = CheckLinkConformance(
-                    LinkedStage{*parses[0].shader->getIntermediate(), inputs[0]->file,
-                                parses[0].text, parses[0].invariance},
-                    LinkedStage{*parses[1].shader->getIntermediate(), inputs[1]->file,
-                                parses[1].text, parses[1].invariance});
+                    LinkedStage{*vertex.shader->getIntermediate(), inputs[0]->file, vertex.text,
+                                vertex.invariance},
+                    LinkedStage{*fragment.shader->getIntermediate(), inputs[1]->file, fragment.text,
+                                fragment.invariance});
         }
         if (!HasErrors(result.diagnostics) && IsTarget(*inputs[1], GlslTarget::kWebGl1)) {
-            result.diagnostics = CheckWebGlVaryingPacking(*parses[1].shader->getIntermediate(),
+            result.diagnostics = CheckWebGlVaryingPacking(*fragment.shader->getIntermediate(),
                                                           ResourcesOf(*inputs[1], 100),
-                                                          inputs[1]->file, parses[1].text);
+                                                          inputs[1]->file, fragment.text);
         }
         for (Diagnostic& d : result.diagnostics) {
             d.message = restore(d.message);
@@ -485,7 +501,7 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
             return result;  // glslang's own link would only add confusion to these
         }
     }
-    result.ok = program.link(kMessages);
+    result.ok = program.link(static_cast<EShMessages>(kMessages | EShMsgKeepUncalled));
     // Link messages carry no line; attach them to the stage they name, else the last file.
     const std::string log = restore(program.getInfoLog());
     for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
@@ -511,18 +527,23 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
 
 }  // namespace
 
-LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment,
-                      StageParse vertex_parsed, StageParse fragment_parsed) {
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment) {
     EnsureGlslangInitialized();
-    std::vector<StageParse> parsed;
-    parsed.push_back(std::move(vertex_parsed));
-    parsed.push_back(std::move(fragment_parsed));
-    return Link({&vertex, &fragment}, std::move(parsed));
+    // Parsed in this order and destroyed after the link, its program first.
+    StageParse vertex_parsed = ParseStage(vertex);
+    StageParse fragment_parsed = vertex_parsed.ok ? ParseStage(fragment) : StageParse{};
+    return Link({&vertex, &fragment}, {&vertex_parsed, &fragment_parsed});
 }
 
-LinkResult LinkSingleStage(const GlslangStageInput& input) {
+LinkResult LinkParsed(const std::vector<const GlslangStageInput*>& inputs,
+                      const std::vector<StageParse*>& parses) {
     EnsureGlslangInitialized();
-    return Link({&input}, {});
+    return Link(inputs, parses);
+}
+
+bool ReusableForLink(const StageParse& parsed) {
+    return parsed.ok && parsed.shader != nullptr &&
+           parsed.shader->getIntermediate()->getNumErrors() == 0;
 }
 
 namespace {

@@ -83,14 +83,19 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input);
 /// Parses one stage with the defines as glslang's preamble; desktop GLSL is an error.
 StageParse ParseStage(const GlslangStageInput& input);
 
-/// Links a vertex and a fragment stage into one program (all link-time checks). A stage given
-/// already parsed (a StageParse holding a shader) is consumed by this link; an empty StageParse
-/// means "parse it here".
-LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment,
-                      StageParse vertex_parsed = {}, StageParse fragment_parsed = {});
+/// Parses a vertex and a fragment stage and links them into one program (all link-time checks).
+LinkResult LinkStages(const GlslangStageInput& vertex, const GlslangStageInput& fragment);
 
-/// Links a program of one stage, for link-time errors that need no second stage.
-LinkResult LinkSingleStage(const GlslangStageInput& input);
+/// Links stages ParseStage parsed from `inputs` (`parses[i]` from `inputs[i]`): a vertex and a
+/// fragment stage, or one stage alone for the link-time errors that need no second stage. The
+/// parses stay usable: one that ReusableForLink accepts afterwards may serve another link
+/// exactly as a new parse of the same input would.
+LinkResult LinkParsed(const std::vector<const GlslangStageInput*>& inputs,
+                      const std::vector<StageParse*>& parses);
+
+/// Whether a parse may serve another link: it parsed, and no link recorded an error in its tree
+/// (glslang counts a link's errors in the trees it linked).
+bool ReusableForLink(const StageParse& parsed);
 
 /// Turns a glslang info log into Diagnostics for `file`; `source` supplies columns (the first
 /// place on the line where the quoted token of the message appears).

@@ -731,6 +731,68 @@ TEST(GlslValidatorTest, ArrayOfExactlyTheBoundIsAccepted) {
     EXPECT_TRUE(report.verdicts[0].valid) << FormattedEach(report.verdicts[0].diagnostics)[0];
 }
 
+// Where and what, without the variant a diagnostic is tagged with and with files named as in
+// `folder`.
+std::vector<std::string> Placed(const std::vector<Diagnostic>& diagnostics,
+                                const std::filesystem::path& folder) {
+    const std::string prefix = folder.string() + "/";
+    std::vector<std::string> out;
+    for (const Diagnostic& d : diagnostics) {
+        std::string message = d.message;
+        for (std::size_t at = message.find(prefix); at != std::string::npos;
+             at = message.find(prefix)) {
+            message.erase(at, prefix.size());
+        }
+        out.push_back(std::filesystem::path(d.file).filename().string() + ":" +
+                      std::to_string(d.line) + ":" + std::to_string(d.column) + " " + message);
+    }
+    return out;
+}
+
+TEST(GlslValidatorTest, LinksThatShareAParseGiveEachVariantTheVerdictOfItsOwnFiles) {
+    // A worker parses a stage once for all its links. Variants run in the order of their names,
+    // so here a link glslang refuses (A_VEC3: the varying's type differs) comes before a valid
+    // link of the same vertex stage (C_FOG), and a valid link before one tidepool refuses with
+    // the same fragment stage (B_NO_TINT: `tint` is read, in a function nothing calls, but not
+    // written). Each variant's verdict and messages must be those of its two files validated on
+    // their own.
+    TempDir dir;
+    const std::string vertex = dir.Write("k.vsh",
+                                         "#version 100\nattribute highp vec4 p;\n"
+                                         "varying mediump vec2 uv;\n"
+                                         "#ifndef B_NO_TINT\nvarying mediump vec3 tint;\n#endif\n"
+                                         "void main() {\n  uv = p.xy;\n"
+                                         "#ifndef B_NO_TINT\n  tint = p.xyz;\n#endif\n"
+                                         "  gl_Position = p;\n}\n")
+                                       .string();
+    const std::string fragment =
+            dir.Write("k.fsh",
+                      "#version 100\nprecision mediump float;\n"
+                      "#ifdef A_VEC3\nvarying mediump vec3 uv;\n#else\nvarying mediump vec2 uv;\n"
+                      "#endif\nvarying mediump vec3 tint;\n"
+                      "vec3 Tinted() { return tint; }\n"
+                      "void main() {\n  gl_FragColor = vec4(uv.xy, 0.5, 1.0);\n"
+                      "#ifdef C_FOG\n  gl_FragColor *= 0.5;\n#endif\n}\n")
+                    .string();
+    const ValidationReport report =
+            ValidateAll(ConfigIn(dir, "k.vsh", "k.fsh", {"A_VEC3", "B_NO_TINT", "C_FOG"}), 1);
+    ASSERT_EQ(report.verdicts.size(), 8U);
+    EXPECT_EQ(report.stage_programs.size(), 6U);  // two vertex stages, four fragment stages
+    int valid = 0;
+    for (const VariantVerdict& verdict : report.verdicts) {
+        const ValidationReport own = ValidateShaderFiles(
+                {ShaderFile{vertex, Stage::kVertex}, ShaderFile{fragment, Stage::kFragment}},
+                verdict.variant.defines);
+        ASSERT_EQ(own.verdicts.size(), 1U);
+        EXPECT_EQ(verdict.valid, own.verdicts[0].valid) << verdict.variant.Id();
+        EXPECT_EQ(Placed(verdict.diagnostics, dir.Path()),
+                  Placed(own.verdicts[0].diagnostics, dir.Path()))
+                << verdict.variant.Id();
+        valid += verdict.valid ? 1 : 0;
+    }
+    EXPECT_EQ(valid, 2);  // p: and p:C_FOG
+}
+
 TEST(GlslValidatorTest, UnusedVaryingTheVertexStageLacksStillLinks) {
     TempDir dir;
     const std::string vertex = dir.Write("a.vsh", kVertex).string();

@@ -105,6 +105,72 @@ TEST(GlslangSessionTest, LinkingChecksTheVaryingsBetweenTheStages) {
     EXPECT_TRUE(HasErrors(bad.diagnostics));
 }
 
+TEST(GlslangSessionTest, AParseServesAnotherLinkUntilALinkFindsAnErrorInIt) {
+    const std::string vertex =
+            "#version 100\nattribute vec4 p;\nvarying vec4 colour;\n"
+            "void main() { colour = p; gl_Position = p; }\n";
+    const std::string matching =
+            "#version 100\nprecision mediump float;\nvarying vec4 colour;\n"
+            "void main() { gl_FragColor = colour; }\n";
+    const std::string mismatched =
+            "#version 100\nprecision mediump float;\nvarying vec3 colour;\n"
+            "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
+    const GlslangStageInput vertex_input = Input("a.vsh", vertex, Stage::kVertex);
+    const GlslangStageInput matching_input = Input("a.fsh", matching, Stage::kFragment);
+    const GlslangStageInput mismatched_input = Input("b.fsh", mismatched, Stage::kFragment);
+    StageParse vertex_parse = ParseStage(vertex_input);
+    StageParse first = ParseStage(matching_input);
+    EXPECT_TRUE(LinkParsed({&vertex_input, &matching_input}, {&vertex_parse, &first}).ok);
+    ASSERT_TRUE(ReusableForLink(vertex_parse));
+    ASSERT_TRUE(ReusableForLink(first));
+
+    // The same vertex parse, twice more: the link's verdict and messages are a new parse's.
+    StageParse second = ParseStage(matching_input);
+    EXPECT_TRUE(LinkParsed({&vertex_input, &matching_input}, {&vertex_parse, &second}).ok);
+    ASSERT_TRUE(ReusableForLink(vertex_parse));
+    StageParse third = ParseStage(mismatched_input);
+    const LinkResult bad = LinkParsed({&vertex_input, &mismatched_input}, {&vertex_parse, &third});
+    const LinkResult fresh = LinkStages(vertex_input, mismatched_input);
+    EXPECT_FALSE(bad.ok);
+    EXPECT_EQ(Formatted(bad.diagnostics), Formatted(fresh.diagnostics));
+    EXPECT_TRUE(HasErrors(bad.diagnostics));
+    // glslang counted the mismatch in the vertex tree, which would fail every later link.
+    EXPECT_FALSE(ReusableForLink(vertex_parse));
+    EXPECT_FALSE(ReusableForLink(ParseStage(Input("c.fsh", "void main() {", Stage::kFragment))));
+}
+
+TEST(GlslangSessionTest, ALinkKeepsUncalledFunctionsForTheNextLinkOfTheSameParse) {
+    // The fragment stage reads `tint` only in a function nothing calls: still a static use, so it
+    // links with a vertex stage that writes `tint` and not with one that lacks it, in this order
+    // too (glslang's link would otherwise drop the function from the tree it links).
+    const std::string with_tint =
+            "#version 100\nattribute vec4 p;\nvarying vec3 tint;\n"
+            "void main() { tint = p.xyz; gl_Position = p; }\n";
+    const std::string without_tint =
+            "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n";
+    const std::string fragment =
+            "#version 100\nprecision mediump float;\nvarying vec3 tint;\n"
+            "vec3 Tinted() { return tint; }\n"
+            "void main() { gl_FragColor = vec4(1.0); }\n";
+    const GlslangStageInput tinted = Input("t.vsh", with_tint, Stage::kVertex);
+    const GlslangStageInput plain = Input("p.vsh", without_tint, Stage::kVertex);
+    const GlslangStageInput fragment_input = Input("a.fsh", fragment, Stage::kFragment);
+    StageParse fragment_parse = ParseStage(fragment_input);
+    StageParse tinted_parse = ParseStage(tinted);
+    const LinkResult first =
+            LinkParsed({&tinted, &fragment_input}, {&tinted_parse, &fragment_parse});
+    EXPECT_TRUE(first.ok) << Formatted(first.diagnostics);
+    ASSERT_TRUE(ReusableForLink(fragment_parse));
+    StageParse plain_parse = ParseStage(plain);
+    const LinkResult second =
+            LinkParsed({&plain, &fragment_input}, {&plain_parse, &fragment_parse});
+    EXPECT_FALSE(second.ok);
+    EXPECT_EQ(Formatted(second.diagnostics),
+              Formatted(LinkStages(plain, fragment_input).diagnostics));
+    EXPECT_NE(Formatted(second.diagnostics).find("a.fsh:4:"), std::string::npos)
+            << Formatted(second.diagnostics);
+}
+
 TEST(GlslangSessionTest, IdentityIsStableAndNamesTheLimits) {
     const std::string identity = GlslangIdentity();
     EXPECT_EQ(identity, GlslangIdentity());
