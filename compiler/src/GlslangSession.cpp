@@ -30,6 +30,57 @@
 
 namespace tidepool {
 
+std::string WithoutLineComments(std::string_view text) {
+    // A `\` line continuation (in GLSL ES 3.00 it carries a line comment on to the next line).
+    if (text.find("\\\n") != std::string_view::npos ||
+        text.find("\\\r") != std::string_view::npos) {
+        return std::string(text);
+    }
+    std::string out;
+    out.reserve(text.size());
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const std::size_t slash = text.find('/', i);
+        if (slash == std::string_view::npos || slash + 1 >= text.size()) {
+            break;
+        }
+        if (text[slash + 1] == '*') {
+            // A block comment stays as written: it may span lines, and inside a directive a
+            // newline would end the directive where the comment does not.
+            const std::size_t end = text.find("*/", slash + 2);
+            const std::size_t stop = end == std::string_view::npos ? text.size() : end + 2;
+            out.append(text.substr(i, stop - i));
+            i = stop;
+        } else if (text[slash + 1] == '/') {
+            // After a `"` on the same line, the `//` may be inside a string (glslang's #include
+            // and #line extensions take strings): the line stays as written.
+            const std::size_t line = text.rfind('\n', slash);
+            const std::size_t line_start = line == std::string_view::npos ? 0 : line + 1;
+            const bool after_quote =
+                    text.substr(line_start, slash - line_start).find('"') != std::string_view::npos;
+            if (after_quote) {
+                std::size_t end = text.find('\n', slash);
+                end = end == std::string_view::npos ? text.size() : end;
+                out.append(text.substr(i, end - i));
+                i = end;
+                continue;
+            }
+            out.append(text.substr(i, slash - i));
+            std::size_t end = text.find('\n', slash);
+            end = end == std::string_view::npos ? text.size() : end;
+            if (end > slash && text[end - 1] == '\r') {
+                --end;  // the line's own ending stays
+            }
+            i = end;
+        } else {
+            out.append(text.substr(i, slash + 1 - i));
+            i = slash + 1;
+        }
+    }
+    out.append(text.substr(std::min(i, text.size())));
+    return out;
+}
+
 StageParse::StageParse() = default;
 StageParse::StageParse(StageParse&&) noexcept = default;
 StageParse& StageParse::operator=(StageParse&&) noexcept = default;
@@ -77,6 +128,7 @@ std::string Es300Preamble(Stage stage) {
 // stages of each link); scanning them every time was a quarter of a cold validation of the
 // default matrix.
 struct TextScan {
+    std::string without_line_comments;
     RenamingScan renaming;
     bool may_have_late_extension = false;
     std::vector<UnaryPlus> unary_pluses;
@@ -98,6 +150,7 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
         }
     }
     auto scan = std::make_shared<TextScan>();
+    scan->without_line_comments = WithoutLineComments(text);
     scan->renaming = ScanForRenaming(text);
     scan->may_have_late_extension = MayHaveLateExtension(text);
     scan->unary_pluses = FindUnaryPluses(text);
@@ -111,7 +164,7 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
 
 PreparedStage Prepare(const GlslangStageInput& input) {
     PreparedStage prepared;
-    prepared.text = input.text;
+    prepared.text = ScanOf(input.text)->without_line_comments;
     const std::string version_line = FindVersionLine(input.text);
     int version = 100;
     bool es = true;

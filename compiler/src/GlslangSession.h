@@ -69,6 +69,14 @@ struct LinkResult {
 /// default resource limits, as text for cache keys. Never fails.
 std::string GlslangIdentity();
 
+/// `text` with every `//` comment taken out up to its line's end, which is what glslang is given:
+/// a comment is one space to the language (the "Comments" section of GLSL ES 1.00 and 3.00), and
+/// nothing follows a line comment on its line, so no token, line or column of code moves, while
+/// glslang's preprocessor reads comments a character at a time (half the bytes of
+/// shaders/water.fsh). Block comments stay, and so does a `//` after a `"` on its line (it may be
+/// inside a string); a text with a `\` at a line's end is returned as it is.
+std::string WithoutLineComments(std::string_view text);
+
 /// Initialises glslang once per process (thread-safe); every function below calls it.
 void EnsureGlslangInitialized();
 

@@ -171,6 +171,42 @@ TEST(GlslangSessionTest, ALinkKeepsUncalledFunctionsForTheNextLinkOfTheSameParse
             << Formatted(second.diagnostics);
 }
 
+TEST(GlslangSessionTest, LineCommentsAreTakenOutWithoutMovingAnyCode) {
+    // Code keeps its line and column; what follows `//` goes, up to the line's own ending.
+    EXPECT_EQ(WithoutLineComments("float a; // note\r\nfloat b;//x\n// whole line\nc"),
+              "float a; \r\nfloat b;\n\nc");
+    EXPECT_EQ(WithoutLineComments("#define K 2 // two\n#if K == 2\n"),
+              "#define K 2 \n#if K == 2\n");
+    // Block comments stay as written, and a `//` inside one is not a line comment; a `/*` inside
+    // a line comment starts nothing.
+    EXPECT_EQ(WithoutLineComments("a /* x // y\n z */ b // c /* d\ne */"),
+              "a /* x // y\n z */ b \ne */");
+    EXPECT_EQ(WithoutLineComments("#define F(x) (x /* half\n */ * 0.5)\n"),
+              "#define F(x) (x /* half\n */ * 0.5)\n");
+    // A `//` after a `"` on its line may be inside a string; a division is no comment.
+    EXPECT_EQ(WithoutLineComments("#line 3 \"a//b\" // c\nx = y / z; // d\n"),
+              "#line 3 \"a//b\" // c\nx = y / z; \n");
+    // A line continuation may carry a comment on to the next line: nothing is taken out.
+    const std::string continued = "// a \\\nfloat hidden;\nfloat b; // c\n";
+    EXPECT_EQ(WithoutLineComments(continued), continued);
+    EXPECT_EQ(WithoutLineComments("x /"), "x /");
+    EXPECT_EQ(WithoutLineComments(""), "");
+}
+
+TEST(GlslangSessionTest, DiagnosticsAfterLineCommentsKeepTheUsersLineAndColumn) {
+    const std::string text =
+            "#version 100 // the version\n"
+            "precision mediump float; // default precision\n"
+            "#define SCALE 2.0 // a macro with a comment\n"
+            "// a whole line\n"
+            "void main() {\n"
+            "  gl_FragColor = vec4(SCALE) * yy; // undeclared\n"
+            "}\n";
+    const StageParse parsed = ParseStage(Input("a.fsh", text, Stage::kFragment));
+    EXPECT_FALSE(parsed.ok);
+    EXPECT_EQ(Formatted(parsed.diagnostics), "a.fsh:6:32: error: 'yy' : undeclared identifier\n");
+}
+
 TEST(GlslangSessionTest, IdentityIsStableAndNamesTheLimits) {
     const std::string identity = GlslangIdentity();
     EXPECT_EQ(identity, GlslangIdentity());
