@@ -86,35 +86,33 @@ TEST(GlslangSessionTest, DesktopGlslIsAnError) {
     EXPECT_TRUE(HasErrors(parsed.diagnostics));
 }
 
+// A vertex stage writing `colour`, a fragment stage reading it as declared, and one reading it
+// with another type.
+constexpr const char* kColourVertex =
+        "#version 100\nattribute vec4 p;\nvarying vec4 colour;\n"
+        "void main() { colour = p; gl_Position = p; }\n";
+constexpr const char* kMatchingFragment =
+        "#version 100\nprecision mediump float;\nvarying vec4 colour;\n"
+        "void main() { gl_FragColor = colour; }\n";
+constexpr const char* kMismatchedFragment =
+        "#version 100\nprecision mediump float;\nvarying vec3 colour;\n"
+        "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
+
 TEST(GlslangSessionTest, LinkingChecksTheVaryingsBetweenTheStages) {
-    const std::string vertex =
-            "#version 100\nattribute vec4 p;\nvarying vec4 colour;\n"
-            "void main() { colour = p; gl_Position = p; }\n";
-    const std::string matching =
-            "#version 100\nprecision mediump float;\nvarying vec4 colour;\n"
-            "void main() { gl_FragColor = colour; }\n";
-    const std::string mismatched =
-            "#version 100\nprecision mediump float;\nvarying vec3 colour;\n"
-            "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
-    const LinkResult good = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
-                                       Input("a.fsh", matching, Stage::kFragment));
+    const LinkResult good = LinkStages(Input("a.vsh", kColourVertex, Stage::kVertex),
+                                       Input("a.fsh", kMatchingFragment, Stage::kFragment));
     EXPECT_TRUE(good.ok) << Formatted(good.diagnostics);
-    const LinkResult bad = LinkStages(Input("a.vsh", vertex, Stage::kVertex),
-                                      Input("b.fsh", mismatched, Stage::kFragment));
+    const LinkResult bad = LinkStages(Input("a.vsh", kColourVertex, Stage::kVertex),
+                                      Input("b.fsh", kMismatchedFragment, Stage::kFragment));
     EXPECT_FALSE(bad.ok);
     EXPECT_TRUE(HasErrors(bad.diagnostics));
 }
 
 TEST(GlslangSessionTest, AParseServesAnotherLinkUntilALinkFindsAnErrorInIt) {
-    const std::string vertex =
-            "#version 100\nattribute vec4 p;\nvarying vec4 colour;\n"
-            "void main() { colour = p; gl_Position = p; }\n";
-    const std::string matching =
-            "#version 100\nprecision mediump float;\nvarying vec4 colour;\n"
-            "void main() { gl_FragColor = colour; }\n";
-    const std::string mismatched =
-            "#version 100\nprecision mediump float;\nvarying vec3 colour;\n"
-            "void main() { gl_FragColor = vec4(colour, 1.0); }\n";
+    // (An input refers to its text, which must outlive it.)
+    const std::string vertex = kColourVertex;
+    const std::string matching = kMatchingFragment;
+    const std::string mismatched = kMismatchedFragment;
     const GlslangStageInput vertex_input = Input("a.vsh", vertex, Stage::kVertex);
     const GlslangStageInput matching_input = Input("a.fsh", matching, Stage::kFragment);
     const GlslangStageInput mismatched_input = Input("b.fsh", mismatched, Stage::kFragment);
