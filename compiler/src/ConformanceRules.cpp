@@ -785,6 +785,161 @@ bool MacroMayHoldUnaryPlus(std::string_view text) {
     return false;
 }
 
+namespace {
+
+// The words GLSL ES 3.00 §3.7 reserves for future use: "Using them will result in an error."
+// glslang 12 refuses all but image1DShadow, image2DShadow, image1DArrayShadow and
+// image2DArrayShadow itself (each declared as a local `float` in a `#version 300 es` shader);
+// the whole list is checked so that the rule does not lean on which ones a glslang refuses.
+const std::set<std::string_view>& Es300ReservedWords() {
+    static const std::set<std::string_view> words = {"attribute",
+                                                     "varying",
+                                                     "coherent",
+                                                     "restrict",
+                                                     "readonly",
+                                                     "writeonly",
+                                                     "resource",
+                                                     "atomic_uint",
+                                                     "noperspective",
+                                                     "patch",
+                                                     "sample",
+                                                     "subroutine",
+                                                     "common",
+                                                     "partition",
+                                                     "active",
+                                                     "asm",
+                                                     "class",
+                                                     "union",
+                                                     "enum",
+                                                     "typedef",
+                                                     "template",
+                                                     "this",
+                                                     "goto",
+                                                     "inline",
+                                                     "noinline",
+                                                     "volatile",
+                                                     "public",
+                                                     "static",
+                                                     "extern",
+                                                     "external",
+                                                     "interface",
+                                                     "long",
+                                                     "short",
+                                                     "double",
+                                                     "half",
+                                                     "fixed",
+                                                     "unsigned",
+                                                     "superp",
+                                                     "input",
+                                                     "output",
+                                                     "hvec2",
+                                                     "hvec3",
+                                                     "hvec4",
+                                                     "dvec2",
+                                                     "dvec3",
+                                                     "dvec4",
+                                                     "fvec2",
+                                                     "fvec3",
+                                                     "fvec4",
+                                                     "sampler3DRect",
+                                                     "filter",
+                                                     "image1D",
+                                                     "image2D",
+                                                     "image3D",
+                                                     "imageCube",
+                                                     "iimage1D",
+                                                     "iimage2D",
+                                                     "iimage3D",
+                                                     "iimageCube",
+                                                     "uimage1D",
+                                                     "uimage2D",
+                                                     "uimage3D",
+                                                     "uimageCube",
+                                                     "image1DArray",
+                                                     "image2DArray",
+                                                     "iimage1DArray",
+                                                     "iimage2DArray",
+                                                     "uimage1DArray",
+                                                     "uimage2DArray",
+                                                     "image1DShadow",
+                                                     "image2DShadow",
+                                                     "image1DArrayShadow",
+                                                     "image2DArrayShadow",
+                                                     "imageBuffer",
+                                                     "iimageBuffer",
+                                                     "uimageBuffer",
+                                                     "sampler1D",
+                                                     "sampler1DShadow",
+                                                     "sampler1DArray",
+                                                     "sampler1DArrayShadow",
+                                                     "isampler1D",
+                                                     "isampler1DArray",
+                                                     "usampler1D",
+                                                     "usampler1DArray",
+                                                     "sampler2DRect",
+                                                     "sampler2DRectShadow",
+                                                     "isampler2DRect",
+                                                     "usampler2DRect",
+                                                     "samplerBuffer",
+                                                     "isamplerBuffer",
+                                                     "usamplerBuffer",
+                                                     "sampler2DMS",
+                                                     "isampler2DMS",
+                                                     "usampler2DMS",
+                                                     "sampler2DMSArray",
+                                                     "isampler2DMSArray",
+                                                     "usampler2DMSArray",
+                                                     "sizeof",
+                                                     "cast",
+                                                     "namespace",
+                                                     "using"};
+    return words;
+}
+
+}  // namespace
+
+bool MayUseEs300ReservedWord(std::string_view source) {
+    for (const std::vector<SourceToken>& line : SourceTokenLines(source)) {
+        for (const SourceToken& token : line) {
+            if (token.identifier && Es300ReservedWords().count(token.text) != 0) {
+                return true;
+            }
+        }
+    }
+    return false;
+}
+
+std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
+                                                std::string_view source, const std::string& file) {
+    std::vector<Diagnostic> errors;
+    const std::vector<std::vector<SourceToken>> source_lines = SourceTokenLines(source);
+    for (const std::vector<SourceToken>& line : SourceTokenLines(preprocessed)) {
+        for (const SourceToken& token : line) {
+            if (!token.identifier || Es300ReservedWords().count(token.text) == 0) {
+                continue;
+            }
+            // The user's column, where the word stands on that line of the file; a word a macro
+            // brought in keeps its column in the preprocessed text.
+            int column = token.column;
+            for (const std::vector<SourceToken>& written : source_lines) {
+                const auto it = std::find_if(written.begin(), written.end(), [&](const auto& t) {
+                    return t.line == token.line && t.text == token.text;
+                });
+                if (it != written.end()) {
+                    column = it->column;
+                    break;
+                }
+            }
+            errors.push_back(MakeError(
+                    file, token.line, column,
+                    fmt::format("'{}' : reserved word; GLSL ES 3.00 reserves it for future use, "
+                                "and using it is an error (GLSL ES 3.00 §3.7); rename it",
+                                token.text)));
+        }
+    }
+    return errors;
+}
+
 bool MayHaveLateExtension(std::string_view source) {
     bool tokens_seen = false;
     for (const std::string& line : CommentFreeLines(source)) {

@@ -78,6 +78,18 @@ struct LinkedStage {
 std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex,
                                              const LinkedStage& fragment);
 
+/// True when `source` spells, outside comments, one of the words GLSL ES 3.00 §3.7 reserves for
+/// future use (inactive blocks included, so an over-estimate). Only then does
+/// CheckEs300ReservedWords need the preprocessed text.
+bool MayUseEs300ReservedWord(std::string_view source);
+
+/// Checks glslang's preprocessed text of a GLSL ES 3.00 stage (inactive blocks and comments
+/// gone, lines kept) for the words §3.7 reserves for future use ("Using them will result in an
+/// error"), of which glslang 12 accepts image1DShadow, image2DShadow, image1DArrayShadow and
+/// image2DArrayShadow. Each use is an error at its line, at its column in `source`.
+std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
+                                                std::string_view source, const std::string& file);
+
 /// A cheap over-estimate: true when some `#extension` line follows a line that is not a
 /// directive. Only then does CheckExtensionPlacement need the preprocessed text.
 bool MayHaveLateExtension(std::string_view source);

@@ -131,6 +131,7 @@ struct TextScan {
     std::string without_line_comments;
     RenamingScan renaming;
     bool may_have_late_extension = false;
+    bool may_use_es300_reserved_word = false;
     std::vector<UnaryPlus> unary_pluses;
 };
 
@@ -153,6 +154,7 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
     scan->without_line_comments = WithoutLineComments(text);
     scan->renaming = ScanForRenaming(text);
     scan->may_have_late_extension = MayHaveLateExtension(text);
+    scan->may_use_es300_reserved_word = MayUseEs300ReservedWord(text);
     scan->unary_pluses = FindUnaryPluses(text);
     const std::lock_guard<std::mutex> lock(*mutex);
     if (scans->size() >= kTexts) {
@@ -467,6 +469,13 @@ StageParse ParseStage(const GlslangStageInput& input) {
                     ParseGlslangLog(renaming.Restore(shader->getInfoLog()), input.file, negated),
                     shown, input.file);
             broken.insert(broken.end(), plus_errors.begin(), plus_errors.end());
+        }
+        if (version >= 300 && ScanOf(input.text)->may_use_es300_reserved_word) {
+            if (const PreprocessResult preprocessed = PreprocessStage(input); preprocessed.ok) {
+                const std::vector<Diagnostic> reserved =
+                        CheckEs300ReservedWords(preprocessed.text, input.text, input.file);
+                broken.insert(broken.end(), reserved.begin(), reserved.end());
+            }
         }
         if (MayRedeclareInvariant(input.text)) {
             const PreprocessResult preprocessed = PreprocessStage(input);

@@ -190,6 +190,49 @@ INSTANTIATE_TEST_SUITE_P(
                          "void main() { gl_FragColor = vec4(1.0); }\n",
                          ""}));
 
+// GLSL ES 3.00 §3.7: the words reserved for future use are errors, including the four glslang 12
+// accepts (image1DShadow, image2DShadow, image1DArrayShadow, image2DArrayShadow). GLSL ES 1.00
+// §3.7 reserves none of those four.
+INSTANTIATE_TEST_SUITE_P(
+        Es300ReservedWords, ConformanceRulesTest,
+        ::testing::Values(
+                RuleCase{"a 3.00 fragment function's parameter named image2DArrayShadow", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour;\n"
+                         "float shade(float image2DArrayShadow) { return image2DArrayShadow; }\n"
+                         "void main() { colour = vec4(shade(0.5)); }\n",
+                         "a.fsh:4:19: error: 'image2DArrayShadow' : reserved word; GLSL ES 3.00 "
+                         "reserves it for future use, and using it is an error (GLSL ES 3.00 "
+                         "§3.7); rename it"},
+                RuleCase{"a 3.00 vertex local named image1DShadow through a macro",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "#define DEPTH image1DShadow\n"
+                         "void main() {\n"
+                         "    float DEPTH = position.z;\n"
+                         "    gl_Position = position * DEPTH;\n"
+                         "}\n",
+                         nullptr,
+                         "a.vsh:5:11: error: 'image1DShadow' : reserved word; GLSL ES 3.00 "
+                         "reserves it for future use, and using it is an error (GLSL ES 3.00 "
+                         "§3.7); rename it"},
+                RuleCase{"3.00: the word only in a comment and in an inactive block", nullptr,
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "out vec4 colour; // not an image2DShadow\n"
+                         "#ifdef NEVER\n"
+                         "uniform float image2DShadow;\n"
+                         "#endif\n"
+                         "void main() { colour = vec4(1.0); }\n",
+                         ""},
+                RuleCase{"1.00 reserves none of the four", nullptr,
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform float image2DShadow;\n"
+                         "void main() { gl_FragColor = vec4(image2DShadow); }\n",
+                         ""}));
+
 // `defined` from a macro expansion inside #if works (dEQP requires it); nothing else is relaxed.
 INSTANTIATE_TEST_SUITE_P(
         DefinedFromMacro, ConformanceRulesTest,
