@@ -770,8 +770,14 @@ def convert(source_dir, suite):
     return rows, files, counts, skipped
 
 
-def write_corpus(out_dir, rows, files, readme):
-    """Writes everything to OUT_DIR.tmp, then swaps it in for OUT_DIR."""
+def inside_repository(path):
+    """Whether `path` lies in this repository, where an external corpus must not be written."""
+    return path == REPO_ROOT or REPO_ROOT in path.parents
+
+
+def write_corpus(out_dir, columns, rows, files, readme):
+    """Writes everything to OUT_DIR.tmp, then swaps it in for OUT_DIR (also used by
+    webgl_glsl_to_corpus.py, whose manifest has two more columns)."""
     tmp = out_dir.with_name(out_dir.name + ".tmp")
     old = out_dir.with_name(out_dir.name + ".old")
     for leftover in (tmp, old):
@@ -781,7 +787,7 @@ def write_corpus(out_dir, rows, files, readme):
     for rel, text in files.items():
         (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
         (tmp / rel).write_text(text, encoding="utf-8")
-    manifest = "\t".join(MANIFEST_COLUMNS) + "\n" + "".join("\t".join(r) + "\n" for r in rows)
+    manifest = "\t".join(columns) + "\n" + "".join("\t".join(r) + "\n" for r in rows)
     (tmp / "manifest.tsv").write_text(manifest, encoding="utf-8")
     (tmp / "README.md").write_text(readme, encoding="utf-8")
     if out_dir.exists():
@@ -799,7 +805,7 @@ def main(argv):
     args = parser.parse_args(argv)  # exits 2 on bad arguments
     source_dir = args.source_dir.resolve()
     out_dir = args.out_dir.resolve()
-    if out_dir == REPO_ROOT or REPO_ROOT in out_dir.parents:
+    if inside_repository(out_dir):
         print(f"error: OUT_DIR {out_dir} is inside the repository {REPO_ROOT}; the corpus is "
               "external data and must be written elsewhere", file=sys.stderr)
         return EXIT_USAGE
@@ -813,7 +819,7 @@ def main(argv):
         return EXIT_FAILED
     readme = readme_text(source_dir, args.suite, counts, skipped, read_source_note(source_dir))
     try:
-        write_corpus(out_dir, rows, files, readme)
+        write_corpus(out_dir, MANIFEST_COLUMNS, rows, files, readme)
     except OSError as error:
         print(f"error: writing {out_dir}: {error}", file=sys.stderr)
         return EXIT_FAILED

@@ -26,11 +26,12 @@ Exit codes: 0 corpus written, 1 node failed or the output could not be written, 
 import argparse
 import json
 import re
-import shutil
 import subprocess
 import sys
 from html.parser import HTMLParser
 from pathlib import Path
+
+from deqp_tests_to_corpus import inside_repository, write_corpus  # the same corpus form
 
 EXIT_FAILED = 1
 EXIT_USAGE = 2
@@ -448,27 +449,6 @@ WebGL-only cases.
 """
 
 
-def write_corpus(out_dir, rows, files, readme):
-    """Writes everything to OUT_DIR.tmp, then swaps it in for OUT_DIR."""
-    tmp = out_dir.with_name(out_dir.name + ".tmp")
-    old = out_dir.with_name(out_dir.name + ".old")
-    for leftover in (tmp, old):
-        if leftover.exists():
-            shutil.rmtree(leftover)
-    tmp.mkdir(parents=True)
-    for rel, text in files.items():
-        (tmp / rel).parent.mkdir(parents=True, exist_ok=True)
-        (tmp / rel).write_text(text, encoding="utf-8")
-    manifest = "\t".join(MANIFEST_COLUMNS) + "\n" + "".join("\t".join(r) + "\n" for r in rows)
-    (tmp / "manifest.tsv").write_text(manifest, encoding="utf-8")
-    (tmp / "README.md").write_text(readme, encoding="utf-8")
-    if out_dir.exists():
-        out_dir.rename(old)
-    tmp.rename(out_dir)
-    if old.exists():
-        shutil.rmtree(old)
-
-
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("checkout_dir", type=Path)
@@ -476,7 +456,7 @@ def main(argv):
     args = parser.parse_args(argv)  # exits 2 on bad arguments
     checkout = args.checkout_dir.resolve()
     out_dir = args.out_dir.resolve()
-    if out_dir == REPO_ROOT or REPO_ROOT in out_dir.parents:
+    if inside_repository(out_dir):
         print(f"error: OUT_DIR {out_dir} is inside the repository {REPO_ROOT}; the corpus is "
               "external data and must be written elsewhere", file=sys.stderr)
         return EXIT_USAGE
@@ -493,7 +473,7 @@ def main(argv):
     readme = readme_text(checkout, rows, counts, page_skips, case_skips, only, converted, listed,
                          read_source_note(checkout))
     try:
-        write_corpus(out_dir, rows, files, readme)
+        write_corpus(out_dir, MANIFEST_COLUMNS, rows, files, readme)
     except OSError as error:
         print(f"error: writing {out_dir}: {error}", file=sys.stderr)
         return EXIT_FAILED
