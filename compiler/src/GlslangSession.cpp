@@ -164,20 +164,61 @@ std::shared_ptr<const TextScan> ScanOf(const std::string& text) {
     return scan;
 }
 
+// A `#version` directive after comments and white space, with its 1-based line; "" when the text
+// has none there. GLSL ES lets comments come first (1.00 and 3.00 §3.4); glslang 12 refuses
+// that for an ES version itself, but takes a desktop one after a comment as desktop GLSL.
+std::pair<std::string, int> VersionAfterComments(std::string_view text) {
+    std::size_t i = 0;
+    while (i < text.size()) {
+        if (text.find_first_of(" \t\r\n\f\v", i) == i) {
+            ++i;
+        } else if (text.compare(i, 2, "//") == 0) {
+            i = text.find('\n', i);
+        } else if (text.compare(i, 2, "/*") == 0) {
+            const std::size_t close = text.find("*/", i + 2);
+            i = close == std::string_view::npos ? close : close + 2;
+        } else {
+            break;
+        }
+    }
+    if (i >= text.size() || text.compare(i, 9, "#version ") != 0) {
+        return {"", 0};
+    }
+    const std::size_t end = std::min(text.find('\n', i), text.size());
+    std::string line(text.substr(i, end - i));
+    line.erase(line.find_last_not_of(" \t\r") + 1);
+    return {line, 1 + static_cast<int>(
+                              std::count(text.begin(), text.begin() + static_cast<long>(i), '\n'))};
+}
+
 PreparedStage Prepare(const GlslangStageInput& input) {
     PreparedStage prepared;
     prepared.text = ScanOf(input.text)->without_line_comments;
-    const std::string version_line = FindVersionLine(input.text);
+    // The version and whether it is GLSL ES, from a `#version` line.
+    auto read_version = [](const std::string& line) {
+        std::istringstream words(line.substr(std::string("#version").size()));
+        int number = 100;
+        std::string profile;
+        words >> number >> profile;
+        return std::make_pair(number, number == 100 || profile == "es");
+    };
+    std::string version_line = FindVersionLine(input.text);
+    int version_line_number = 1;
+    if (version_line.empty()) {
+        // Only a desktop version counts from there: glslang refuses an ES one after comments.
+        const auto [later, line] = VersionAfterComments(input.text);
+        if (!later.empty() && !read_version(later).second) {
+            version_line = later;
+            version_line_number = line;
+        }
+    }
     int version = 100;
     bool es = true;
     if (!version_line.empty()) {
-        std::istringstream words(version_line.substr(std::string("#version").size()));
-        std::string profile;
-        words >> version >> profile;
-        es = version == 100 || profile == "es";
+        std::tie(version, es) = read_version(version_line);
         if (!es) {
             prepared.diagnostics.push_back(
-                    MakeError(input.file, 1, 1,
+                    MakeError(input.file, version_line_number, 1,
                               fmt::format("'{}' is desktop GLSL; tidepool validates GLSL ES: use "
                                           "'#version 100' or '#version 300 es'",
                                           version_line)));

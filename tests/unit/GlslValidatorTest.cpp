@@ -346,6 +346,29 @@ TEST(GlslValidatorTest, DesktopVersionIsAnErrorAtLineOne) {
                                               "'#version 300 es'"});
 }
 
+TEST(GlslValidatorTest, DesktopVersionAfterACommentIsAnErrorAtItsLine) {
+    // Comments may come before #version (GLSL ES 1.00 and 3.00 §3.4), and glslang then takes a
+    // desktop version as desktop GLSL and accepts the shader; a #version 100 there stays valid.
+    TempDir dir;
+    const std::string desktop = dir.Write("d.vert",
+                                          "// licence\n#version 120\nattribute vec4 p;\n"
+                                          "void main() { gl_Position = p; }\n")
+                                        .string();
+    const ValidationReport refused = ValidateShaderFiles({ShaderFile{desktop, Stage::kVertex}}, {});
+    ASSERT_EQ(refused.verdicts.size(), 1U);
+    EXPECT_EQ(FormattedEach(refused.verdicts[0].diagnostics),
+              std::vector<std::string>{desktop + ":2:1: error: '#version 120' is desktop GLSL; "
+                                                 "tidepool validates GLSL ES: use '#version 100' "
+                                                 "or '#version 300 es'"});
+    const std::string es100 = dir.Write("e.vert",
+                                        "/* licence */\n#version 100\nattribute vec4 p;\n"
+                                        "void main() { gl_Position = p; }\n")
+                                      .string();
+    const ValidationReport accepted = ValidateShaderFiles({ShaderFile{es100, Stage::kVertex}}, {});
+    ASSERT_EQ(accepted.verdicts.size(), 1U);
+    EXPECT_TRUE(accepted.verdicts[0].valid);
+}
+
 TEST(GlslValidatorTest, PlainVertexAndFragmentFilesAreLinkedTogether) {
     TempDir dir;
     const std::string vs = dir.Write("a.vert", kVertex).string();
