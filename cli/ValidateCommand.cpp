@@ -199,8 +199,9 @@ void RegisterValidateCommand(CLI::App& app, int& exit_code) {
                          "check against a device's resource limits: a file of 'Name value' "
                          "lines, glslang's -c names (README: validator)");
     validate->add_option("--target", options->target,
-                         "add the WebGL rules: webgl1 (GLSL ES 1.00) or webgl2 (GLSL ES 3.00); "
-                         "with a configuration, instead of its targets")
+                         "add the WebGL rules: webgl1 (GLSL ES 1.00) or webgl2 (GLSL ES 3.00, "
+                         "and 1.00 files as they are); with a configuration, instead of its "
+                         "targets")
             ->check(CLI::IsMember({"webgl1", "webgl2"}));
     validate->callback([options, &exit_code] { exit_code = RunValidate(*options); });
 }

@@ -1041,15 +1041,6 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                     fmt::format("cannot read shader file: {}; check the path", texts[i].error)));
         } else {
             program.hash = Fnv1a64Hex(texts[i].text);
-            if (options.target == GlslTarget::kWebGl2 &&
-                FindVersionLine(texts[i].text).rfind("#version 300", 0) != 0) {
-                // In config mode a 1.00 file is compiled as 3.00; a plain file is what it says.
-                texts[i].text_errors.push_back(MakeError(
-                        files[i].path, 1, 1,
-                        "the webgl2 target validates GLSL ES 3.00 shaders: start the file with "
-                        "'#version 300 es' (WebGL 2.0 §4.3 \"Supported GLSL Constructs\"), or "
-                        "validate a GLSL ES 1.00 shader with --target webgl1"));
-            }
             program.diagnostics = texts[i].text_errors;
         }
         report.stage_programs.push_back(std::move(program));
@@ -1147,7 +1138,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 for (std::size_t i : groups[g]) {
                     stages.push_back({i,
                                       {files[i].path, texts[i].text, files[i].stage, options.target,
-                                       defines, options.limits}});
+                                       defines, options.limits, /*keep_version=*/true}});
                 }
                 return ParseAndLink(stages, note, &reported);
             },

@@ -103,11 +103,22 @@ bool IsTarget(const GlslangStageInput& input, GlslTarget target) {
     return input.target.has_value() && *input.target == target;
 }
 
+// True for a GLSL ES 1.00 stage a browser compiles, under WebGL 1 or WebGL 2: WebGL 2 runs 1.00
+// shaders too (WebGL 2.0 §4.3 "Supported GLSL Constructs"), and WebGL 1's rules for them hold
+// there as well (Appendix A's loops and indexing, packing, global initializers), as ANGLE
+// applies them to every 1.00 shader of a WebGL context.
+bool IsWebGlEs100(const GlslangStageInput& input, int version) {
+    return input.target.has_value() && IsWebGlTarget(*input.target) && version == 100;
+}
+
 // What glslang is given for one stage: the text (with the version line possibly rewritten in
 // place, which keeps the line count), the preamble and the default version.
 struct PreparedStage {
     std::string text;
     std::string preamble;
+    // The preamble and the declarations only a parse gets: the preprocessed text, which checks
+    // read line by line against the user's, stays free of them.
+    std::string parse_preamble;
     int default_version = 100;
     bool force_version = false;
     std::vector<Diagnostic> diagnostics;  // a desktop #version, found before glslang runs
@@ -236,7 +247,8 @@ PreparedStage Prepare(const GlslangStageInput& input) {
                             "target for a GLSL ES 3.00 shader",
                             version_line)));
     }
-    if (input.target && TargetVersion(*input.target) == 300 && version == 100) {
+    if (input.target && TargetVersion(*input.target) == 300 && version == 100 &&
+        !input.keep_version) {
         // Compile the 1.00 file as 3.00 without moving a line: rewrite its first line in place.
         if (!version_line.empty()) {
             const std::size_t end = prepared.text.find('\n');
@@ -249,6 +261,10 @@ PreparedStage Prepare(const GlslangStageInput& input) {
     } else {
         prepared.default_version = version;
     }
+    if (IsWebGlEs100(input, prepared.default_version) &&
+        prepared.text.find('\\') != std::string::npos) {
+        prepared.text = JoinContinuedLines(prepared.text);
+    }
     prepared.preamble += DefinePreamble(input.defines);
     // GLSL ES 1.00 §3.7: words glslang 12 wrongly refuses in 1.00 are given to it renamed.
     // GLSL ES 1.00 and 3.00 §4.1.8: a member may be named `length`; glslang 12 refuses its use.
@@ -257,15 +273,25 @@ PreparedStage Prepare(const GlslangStageInput& input) {
                          /*es100=*/prepared.default_version == 100);
     prepared.text = prepared.renaming.Apply(prepared.text);
     prepared.preamble = prepared.renaming.Apply(prepared.preamble);
+    prepared.parse_preamble = prepared.preamble;
+    if (IsTarget(input, GlslTarget::kWebGl2) && prepared.default_version == 300) {
+        // WebGL 2 supports only the std140 layout for uniform blocks (WebGL 2.0 "Only std140
+        // layout supported in uniform blocks"), so a block without a layout qualifier is std140
+        // there, not GLSL ES 3.00's default of shared (as ANGLE lays it out for WebGL).
+        prepared.parse_preamble += "layout(std140) uniform;\n";
+    }
     return prepared;
 }
 
+enum class ShaderUse { kPreprocess, kParse };
+
 std::unique_ptr<glslang::TShader> MakeShader(const GlslangStageInput& input,
-                                             const PreparedStage& prepared,
-                                             const char* const* text) {
+                                             const PreparedStage& prepared, const char* const* text,
+                                             ShaderUse use) {
     auto shader = std::make_unique<glslang::TShader>(Language(input.stage));
     shader->setStrings(text, 1);
-    shader->setPreamble(prepared.preamble.c_str());
+    shader->setPreamble(use == ShaderUse::kParse ? prepared.parse_preamble.c_str()
+                                                 : prepared.preamble.c_str());
     return shader;
 }
 
@@ -286,7 +312,7 @@ private:
 };
 
 TBuiltInResource ResourcesOf(const GlslangStageInput& input, int version) {
-    return ResourcesFor(version, input.limits, IsTarget(input, GlslTarget::kWebGl1));
+    return ResourcesFor(version, input.limits, IsWebGlEs100(input, version));
 }
 
 }  // namespace
@@ -316,7 +342,7 @@ PreprocessResult PreprocessStage(const GlslangStageInput& input) {
     EnsureGlslangInitialized();
     const PreparedStage prepared = Prepare(input);
     const char* text = prepared.text.c_str();
-    auto shader = MakeShader(input, prepared, &text);
+    auto shader = MakeShader(input, prepared, &text, ShaderUse::kPreprocess);
     PreprocessResult result;
     glslang::TShader::ForbidIncluder includer;
     const TBuiltInResource resources = ResourcesOf(input, prepared.default_version);
@@ -357,8 +383,8 @@ StageParse ParseStage(const GlslangStageInput& input) {
     // Before the parse: a glslang shader sets the thread's pool allocator to its own, so one
     // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
     std::vector<Diagnostic> late_extensions;
-    // WebGL 1.0 §6.35: in a WebGL 1 shader, #extension may follow other tokens.
-    if (!IsTarget(input, GlslTarget::kWebGl1) && ScanOf(input.text)->may_have_late_extension) {
+    // WebGL 1.0 §6.35: in a WebGL shader of GLSL ES 1.00, #extension may follow other tokens.
+    if (!IsWebGlEs100(input, version) && ScanOf(input.text)->may_have_late_extension) {
         // Only the user's defines go with the text: Es300Preamble declares an output, which
         // would count as a token before the user's own #extension lines.
         const std::string defines = DefinePreamble(input.defines);
@@ -373,7 +399,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
         }
     }
     auto parse = [&](EShMessages messages) {
-        auto shader = MakeShader(input, prepared, &text);
+        auto shader = MakeShader(input, prepared, &text, ShaderUse::kParse);
         const bool ok = shader->parse(&resources, version, EEsProfile, prepared.force_version,
                                       false, messages);
         return std::make_pair(ok, std::move(shader));
@@ -470,7 +496,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
         }
         if (IsTarget(input, GlslTarget::kWebGl2)) {
             const std::vector<Diagnostic> operators =
-                    CheckWebGl2Operators(*result.intermediate, input.file);
+                    CheckWebGl2Operators(*result.intermediate, input.file, prepared.text);
             broken.insert(broken.end(), operators.begin(), operators.end());
         }
         if (webgl && version == 100) {
@@ -501,7 +527,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
             // operand types it would refuse (GLSL ES 1.00 §5.9, 3.00 §5.9).
             const std::string negated = NegateUnaryPluses(scanned, pluses);
             const char* negated_text = negated.c_str();
-            auto shader = MakeShader(input, prepared, &negated_text);
+            auto shader = MakeShader(input, prepared, &negated_text, ShaderUse::kParse);
             shader->parse(&resources, version, EEsProfile, prepared.force_version, false,
                           kMessages);
             // Reported where the user wrote it: renaming lengthens words, never moves a '+'
@@ -602,7 +628,8 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
                     LinkedStage{*fragment.shader->getIntermediate(), inputs[1]->file, fragment.text,
                                 fragment.invariance});
         }
-        if (!HasErrors(result.diagnostics) && IsTarget(*inputs[1], GlslTarget::kWebGl1)) {
+        if (!HasErrors(result.diagnostics) &&
+            IsWebGlEs100(*inputs[1], fragment.shader->getIntermediate()->getVersion())) {
             result.diagnostics = CheckWebGlVaryingPacking(*fragment.shader->getIntermediate(),
                                                           ResourcesOf(*inputs[1], 100),
                                                           inputs[1]->file, fragment.text);
@@ -617,7 +644,18 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
     result.ok = program.link(static_cast<EShMessages>(kMessages | EShMsgKeepUncalled));
     // Link messages carry no line; attach them to the stage they name, else the last file.
     const std::string log = restore(program.getInfoLog());
+    bool dropped_offset_errors = false;
     for (Diagnostic d : ParseGlslangLog(log, inputs.back()->file, inputs.back()->text)) {
+        // GLSL ES 3.00 has no `offset` layout qualifier (3.10 brought it), yet glslang 12 compares
+        // the member offsets it works out for a block declared std140 with those of the same
+        // block made std140 by a default `layout(std140) uniform;`, which it leaves without
+        // offsets. A real difference of layout has messages of its own (packing, matrix order,
+        // member types), and the checks after this one ran (TProgram::crossStageCheck goes on).
+        if (d.message.find("Interface block member layout offset qualifier must match") !=
+            std::string::npos) {
+            dropped_offset_errors = true;
+            continue;
+        }
         // glslang 12 merges the uniforms of all stages under no stage and then names that side of
         // a clash "unknown stage"; in a vertex + fragment program the unnamed side is the vertex.
         for (std::size_t at = d.message.find("unknown stage");
@@ -630,6 +668,9 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
             d.file = inputs.front()->file;
         }
         result.diagnostics.push_back(std::move(d));
+    }
+    if (!result.ok && dropped_offset_errors && !HasErrors(result.diagnostics)) {
+        result.ok = true;
     }
     if (!result.ok && !HasErrors(result.diagnostics)) {
         result.diagnostics.push_back(

@@ -24,7 +24,8 @@ namespace tidepool {
 
 /// One stage as the user wrote it plus what to compile it with. With no target, the file's own
 /// `#version` decides (GLSL ES only); with a target, a `#version 100` file is compiled for it
-/// (a WebGL target also adds the WebGL rules). `limits`, when given, are the device's.
+/// (a WebGL target also adds the WebGL rules) unless `keep_version` is set. `limits`, when given,
+/// are the device's.
 struct GlslangStageInput {
     std::string file;
     const std::string& text;
@@ -32,6 +33,11 @@ struct GlslangStageInput {
     std::optional<GlslTarget> target;
     const std::vector<std::string>& defines;
     const DeviceLimits* limits = nullptr;
+    /// Plain files: the file's own `#version` is validated whatever the target's version, so a
+    /// GLSL ES 1.00 file under webgl2 is a 1.00 shader with the rules WebGL gives 1.00 shaders
+    /// (WebGL 2.0 §4.3 "Supported GLSL Constructs"). Variant configs leave it unset: their
+    /// shaders are written once and compiled as each target's version.
+    bool keep_version = false;
 };
 
 /// The preprocessed text of a stage (defines applied, comments and inactive blocks gone).

@@ -58,6 +58,31 @@ int MaxWebGlTokenLength(GlslTarget target) {
     return target == GlslTarget::kWebGl2 ? 1024 : 256;
 }
 
+std::string JoinContinuedLines(std::string_view text) {
+    std::string joined;
+    joined.reserve(text.size());
+    int owed_newlines = 0;  // the newlines of joined lines, given back after the logical line
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char ch = text[i];
+        if (ch == '\\') {
+            const std::size_t after = i + 1;
+            const std::size_t crlf = text.compare(after, 2, "\r\n") == 0 ? 2 : 0;
+            if (crlf != 0 || (after < text.size() && text[after] == '\n')) {
+                i = after + (crlf != 0 ? crlf : 1) - 1;
+                ++owed_newlines;
+                continue;
+            }
+        }
+        joined += ch;
+        if (ch == '\n') {
+            joined.append(static_cast<std::size_t>(owed_newlines), '\n');
+            owed_newlines = 0;
+        }
+    }
+    joined.append(static_cast<std::size_t>(owed_newlines), '\n');
+    return joined;
+}
+
 std::vector<Diagnostic> CheckWebGlTokens(std::string_view text, GlslTarget target,
                                          const std::string& file) {
     std::vector<Diagnostic> errors;
@@ -528,16 +553,35 @@ public:
     }
     bool visitSelection(glslang::TVisit, glslang::TIntermSelection* node) override {
         const std::string_view kind = DisallowedOperandKind(node->getType());
-        if (node->getType().getBasicType() != glslang::EbtVoid && !kind.empty()) {
+        // A void selection is an if-statement (placed at its `if`) or a `?:` (at its `?`).
+        if (!kind.empty() && (node->getType().getBasicType() != glslang::EbtVoid ||
+                              IsQuestionMark(node->getLoc()))) {
             Forbid(node->getLoc(), "ternary operator '?:'", kind);
         }
         return true;
     }
 
     std::string file;
+    std::string_view source;
     std::vector<Diagnostic> errors;
 
 private:
+    // True when `loc` (1-based line and column) is a `?` of `source`.
+    bool IsQuestionMark(const glslang::TSourceLoc& loc) const {
+        std::size_t begin = 0;
+        for (int line = 1; line < loc.line; ++line) {
+            begin = source.find('\n', begin);
+            if (begin == std::string_view::npos) {
+                return false;
+            }
+            ++begin;
+        }
+        const std::size_t at = begin + static_cast<std::size_t>(std::max(loc.column, 1)) - 1;
+        const std::size_t end = source.find('\n', begin);
+        return loc.line >= 1 && at < source.size() && (end == std::string_view::npos || at < end) &&
+               source[at] == '?';
+    }
+
     void Forbid(const glslang::TSourceLoc& loc, std::string_view op, std::string_view kind) {
         errors.push_back(
                 MakeError(file, loc.line, std::max(loc.column, 0),
@@ -550,9 +594,10 @@ private:
 }  // namespace
 
 std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
-                                             const std::string& file) {
+                                             const std::string& file, std::string_view source) {
     Webgl2OperatorChecker checker;
     checker.file = file;
+    checker.source = source;
     if (stage.getTreeRoot() != nullptr) {
         stage.getTreeRoot()->traverse(&checker);
     }

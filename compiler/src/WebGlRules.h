@@ -24,6 +24,13 @@ namespace tidepool {
 /// limits identifiers to 1024 characters).
 int MaxWebGlTokenLength(GlslTarget target);
 
+/// A GLSL ES 1.00 text as WebGL reads it: a backslash at the end of a line joins the next line
+/// to it, as in GLSL ES 3.00 §3.1 (GLSL ES 1.00 has no line continuation, but WebGL supports the
+/// character in every shader since KhronosGroup/WebGL#3212, 2021, as ANGLE's preprocessor always
+/// did). The joined lines' newlines go after the logical line, so every later line keeps its
+/// number. Lines ending in `\r\n` are joined too. A text without a continuation comes back as is.
+std::string JoinContinuedLines(std::string_view text);
+
 /// Checks the user's text (comments left out, every line, preprocessor directives and inactive
 /// blocks included) for a token longer than MaxWebGlTokenLength and for an identifier that starts
 /// with `webgl_` or `_webgl_` (WebGL 1.0 §6.17 "GLSL Constructs": reserved for use by WebGL).
@@ -102,10 +109,11 @@ std::vector<Diagnostic> CheckWebGlVaryingPacking(const glslang::TIntermediate& f
 
 /// Checks a WebGL 2 stage for the operator forms WebGL 2.0 §5.26 "Disallowed variants of GLSL ES
 /// 3.00 operators" forbids: the sequence operator `,` with an operand that is void, an array or
-/// a structure containing an array, and the ternary operator `?:` whose result is an array or
-/// such a structure. Reported at the operator. (A `?:` of void operands is not seen: glslang
-/// keeps it as an if-statement.)
+/// a structure containing an array, and the ternary operator `?:` whose result is void, an array
+/// or such a structure. Reported at the operator. glslang keeps a `?:` of void operands as an
+/// if-statement, told apart by the `?` at its place in `source`, the text glslang parsed (one
+/// that a macro wrote is not seen).
 std::vector<Diagnostic> CheckWebGl2Operators(const glslang::TIntermediate& stage,
-                                             const std::string& file);
+                                             const std::string& file, std::string_view source);
 
 }  // namespace tidepool

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "ShaderPairValidation.h"
+#include "WebGlRules.h"
 
 namespace tidepool {
 namespace {
@@ -92,6 +93,11 @@ INSTANTIATE_TEST_SUITE_P(
                           Fragment300("float " + std::string(1024, 'w') + " = 1.0;\n",
                                       "    colour = vec4(" + std::string(1024, 'w') + ");\n"),
                           ""},
+                WebGlCase{"an identifier of 1024 characters in a 1.00 shader for WebGL 2",
+                          GlslTarget::kWebGl2, kVertex100,
+                          Fragment100("float " + std::string(1024, 'w') + " = 1.0;\n",
+                                      "    gl_FragColor = vec4(" + std::string(1024, 'w') + ");\n"),
+                          ""},
                 WebGlCase{"an identifier of 1025 characters in WebGL 2", GlslTarget::kWebGl2,
                           kVertex300,
                           Fragment300("float " + std::string(1025, 'w') + " = 1.0;\n",
@@ -139,8 +145,8 @@ INSTANTIATE_TEST_SUITE_P(
                                     // output; the verdict is the same.
                                     "a.fsh:4:7: error: '$' : unexpected token"}));
 
-// GLSL ES 1.00 Appendix A §4 and §5, which WebGL 1 requires (WebGL 1.0 §4.3); plain GLSL ES and
-// WebGL 2 accept these shaders.
+// GLSL ES 1.00 Appendix A §4 and §5, which WebGL requires of 1.00 shaders (WebGL 1.0 and 2.0
+// §4.3); plain GLSL ES and WebGL 2's 3.00 shaders accept these loops.
 INSTANTIATE_TEST_SUITE_P(
         AppendixA, WebGlRulesTest,
         ::testing::Values(
@@ -182,7 +188,44 @@ INSTANTIATE_TEST_SUITE_P(
                                       "    float depth = uv.x;\n"
                                       "    while (depth > 1.0) { depth *= 0.5; }\n"
                                       "    colour = vec4(depth);\n"),
-                          ""}));
+                          ""},
+                WebGlCase{"the while loop in a 1.00 shader for WebGL 2", GlslTarget::kWebGl2,
+                          kVertex100,
+                          Fragment100("",
+                                      "    float depth = uv.x;\n"
+                                      "    while (depth > 1.0) { depth *= 0.5; }\n"
+                                      "    gl_FragColor = vec4(depth);\n"),
+                          "a.fsh:6: error: 'limitation' : while loops not available"}));
+
+TEST(JoinContinuedLinesTest, JoinsEachContinuedLineAndKeepsTheLineCount) {
+    EXPECT_EQ(JoinContinuedLines("a \\\nb\nc\n"), "a b\n\nc\n");
+    EXPECT_EQ(JoinContinuedLines("a\\\r\nb\\\nc\nd"), "abc\n\n\nd");
+    EXPECT_EQ(JoinContinuedLines("a\\\n"), "a\n");  // a continuation on the last line
+}
+
+TEST(JoinContinuedLinesTest, LeavesOtherBackslashesAlone) {
+    EXPECT_EQ(JoinContinuedLines("a \\ b\nc\\ \n"), "a \\ b\nc\\ \n");
+    EXPECT_EQ(JoinContinuedLines(""), "");
+}
+
+// WebGL supports the line continuation character in 1.00 shaders too (KhronosGroup/WebGL#3212);
+// GLSL ES 1.00 has none, so without a WebGL target the next line is code.
+INSTANTIATE_TEST_SUITE_P(
+        LineContinuation, WebGlRulesTest,
+        ::testing::Values(WebGlCase{"a line comment continued onto the next line in WebGL 1",
+                                    GlslTarget::kWebGl1, kVertex100,
+                                    Fragment100("// the sea \\\nfoam and spray\n",
+                                                "    gl_FragColor = vec4(1.0);\n"),
+                                    ""},
+                          WebGlCase{"an expression continued in a 1.00 shader for WebGL 2",
+                                    GlslTarget::kWebGl2, kVertex100,
+                                    Fragment100("", "    gl_FragColor = \\\n        vec4(1.0);\n"),
+                                    ""},
+                          WebGlCase{"the continued comment without a WebGL target",
+                                    GlslTarget::kEs100, kVertex100,
+                                    Fragment100("// the sea \\\nfoam and spray\n",
+                                                "    gl_FragColor = vec4(1.0);\n"),
+                                    "a.fsh:5: error: '' :  syntax error, unexpected IDENTIFIER"}));
 
 // The version each WebGL runs, and the preprocessor rules WebGL settles (§6.34, §6.35).
 INSTANTIATE_TEST_SUITE_P(
@@ -194,16 +237,24 @@ INSTANTIATE_TEST_SUITE_P(
                           "shaders only (WebGL 1.0 §4.3 \"Supported GLSL Constructs\"); use "
                           "'#version 100', or the webgl2 target for a GLSL ES 3.00 shader"},
                 WebGlCase{"a 1.00 shader for WebGL 2", GlslTarget::kWebGl2, kVertex100,
-                          Fragment100("", "    gl_FragColor = vec4(1.0);\n"),
-                          "a.vsh:1:1: error: the webgl2 target validates GLSL ES 3.00 shaders: "
-                          "start the file with '#version 300 es' (WebGL 2.0 §4.3 \"Supported "
-                          "GLSL Constructs\"), or validate a GLSL ES 1.00 shader with --target "
-                          "webgl1"},
+                          Fragment100("", "    gl_FragColor = vec4(1.0);\n"), ""},
                 WebGlCase{"#extension after a declaration is allowed in WebGL 1",
                           GlslTarget::kWebGl1, kVertex100,
                           Fragment100("#extension GL_OES_standard_derivatives : enable\n",
                                       "    gl_FragColor = vec4(dFdx(uv.x));\n"),
                           ""},
+                WebGlCase{"#extension after a declaration of a 1.00 shader in WebGL 2",
+                          GlslTarget::kWebGl2, kVertex100,
+                          Fragment100("#extension GL_OES_standard_derivatives : enable\n",
+                                      "    gl_FragColor = vec4(dFdx(uv.x));\n"),
+                          ""},
+                WebGlCase{"#extension after a declaration without a WebGL target",
+                          GlslTarget::kEs100, kVertex100,
+                          Fragment100("#extension GL_OES_standard_derivatives : enable\n",
+                                      "    gl_FragColor = vec4(dFdx(uv.x));\n"),
+                          "a.fsh:4:1: error: '#extension' after the first non-preprocessor token "
+                          "(line 2); extension directives must come before any of them (GLSL ES "
+                          "1.00 §3.4, GLSL ES 3.00 §3.4)"},
                 WebGlCase{"defined produced by a macro in #if", GlslTarget::kWebGl1, kVertex100,
                           "#version 100\n"
                           "precision mediump float;\n"
@@ -315,6 +366,20 @@ const std::string kManyVaryingsVertex =
         "    gl_Position = position;\n"
         "}\n";
 
+// A ninth vec3 varying beside 4 + 4: one row more than gl_MaxVaryingVectors, 8 in ES 2.0.
+const std::string kNineVaryingRowsFragment =
+        "#version 100\n"
+        "precision mediump float;\n"
+        "varying vec3 normals[4];\n"
+        "varying vec3 tangents[4];\n"
+        "varying vec3 view;\n"
+        "void main() { gl_FragColor = vec4(normals[3] + tangents[3] + view, 1.0); }\n";
+const char* const kNineVaryingRowsError =
+        "a.fsh:5:14: error: the varyings the fragment shader reads do not fit in 8 vectors "
+        "(gl_MaxVaryingVectors): 'view' finds no room by the packing of GLSL ES 1.00 Appendix A "
+        "§7, which WebGL requires (WebGL 1.0 §6.26 \"Packing Restrictions for Uniforms and "
+        "Varyings\")";
+
 INSTANTIATE_TEST_SUITE_P(
         Packing, WebGlRulesTest,
         ::testing::Values(
@@ -357,18 +422,10 @@ INSTANTIATE_TEST_SUITE_P(
                           "void main() { gl_FragColor = vec4(normals[3] + tangents[3], fades[7]); "
                           "}\n",
                           ""},
+                WebGlCase{"a ninth vec3 varying in WebGL 2", GlslTarget::kWebGl2,
+                          kManyVaryingsVertex, kNineVaryingRowsFragment, kNineVaryingRowsError},
                 WebGlCase{"a ninth vec3 varying", GlslTarget::kWebGl1, kManyVaryingsVertex,
-                          "#version 100\n"
-                          "precision mediump float;\n"
-                          "varying vec3 normals[4];\n"
-                          "varying vec3 tangents[4];\n"
-                          "varying vec3 view;\n"
-                          "void main() { gl_FragColor = vec4(normals[3] + tangents[3] + view, "
-                          "1.0); }\n",
-                          "a.fsh:5:14: error: the varyings the fragment shader reads do not fit "
-                          "in 8 vectors (gl_MaxVaryingVectors): 'view' finds no room by the "
-                          "packing of GLSL ES 1.00 Appendix A §7, which WebGL requires (WebGL "
-                          "1.0 §6.26 \"Packing Restrictions for Uniforms and Varyings\")"}));
+                          kNineVaryingRowsFragment, kNineVaryingRowsError}));
 
 // WebGL 2.0 §5.26: no `,` or `?:` over arrays, structures holding arrays or void.
 INSTANTIATE_TEST_SUITE_P(
@@ -389,6 +446,24 @@ INSTANTIATE_TEST_SUITE_P(
                           "a.fsh:9:22: error: the ternary operator '?:' applied to an array: "
                           "WebGL 2 forbids it (WebGL 2.0 §5.26 \"Disallowed variants of GLSL ES "
                           "3.00 operators\")"},
+                WebGlCase{"a ternary choosing between void calls", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\nvoid splash() {}\n",
+                                      "    wet ? splash() : splash();\n"
+                                      "    colour = vec4(1.0);\n"),
+                          "a.fsh:8:9: error: the ternary operator '?:' applied to void: WebGL 2 "
+                          "forbids it (WebGL 2.0 §5.26 \"Disallowed variants of GLSL ES 3.00 "
+                          "operators\")"},
+                WebGlCase{"the same choice as an if-statement", GlslTarget::kWebGl2, kVertex300,
+                          Fragment300("uniform bool wet;\nvoid splash() {}\n",
+                                      "    if (wet) splash(); else splash();\n"
+                                      "    colour = vec4(1.0);\n"),
+                          ""},
+                WebGlCase{"the ternary of void calls without a WebGL target", GlslTarget::kEs300,
+                          kVertex300,
+                          Fragment300("uniform bool wet;\nvoid splash() {}\n",
+                                      "    wet ? splash() : splash();\n"
+                                      "    colour = vec4(1.0);\n"),
+                          ""},
                 WebGlCase{"a sequence ending in a structure holding an array", GlslTarget::kWebGl2,
                           kVertex300,
                           Fragment300("struct Foam { float d[2]; };\n"
@@ -408,7 +483,15 @@ INSTANTIATE_TEST_SUITE_P(
                                       "    colour = vec4(f.d[0] + h);\n"),
                           ""}));
 
-// WebGL 2.0 "Only std140 layout supported in uniform blocks"; plain GLSL ES 3.00 takes all three.
+const std::string kVertex300WithStd140Block =
+        "#version 300 es\n"
+        "in vec4 position;\n"
+        "out vec2 uv;\n"
+        "layout(std140) uniform Tide { highp vec4 level; };\n"
+        "void main() { uv = position.xy; gl_Position = position + level; }\n";
+
+// WebGL 2.0 "Only std140 layout supported in uniform blocks", which also makes std140 the layout
+// of an unqualified block; plain GLSL ES 3.00 takes all three, and shared is its default.
 INSTANTIATE_TEST_SUITE_P(
         BlockLayouts, WebGlRulesTest,
         ::testing::Values(
@@ -431,7 +514,26 @@ INSTANTIATE_TEST_SUITE_P(
                           "a.fsh:5:8: error: layout qualifier 'packed': WebGL 2 supports only the "
                           "std140 layout "
                           "for uniform blocks (WebGL 2.0 \"Only std140 layout supported in "
-                          "uniform blocks\"); use layout(std140) or leave the layout out"}));
+                          "uniform blocks\"); use layout(std140) or leave the layout out"},
+                WebGlCase{"a block std140 in one stage and unqualified in the other",
+                          GlslTarget::kWebGl2, kVertex300WithStd140Block,
+                          Fragment300("uniform Tide { highp vec4 level; };\n",
+                                      "    colour = level;\n"),
+                          ""},
+                WebGlCase{"std140 by a default declaration, without a WebGL target",
+                          GlslTarget::kEs300, kVertex300WithStd140Block,
+                          Fragment300("layout(std140) uniform;\n"
+                                      "uniform Tide { highp vec4 level; };\n",
+                                      "    colour = level;\n"),
+                          ""},
+                WebGlCase{"the same blocks without a WebGL target, where unqualified is shared",
+                          GlslTarget::kEs300, kVertex300WithStd140Block,
+                          Fragment300("uniform Tide { highp vec4 level; };\n",
+                                      "    colour = level;\n"),
+                          "a.fsh: error: Linking vertex and fragment stages: Layout packing "
+                          "qualifier must match:; vertex stage: Block: Tide Instance: anon@0: "
+                          "\"layout( column_major std140) uniform\"; fragment stage: Block: Tide "
+                          "Instance: anon@0: \"layout( column_major shared) uniform\""}));
 
 }  // namespace
 }  // namespace tidepool

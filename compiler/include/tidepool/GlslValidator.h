@@ -116,8 +116,9 @@ struct ShaderFile {
 
 /// How plain shader files are validated.
 struct ShaderFileOptions {
-    /// kWebGl1 or kWebGl2: the WebGL rules on top of GLSL ES, and the file's `#version` must be
-    /// the one that WebGL version runs (100 for webgl1, 300 es for webgl2); none: GLSL ES only.
+    /// kWebGl1 or kWebGl2: the WebGL rules on top of GLSL ES for the file's own `#version`
+    /// (webgl1 runs 100 only; webgl2 runs 100, with the rules WebGL gives 1.00 shaders, and
+    /// 300 es); none: GLSL ES only.
     std::optional<GlslTarget> target;
     /// A device's limits, checked instead of the GLSL ES minimums; none: the minimums. Not owned.
     const DeviceLimits* limits = nullptr;
