@@ -4,11 +4,17 @@
 // the case's expectation. glslangValidator is measured in the same run on the same cases with the
 // same rules, so the figures side by side are comparable.
 //
-// Usage: deqp_conformance [--ci] [--baseline FILE] [--record FILE] [CORPUS_DIR]
+// Usage: deqp_conformance [--ci] [--target webgl1|webgl2] [--baseline FILE] [--record FILE]
+//                         [CORPUS_DIR]
 //   CORPUS_DIR defaults to <source root>/../shared/corpus/deqp-gles2; its README.md describes
-//   manifest.tsv.
+//   manifest.tsv. A manifest with `target` and `webgl_only` columns (the WebGL suite's, from
+//   bench/webgl_glsl_to_corpus.py) has its WebGL-only cases validated with their `target`, as
+//   `tidepool validate --target`, and the rest as plain GLSL ES; each group gets its figures.
 //   --ci            in-process only (ValidateShaderFiles, the function `tidepool validate` calls)
 //                   and no glslangValidator: the quick pass the CI check runs.
+//   --target T      every case validated with `--target T` (webgl1 or webgl2), as for a corpus
+//                   whose expectations are a WebGL suite's; glslangValidator is then not run,
+//                   since it has no WebGL mode.
 //   --baseline FILE fail (exit 1) when a strict figure falls below the one recorded in FILE.
 //   --record FILE   write this run's strict figures to FILE (the baseline format).
 // Without --ci, every case is also run through the tidepool binary (`tidepool validate VERT FRAG
@@ -26,6 +32,7 @@
 // malformed manifest or baseline), 77 no corpus with --baseline (ctest's "skipped").
 #include "tidepool/Diagnostic.h"
 #include "tidepool/GlslValidator.h"
+#include "tidepool/VariantConfig.h"
 #include "tidepool/base/ParallelFor.h"
 
 #include <algorithm>
@@ -34,6 +41,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -115,6 +123,9 @@ struct Case {
     bool in_mustpass = false;
     std::string issue_list;  // the must-pass exclusion list naming the case, if any
     std::string origin;      // test_file:line in the original .test file
+    // Validated with this WebGL target (`--target`, or a WebGL-only case of a WebGL corpus);
+    // none: plain GLSL ES.
+    std::optional<tidepool::GlslTarget> target;
 };
 
 // What one validator said about one case.
@@ -158,6 +169,7 @@ std::vector<std::string> SplitList(const std::string& text, char separator) {
 // whose cases have more than one version lists each with its case count, the commonest first.
 bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* corpus_name,
                   std::string* error) {
+    using tidepool::GlslTarget;
     std::ifstream in(path);
     if (!in) {
         *error = fmt::format("{}: cannot open the manifest", path.string());
@@ -210,6 +222,18 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         c.in_mustpass = field("in_mustpass") == "True";
         c.issue_list = field("mustpass_issue_list");
         c.origin = fmt::format("{}:{}", field("test_file"), field("line"));
+        if (column.count("webgl_only") != 0 && field("webgl_only") == "True") {
+            GlslTarget target = GlslTarget::kEs100;
+            const std::string name = column.count("target") != 0 ? field("target") : "";
+            if (!tidepool::TargetFromName(name, &target) || !tidepool::IsWebGlTarget(target)) {
+                *error = fmt::format(
+                        "{}:{}: a WebGL-only case needs a target of webgl1 or "
+                        "webgl2, got '{}'",
+                        path.string(), line_number, name);
+                return false;
+            }
+            c.target = target;
+        }
         if (column.count("suite") != 0 && column.count("glsl_version") != 0) {
             if (suite.empty()) {
                 suite = field("suite");
@@ -225,8 +249,11 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         }
         cases->push_back(std::move(c));
     }
+    // The WebGL suite's corpus names its suite "webgl"; dEQP's name theirs "gles2", "gles3".
+    const std::string source =
+            suite == "webgl" ? "WebGL conformance suite" : fmt::format("dEQP {}", suite);
     if (versions.size() == 1) {
-        *corpus_name = fmt::format("dEQP {}, GLSL ES {}", suite, versions[0].first);
+        *corpus_name = fmt::format("{}, GLSL ES {}", source, versions[0].first);
     } else if (!versions.empty()) {
         std::stable_sort(versions.begin(), versions.end(),
                          [](const auto& a, const auto& b) { return a.second > b.second; });
@@ -234,7 +261,7 @@ bool LoadManifest(const fs::path& path, std::vector<Case>* cases, std::string* c
         for (const auto& [version, count] : versions) {
             parts.push_back(fmt::format("{} ({} cases)", version, count));
         }
-        *corpus_name = fmt::format("dEQP {}, GLSL ES {}", suite, fmt::join(parts, ", "));
+        *corpus_name = fmt::format("{}, GLSL ES {}", source, fmt::join(parts, ", "));
     }
     return true;
 }
@@ -261,7 +288,9 @@ Outcome Validate(const fs::path& corpus, const Case& c) {
             {(corpus / c.vertex_file).string(), tidepool::Stage::kVertex},
             {(corpus / c.fragment_file).string(), tidepool::Stage::kFragment},
     };
-    const tidepool::ValidationReport report = tidepool::ValidateShaderFiles(files, {});
+    tidepool::ShaderFileOptions options;
+    options.target = c.target;
+    const tidepool::ValidationReport report = tidepool::ValidateShaderFiles(files, {}, options);
     outcome.seconds = NowSeconds() - start;
     outcome.vertex_ok = report.stage_programs.size() == 2 && report.stage_programs[0].valid;
     outcome.fragment_ok = report.stage_programs.size() == 2 && report.stage_programs[1].valid;
@@ -337,8 +366,10 @@ Outcome ValidateWithGlslang(const fs::path& corpus, const Case& c) {
 bool ValidateWithCli(const std::string& binary, const fs::path& corpus, const Case& c,
                      std::string* error) {
     std::string output;
+    const std::string target =
+            c.target ? fmt::format(" --target {}", tidepool::TargetName(*c.target)) : "";
     const int status =
-            RunCommand(fmt::format("{} validate {} {} --json 2>/dev/null", Quoted(binary),
+            RunCommand(fmt::format("{} validate{} {} {} --json 2>/dev/null", Quoted(binary), target,
                                    Quoted((corpus / c.vertex_file).string()),
                                    Quoted((corpus / c.fragment_file).string())),
                        &output);
@@ -423,6 +454,12 @@ bool AllCases(const Case&) {
 bool MustPass(const Case& c) {
     return c.in_mustpass;
 }
+bool PlainCase(const Case& c) {
+    return !c.target;
+}
+bool TargetCase(const Case& c) {
+    return c.target.has_value();
+}
 
 // The recorded figures a run must not fall below: "key matched/ran" lines, '#' comments.
 struct Baseline {
@@ -468,17 +505,25 @@ int main(int argc, char** argv) {
     std::string baseline_path;
     std::string record_path;
     std::string corpus_arg;
+    std::optional<tidepool::GlslTarget> target;
     for (int i = 1; i < argc; ++i) {
         const std::string arg = argv[i];
+        tidepool::GlslTarget named_target = tidepool::GlslTarget::kEs100;
         if (arg == "--ci") {
             ci = true;
         } else if ((arg == "--baseline" || arg == "--record") && i + 1 < argc) {
             (arg == "--baseline" ? baseline_path : record_path) = argv[++i];
+        } else if (arg == "--target" && i + 1 < argc &&
+                   tidepool::TargetFromName(argv[i + 1], &named_target) &&
+                   tidepool::IsWebGlTarget(named_target)) {
+            target = named_target;
+            ++i;
         } else if (!arg.empty() && arg[0] != '-' && corpus_arg.empty()) {
             corpus_arg = arg;
         } else {
             std::fprintf(stderr,
-                         "usage: %s [--ci] [--baseline FILE] [--record FILE] [CORPUS_DIR]\n",
+                         "usage: %s [--ci] [--target webgl1|webgl2] [--baseline FILE] "
+                         "[--record FILE] [CORPUS_DIR]\n",
                          argv[0]);
             return kExitUsage;
         }
@@ -504,6 +549,13 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "error: {}\n", error);
         return kExitUsage;
     }
+    if (target) {
+        for (Case& c : cases) {
+            c.target = target;
+        }
+    }
+    const auto targeted =
+            static_cast<std::size_t>(std::count_if(cases.begin(), cases.end(), TargetCase));
     Baseline baseline;
     if (!baseline_path.empty() && !LoadBaseline(baseline_path, &baseline, &error)) {
         fmt::print(stderr, "error: {}\n", error);
@@ -568,7 +620,7 @@ int main(int argc, char** argv) {
     if (have_glslang) {
         const double reference_start = NowSeconds();
         tidepool::base::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
-            if (outcomes[i].ran) {
+            if (outcomes[i].ran && !cases[i].target) {
                 reference[i] = ValidateWithGlslang(corpus, cases[i]);
             }
         });
@@ -598,9 +650,19 @@ int main(int argc, char** argv) {
                  "--ci, so the binary was not run"
                : "`tidepool validate VERT FRAG --json` per case (its `valid` is counted), "
                  "and in process to tell a stage's rejection from the link's",
-            have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases "
-                           "(exit 2 = a compile failed, 3 = the link failed)"
+            have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases, those "
+                           "validated without a WebGL target (exit 2 = a compile failed, 3 = "
+                           "the link failed)"
                          : (ci ? "not run (--ci)" : "not installed, not run"));
+    if (targeted != 0) {
+        fmt::print(
+                "  {} case(s) validated with a WebGL target ({}); the other {} as plain GLSL "
+                "ES.\n",
+                targeted,
+                target ? fmt::format("--target {} for every case", tidepool::TargetName(*target))
+                       : std::string("the WebGL-only cases, each with its manifest's target"),
+                cases.size() - targeted);
+    }
     fmt::print("time: {:.2f} s wall in process for {} cases ({:.2f} ms per case)", wall, ran,
                ran == 0 ? 0.0 : 1000.0 * case_seconds / static_cast<double>(ran));
     if (!ci) {
@@ -639,16 +701,20 @@ int main(int argc, char** argv) {
     fmt::print(
             "\nagreement, matched / cases run (strict = dEQP's own rule; lenient = a "
             "compile_fail case may be rejected at link):\n");
-    fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", "", "tidepool strict", "tidepool lenient",
+    fmt::print("  {:<13} {:<24} {:<24} {:<24} {:<24}\n", "", "tidepool strict", "tidepool lenient",
                "glslangValidator strict", "glslangValidator lenient");
-    for (const auto& [label, selected] :
-         {std::pair<const char*, bool (*)(const Case&)>{"all cases", AllCases},
-          {"in_mustpass", MustPass}}) {
+    std::vector<std::pair<const char*, bool (*)(const Case&)>> rows = {{"all cases", AllCases},
+                                                                       {"in_mustpass", MustPass}};
+    if (targeted != 0 && targeted != cases.size()) {
+        rows.emplace_back("plain GLSL ES", PlainCase);
+        rows.emplace_back("--target", TargetCase);
+    }
+    for (const auto& [label, selected] : rows) {
         auto reference_text = [&](Rule rule) {
-            return have_glslang ? Count(cases, reference, rule, selected).Text()
-                                : std::string("not run");
+            const Figure figure = Count(cases, reference, rule, selected);
+            return have_glslang && figure.ran != 0 ? figure.Text() : std::string("not run");
         };
-        fmt::print("  {:<12} {:<24} {:<24} {:<24} {:<24}\n", label,
+        fmt::print("  {:<13} {:<24} {:<24} {:<24} {:<24}\n", label,
                    Count(cases, outcomes, Rule::kStrict, selected).Text(),
                    Count(cases, outcomes, Rule::kLenient, selected).Text(),
                    reference_text(Rule::kStrict), reference_text(Rule::kLenient));
@@ -693,8 +759,11 @@ int main(int argc, char** argv) {
             fmt::print("  {}: {} case(s), {} in_mustpass\n", kind, indices.size(), mustpass);
             for (std::size_t i : indices) {
                 const Case& c = cases[i];
-                const std::string flag =
+                std::string flag =
                         c.in_mustpass ? "" : fmt::format(" [not mustpass: {} issue]", c.issue_list);
+                if (c.target) {
+                    flag += fmt::format(" [--target {}]", tidepool::TargetName(*c.target));
+                }
                 fmt::print("    {}{}\n      {}\n", c.id, flag,
                            results[i].first_error.empty()
                                    ? fmt::format("(no error; case at {})", c.origin)
@@ -705,6 +774,19 @@ int main(int argc, char** argv) {
     print_misses("tidepool", outcomes, true);
     if (have_glslang) {
         print_misses("glslangValidator", reference, false);
+        // The issue's rule: no case glslangValidator gets right may be lost.
+        std::vector<std::size_t> lost;
+        for (std::size_t i = 0; i < cases.size(); ++i) {
+            if (reference[i].ran && Matches(cases[i], reference[i], Rule::kStrict) &&
+                !Matches(cases[i], outcomes[i], Rule::kStrict)) {
+                lost.push_back(i);
+            }
+        }
+        fmt::print("\ncases glslangValidator gets right and tidepool misses (strict): {}\n",
+                   lost.size());
+        for (std::size_t i : lost) {
+            fmt::print("  {}\n", cases[i].id);
+        }
     }
 
     if (!record_path.empty()) {

@@ -3,7 +3,7 @@
 `conformance2/glsl3/**.html` for WebGL 2) into a corpus folder of the form of the shared
 `deqp-gles2` corpus: one vertex and one fragment shader file per case, a `manifest.tsv` and a
 `README.md`. The manifest has two extra columns: `target` (webgl1 or webgl2) and `webgl_only`
-(whether the page tests a WebGL-only rule rather than a GLSL ES one; see WEBGL_ONLY_PAGES).
+(whether the page tests a WebGL-only rule rather than a GLSL ES one; see WEBGL_ONLY_PATTERNS).
 
 Only the pages listed in the suite's `00_test_list.txt` files are read. Each page's inline
 JavaScript runs in Node.js (`node`, run as a subprocess; its `vm` module) with small stubs: a
@@ -43,8 +43,11 @@ ROOTS = {"conformance/glsl": "webgl1", "conformance2/glsl3": "webgl2"}
 
 # Pages (path relative to the checkout, without .html) classed as testing WebGL-only rules: the
 # WebGL specs' identifier length limits, reserved `webgl_`/`_webgl_` prefixes, character set,
-# WebGL 1 Appendix A loop and indexing restrictions, shader packing and size limits, WebGL 2
-# uniform-block and operator rules. Matched against the page's file name (see is_webgl_only).
+# WebGL 1 Appendix A loop and indexing restrictions, shader packing and size limits, global
+# variable initializers (WebGL 1.0 section 6.33), WebGL 2 uniform-block and operator rules.
+# Matched against the page's file name (see is_webgl_only). conformance2/glsl3/
+# tricky-loop-conditions tests GLSL ES 3.00 loops, which no WebGL rule restricts: it is not
+# matched.
 WEBGL_ONLY_PATTERNS = [
     r"^conformance/glsl/reserved/",                # webgl_ / _webgl_ prefixes
     r"webgl",                                      # shader-with-(_)webgl-identifier, essl3-...
@@ -52,12 +55,14 @@ WEBGL_ONLY_PATTERNS = [
     r"long-variable-names", r"-character-(define|identifier)", r"long-line",
     r"non-ascii", r"invalid-characters", r"character-set",
     r"packing-restrictions", r"too-many-uniforms",
-    r"arbitrary-indexing", r"limited-indexing", r"loop-conditions", r"uniform-in-loop-condition",
+    r"arbitrary-indexing", r"limited-indexing", r"constant-expression-loop-conditions",
+    r"uniform-in-loop-condition",
     r"do-loop", r"while-loop", r"for-loop",
     r"forbidden-operators",
     r"uniform-block", r"mis-matching-uniform-block",
     r"large-loop-compile",
     r"struct-nesting-exceeds",                     # WebGL 1 section 6.x struct nesting limit
+    r"global-variable-init",                       # WebGL 1 section 6.33 global initializers
     r"shader-with-dfdx\.frag",                     # extension usable only after getExtension
 ]
 
