@@ -616,7 +616,9 @@ int main(int argc, char** argv) {
     std::vector<Outcome> reference(cases.size());
     double reference_wall = 0.0;
     std::string output;
-    const bool have_glslang = !ci && RunCommand("glslangValidator --version 2>&1", &output) == 0;
+    // glslangValidator has no WebGL mode: it runs only where some case is plain GLSL ES.
+    const bool have_glslang = !ci && targeted != cases.size() &&
+                              RunCommand("glslangValidator --version 2>&1", &output) == 0;
     if (have_glslang) {
         const double reference_start = NowSeconds();
         tidepool::base::ParallelFor(cases.size(), jobs, [&](std::size_t i) {
@@ -653,7 +655,11 @@ int main(int argc, char** argv) {
             have_glslang ? "`glslangValidator -l VERT FRAG` per case on the same cases, those "
                            "validated without a WebGL target (exit 2 = a compile failed, 3 = "
                            "the link failed)"
-                         : (ci ? "not run (--ci)" : "not installed, not run"));
+                         : (ci ? "not run (--ci)"
+                            : targeted == cases.size()
+                                    ? "not run (it has no WebGL mode, and every case has a "
+                                      "WebGL target)"
+                                    : "not installed, not run"));
     if (targeted != 0) {
         fmt::print(
                 "  {} case(s) validated with a WebGL target ({}); the other {} as plain GLSL "
