@@ -566,21 +566,28 @@ public:
     std::vector<Diagnostic> errors;
 
 private:
-    // True when `loc` (1-based line and column) is a `?` of `source`.
-    bool IsQuestionMark(const glslang::TSourceLoc& loc) const {
-        std::size_t begin = 0;
-        for (int line = 1; line < loc.line; ++line) {
-            begin = source.find('\n', begin);
-            if (begin == std::string_view::npos) {
-                return false;
+    // True when `loc` (1-based line and column) is a `?` of `source`. The lines' starts are
+    // found once, so a shader of many lines and many if-statements costs their sum, not product.
+    bool IsQuestionMark(const glslang::TSourceLoc& loc) {
+        if (line_starts_.empty()) {
+            line_starts_.push_back(0);
+            for (std::size_t at = source.find('\n'); at != std::string_view::npos;
+                 at = source.find('\n', at + 1)) {
+                line_starts_.push_back(at + 1);
             }
-            ++begin;
         }
-        const std::size_t at = begin + static_cast<std::size_t>(std::max(loc.column, 1)) - 1;
-        const std::size_t end = source.find('\n', begin);
-        return loc.line >= 1 && at < source.size() && (end == std::string_view::npos || at < end) &&
-               source[at] == '?';
+        if (loc.line < 1 || static_cast<std::size_t>(loc.line) > line_starts_.size()) {
+            return false;
+        }
+        const std::size_t line = static_cast<std::size_t>(loc.line) - 1;
+        const std::size_t at =
+                line_starts_[line] + static_cast<std::size_t>(std::max(loc.column, 1)) - 1;
+        const std::size_t end =
+                line + 1 < line_starts_.size() ? line_starts_[line + 1] : source.size();
+        return at < end && source[at] == '?';
     }
+
+    std::vector<std::size_t> line_starts_;
 
     void Forbid(const glslang::TSourceLoc& loc, std::string_view op, std::string_view kind) {
         errors.push_back(
