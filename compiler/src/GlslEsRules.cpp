@@ -263,13 +263,14 @@ std::vector<Diagnostic> CheckSourceText(std::string_view text, std::string_view 
                         size > kMaxExpandedTokens
                                 ? fmt::format(
                                           "macro '{}' expands to more than {} tokens (a "
-                                          "macro bomb); tidepool refuses shaders that large",
-                                          token.text, kMaxExpandedTokens)
+                                          "macro bomb); tidepool refuses shaders that large: "
+                                          "{}",
+                                          token.text, kMaxExpandedTokens, kTooLargeFix)
                                 : fmt::format(
-                                          "the shader expands through its macros to more "
-                                          "than {} tokens; tidepool refuses shaders that "
-                                          "large",
-                                          kMaxExpandedTokens);
+                                          "the shader has more than {} tokens once its macros "
+                                          "are expanded; tidepool refuses shaders that large: "
+                                          "{}",
+                                          kMaxExpandedTokens, kTooLargeFix);
                 errors.push_back(MakeError(file, in_file ? token.line : 0,
                                            in_file ? token.column : 0, message));
                 return false;

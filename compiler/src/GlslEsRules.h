@@ -43,6 +43,9 @@ std::vector<std::vector<SourceToken>> SourceTokenLines(std::string_view text);
 /// 1.5 KB and 9 µs per expanded token (2^20 tokens took 9 s and 1.5 GB), so this bound keeps one
 /// stage under about 0.2 s and 200 MB; the largest shipped shader expands to a few thousand.
 inline constexpr long long kMaxExpandedTokens = 1LL << 17;
+/// What the error for a shader past kMaxExpandedTokens tells its author to do.
+inline constexpr const char* kTooLargeFix =
+        "write the repeated code as a function or a loop instead of a macro";
 
 /// Checks the source text before glslang sees it: a NUL byte (not in the character set of
 /// GLSL ES 1.00 §3.1 / 3.00 §3.1; glslang would silently stop reading there) and macros whose
