@@ -85,10 +85,14 @@ bool MayUseEs300ReservedWord(std::string_view source);
 
 /// Checks glslang's preprocessed text of a GLSL ES 3.00 stage (inactive blocks and comments
 /// gone, lines kept) for the words §3.7 reserves for future use ("Using them will result in an
-/// error"), of which glslang 12 accepts image1DShadow, image2DShadow, image1DArrayShadow and
-/// image2DArrayShadow. Each use is an error at its line, at its column in `source`.
+/// error"). Each use is an error at its line, at its column in `source`, but for
+/// image1DShadow, image2DShadow, image1DArrayShadow and image2DArrayShadow, which glslang 12
+/// and Mesa accept and dEQP-GLES3 expects to compile (VK-GL-CTS#431): a warning that WebGL 2
+/// refuses them, and an error under a WebGL target (`webgl`), as the WebGL 2 conformance
+/// suite expects.
 std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
-                                                std::string_view source, const std::string& file);
+                                                std::string_view source, const std::string& file,
+                                                bool webgl);
 
 /// A cheap over-estimate: true when some `#extension` line follows a line that is not a
 /// directive. Only then does CheckExtensionPlacement need the preprocessed text.

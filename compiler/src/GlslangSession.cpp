@@ -489,6 +489,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
         const std::vector<Diagnostic> conformance =
                 CheckStageConformance(*result.intermediate, input.file);
         broken.insert(broken.end(), conformance.begin(), conformance.end());
+        std::vector<Diagnostic> warnings;  // reported whether or not the stage is valid
         if (webgl) {
             const std::vector<Diagnostic> nesting =
                     CheckWebGlStructNesting(*result.intermediate, input.file, prepared.text);
@@ -549,9 +550,10 @@ StageParse ParseStage(const GlslangStageInput& input) {
         }
         if (version >= 300 && scan->may_use_es300_reserved_word) {
             if (const PreprocessResult preprocessed = PreprocessStage(input); preprocessed.ok) {
-                const std::vector<Diagnostic> reserved =
-                        CheckEs300ReservedWords(preprocessed.text, input.text, input.file);
-                broken.insert(broken.end(), reserved.begin(), reserved.end());
+                for (Diagnostic& d :
+                     CheckEs300ReservedWords(preprocessed.text, input.text, input.file, webgl)) {
+                    (d.severity == Severity::kError ? broken : warnings).push_back(std::move(d));
+                }
             }
         }
         if (MayRedeclareInvariant(input.text)) {
@@ -570,6 +572,10 @@ StageParse ParseStage(const GlslangStageInput& input) {
             result.ok = false;
             result.intermediate = nullptr;
             result.diagnostics.insert(result.diagnostics.end(), broken.begin(), broken.end());
+        }
+        for (Diagnostic& d : warnings) {
+            d.message = renaming.Restore(d.message);
+            result.diagnostics.push_back(std::move(d));
         }
     }
     return result;

@@ -16,7 +16,8 @@ namespace tidepool::testing {
 struct PairVerdict {
     std::size_t verdicts = 0;  // how many verdicts validation gave (1 for a pair or a lone stage)
     bool valid = false;
-    std::string first_error;  // "a.fsh:4:7: error: ...", the test's folder left out; "" if none
+    std::string first_error;    // "a.fsh:4:7: error: ...", the test's folder left out; "" if none
+    std::string first_warning;  // the same for the first warning
 };
 
 /// Writes `vertex` to a.vsh and `fragment` to a.fsh (a file is left out when its text is
@@ -43,11 +44,16 @@ inline PairVerdict ValidatePair(const std::optional<std::string>& vertex,
         if (d.severity == Severity::kError && verdict.first_error.empty()) {
             verdict.first_error = FormatDiagnostic(d);
         }
+        if (d.severity == Severity::kWarning && verdict.first_warning.empty()) {
+            verdict.first_warning = FormatDiagnostic(d);
+        }
     }
     const std::string folder = dir.Path().string() + "/";
-    for (std::size_t at = verdict.first_error.find(folder); at != std::string::npos;
-         at = verdict.first_error.find(folder)) {
-        verdict.first_error.erase(at, folder.size());
+    for (std::string* text : {&verdict.first_error, &verdict.first_warning}) {
+        for (std::size_t at = text->find(folder); at != std::string::npos;
+             at = text->find(folder)) {
+            text->erase(at, folder.size());
+        }
     }
     return verdict;
 }

@@ -427,6 +427,26 @@ INSTANTIATE_TEST_SUITE_P(
                 WebGlCase{"a ninth vec3 varying", GlslTarget::kWebGl1, kManyVaryingsVertex,
                           kNineVaryingRowsFragment, kNineVaryingRowsError}));
 
+// The WebGL 2 conformance suite's copy of dEQP keeps image1DShadow, image2DShadow,
+// image1DArrayShadow and image2DArrayShadow in reserved_keywords (GLSL ES 3.00 §3.7); plain GLSL ES
+// 3.00 accepts them with a warning, as dEQP-GLES3 now expects (ConformanceRulesTest).
+INSTANTIATE_TEST_SUITE_P(
+        Webgl2ReservedImageShadowWords, WebGlRulesTest,
+        ::testing::Values(
+                WebGlCase{"a WebGL 2 local named image2DArrayShadow", GlslTarget::kWebGl2,
+                          kVertex300,
+                          Fragment300("",
+                                      "    float image2DArrayShadow = uv.x;\n"
+                                      "    colour = vec4(image2DArrayShadow);\n"),
+                          "a.fsh:6:11: error: 'image2DArrayShadow' : reserved word; GLSL ES 3.00 "
+                          "reserves it for future use, and using it is an error (GLSL ES 3.00 "
+                          "§3.7; WebGL 2 keeps it reserved); rename it"},
+                WebGlCase{"the same local without a WebGL target", GlslTarget::kEs300, kVertex300,
+                          Fragment300("",
+                                      "    float image2DArrayShadow = uv.x;\n"
+                                      "    colour = vec4(image2DArrayShadow);\n"),
+                          ""}));
+
 // WebGL 2.0 §5.26: no `,` or `?:` over arrays, structures holding arrays or void.
 INSTANTIATE_TEST_SUITE_P(
         Webgl2Operators, WebGlRulesTest,
