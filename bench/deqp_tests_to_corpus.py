@@ -678,14 +678,20 @@ def readme_text(source_dir, suite, counts, skipped, note):
         origin += f"; `{note[0]}` says:\n\n    " + note[1].replace("\n", "\n    ") + "\n"
     skip_text = "".join(f"- {n:,} case(s): {reason}\n" for reason, n in sorted(skipped.items()))
     skip_text = skip_text or "- none\n"
+    # The fetch script's source is the WebGL suite's copy; a folder that says nothing of WebGL
+    # (its path or its SOURCE.txt) is taken to be native dEQP data.
+    webgl_copy = "webgl" in str(source_dir).lower() or bool(note and "webgl" in note[1].lower())
+    copy_text = (f"""These are the WebGL conformance suite's copy of the Khronos OpenGL ES CTS (dEQP) data
+`data/{suite}/shaders/*.test`; where WebGL changed a case (comments in the `.test` files say so,
+e.g. preprocessor cases that must fail in WebGL, or ASCII in place of Unicode), the WebGL
+expectation is kept.""" if webgl_copy else f"""These are taken to be the Khronos OpenGL ES CTS (dEQP)
+data `data/{suite}/shaders/*.test` itself (neither the folder's path nor a SOURCE.txt names
+WebGL), with the files' own expectations.""")
     return f"""# dEQP {suite.upper()} shader cases (external conformance corpus)
 
 {total:,} test cases ({by_expect}) converted from the dEQP shader-case
 files `*.test` in {origin}
-These are the WebGL conformance suite's copy of the Khronos OpenGL ES CTS (dEQP) data
-`data/{suite}/shaders/*.test`; where WebGL changed a case (comments in the `.test` files say so,
-e.g. preprocessor cases that must fail in WebGL, or ASCII in place of Unicode), the WebGL
-expectation is kept. Licence of the dEQP data: Apache-2.0
+{copy_text} Licence of the dEQP data: Apache-2.0
 (https://www.apache.org/licenses/LICENSE-2.0); no licence file is copied beside this README.
 
 Written by `bench/deqp_tests_to_corpus.py` of tidepool. Each `.test` case has been turned into
