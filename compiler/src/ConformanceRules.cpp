@@ -918,7 +918,7 @@ bool MayUseEs300ReservedWord(std::string_view source) {
 std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
                                                 std::string_view source, const std::string& file,
                                                 bool webgl) {
-    std::vector<Diagnostic> errors;
+    std::vector<Diagnostic> found;  // errors, and warnings for the image...Shadow words
     const std::vector<std::vector<SourceToken>> source_lines = SourceTokenLines(source);
     for (const std::vector<SourceToken>& line : SourceTokenLines(preprocessed)) {
         for (const SourceToken& token : line) {
@@ -940,7 +940,7 @@ std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
                 }
             }
             if (reserved || webgl) {
-                errors.push_back(MakeError(
+                found.push_back(MakeError(
                         file, token.line, column,
                         fmt::format("'{}' : reserved word; GLSL ES 3.00 reserves it for future "
                                     "use, and using it is an error (GLSL ES 3.00 §3.7{}); "
@@ -954,11 +954,11 @@ std::vector<Diagnostic> CheckEs300ReservedWords(std::string_view preprocessed,
                                     "WebGL 2 does not; rename it to run under WebGL 2",
                                     token.text));
                 warning.severity = Severity::kWarning;
-                errors.push_back(std::move(warning));
+                found.push_back(std::move(warning));
             }
         }
     }
-    return errors;
+    return found;
 }
 
 bool MayHaveLateExtension(std::string_view source) {

@@ -45,7 +45,7 @@ std::vector<std::vector<SourceToken>> SourceTokenLines(std::string_view text);
 inline constexpr long long kMaxExpandedTokens = 1LL << 17;
 /// What the error for a shader past kMaxExpandedTokens tells its author to do.
 inline constexpr const char* kTooLargeFix =
-        "write the repeated code as a function or a loop instead of a macro";
+        "write repeated code as functions and loops rather than macros, or split the shader";
 
 /// Checks the source text before glslang sees it: a NUL byte (not in the character set of
 /// GLSL ES 1.00 §3.1 / 3.00 §3.1; glslang would silently stop reading there) and macros whose

@@ -76,24 +76,24 @@ TEST(GlslEsRulesTest, AMacroExpandingBeyondTheBoundIsNamedWhereItIsUsed) {
     EXPECT_EQ(Formatted(CheckSourceText(Doubling(16) + "M16\n", "", "a.fsh")), "");
     EXPECT_EQ(Formatted(CheckSourceText(Doubling(17) + "float f =\n  M17;\n", "", "a.fsh")),
               "a.fsh:20:3: error: macro 'M17' expands to more than 131072 tokens (a macro "
-              "bomb); tidepool refuses shaders that large: write the repeated code as a function "
-              "or a loop instead of a macro\n");
+              "bomb); tidepool refuses shaders that large: write repeated code as functions and "
+              "loops rather than macros, or split the shader\n");
 }
 
 TEST(GlslEsRulesTest, ManyUsesOfAnAllowedMacroAddUpToTheBoundToo) {
     const std::string text = Doubling(16) + "M16 M16\n";
     EXPECT_EQ(Formatted(CheckSourceText(text, "", "a.fsh")),
               "a.fsh:18:5: error: the shader has more than 131072 tokens once its macros are "
-              "expanded; tidepool refuses shaders that large: write the repeated code as a "
-              "function or a loop instead of a macro\n");
+              "expanded; tidepool refuses shaders that large: write repeated code as functions and "
+              "loops rather than macros, or split the shader\n");
 }
 
 TEST(GlslEsRulesTest, MacrosOfThePreambleExpandLikeTheFilesOwn) {
     // Defined on the command line, used in the file: the use is in the file, so it has a place.
     EXPECT_EQ(Formatted(CheckSourceText("M17\n", Doubling(17), "a.fsh")),
               "a.fsh:1:1: error: macro 'M17' expands to more than 131072 tokens (a macro bomb); "
-              "tidepool refuses shaders that large: write the repeated code as a function or a "
-              "loop instead of a macro\n");
+              "tidepool refuses shaders that large: write repeated code as functions and loops "
+              "rather than macros, or split the shader\n");
     // #undef forgets a macro: the name is one token again.
     EXPECT_EQ(Formatted(CheckSourceText("#undef M17\nM17\n", Doubling(17), "a.fsh")), "");
 }

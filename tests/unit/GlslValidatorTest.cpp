@@ -669,22 +669,25 @@ INSTANTIATE_TEST_SUITE_P(
                               "a.fsh:5:35: error: 'normal' is read by the fragment shader but "
                               "the vertex shader a.vsh does not declare it; declare it there as a "
                               "varying (GLSL ES 1.00 §4.3.5, GLSL ES 3.00 §4.3.4)"},
-                PlainFileCase{"macro bomb, refused before glslang runs", nullptr, MacroBomb(),
-                              "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
-                              "(a macro bomb); tidepool refuses shaders that large: write the "
-                              "repeated code as a function or a loop instead of a macro"},
+                PlainFileCase{
+                        "macro bomb, refused before glslang runs", nullptr, MacroBomb(),
+                        "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
+                        "(a macro bomb); tidepool refuses shaders that large: write repeated code "
+                        "as functions and loops rather than macros, or split the shader"},
                 PlainFileCase{
                         "100,000 nested invocations, refused without a stack overflow", nullptr,
                         "#version 100\n#define F(x) x\nvoid main() { float f = " +
                                 Repeated("F(", 100000) + "1.0" + Repeated(")", 100000) + "; }\n",
                         "a.fsh:3:25: error: macro 'F' expands to more than 131072 "
-                        "tokens (a macro bomb); tidepool refuses shaders that large: write the "
-                        "repeated code as a function or a loop instead of a macro"},
+                        "tokens (a macro bomb); tidepool refuses shaders that large: write "
+                        "repeated code as functions and loops rather than macros, or split the "
+                        "shader"},
                 PlainFileCase{"function-like macro bomb, refused before glslang runs", nullptr,
                               FunctionLikeMacroBomb(),
                               "a.fsh:32:25: error: macro 'F29' expands to more than 131072 "
                               "tokens (a macro bomb); tidepool refuses shaders that large: write "
-                              "the repeated code as a function or a loop instead of a macro"},
+                              "repeated code as functions and loops rather than macros, or "
+                              "split the shader"},
                 PlainFileCase{"uniform clash: glslang 12 calls the vertex side 'unknown stage'",
                               "#version 100\nuniform vec2 u;\nvoid main() { gl_Position = "
                               "vec4(u, 0.0, 1.0); }\n",
