@@ -83,6 +83,21 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
     return facts;
 }
 
+// Why a comparison's first pairs are taken early, when they were (a minimum above the probe's
+// pairs, on one rendering thread: runner::ProbesComparisons); "" otherwise.
+std::string ProbeText(const stagefiles::ResultsFile& results) {
+    if (results.timing.min_pairs <= base::kMinimumPairs || results.settings.workers > 1) {
+        return {};
+    }
+    return fmt::format(
+            "Each comparison's first {} pairs (its probe) are taken in the run's first seconds "
+            "and the rest later, on from the probe: the pairs, looks and stop are those of one "
+            "uninterrupted comparison, both sides are warmed again before going on, and the two "
+            "frames of every pair still lie milliseconds apart. The probes tell the progress line "
+            "early which comparisons lie near a boundary and will take many pairs. ",
+            base::kMinimumPairs);
+}
+
 // How frames were timed and compared, and why: the Method section's account of the method as
 // built (the figures that support it are in the clock-noise table beside it, from this run).
 std::string TimingMethodText(const ReportModel& model) {
@@ -104,7 +119,7 @@ std::string TimingMethodText(const ReportModel& model) {
             "An interval that holds an end of the magnitude band goes on past half the "
             "resolution, until it clears that end or reaches the cap: overlapping the band "
             "claims the same magnitude, a firm verdict, while an interval holding the direction "
-            "margin claims nothing. "
+            "margin claims nothing. {}"
             "Configurations that no comparison names "
             "get a few coarse "
             "frames each, enough for the accuracy-versus-time chart. Why this method: on a "
@@ -118,9 +133,9 @@ std::string TimingMethodText(const ReportModel& model) {
             "thread bought no throughput, and frames timed beside it moved by more than their "
             "interval; `tidepool run` uses the second core with a second process beside the "
             "render, which runs the stability catalogue and the scene plans, then takes "
-            "configurations (images and coarse frames) and comparisons off the end of the "
-            "render's work list. Both sides of a comparison always render on one thread of one "
-            "process, pair by pair. The table "
+            "configurations (images and coarse frames), and any comparison the render has not "
+            "begun, off the end of the render's work list. Both sides of a comparison always "
+            "render on one thread of one process, pair by pair. The table "
             "below shows, for every comparison "
             "of this run, how noisy "
             "its pairs were on the compared clock and on the wall clock recorded beside it. A "
@@ -130,7 +145,8 @@ std::string TimingMethodText(const ReportModel& model) {
                                              : model.inputs->clock_name,
             std::isfinite(model.inputs->resolution_points)
                     ? fmt::format("{:.1f}", model.inputs->resolution_points)
-                    : std::string("–"));
+                    : std::string("–"),
+            ProbeText(model.inputs->results));
 }
 
 // Why each comparison is also timed with its core shared, and what that did in this run.

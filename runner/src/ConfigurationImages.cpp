@@ -5,6 +5,7 @@
 #include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -52,9 +53,13 @@ std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options) {
     return std::nullopt;
 }
 
+bool ProbesComparisons(const RunOptions& options) {
+    return options.rule.min_pairs > kProbePairs && !options.comparisons.empty() &&
+           options.workers <= 1;
+}
+
 std::vector<WorkUnit> RunWorkOrder(const RunOptions& options) {
     std::vector<std::size_t> compared;
-    std::size_t lead = 0;  // the first comparison's own configurations, at the front
     for (const TimedComparison& c : options.comparisons) {
         for (std::size_t i : {c.baseline, c.candidate}) {
             if (i < options.configurations.size() &&
@@ -62,12 +67,9 @@ std::vector<WorkUnit> RunWorkOrder(const RunOptions& options) {
                 compared.push_back(i);
             }
         }
-        if (&c == &options.comparisons.front()) {
-            lead = compared.size();
-        }
     }
     return RenderWorkOrder(options.comparisons.size(), options.configurations.size(),
-                           ReferenceConfiguration(options), compared, lead);
+                           ReferenceConfiguration(options), compared, ProbesComparisons(options));
 }
 
 const DriverVerdict& PrepareConfiguration(RenderWorker& w, const RunOptions& options, std::size_t i,
@@ -173,7 +175,8 @@ base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparis
 }
 
 void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
-                        const std::function<void(const ComparisonTiming& so_far)>& after_look) {
+                        const std::function<void(const ComparisonTiming& so_far)>& after_look,
+                        ComparisonPart part) {
     const TimedComparison& c = out.comparison;
     const CameraView* timing_view = TimingView(options);
     if (out.error.empty() && timing_view == nullptr) {
@@ -193,11 +196,28 @@ void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonRe
     }
     const RenderConfiguration& baseline = options.configurations[c.baseline];
     const RenderConfiguration& candidate = options.configurations[c.candidate];
-    out.timing = TimeComparison(
-            [&](bool is_candidate) {
-                return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
-            },
-            ComparisonRule(options, c), after_look);
+    const TimeSide time_side = [&](bool is_candidate) {
+        return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
+    };
+    if (part == ComparisonPart::kProbe) {
+        out.timing = ProbeComparison(time_side, kProbePairs);
+        if (after_look) {
+            after_look(out.timing);
+        }
+        return;
+    }
+    if (!out.timing.samples.baseline_ms.empty()) {
+        // On from a probe taken seconds or minutes ago: other units have run on this thread
+        // since, so both sides are warmed again before their next timed frame.
+        for (int f = 0; f < options.warmup_frames; ++f) {
+            for (const RenderConfiguration* side : {&baseline, &candidate}) {
+                w.renderer->RenderFrame(*side, *timing_view);
+                w.renderer->Finish();
+            }
+        }
+    }
+    out.timing = TimeComparison(time_side, ComparisonRule(options, c), after_look,
+                                std::move(out.timing));
     TimePassesInPairs(
             [&](bool is_candidate) {
                 return w.timer->TimePasses(is_candidate ? candidate : baseline, *timing_view);

@@ -6,6 +6,7 @@
 #pragma once
 
 #include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/PairedEstimate.h"
 #include "tidepool/base/RgbaImage.h"
 #include "tidepool/runner/Results.h"
 
@@ -54,10 +55,20 @@ const CameraView* TimingView(const RunOptions& options);
 /// The index of the configuration with RunOptions::reference_preset, when one has it.
 std::optional<std::size_t> ReferenceConfiguration(const RunOptions& options);
 
-/// The order a run's units are taken in (RenderWorkOrder): the reference configuration, then the
-/// configurations its comparisons time, in the comparisons' order (the first comparison right
-/// after its own), then each comparison among the rest. The render process takes units from
-/// the front, a second process from the end.
+/// The pairs a comparison's probe takes (ProbeComparison): the fewest an interval is computed
+/// from, half the default minimum of 20 pairs.
+inline constexpr int kProbePairs = base::kMinimumPairs;
+
+/// Whether a run probes its comparisons early (RenderWorkOrder): when it has comparisons, its
+/// rule's first look comes after kProbePairs pairs (a probe of them would be that look), and it
+/// renders on one thread (with several, a comparison's rest could go to another thread than its
+/// probe, and every pair of a comparison is timed on one thread).
+bool ProbesComparisons(const RunOptions& options);
+
+/// The order a run's units are taken in (RenderWorkOrder): the reference configuration, then
+/// every comparison's probe (ProbesComparisons), then the configurations the comparisons time,
+/// in the comparisons' order, then every comparison, then the other configurations. The render
+/// process takes units from the front, a second process from the end.
 std::vector<WorkUnit> RunWorkOrder(const RunOptions& options);
 
 /// Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too
@@ -86,11 +97,20 @@ long FramesPerConfiguration(const RunOptions& options);
 /// RunOptions::rule with `comparison`'s own verdict boundaries: the rule it is timed by.
 base::StoppingRule ComparisonRule(const RunOptions& options, const TimedComparison& comparison);
 
-/// Times comparison `out.comparison` on `w`: both configurations compiled and warmed, then pairs
-/// until its ComparisonRule stops, then RunOptions::pass_frames pairs of instrumented frames for
-/// each side's per-pass times; `after_look` (may be empty) sees the timing after every look.
-/// Sets `out.error` instead when there is no timing view or a side does not compile in Mesa.
+/// Which part of a comparison TimeComparisonUnit times.
+enum class ComparisonPart {
+    kProbe,  // its first kProbePairs pairs (ProbeComparison) into `out.timing`, nothing more
+    kRest,   // on from what `out.timing` holds (a probe's pairs, or none) to the rule's stop
+};
+
+/// Times comparison `out.comparison` on `w`: both configurations compiled and warmed, then for
+/// kRest pairs until its ComparisonRule stops (on from a probe's, with both sides warmed again),
+/// then RunOptions::pass_frames pairs of instrumented frames for each side's per-pass times; for
+/// kProbe only the probe's pairs. `after_look` (may be empty) sees the timing after every look,
+/// and after the probe. Sets `out.error` instead when there is no timing view or a side does not
+/// compile in Mesa.
 void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonResult& out,
-                        const std::function<void(const ComparisonTiming& so_far)>& after_look);
+                        const std::function<void(const ComparisonTiming& so_far)>& after_look,
+                        ComparisonPart part = ComparisonPart::kRest);
 
 }  // namespace tidepool::runner

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <ctime>
 #include <map>
+#include <utility>
 #include <vector>
 
 namespace tidepool::runner {
@@ -150,27 +151,44 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
     }
 }
 
+namespace {
+
+// One pair into `s`: the baseline first in its even pairs, the candidate first in odd ones.
+void TakePair(const TimeSide& time_side, PairSamples& s) {
+    const bool baseline_first = s.baseline_ms.size() % 2 == 0;
+    const FrameTime first = time_side(!baseline_first);
+    const FrameTime second = time_side(baseline_first);
+    const FrameTime& baseline = baseline_first ? first : second;
+    const FrameTime& candidate = baseline_first ? second : first;
+    s.baseline_ms.push_back(baseline.ms);
+    s.candidate_ms.push_back(candidate.ms);
+    s.baseline_wall_ms.push_back(baseline.wall_ms);
+    s.candidate_wall_ms.push_back(candidate.wall_ms);
+}
+
+}  // namespace
+
+ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs) {
+    ComparisonTiming out;
+    for (int k = 0; k < pairs; ++k) {
+        TakePair(time_side, out.samples);
+    }
+    out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);
+    out.stated = out.estimate;
+    return out;
+}
+
 ComparisonTiming TimeComparison(
         const TimeSide& time_side, const base::StoppingRule& rule,
-        const std::function<void(const ComparisonTiming& so_far)>& after_look) {
-    ComparisonTiming out;
-    // One pair into `s`: the baseline first in its even pairs, the candidate first in odd ones.
-    auto take_pair = [&](PairSamples& s) {
-        const bool baseline_first = s.baseline_ms.size() % 2 == 0;
-        const FrameTime first = time_side(!baseline_first);
-        const FrameTime second = time_side(baseline_first);
-        const FrameTime& baseline = baseline_first ? first : second;
-        const FrameTime& candidate = baseline_first ? second : first;
-        s.baseline_ms.push_back(baseline.ms);
-        s.candidate_ms.push_back(candidate.ms);
-        s.baseline_wall_ms.push_back(baseline.wall_ms);
-        s.candidate_wall_ms.push_back(candidate.wall_ms);
-    };
+        const std::function<void(const ComparisonTiming& so_far)>& after_look,
+        ComparisonTiming so_far) {
+    ComparisonTiming out = std::move(so_far);
+    out.decision = base::StopDecision::kContinue;
     for (;;) {
         const int batch =
                 base::PairsBeforeNextLook(static_cast<int>(out.samples.baseline_ms.size()), rule);
         for (int k = 0; k < batch; ++k) {
-            take_pair(out.samples);
+            TakePair(time_side, out.samples);
         }
         const int contended = base::ContendedPairsBeforeNextLook(
                 static_cast<int>(out.samples.baseline_ms.size()),
@@ -178,7 +196,7 @@ ComparisonTiming TimeComparison(
         if (contended > 0) {
             const base::CoreCompetitor competitor;
             for (int k = 0; k < contended; ++k) {
-                take_pair(out.contended);
+                TakePair(time_side, out.contended);
             }
         }
         out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);

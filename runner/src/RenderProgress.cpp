@@ -22,9 +22,11 @@ constexpr double kPriorFrames = 40.0;
 
 }  // namespace
 
-double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in) {
+double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in,
+                       double own) {
     threads = std::max(threads, 1.0);
     work = std::max(work, 0.0);
+    own = std::clamp(own, 0.0, work);
     if (!helper_joins_in) {
         return work / threads;
     }
@@ -32,49 +34,40 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
     if (work <= alone * threads) {
         return work / threads;
     }
-    return alone + (work - alone * threads) / (threads + 1);
+    // Shared from the join in proportion to threads, unless the second process would need more
+    // than the units it may take: then this process's own work sets the end.
+    return std::max(alone + (work - alone * threads) / (threads + 1), own / threads);
 }
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first,
-                                      const std::vector<std::size_t>& early, std::size_t lead) {
+                                      const std::vector<std::size_t>& early, bool probes) {
     std::vector<std::size_t> order(configurations);
     std::iota(order.begin(), order.end(), 0);
     std::shuffle(order.begin(), order.end(), std::mt19937(20161));
     std::vector<WorkUnit> units;
-    units.reserve(comparisons + configurations);
+    units.reserve((probes ? 2 : 1) * comparisons + configurations);
     auto take = [&](std::size_t i) {
         const auto at = std::find(order.begin(), order.end(), i);
         if (at != order.end()) {
             order.erase(at);
             units.push_back({false, i});
-            configurations -= 1;
         }
     };
     if (first) {
         take(*first);
     }
-    for (std::size_t e = 0; e < early.size(); ++e) {
-        if (e == lead && comparisons > 0) {
-            units.push_back({true, 0});
-        }
-        take(early[e]);
+    for (std::size_t k = 0; probes && k < comparisons; ++k) {
+        units.push_back({true, k, true});
     }
-    const bool led = lead < early.size() && comparisons > 0;
-    std::size_t next = 0;
+    for (std::size_t i : early) {
+        take(i);
+    }
     for (std::size_t k = 0; k < comparisons; ++k) {
-        if (k > 0 || !led) {
-            units.push_back({true, k});
-        }
-        // Comparison k is followed by configurations up to its share of the whole, (k + 1) / n;
-        // the last comparison's share ends the queue.
-        const std::size_t until = (k + 1) * configurations / comparisons;
-        for (; next < until; ++next) {
-            units.push_back({false, order[next]});
-        }
+        units.push_back({true, k});
     }
-    for (; next < configurations; ++next) {
-        units.push_back({false, order[next]});
+    for (std::size_t i : order) {
+        units.push_back({false, i});
     }
     return units;
 }
@@ -218,15 +211,20 @@ void ProgressMeter::StepLocked(Kind kind, const std::string& what, long frames,
     state_.elapsed_seconds = SecondsOf(now - start_);
     double done_seconds = 0;
     double left_seconds = 0;
+    double own_seconds = 0;  // of left_seconds, in units this process has claimed
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
         const double rate = SecondsPerFrame(i);
         done_seconds += rate * static_cast<double>(kinds_[i].done);
-        left_seconds += i == kComparison && !comparison_configurations_.empty()
-                                ? ComparisonSecondsLeft()
-                                : rate * static_cast<double>(totals[i] - kinds_[i].done);
+        if (i == kComparison && !comparison_configurations_.empty()) {
+            const ComparisonSeconds comparisons = ComparisonSecondsLeft();
+            left_seconds += comparisons.left;
+            own_seconds += comparisons.owned;
+        } else {
+            left_seconds += rate * static_cast<double>(totals[i] - kinds_[i].done);
+        }
     }
     const double threads = static_cast<double>(last_step_.size());
-    state_.eta_seconds = SecondsToFinish(left_seconds, threads, HelperJoinsIn(now));
+    state_.eta_seconds = SecondsToFinish(left_seconds, threads, HelperJoinsIn(now), own_seconds);
     // The work this process will do itself before the end: its threads for the ETA.
     const double left_here = state_.eta_seconds * threads;
     state_.percent = done_seconds + left_here > 0
@@ -329,15 +327,21 @@ double ProgressMeter::PriceOf(std::size_t k) const {
     return cost ? *cost * Calibration() : SecondsPerFrame(kComparison);
 }
 
-double ProgressMeter::ComparisonSecondsLeft() const {
-    double seconds = 0;
+ProgressMeter::ComparisonSeconds ProgressMeter::ComparisonSecondsLeft() const {
+    ComparisonSeconds seconds;
     for (std::size_t k = 0; k < comparison_frames_.size(); ++k) {
-        const bool helpers = shared_ != nullptr && shared_->HelperHas(shared_configurations_ + k);
+        const std::size_t unit = shared_configurations_ + k;
+        const bool helpers = shared_ != nullptr && shared_->HelperHas(unit);
         if (helpers || comparison_state_[k] == ComparisonState::kFinished) {
             continue;
         }
         const long left = std::max(0L, comparison_frames_[k] - comparison_done_[k]);
-        seconds += static_cast<double>(left) * PriceOf(k);
+        const double left_seconds = static_cast<double>(left) * PriceOf(k);
+        seconds.left += left_seconds;
+        if (shared_ != nullptr && unit < shared_->Size() &&
+            shared_->StateOf(unit) == base::SharedClaims::State::kOwner) {
+            seconds.owned += left_seconds;
+        }
     }
     return seconds;
 }

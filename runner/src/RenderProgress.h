@@ -18,42 +18,44 @@
 
 namespace tidepool::runner {
 
-/// A unit of work: one configuration's images and coarse time, or one comparison.
+/// A unit of work: one configuration's images and coarse time, or one comparison. A comparison
+/// may come twice: first its probe (`probe`: its first pairs, ProbeComparison), then the rest of
+/// it, which goes on from the probe's pairs.
 struct WorkUnit {
     bool comparison = false;
     std::size_t index = 0;
+    bool probe = false;
 };
 
 /// Seconds until this process finishes `work` seconds of units (seconds of one thread) on
 /// `threads` threads, while a second process of one thread takes units from the other end of the
 /// same work order at the same speed once it joins in `helper_joins_in` seconds (0: it is taking
 /// units now; nothing: it will take none). Until it joins, this process works alone; after, the
-/// two share what is left in proportion to their threads.
-double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in);
-
-/// RenderWorkOrder's `lead` when every comparison comes after all of `early`.
-inline constexpr std::size_t kNoLead = static_cast<std::size_t>(-1);
+/// two share what is left in proportion to their threads, except `own` seconds of it, units this
+/// process has claimed (the comparisons it has probed), which only it can do: when the second
+/// process runs out of the rest first, `own` sets the end.
+double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in,
+                       double own = 0);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
-/// images the others are compared with), then `early`, then each comparison followed by its
-/// share of the other configurations, in a fixed shuffled order (the matrix runs from heavy
-/// variants to light ones). Both kinds of frame are then measured from the first seconds on, so
-/// the ETA knows what an image frame costs long before the comparisons are done, and the queue
-/// still ends on short units, which keeps several threads busy to the end.
+/// images the others are compared with), then with `probes` every comparison's probe, then
+/// `early` (the configurations the comparisons time), then every comparison (the rest of it,
+/// after a probe), then the other configurations in a fixed shuffled order (the matrix runs from
+/// heavy variants to light ones).
 ///
-/// `early` (the configurations the comparisons time) come right after `first`: their coarse
-/// frames price each comparison's frames for the ETA (ProgressMeter::ConfigurationCost) before
-/// the comparisons start. On the default matrix the first three whitepaper rows' frames cost
-/// about 40 ms and the later rows' about 70 ms (two `yes` beside the run), so a rate measured on
-/// the first rows left the ETA 15 to 20% short for the first third of the run. The first
-/// comparison goes after the first `lead` of them (its own configurations): its first look
-/// measures the noise, which sets what the other comparisons expect, within seconds instead of
-/// after every early image (the first guess, 60 pairs, was twice what most comparisons took on
-/// the host of 2026-11-26, and put the ETA 15% long until that look).
+/// Why the probes come first: how many pairs a comparison takes is the run's one large unknown.
+/// Most stop at the minimum, but one whose effect lies near a verdict's boundary takes up to the
+/// cap: row 4 of the default matrix took 14 s quiet and 48 to 85 s beside two `yes` (2026-11-27),
+/// a fifth of the run, and the ETA before its turn was 45 to 50% short. Ten pairs of each
+/// comparison (a second or two each) tell the progress line which ones those are
+/// (base::PairsExpectedAtStop) within the first seconds of the run. Why the comparisons before
+/// the other configurations: a second process takes units from the end, and a comparison left to
+/// the end would keep this one busy long after that process ran out of units; images are short.
+/// `early`'s images measure what an image frame costs before the comparisons start.
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first = std::nullopt,
                                       const std::vector<std::size_t>& early = {},
-                                      std::size_t lead = kNoLead);
+                                      bool probes = false);
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected
@@ -166,8 +168,13 @@ private:
                     std::optional<std::size_t> comparison);
     double SecondsPerFrame(std::size_t kind) const;
     // Seconds of the comparison frames left in this process (those the second process has not
-    // claimed), each comparison priced by PriceOf.
-    double ComparisonSecondsLeft() const;
+    // claimed), each comparison priced by PriceOf; `owned` of them in comparisons this process
+    // has claimed, which the second process cannot take.
+    struct ComparisonSeconds {
+        double left = 0;
+        double owned = 0;
+    };
+    ComparisonSeconds ComparisonSecondsLeft() const;
     // Seconds a frame of comparison k is expected to take: its configurations' cost times the
     // calibration, or the comparisons' recent rate while a cost is missing.
     double PriceOf(std::size_t k) const;

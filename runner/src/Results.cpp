@@ -160,29 +160,55 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         RenderConfigurationUnit(w, image_context, i, results.configurations[i]);
     };
 
-    auto run_comparison = [&](RenderWorker& w, std::size_t k) {
+    // Times a part of comparison k (ComparisonPart), counting its frames in the meter as they
+    // are taken; `stepped[k]` holds how many it has counted so far.
+    std::vector<long> stepped(results.comparisons.size(), 0);
+    auto time_comparison = [&](RenderWorker& w, std::size_t k, ComparisonPart part) {
         ComparisonResult& out = results.comparisons[k];
         const TimedComparison& c = out.comparison;
         const base::StoppingRule rule = ComparisonRule(options, c);
-        long done = 0;
-        TimeComparisonUnit(w, options, out, [&](const ComparisonTiming& so_far) {
-            // Frames this look took, and a new guess of the pairs the interval needs.
+        auto after_look = [&](const ComparisonTiming& so_far) {
+            // Frames taken so far, and a new guess of the pairs the interval needs.
             const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size() +
                                                        so_far.contended.baseline_ms.size());
-            meter.StepComparison(k, c.label, frames - done);
-            done = frames;
+            meter.StepComparison(k, c.label, frames - stepped[k]);
+            stepped[k] = frames;
             const long needed = base::PairsExpectedAtStop(so_far.stated, rule, kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
             meter.ComparisonExpects(k, finished ? frames : frames_at(needed), finished,
                                     frames_at(base::PairsForResolution(so_far.estimate, rule)));
-        });
+        };
+        TimeComparisonUnit(w, options, out, after_look, part);
         if (!out.error.empty()) {
             meter.ComparisonExpects(k, 0, true);
+            return;
+        }
+        if (part == ComparisonPart::kProbe) {
+            // The probe's frames are what the rest of this comparison's frames will cost.
+            meter.ConfigurationCost(c.baseline,
+                                    base::Median(out.timing.samples.baseline_wall_ms) / 1000.0);
+            meter.ConfigurationCost(c.candidate,
+                                    base::Median(out.timing.samples.candidate_wall_ms) / 1000.0);
             return;
         }
         keep_passes(c.baseline, out.timing.baseline_passes);
         keep_passes(c.candidate, out.timing.candidate_passes);
         meter.StepComparison(k, c.label, 0);  // the per-pass frames' time too
+    };
+
+    // Comparison k's unit: its probe (`probe`) or the rest of it. Each comparison is timed by one
+    // thread at a time, and its units may come in any order between threads: a rest unit taken
+    // before the probe times the whole comparison, and the probe then has nothing to do.
+    enum class Timed { kNotYet, kProbed, kDone };
+    std::vector<Timed> timed(results.comparisons.size(), Timed::kNotYet);
+    std::vector<std::mutex> comparison_mutex(results.comparisons.size());
+    auto run_comparison = [&](RenderWorker& w, std::size_t k, bool probe) {
+        std::lock_guard<std::mutex> lock(comparison_mutex[k]);
+        if (timed[k] == Timed::kDone || (probe && timed[k] == Timed::kProbed)) {
+            return;
+        }
+        time_comparison(w, k, probe ? ComparisonPart::kProbe : ComparisonPart::kRest);
+        timed[k] = probe && results.comparisons[k].error.empty() ? Timed::kProbed : Timed::kDone;
     };
 
     // Whether this process does claim-table unit `unit` (it does all but the second process's).
@@ -207,7 +233,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             const std::size_t index = units[u].index;
             if (units[u].comparison) {
                 if (owner_takes(SharedComparisonUnit(options, index))) {
-                    run_comparison(w, index);
+                    run_comparison(w, index, units[u].probe);
                 }
             } else if (owner_takes(index)) {
                 run_configuration(w, index);
@@ -218,7 +244,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         if (claims != nullptr && ++threads_done == threads_started.load() &&
             !collected.exchange(true)) {
             const CollectedUnits shared = CollectSharedUnits(
-                    w, image_context, results, [&](std::size_t k) { run_comparison(w, k); });
+                    w, image_context, results, [&](std::size_t k) { run_comparison(w, k, false); });
             results.shared_configurations = shared.configurations;
         }
     };

@@ -43,10 +43,10 @@ TEST(ConfigurationImagesGlTest, TheTimingViewAndTheReferenceAreFoundByName) {
     EXPECT_EQ(ReferenceConfiguration(options), std::nullopt);
 }
 
-// The run's order: the reference, the first comparison's other configuration, the first
-// comparison, then the other compared configurations, then the rest of the comparisons (there
-// are no other configurations here to share out).
-TEST(ConfigurationImagesGlTest, TheRunsOrderPutsTheFirstComparisonAfterItsOwnConfigurations) {
+// The run's order: the reference, every comparison's probe, the other compared configurations
+// in the comparisons' order, then the comparisons (there are no other configurations here). A
+// rule whose first look comes at the probe's pairs takes no probes.
+TEST(ConfigurationImagesGlTest, TheRunsOrderProbesEveryComparisonBeforeTheirConfigurations) {
     RunOptions options = TwoConfigurationsAtTwoViews();
     options.configurations.resize(5, options.configurations[0]);  // the reference stays at 1
     auto compare = [](std::size_t baseline, std::size_t candidate) {
@@ -56,15 +56,44 @@ TEST(ConfigurationImagesGlTest, TheRunsOrderPutsTheFirstComparisonAfterItsOwnCon
         return c;
     };
     options.comparisons = {compare(1, 3), compare(4, 2), compare(3, 0), compare(9, 0)};
-    const std::vector<WorkUnit> units = RunWorkOrder(options);
-    const std::vector<std::pair<bool, std::size_t>> expected = {{false, 1}, {false, 3}, {true, 0},
-                                                                {false, 4}, {false, 2}, {false, 0},
-                                                                {true, 1},  {true, 2},  {true, 3}};
-    ASSERT_EQ(units.size(), expected.size());
-    for (std::size_t u = 0; u < units.size(); ++u) {
-        EXPECT_EQ(units[u].comparison, expected[u].first) << u;
-        EXPECT_EQ(units[u].index, expected[u].second) << u;
-    }
+    struct Unit {
+        bool comparison;
+        std::size_t index;
+        bool probe;
+    };
+    auto expect_order = [&](const std::vector<Unit>& expected) {
+        const std::vector<WorkUnit> units = RunWorkOrder(options);
+        ASSERT_EQ(units.size(), expected.size());
+        for (std::size_t u = 0; u < units.size(); ++u) {
+            EXPECT_EQ(units[u].comparison, expected[u].comparison) << u;
+            EXPECT_EQ(units[u].index, expected[u].index) << u;
+            EXPECT_EQ(units[u].probe, expected[u].probe) << u;
+        }
+    };
+    ASSERT_GT(options.rule.min_pairs, kProbePairs);
+    expect_order({{false, 1, false},
+                  {true, 0, true},
+                  {true, 1, true},
+                  {true, 2, true},
+                  {true, 3, true},
+                  {false, 3, false},
+                  {false, 4, false},
+                  {false, 2, false},
+                  {false, 0, false},
+                  {true, 0, false},
+                  {true, 1, false},
+                  {true, 2, false},
+                  {true, 3, false}});
+    options.rule.min_pairs = kProbePairs;
+    expect_order({{false, 1, false},
+                  {false, 3, false},
+                  {false, 4, false},
+                  {false, 2, false},
+                  {false, 0, false},
+                  {true, 0, false},
+                  {true, 1, false},
+                  {true, 2, false},
+                  {true, 3, false}});
 }
 
 TEST(ConfigurationImagesGlTest, ImagesAreComparedWithTheReferencesOnceItHasRendered) {

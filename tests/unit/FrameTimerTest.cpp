@@ -115,6 +115,53 @@ TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     EXPECT_EQ(t.estimate.pairs, 30);
 }
 
+// A side whose n-th frame's time depends only on n: the candidate 5% slower, with +/-8% noise,
+// enough that the rule needs more than its minimum of pairs.
+TimeSide NumberedFrames(int* frames) {
+    return [frames](bool candidate) {
+        *frames += 1;
+        std::uint64_t state = static_cast<std::uint64_t>(*frames);
+        state *= 0x9E3779B97F4A7C15U;
+        state ^= state >> 29;
+        state *= 0xBF58476D1CE4E5B9U;
+        state ^= state >> 32;
+        const double noise = 0.92 + 0.16 * static_cast<double>(state >> 11) * 0x1.0p-53;
+        return FrameTime{(candidate ? 10.5 : 10.0) * noise, 0.0};
+    };
+}
+
+TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
+    base::StoppingRule rule;
+    rule.contended_share = 0.5;
+    int frames_whole = 0;
+    int looks_whole = 0;
+    const ComparisonTiming whole = TimeComparison(NumberedFrames(&frames_whole), rule,
+                                                  [&](const ComparisonTiming&) { ++looks_whole; });
+    ASSERT_GT(whole.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+
+    int frames_split = 0;
+    const ComparisonTiming probe = ProbeComparison(NumberedFrames(&frames_split), 10);
+    EXPECT_EQ(probe.samples.baseline_ms.size(), 10U);
+    EXPECT_TRUE(probe.contended.baseline_ms.empty());
+    EXPECT_EQ(probe.decision, base::StopDecision::kContinue);
+    EXPECT_EQ(probe.estimate.pairs, 10);
+    EXPECT_TRUE(probe.stated.Valid());
+    int looks_split = 0;
+    const ComparisonTiming rest = TimeComparison(
+            NumberedFrames(&frames_split), rule, [&](const ComparisonTiming&) { ++looks_split; },
+            probe);
+
+    EXPECT_EQ(frames_split, frames_whole);
+    EXPECT_EQ(looks_split, looks_whole);
+    EXPECT_EQ(rest.samples.baseline_ms, whole.samples.baseline_ms);
+    EXPECT_EQ(rest.samples.candidate_ms, whole.samples.candidate_ms);
+    EXPECT_EQ(rest.contended.baseline_ms, whole.contended.baseline_ms);
+    EXPECT_EQ(rest.contended.candidate_ms, whole.contended.candidate_ms);
+    EXPECT_EQ(rest.decision, whole.decision);
+    EXPECT_EQ(rest.stated.ratio_low, whole.stated.ratio_low);
+    EXPECT_EQ(rest.stated.ratio_high, whole.stated.ratio_high);
+}
+
 TEST(FrameTimerTest, PassFramesAlternateLikeThePairsAndKeepEachSidesMedians) {
     std::vector<bool> order;
     const TimeSidePasses side = [&](bool candidate) {

@@ -17,87 +17,92 @@ namespace {
 
 using Clock = ProgressMeter::Clock;
 
-TEST(RenderProgressTest, EachComparisonIsFollowedByItsShareOfTheConfigurations) {
-    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147);
-    ASSERT_EQ(units.size(), 16U + 147U);
-    std::set<std::size_t> comparisons;
-    std::set<std::size_t> configurations;
-    std::vector<std::size_t> run_lengths;  // configurations after each comparison
-    for (const WorkUnit& unit : units) {
-        if (unit.comparison) {
-            comparisons.insert(unit.index);
-            run_lengths.push_back(0);
+// Where each kind of unit lies in an order: the positions of probes, of whole or rest
+// comparisons, and of configurations.
+struct UnitPositions {
+    std::vector<std::size_t> probes;
+    std::vector<std::size_t> comparisons;
+    std::vector<std::size_t> configurations;
+    std::set<std::size_t> probed;    // comparison indices with a probe
+    std::set<std::size_t> compared;  // comparison indices with a rest unit
+    std::set<std::size_t> configured;
+};
+
+UnitPositions PositionsOf(const std::vector<WorkUnit>& units) {
+    UnitPositions p;
+    for (std::size_t u = 0; u < units.size(); ++u) {
+        if (units[u].comparison && units[u].probe) {
+            p.probes.push_back(u);
+            EXPECT_TRUE(p.probed.insert(units[u].index).second) << "probe twice: " << u;
+        } else if (units[u].comparison) {
+            p.comparisons.push_back(u);
+            EXPECT_TRUE(p.compared.insert(units[u].index).second) << "comparison twice: " << u;
         } else {
-            configurations.insert(unit.index);
-            ASSERT_FALSE(run_lengths.empty()) << "a comparison goes first";
-            ++run_lengths.back();
+            p.configurations.push_back(u);
+            EXPECT_TRUE(p.configured.insert(units[u].index).second) << "configuration twice: " << u;
         }
     }
-    EXPECT_EQ(comparisons.size(), 16U);
-    EXPECT_EQ(configurations.size(), 147U);
-    for (std::size_t length : run_lengths) {
-        EXPECT_TRUE(length == 9 || length == 10) << length;  // 147 / 16 = 9.2
-    }
-    EXPECT_FALSE(units.back().comparison);  // the queue ends on short units
+    return p;
 }
 
-TEST(RenderProgressTest, TheReferenceConfigurationRendersFirstAndOnce) {
-    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42);
-    ASSERT_EQ(units.size(), 16U + 147U);
-    EXPECT_FALSE(units.front().comparison);
-    EXPECT_EQ(units.front().index, 42U);
-    std::set<std::size_t> configurations;
-    std::size_t comparisons = 0;
-    for (const WorkUnit& unit : units) {
-        if (unit.comparison) {
-            ++comparisons;
-        } else {
-            EXPECT_TRUE(configurations.insert(unit.index).second) << unit.index;
-        }
-    }
-    EXPECT_EQ(comparisons, 16U);
-    EXPECT_EQ(configurations.size(), 147U);
-}
-
-// The configurations the comparisons time come right after the reference, once each and in the
-// order given, so their coarse frames price the comparisons before any starts.
-TEST(RenderProgressTest, EarlyConfigurationsFollowTheReference) {
-    const std::vector<std::size_t> early = {7, 3, 42, 7, 200};  // 42 is the reference, 200 none
-    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, early);
-    ASSERT_EQ(units.size(), 16U + 147U);
+// Every comparison's probe comes before every comparison's rest, and every comparison before the
+// configurations that no comparison times: the progress line learns which comparisons will be long
+// within seconds, and the queue a second process takes from the end holds short units only.
+TEST(RenderProgressTest, ProbesComeFirstAndTheQueueEndsOnConfigurations) {
+    const std::vector<std::size_t> early = {7, 3, 9, 11};
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, early, true);
+    ASSERT_EQ(units.size(), 2 * 16U + 147U);
+    const UnitPositions p = PositionsOf(units);
+    EXPECT_EQ(p.probed.size(), 16U);
+    EXPECT_EQ(p.compared.size(), 16U);
+    EXPECT_EQ(p.configured.size(), 147U);
+    // The reference, then the probes in order, then the early configurations, then the rest.
     ASSERT_FALSE(units[0].comparison);
     EXPECT_EQ(units[0].index, 42U);
-    ASSERT_FALSE(units[1].comparison);
-    EXPECT_EQ(units[1].index, 7U);
-    ASSERT_FALSE(units[2].comparison);
-    EXPECT_EQ(units[2].index, 3U);
-    EXPECT_TRUE(units[3].comparison);
-    std::set<std::size_t> configurations;
-    for (const WorkUnit& unit : units) {
-        if (!unit.comparison) {
-            EXPECT_TRUE(configurations.insert(unit.index).second) << unit.index;
-        }
+    for (std::size_t k = 0; k < 16; ++k) {
+        EXPECT_EQ(p.probes[k], 1 + k);
+        EXPECT_EQ(units[p.probes[k]].index, k);
+        EXPECT_EQ(units[p.comparisons[k]].index, k);
     }
-    EXPECT_EQ(configurations.size(), 147U);
+    for (std::size_t e = 0; e < early.size(); ++e) {
+        EXPECT_FALSE(units[17 + e].comparison);
+        EXPECT_EQ(units[17 + e].index, early[e]);
+    }
+    EXPECT_EQ(p.comparisons.front(), 17 + early.size());
+    EXPECT_EQ(p.comparisons.back(), 16 + early.size() + 16);
+    for (std::size_t u = p.comparisons.back() + 1; u < units.size(); ++u) {
+        EXPECT_FALSE(units[u].comparison) << u;
+    }
+}
+
+TEST(RenderProgressTest, WithoutProbesEachComparisonComesOnceBeforeTheOtherConfigurations) {
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, {7, 3});
+    ASSERT_EQ(units.size(), 16U + 147U);
+    const UnitPositions p = PositionsOf(units);
+    EXPECT_TRUE(p.probes.empty());
+    EXPECT_EQ(p.compared.size(), 16U);
+    EXPECT_EQ(p.configured.size(), 147U);
+    EXPECT_EQ(units[0].index, 42U);
+    EXPECT_EQ(units[1].index, 7U);
+    EXPECT_EQ(units[2].index, 3U);
+    EXPECT_EQ(p.comparisons.front(), 3U);
+    EXPECT_EQ(p.comparisons.back(), 18U);
     EXPECT_FALSE(units.back().comparison);
 }
 
-// The first comparison goes right after its own configurations (the first `lead` early ones),
-// before the other early ones: its first look sets what the others expect within seconds.
-TEST(RenderProgressTest, TheFirstComparisonFollowsItsOwnConfigurations) {
-    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, {7, 3, 9, 11}, 2);
-    ASSERT_EQ(units.size(), 16U + 147U);
-    const std::vector<std::pair<bool, std::size_t>> front = {{false, 42}, {false, 7}, {false, 3},
-                                                             {true, 0},   {false, 9}, {false, 11}};
-    for (std::size_t u = 0; u < front.size(); ++u) {
-        EXPECT_EQ(units[u].comparison, front[u].first) << u;
-        EXPECT_EQ(units[u].index, front[u].second) << u;
-    }
-    std::size_t first_comparisons = 0;
-    for (const WorkUnit& unit : units) {
-        first_comparisons += unit.comparison && unit.index == 0 ? 1 : 0;
-    }
-    EXPECT_EQ(first_comparisons, 1U);
+// An early configuration named twice, the reference among them, or one past the matrix, is
+// rendered once or not at all.
+TEST(RenderProgressTest, EachConfigurationRendersOnceWhateverTheEarlyListSays) {
+    const std::vector<std::size_t> early = {7, 3, 42, 7, 200};  // 42 is the reference, 200 none
+    const std::vector<WorkUnit> units = RenderWorkOrder(16, 147, 42, early, true);
+    ASSERT_EQ(units.size(), 2 * 16U + 147U);
+    const UnitPositions p = PositionsOf(units);
+    EXPECT_EQ(p.configured.size(), 147U);
+    EXPECT_EQ(p.configured.count(200), 0U);
+    EXPECT_EQ(units[0].index, 42U);
+    EXPECT_EQ(units[17].index, 7U);
+    EXPECT_EQ(units[18].index, 3U);
+    EXPECT_TRUE(units[19].comparison);
 }
 
 TEST(RenderProgressTest, WithoutComparisonsEveryConfigurationIsStillThere) {
@@ -310,6 +315,13 @@ TEST(RenderProgressTest, SecondsToFinishShareWhatIsLeftOnceTheSecondProcessJoins
     // A join forecast in the past counts as now; no work is no time.
     EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, -5.0), 30);
     EXPECT_DOUBLE_EQ(SecondsToFinish(0, 1, 0.0), 0);
+    // 60 s left 20 s before the join, 50 s of it this process's own: shared, the end would be
+    // 40 s, but the second process has only 10 s it may take, so this process's 50 s set it.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, 20.0, 50.0), 50);
+    // With 20 s of its own, sharing the 40 s left at the join still ends first at 40 s.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 1, 20.0, 20.0), 40);
+    // Without a second process, what is its own changes nothing.
+    EXPECT_DOUBLE_EQ(SecondsToFinish(60, 2, std::nullopt, 60.0), 30);
     // Never more than working alone, never less than half of it with one thread each.
     for (double work : {0.0, 1.0, 100.0}) {
         for (double join : {0.0, 1.0, 50.0, 500.0}) {
@@ -362,6 +374,37 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
 
 // A second process that stops renewing its join forecast may have died before taking a unit: the
 // ETA stops counting on it rather than wait for a join that will not come.
+// The comparisons this process has claimed (probed) are its own: a second process that takes
+// every image cannot shorten them, and once it would run out of images the ETA is theirs.
+TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    constexpr std::size_t kConfigurations = 4;
+    const std::unique_ptr<base::SharedClaims> claims =
+            base::SharedClaims::Create(kConfigurations + 2);
+    ASSERT_TRUE(claims);
+    constexpr long kFramesPerUnit = 10;
+    meter.AddExpected(ProgressMeter::kImage, kConfigurations * kFramesPerUnit);
+    // Two comparisons of 100 frames each (PriceComparisons' guess) at 100 ms a frame: 20 s.
+    PriceComparisons(meter, {{0, 1}, {2, 3}}, {0.1, 0.1, 0.1, 0.1});
+    meter.ShareUnits(claims.get(), kFramesPerUnit, kConfigurations);
+    claims->SetHelperTaking(true);  // the second process takes units from now
+    Clock::time_point now = start;
+    for (int f = 0; f < 10; ++f) {
+        now += std::chrono::milliseconds(100);
+        meter.Step(ProgressMeter::kImage, "images", 1, now);
+    }
+    // 3 configurations' images (3 s) and 20 s of comparisons left, nothing claimed: shared.
+    EXPECT_NEAR(meter.Last().eta_seconds, (3.0 + 20.0) / 2, 1e-6);
+    // This process probes both comparisons: their 20 s are its own, and the second process has
+    // only the images' 3 s to take.
+    ASSERT_TRUE(claims->ClaimForOwner(kConfigurations));
+    ASSERT_TRUE(claims->ClaimForOwner(kConfigurations + 1));
+    meter.Step(ProgressMeter::kImage, "images", 0, now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 20.0, 1e-6);
+}
+
 TEST(RenderProgressTest, AForecastNotRenewedIsNotCountedOn) {
     using namespace std::chrono_literals;
     const ProgressCallback none;

@@ -134,8 +134,21 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
 /// looks at the stated interval (AcrossHostStates) and stops as `rule` says. `after_look` (may be
 /// empty) sees the timing so far (samples, estimates, decision) after every look. Never fails: a
 /// side whose frames cannot be timed makes the estimate's error say so.
+///
+/// `so_far` is where to go on from: a ProbeComparison's pairs (or nothing). The pairs, looks and
+/// decisions are then those one call from the start would take; only the time between the
+/// probe's pairs and the rest differs, and each pair's two frames stay milliseconds apart.
 ComparisonTiming TimeComparison(
         const TimeSide& time_side, const base::StoppingRule& rule,
-        const std::function<void(const ComparisonTiming& so_far)>& after_look = {});
+        const std::function<void(const ComparisonTiming& so_far)>& after_look = {},
+        ComparisonTiming so_far = {});
+
+/// The first `pairs` as-run pairs of a comparison, taken as TimeComparison takes them, with
+/// their estimate (and `stated` the same); no contended pairs, no look of the rule: the decision
+/// stays kContinue. Why: a run takes every comparison's first pairs early, so that its progress
+/// line knows from them which comparisons will need many pairs (those near a verdict's
+/// boundary, base::PairsExpectedAtStop) long before their turn, and goes on with TimeComparison
+/// later. `pairs` should stay below the rule's min_pairs, so that no look is skipped.
+ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs);
 
 }  // namespace tidepool::runner
