@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <vector>
 
 namespace tidepool::base {
 namespace {
@@ -229,10 +230,12 @@ int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule)
 namespace {
 
 // The first look after `pairs` at which the rule stops a comparison whose true change is
-// `change` percent, from an interval of `half_width` points after `pairs`: each later look's
-// half-width follows the square-root law, centred on `change`, and goes through DecideStop
-// itself. (The look at `pairs` is the real one, already decided.)
-int PairsAtStopIf(double change, int pairs, double half_width, const StoppingRule& rule) {
+// `change` percent, when its interval at a later look of `n` pairs has half-width
+// `half_width_at(n)` about `change`; each look goes through DecideStop itself. (The look at
+// `pairs` is the real one, already decided.)
+template <typename HalfWidthAt>
+int FirstStopAfter(double change, int pairs, const HalfWidthAt& half_width_at,
+                   const StoppingRule& rule) {
     PairedEstimate look;
     const int first = PairsBeforeNextLook(pairs, rule);
     if (first <= 0) {
@@ -240,7 +243,7 @@ int PairsAtStopIf(double change, int pairs, double half_width, const StoppingRul
     }
     look.pairs = pairs + first;
     for (;;) {
-        const double h = half_width * std::sqrt(static_cast<double>(pairs) / look.pairs);
+        const double h = half_width_at(look.pairs);
         look.change_low = change - h;
         look.change_high = change + h;
         if (DecideStop(look, rule) != StopDecision::kContinue) {
@@ -252,6 +255,38 @@ int PairsAtStopIf(double change, int pairs, double half_width, const StoppingRul
         }
         look.pairs += step;
     }
+}
+
+// FirstStopAfter for an interval of `half_width` points after `pairs` that narrows by the
+// square-root law.
+int PairsAtStopIf(double change, int pairs, double half_width, const StoppingRule& rule) {
+    return FirstStopAfter(
+            change, pairs,
+            [&](int n) { return half_width * std::sqrt(static_cast<double>(pairs) / n); }, rule);
+}
+
+// The mean of `pairs_if(change)` over where the true change may lie: normal about `centre`
+// with `standard_error`, at kQuantiles equal-probability points.
+template <typename PairsIf>
+int MeanOverTheChange(double centre, double standard_error, const PairsIf& pairs_if) {
+    constexpr int kQuantiles = 32;
+    double sum = 0;
+    for (int q = 0; q < kQuantiles; ++q) {
+        const double p = (q + 0.5) / kQuantiles;
+        sum += pairs_if(centre + standard_error * NormalQuantile(p));
+    }
+    return static_cast<int>(std::lround(sum / kQuantiles));
+}
+
+double Median(std::vector<double> values) {
+    const std::size_t middle = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + static_cast<long>(middle), values.end());
+    const double upper = values[middle];
+    if (values.size() % 2 == 1) {
+        return upper;
+    }
+    return (upper + *std::max_element(values.begin(), values.begin() + static_cast<long>(middle))) /
+           2.0;
 }
 
 }  // namespace
@@ -274,25 +309,75 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
         return estimate.pairs;  // it stops at this look
     }
     // Otherwise the mean over where the true change may lie, normal about the interval's centre
-    // with the interval's standard error, at kQuantiles equal-probability points. Why the mean over
-    // the change and not the pairs at the centre: the pairs a boundary needs grow as the inverse
-    // square of the distance, so the centre's guess is short whenever the change lies nearer the
-    // boundary than the centre does, and a sum of work needs the mean. Why not the formula used
-    // before (wait for a sixteenth of the finest half-width whenever the interval held an edge): in
-    // the main job's progress trace (2026-11-26, two `yes` beside it) row 11's first look guessed
-    // 363 pairs for a comparison that stopped at 40, and the ETA was 25% long for that look.
-    // PairedEstimateTest's ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
-    constexpr int kQuantiles = 32;
+    // with the interval's standard error. Why the mean over the change and not the pairs at the
+    // centre: the pairs a boundary needs grow as the inverse square of the distance, so the
+    // centre's guess is short whenever the change lies nearer the boundary than the centre does,
+    // and a sum of work needs the mean. Why not the formula used before (wait for a sixteenth of
+    // the finest half-width whenever the interval held an edge): in the main job's progress trace
+    // (2026-11-26, two `yes` beside it) row 11's first look guessed 363 pairs for a comparison
+    // that stopped at 40, and the ETA was 25% long for that look. PairedEstimateTest's
+    // ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
     const double centre = (estimate.change_low + estimate.change_high) / 2.0;
-    const double standard_error = half_width / z;
-    double sum = 0;
-    for (int q = 0; q < kQuantiles; ++q) {
-        const double p = (q + 0.5) / kQuantiles;
-        const double change = centre + standard_error * NormalQuantile(p);
-        sum += PairsAtStopIf(change, estimate.pairs, half_width, rule);
+    return MeanOverTheChange(centre, half_width / z, [&](double change) {
+        return PairsAtStopIf(change, estimate.pairs, half_width, rule);
+    });
+}
+
+int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
+                            const std::vector<double>& candidate_ms, const StoppingRule& rule) {
+    if (baseline_ms.size() != candidate_ms.size() ||
+        baseline_ms.size() < static_cast<std::size_t>(kMinimumPairs)) {
+        return 0;
     }
-    return static_cast<int>(std::lround(sum / kQuantiles));
+    std::vector<double> log_ratios;
+    log_ratios.reserve(baseline_ms.size());
+    for (std::size_t i = 0; i < baseline_ms.size(); ++i) {
+        if (!(baseline_ms[i] > 0) || !(candidate_ms[i] > 0) || !std::isfinite(baseline_ms[i]) ||
+            !std::isfinite(candidate_ms[i])) {
+            return 0;
+        }
+        log_ratios.push_back(std::log(candidate_ms[i] / baseline_ms[i]));
+    }
+    const int pairs = static_cast<int>(log_ratios.size());
+    const double centre = Median(log_ratios);
+    std::vector<double> deviations;
+    deviations.reserve(log_ratios.size());
+    for (double r : log_ratios) {
+        deviations.push_back(std::abs(r - centre));
+    }
+    // The normal-equivalent spread of one pair's log ratio, and both in percent of frame rate
+    // (a change of d in the log ratio moves the change by about 100 exp(-centre) d).
+    constexpr double kMadToSigma = 1.4826;
+    const double points_per_log = 100.0 * std::exp(-centre);
+    const double sigma = kMadToSigma * Median(deviations) * points_per_log;
+    const double change = PerformanceChangePercent(std::exp(centre));
+    const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
+    // At a later look of n pairs the stated interval spans the as-run and the contended
+    // intervals; with the same centre and spread, the wider is the one of fewer pairs.
+    auto half_width_at = [&](int n) {
+        const int contended =
+                rule.contended_share > 0 ? ContendedPairsBeforeNextLook(n, 0, rule) : n;
+        return z * sigma / std::sqrt(static_cast<double>(std::max(1, std::min(n, contended))));
+    };
+    return MeanOverTheChange(change, sigma / std::sqrt(static_cast<double>(pairs)), [&](double c) {
+        return FirstStopAfter(c, pairs, half_width_at, rule);
+    });
+}
+
+int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
+                           const std::vector<double>& candidate_ms, const PairedEstimate& stated,
+                           const StoppingRule& rule, int fallback) {
+    const int from_interval = PairsExpectedAtStop(stated, rule, fallback);
+    if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue) {
+        return from_interval;
+    }
+    const int from_spread = PairsExpectedFromSpread(baseline_ms, candidate_ms, rule);
+    if (from_spread <= 0) {
+        return from_interval;
+    }
+    return static_cast<int>(
+            std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));
 }
 
 const char* StopDecisionName(StopDecision decision) {

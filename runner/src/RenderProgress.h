@@ -48,7 +48,7 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
 /// cap: row 4 of the default matrix took 14 s quiet and 48 to 85 s beside two `yes` (2026-11-27),
 /// a fifth of the run, and the ETA before its turn was 45 to 50% short. Ten pairs of each
 /// comparison (a second or two each) tell the progress line which ones those are
-/// (base::PairsExpectedAtStop) within the first seconds of the run. Why the comparisons before
+/// (base::PairsExpectedFromPairs) within the first seconds of the run. Why the comparisons before
 /// the other configurations: a second process takes units from the end, and a comparison left to
 /// the end would keep this one busy long after that process ran out of units; images are short.
 /// `early`'s images measure what an image frame costs before the comparisons start.
@@ -59,9 +59,9 @@ std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t confi
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected
-/// frames follow its interval (base::PairsExpectedAtStop). Frames of the two kinds cost very
-/// differently (an image frame compiles on first use and encodes a PNG), so the share done and
-/// the ETA weigh each kind by its measured seconds per frame (SecondsPerFrame), and the
+/// frames follow its pairs and interval (base::PairsExpectedFromPairs). Frames of the two kinds
+/// cost very differently (an image frame compiles on first use and encodes a PNG), so the share
+/// done and the ETA weigh each kind by its measured seconds per frame (SecondsPerFrame), and the
 /// comparisons' frames left by their own configurations' cost once known (PriceOf). Both
 /// follow the recent rate:
 /// a process that shares the machine (`run`'s stability and plan stages, another user's job)

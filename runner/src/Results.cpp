@@ -173,7 +173,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                                        so_far.contended.baseline_ms.size());
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
-            const long needed = base::PairsExpectedAtStop(so_far.stated, rule, kInitialPairGuess);
+            const long needed = base::PairsExpectedFromPairs(
+                    so_far.samples.baseline_ms, so_far.samples.candidate_ms, so_far.stated, rule,
+                    kInitialPairGuess);
             const bool finished = so_far.decision != base::StopDecision::kContinue;
             meter.ComparisonExpects(k, finished ? frames : frames_at(needed), finished,
                                     frames_at(base::PairsForResolution(so_far.estimate, rule)));

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace tidepool::base {
@@ -510,6 +511,79 @@ TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     EXPECT_EQ(PairsExpectedAtStop(PairedEstimate{}, rule, 60), 62);
     // At the cap: the cap.
     EXPECT_EQ(PairsExpectedAtStop(EstimateWithInterval(400, 6.9, 7.1), rule, 60), 400);
+}
+
+// `pairs` pairs (an even number) whose candidate is `slower` times slower, and whose log
+// frame-time ratios lie by turns above and below that by an amount the spread estimate (1.4826
+// median absolute deviations) reads as `sigma_points` points of frame rate.
+std::pair<std::vector<double>, std::vector<double>> PairsWithSpread(int pairs, double slower,
+                                                                    double sigma_points) {
+    const double mu = std::log(slower);
+    const double deviation = sigma_points / (1.4826 * 100.0 * std::exp(-mu));
+    std::vector<double> baseline;
+    std::vector<double> candidate;
+    for (int i = 0; i < pairs; ++i) {
+        baseline.push_back(10.0);
+        candidate.push_back(10.0 * std::exp(mu + (i % 2 == 0 ? deviation : -deviation)));
+    }
+    return {baseline, candidate};
+}
+
+TEST(PairedEstimateTest, ExpectedPairsFromTheSpreadFollowTheNoiseAndTheContendedShare) {
+    // 10% slower (-9.1%, far from every margin) with a spread of 5.05 points a pair: the
+    // resolution of 1.5 needs (1.96 x 5.05 / 1.5)^2 = 43.5 pairs, the first look after that is
+    // 50 (looks at 20, 30, 40, 50, 62, 77, 96).
+    const auto [baseline, candidate] = PairsWithSpread(20, 1.10, 5.05);
+    StoppingRule as_run_only;
+    EXPECT_EQ(PairsExpectedFromSpread(baseline, candidate, as_run_only), 50);
+    // With contended pairs at half the as-run ones, the stated interval is the contended one's,
+    // of half the pairs: 87 as-run pairs, so the look at 96.
+    StoppingRule contended = as_run_only;
+    contended.contended_share = 0.5;
+    EXPECT_EQ(PairsExpectedFromSpread(baseline, candidate, contended), 96);
+    // No noise: the next look (the one at the pairs so far is the caller's, already decided),
+    // after a probe's 10 pairs the first at 20.
+    const auto [quiet_baseline, quiet_candidate] = PairsWithSpread(10, 1.10, 0.0);
+    EXPECT_EQ(PairsExpectedFromSpread(quiet_baseline, quiet_candidate, contended), 20);
+}
+
+TEST(PairedEstimateTest, TooFewOrUnusablePairsGiveNoGuessFromTheSpread) {
+    const StoppingRule rule;
+    const auto [baseline, candidate] = PairsWithSpread(20, 1.10, 5.0);
+    EXPECT_EQ(PairsExpectedFromSpread({baseline.begin(), baseline.begin() + 9},
+                                      {candidate.begin(), candidate.begin() + 9}, rule),
+              0);
+    EXPECT_EQ(PairsExpectedFromSpread(baseline, {candidate.begin(), candidate.end() - 1}, rule), 0);
+    std::vector<double> broken = candidate;
+    broken[3] = 0.0;
+    EXPECT_EQ(PairsExpectedFromSpread(baseline, broken, rule), 0);
+    broken[3] = std::nan("");
+    EXPECT_EQ(PairsExpectedFromSpread(baseline, broken, rule), 0);
+}
+
+TEST(PairedEstimateTest, TheProgressGuessIsTheGeometricMeanOfTheIntervalsAndTheSpreads) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    // A stated interval far wider than the pairs' own spread (as when ten contended pairs hold a
+    // disturbed one): the interval alone guesses long, the spread short, and the guess lies
+    // between, at their geometric mean.
+    const auto [baseline, candidate] = PairsWithSpread(20, 1.10, 2.0);
+    const PairedEstimate wide = EstimateWithInterval(20, -15.0, -3.0);
+    const int from_interval = PairsExpectedAtStop(wide, rule, 60);
+    const int from_spread = PairsExpectedFromSpread(baseline, candidate, rule);
+    ASSERT_GT(from_interval, from_spread);
+    const int guess = PairsExpectedFromPairs(baseline, candidate, wide, rule, 60);
+    EXPECT_EQ(guess, std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));
+    EXPECT_GT(guess, from_spread);
+    EXPECT_LT(guess, from_interval);
+    // A comparison the rule stops now: its pairs, whatever the spread says.
+    const PairedEstimate done = EstimateWithInterval(20, -9.8, -8.4);
+    ASSERT_NE(DecideStop(done, rule), StopDecision::kContinue);
+    EXPECT_EQ(PairsExpectedFromPairs(baseline, candidate, done, rule, 60), 20);
+    // Too few pairs for a spread: the interval's guess alone.
+    EXPECT_EQ(PairsExpectedFromPairs({baseline.begin(), baseline.begin() + 5},
+                                     {candidate.begin(), candidate.begin() + 5}, wide, rule, 60),
+              from_interval);
 }
 
 // The guess at a comparison's first look against where the rule then stops, over simulated runs

@@ -147,7 +147,7 @@ ComparisonTiming TimeComparison(
 /// their estimate (and `stated` the same); no contended pairs, no look of the rule: the decision
 /// stays kContinue. Why: a run takes every comparison's first pairs early, so that its progress
 /// line knows from them which comparisons will need many pairs (those near a verdict's
-/// boundary, base::PairsExpectedAtStop) long before their turn, and goes on with TimeComparison
+/// boundary, base::PairsExpectedFromPairs) long before their turn, and goes on with TimeComparison
 /// later. `pairs` should stay below the rule's min_pairs, so that no look is skipped.
 ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs);
 
