@@ -1,5 +1,7 @@
 #include "tidepool/base/PairedEstimate.h"
 
+#include "tidepool/base/SampleStatistics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -276,17 +278,6 @@ int MeanOverTheChange(double centre, double standard_error, const PairsIf& pairs
         sum += pairs_if(centre + standard_error * NormalQuantile(p));
     }
     return static_cast<int>(std::lround(sum / kQuantiles));
-}
-
-double Median(std::vector<double> values) {
-    const std::size_t middle = values.size() / 2;
-    std::nth_element(values.begin(), values.begin() + static_cast<long>(middle), values.end());
-    const double upper = values[middle];
-    if (values.size() % 2 == 1) {
-        return upper;
-    }
-    return (upper + *std::max_element(values.begin(), values.begin() + static_cast<long>(middle))) /
-           2.0;
 }
 
 }  // namespace
