@@ -523,6 +523,36 @@ TEST(ReportModelTest, ContendedPairsWidenTheStatedIntervalAndTheVerdictFollowsIt
     EXPECT_NE(md.find("| Pairs with the core shared, per as-run pair | 0.5 |"), std::string::npos);
 }
 
+// The Method section says a run probed its comparisons only when it did: a minimum above the
+// probe's 10 pairs, on one rendering thread (runner::ProbesComparisons).
+TEST(ReportModelTest, TheMethodSaysWhenComparisonsWereProbed) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WithCpuTimes(WhitepaperConfigurations()));
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    auto method_says_probed = [&](int min_pairs, int workers) {
+        results["timing"]["min_pairs"] = min_pairs;
+        results["settings"]["workers"] = workers;
+        dir.Write("render/results.json", results.dump());
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        EXPECT_TRUE(loaded.inputs) << loaded.error;
+        if (!loaded.inputs) {
+            return false;
+        }
+        const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+        EXPECT_TRUE(built.model) << built.error;
+        if (!built.model) {
+            return false;
+        }
+        const WrittenReport written = WriteReport(*built.model, dir.Path() / "out");
+        EXPECT_EQ(written.error, "");
+        return ReadText(written.folder / "report.md").find("first 10 pairs (its probe)") !=
+               std::string::npos;
+    };
+    EXPECT_TRUE(method_says_probed(20, 1));
+    EXPECT_FALSE(method_says_probed(10, 1));
+    EXPECT_FALSE(method_says_probed(20, 2));
+}
+
 // A row whose pairs `run`'s second process timed says so in its pairs' source (data.json), since
 // that process timed them at another moment of the machine's load.
 TEST(ReportModelTest, PairsTheSecondProcessTimedSaySo) {
