@@ -331,6 +331,20 @@ TEST(RenderProgressTest, SecondsToFinishShareWhatIsLeftOnceTheSecondProcessJoins
     }
 }
 
+// A claim table of `configurations` configurations and two comparisons, shared with `meter`,
+// which expects `frames_per_unit` image frames per configuration.
+std::unique_ptr<base::SharedClaims> ShareWithSecondProcess(ProgressMeter& meter,
+                                                           std::size_t configurations,
+                                                           long frames_per_unit) {
+    std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(configurations + 2);
+    if (claims) {
+        meter.AddExpected(ProgressMeter::kImage,
+                          static_cast<long>(configurations) * frames_per_unit);
+        meter.ShareUnits(claims.get(), frames_per_unit, configurations);
+    }
+    return claims;
+}
+
 // The units a second process claims, configurations' and comparisons' alike, leave the meter's
 // totals; before it joins the ETA counts on it from the time it said, while it takes units from
 // now, and once it has stopped not at all.
@@ -339,13 +353,11 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
     constexpr std::size_t kConfigurations = 10;
-    const std::unique_ptr<base::SharedClaims> claims =
-            base::SharedClaims::Create(kConfigurations + 2);
-    ASSERT_TRUE(claims);
     constexpr long kFramesPerUnit = 7;
-    meter.AddExpected(ProgressMeter::kImage, 10 * kFramesPerUnit);
     meter.AddComparisons(2, 70);
-    meter.ShareUnits(claims.get(), kFramesPerUnit, kConfigurations);
+    const std::unique_ptr<base::SharedClaims> claims =
+            ShareWithSecondProcess(meter, kConfigurations, kFramesPerUnit);
+    ASSERT_TRUE(claims);
     Clock::time_point now = start;
     ASSERT_TRUE(claims->ClaimForOwner(0));
     for (int f = 0; f < kFramesPerUnit; ++f) {
@@ -372,8 +384,6 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
 }
 
-// A second process that stops renewing its join forecast may have died before taking a unit: the
-// ETA stops counting on it rather than wait for a join that will not come.
 // The comparisons this process has claimed (probed) are its own: a second process that takes
 // every image cannot shorten them, and once it would run out of images the ETA is theirs.
 TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
@@ -381,14 +391,11 @@ TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
     constexpr std::size_t kConfigurations = 4;
-    const std::unique_ptr<base::SharedClaims> claims =
-            base::SharedClaims::Create(kConfigurations + 2);
-    ASSERT_TRUE(claims);
-    constexpr long kFramesPerUnit = 10;
-    meter.AddExpected(ProgressMeter::kImage, kConfigurations * kFramesPerUnit);
     // Two comparisons of 100 frames each (PriceComparisons' guess) at 100 ms a frame: 20 s.
     PriceComparisons(meter, {{0, 1}, {2, 3}}, {0.1, 0.1, 0.1, 0.1});
-    meter.ShareUnits(claims.get(), kFramesPerUnit, kConfigurations);
+    const std::unique_ptr<base::SharedClaims> claims =
+            ShareWithSecondProcess(meter, kConfigurations, 10);
+    ASSERT_TRUE(claims);
     claims->SetHelperTaking(true);  // the second process takes units from now
     Clock::time_point now = start;
     for (int f = 0; f < 10; ++f) {
@@ -405,6 +412,8 @@ TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
     EXPECT_NEAR(meter.Last().eta_seconds, 20.0, 1e-6);
 }
 
+// A second process that stops renewing its join forecast may have died before taking a unit: the
+// ETA stops counting on it rather than wait for a join that will not come.
 TEST(RenderProgressTest, AForecastNotRenewedIsNotCountedOn) {
     using namespace std::chrono_literals;
     const ProgressCallback none;
