@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "CompilerSourceDigest.h"
+#include "DefineRelevance.h"
 #include "GlslEsRules.h"
 #include "GlslangSession.h"
 #include "StaticCostAnalyzer.h"
@@ -707,34 +708,57 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
     }
     report.stage_slots = static_cast<int>(jobs.size());
-    // Slots whose defines differ only in names the file never mentions preprocess to the same
-    // text, so glslang's preprocessor (which costs nearly a parse) runs once per group.
-    std::map<std::string, std::set<std::string>> mentioned;
-    for (const auto& [path, text] : files) {
-        mentioned[path] = MentionedIdentifiers(text.text);
-    }
-    std::map<std::string, std::vector<std::size_t>> groups;
-    for (std::size_t i = 0; i < jobs.size(); ++i) {
-        groups[PreprocessGroupKey(jobs[i], mentioned[jobs[i].file])].push_back(i);
-    }
-    std::vector<const std::vector<std::size_t>*> group_list;
-    std::vector<const std::string*> group_keys;
-    for (const auto& [key, members] : groups) {
-        group_list.push_back(&members);
-        group_keys.push_back(&key);
-    }
     // A file glslang must not see (unreadable, or refused by CheckSourceText) is one program.
     auto blocked = [](const StageJob& job) {
         return !job.source->ok || !job.source->text_errors.empty();
     };
+    // Slots that give glslang the same preprocessed text form one group, parsed once. Where the
+    // walk of a file's conditionals follows it (DefineRelevance), the defines it finds relevant
+    // decide the group exactly, and the group is a stage program without preprocessing anything.
+    // Elsewhere, slots whose defines differ only in names the file never mentions form a group,
+    // preprocessed once (glslang's preprocessor costs nearly a parse) to hash its text.
+    std::map<std::string, std::set<std::string>> mentioned;  // made for the walk's misses only
+    std::map<std::string, DefineRelevance> relevance;
+    for (const auto& [path, text] : files) {
+        relevance.emplace(path, DefineRelevance(text.text));
+    }
+    std::map<std::string, std::vector<std::size_t>> groups;
+    std::set<std::string> exact_keys;
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+        const StageJob& job = jobs[i];
+        std::optional<std::string> relevant;
+        if (!blocked(job)) {
+            relevant = relevance.at(job.file).Relevant(job.defines);
+        }
+        if (relevant) {
+            std::string key =
+                    StageGroupKey(job.file, job.stage, TargetName(job.target), job.limits, {}, {}) +
+                    "walk|" + *relevant;
+            exact_keys.insert(key);
+            groups[std::move(key)].push_back(i);
+        } else {
+            if (mentioned.count(job.file) == 0) {
+                mentioned[job.file] = MentionedIdentifiers(job.source->text);
+            }
+            groups[PreprocessGroupKey(job, mentioned[job.file])].push_back(i);
+        }
+    }
+    std::vector<const std::vector<std::size_t>*> group_list;
+    std::vector<const std::string*> group_keys;
+    std::vector<bool> exact;  // by group: decided by the walk
+    for (const auto& [key, members] : groups) {
+        group_list.push_back(&members);
+        group_keys.push_back(&key);
+        exact.push_back(exact_keys.count(key) != 0);
+    }
+    std::map<std::string, std::string> file_digest;
+    for (const auto& [path, text] : files) {
+        file_digest[path] = base::Sha256Hex(text.text);
+    }
     // A group the cache knows needs neither the preprocessor nor the parser.
     std::vector<std::string> group_cache_key(group_list.size());
     std::vector<std::optional<CachedStage>> group_cached(group_list.size());
     if (cache != nullptr) {
-        std::map<std::string, std::string> file_digest;
-        for (const auto& [path, text] : files) {
-            file_digest[path] = base::Sha256Hex(text.text);
-        }
         base::Sha256 run_digest;
         run_digest.Update(CacheKeyPrefix()).Update("bundle\n");
         for (std::size_t g = 0; g < group_list.size(); ++g) {
@@ -754,7 +778,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         }
     }
     auto hash_group = [&](std::size_t g) {
-        return !blocked(jobs[group_list[g]->front()]) && !group_cached[g];
+        return !blocked(jobs[group_list[g]->front()]) && !group_cached[g] && !exact[g];
     };
     for (std::size_t g = 0; g < group_list.size() && !warm; ++g) {
         if (hash_group(g)) {
@@ -778,6 +802,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         } else if (group_cached[g]) {
             first.hash = group_cached[g]->hash;
             first.digest = group_cached[g]->digest;
+            first.key = first.file + "|" + first.hash;
+        } else if (exact[g]) {
+            // What decides the group's preprocessed text exactly stands for the text.
+            first.digest = base::Sha256Hex(*group_keys[g] + "\n" + file_digest[first.file]);
+            first.hash = first.digest.substr(0, 16);
             first.key = first.file + "|" + first.hash;
         } else if (hashed[g].failure == WorkerFailure::kNone) {
             const std::size_t space = hashed[g].payload.find(' ');

@@ -468,7 +468,7 @@ TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
     EXPECT_EQ(r.exit_code, 1) << r.err;
     EXPECT_EQ(r.err,
               "s.fsh: error: internal compiler error: glslang took longer than 1 s while "
-              "preprocessing this stage; the shader may be valid or not, and the run went "
+              "parsing this stage; the shader may be valid or not, and the run went "
               "on without it [p:HANG]\n");
     // The variant without HANG was validated, and found valid.
     EXPECT_NE(r.out.find("2 variants"), std::string::npos) << r.out;

@@ -549,10 +549,14 @@ constexpr const char* kCrashingFragment =
         "#endif\n"
         "void main() { gl_FragColor = vec4(1.0); }\n";
 
-TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariantsAreValidated) {
+// Validates kCrashingFragment, with `comment` after its #version line, with and without CRASH:
+// the variant without it valid, the other an internal compiler error of `step`.
+void ExpectCrashingVariantAlone(const std::string& comment, const std::string& step) {
     TempDir dir;
     dir.Write("a.vsh", kVertex);
-    dir.Write("a.fsh", kCrashingFragment);
+    std::string fragment = kCrashingFragment;
+    fragment.insert(fragment.find('\n') + 1, comment);
+    dir.Write("a.fsh", fragment);
     const ValidationReport report = ValidateAll(ConfigIn(dir, "a.vsh", "a.fsh", {"CRASH"}), 2);
     ASSERT_EQ(report.verdicts.size(), 2U);
     EXPECT_TRUE(report.verdicts[0].valid) << FormattedEach(report.verdicts[0].diagnostics)[0];
@@ -563,10 +567,22 @@ TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariants
     // exits with a status instead.
     EXPECT_EQ(message.rfind("a.fsh: error: internal compiler error: glslang crashed (", 0), 0U)
             << message;
-    EXPECT_NE(message.find("while preprocessing this stage; the shader may be valid or not, and "
-                           "the run went on without it [p:CRASH]"),
+    EXPECT_NE(message.find("while " + step +
+                           " this stage; the shader may be valid or not, and the run went on "
+                           "without it [p:CRASH]"),
               std::string::npos)
             << message;
+}
+
+TEST(GlslValidatorTest, StageThatCrashesGlslangIsAnInternalErrorAndOtherVariantsAreValidated) {
+    // The define walk groups this file's variants, so the crash comes in the stage's parse.
+    ExpectCrashingVariantAlone("", "parsing");
+}
+
+TEST(GlslValidatorTest, StageThatCrashesGlslangsPreprocessorWhileGroupedIsAnInternalError) {
+    // A `\` (even in a comment) keeps the define walk out of the file: its variants are grouped
+    // by their preprocessed text, and the crash comes in that preprocessing.
+    ExpectCrashingVariantAlone("// C:\\shaders\\a.fsh\n", "preprocessing");
 }
 
 // `#define M0 M1 M1` ... 40 levels deep: 2^40 tokens once expanded, used on line 43, column 3.

@@ -36,7 +36,10 @@ struct StageProgram {
     Stage stage = Stage::kVertex;
     GlslTarget target = GlslTarget::kEs100;
     std::string file;  // as the user named it
-    std::string hash;  // 16 hex digits of a 64-bit FNV-1a over the preprocessed text
+    /// 16 hex digits: of a SHA-256 over what decides the preprocessed text (DefineRelevance), or
+    /// of a 64-bit FNV-1a over the text itself where that walk does not follow the file (over the
+    /// file's own text in plain-file validation).
+    std::string hash;
     std::vector<std::string> defines;   // the defines of the first variant that produced it
     std::vector<std::string> variants;  // ids of every variant that uses it
     bool valid = false;

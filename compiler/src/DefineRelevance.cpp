@@ -1,0 +1,482 @@
+#include "DefineRelevance.h"
+
+#include "tidepool/SourceAssembler.h"
+
+#include <algorithm>
+#include <cctype>
+#include <string_view>
+
+#include "KeywordRenaming.h"
+
+namespace tidepool {
+namespace {
+
+bool IsIdentifierStart(char c) {
+    return std::isalpha(static_cast<unsigned char>(c)) != 0 || c == '_';
+}
+
+bool IsIdentifierPart(char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_';
+}
+
+bool IsIdentifier(std::string_view word) {
+    return !word.empty() && IsIdentifierStart(word[0]) &&
+           std::all_of(word.begin(), word.end(), IsIdentifierPart);
+}
+
+// Names glslang may define itself: GLSL ES reserves every macro name that starts with "GL_" or
+// holds "__" (1.00 and 3.00 §3.4), and glslang's own (GL_ES, GL_FRAGMENT_PRECISION_HIGH, the
+// extensions' names, __VERSION__, __LINE__, __FILE__) are all of that form. The walk does not
+// know which of them are defined for a stage, so a condition on one is undecided.
+bool IsReserved(std::string_view name) {
+    return name.substr(0, 3) == "GL_" || name.find("__") != std::string_view::npos;
+}
+
+// One line of the text with its comments gone, and whether a block comment that began on an
+// earlier line ends on it (a `#` after it may or may not start a directive for glslang).
+struct Line {
+    std::string text;
+    bool after_open_comment = false;
+};
+
+// The text's lines without comments: glslang reads a comment as one space, and a block comment's
+// line breaks still end lines.
+std::vector<Line> LinesWithoutComments(const std::string& text) {
+    std::vector<Line> lines(1);
+    std::size_t i = 0;
+    while (i < text.size()) {
+        const char c = text[i];
+        if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
+            while (i < text.size() && text[i] != '\n') {
+                ++i;
+            }
+        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
+            lines.back().text += ' ';
+            i += 2;
+            while (i < text.size() &&
+                   !(text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/')) {
+                if (text[i] == '\n') {
+                    lines.push_back(Line{{}, true});
+                }
+                ++i;
+            }
+            i = std::min(i + 2, text.size());
+        } else if (c == '\n') {
+            lines.emplace_back();
+            ++i;
+        } else {
+            lines.back().text += c;
+            ++i;
+        }
+    }
+    return lines;
+}
+
+// The preprocessing tokens of a line: identifiers, numbers (a digit and every letter, digit, `.`
+// and `_` after it, so that 1.0e5 holds no identifier) and punctuation, the two-character
+// operators of an #if expression kept whole.
+std::vector<std::string> Tokens(std::string_view line) {
+    std::vector<std::string> tokens;
+    std::size_t i = 0;
+    while (i < line.size()) {
+        const char c = line[i];
+        const std::size_t start = i;
+        if (std::isspace(static_cast<unsigned char>(c)) != 0) {
+            ++i;
+            continue;
+        }
+        if (IsIdentifierStart(c)) {
+            while (i < line.size() && IsIdentifierPart(line[i])) {
+                ++i;
+            }
+        } else if (std::isdigit(static_cast<unsigned char>(c)) != 0 ||
+                   (c == '.' && i + 1 < line.size() &&
+                    std::isdigit(static_cast<unsigned char>(line[i + 1])) != 0)) {
+            while (i < line.size() && (IsIdentifierPart(line[i]) || line[i] == '.')) {
+                ++i;
+            }
+        } else {
+            static constexpr std::string_view kPairs[] = {
+                    "&&", "||", "==", "!=", "<=", ">=", "<<", ">>", "##"};
+            const std::string_view two = line.substr(i, 2);
+            i += std::find(std::begin(kPairs), std::end(kPairs), two) != std::end(kPairs)
+                         ? std::size_t{2}
+                         : std::size_t{1};
+        }
+        tokens.emplace_back(line.substr(start, i - start));
+    }
+    return tokens;
+}
+
+bool HoldsName(std::string_view text) {
+    const std::vector<std::string> tokens = Tokens(text);
+    return std::any_of(tokens.begin(), tokens.end(),
+                       [](const std::string& token) { return IsIdentifierStart(token[0]); });
+}
+
+}  // namespace
+
+int DefineRelevance::Id(const std::string& name) {
+    const auto [it, inserted] = ids_.emplace(name, static_cast<int>(names_.size()));
+    if (inserted) {
+        names_.push_back(name);
+    }
+    return it->second;
+}
+
+DefineRelevance::DefineRelevance(const std::string& text) {
+    // A `\` line continuation can join a directive to the next line (GLSL ES 3.00 §3.2); the walk
+    // reads line by line, so it does not follow such a text at all.
+    if (text.find('\\') != std::string::npos) {
+        followed_ = false;
+        return;
+    }
+    std::vector<std::size_t> open;  // the kIf, kIfdef or kIfndef items not yet ended
+    std::vector<bool> had_else;     // for each of them, whether its #else came
+    for (const Line& line : LinesWithoutComments(text)) {
+        std::vector<std::string> tokens = Tokens(line.text);
+        if (tokens.empty()) {
+            continue;
+        }
+        Item item;
+        // A directive's own word (`define`, `ifdef`) is no name it reads.
+        const std::size_t first_name = tokens[0] == "#" ? 2 : 0;
+        for (std::size_t t = first_name; t < tokens.size(); ++t) {
+            if (IsIdentifierStart(tokens[t][0])) {
+                item.names.push_back(Id(tokens[t]));
+            }
+        }
+        if (tokens[0] != "#") {
+            if (!items_.empty() && items_.back().kind == Kind::kCode) {
+                std::vector<int>& names = items_.back().names;
+                names.insert(names.end(), item.names.begin(), item.names.end());
+            } else {
+                items_.push_back(std::move(item));
+            }
+            continue;
+        }
+        if (line.after_open_comment) {
+            followed_ = false;  // whether glslang reads this `#` as a directive is not certain
+            return;
+        }
+        const std::string directive = tokens.size() > 1 ? tokens[1] : "";
+        const std::vector<std::string> rest(
+                tokens.begin() +
+                        std::min<std::ptrdiff_t>(2, static_cast<std::ptrdiff_t>(tokens.size())),
+                tokens.end());
+        const bool one_name = rest.size() == 1 && IsIdentifier(rest[0]);
+        if (directive == "if" || directive == "ifdef" || directive == "ifndef") {
+            item.kind = directive == "if" ? Kind::kIf
+                                          : (directive == "ifdef" ? Kind::kIfdef : Kind::kIfndef);
+            item.condition = rest;
+            item.name = item.kind != Kind::kIf && one_name ? Id(rest[0]) : -1;
+            open.push_back(items_.size());
+            had_else.push_back(false);
+        } else if (directive == "elif" || directive == "else" || directive == "endif") {
+            if (open.empty() || (directive != "endif" && had_else.back())) {
+                followed_ = false;  // glslang refuses it; the walk does not guess past the error
+                return;
+            }
+            if (directive == "elif") {
+                item.kind = Kind::kElif;
+                item.condition = rest;
+            } else if (directive == "else") {
+                item.kind = Kind::kElse;
+                had_else.back() = true;
+            } else {
+                item.kind = Kind::kEndif;
+                items_[open.back()].end = items_.size();
+                open.pop_back();
+                had_else.pop_back();
+            }
+        } else if (directive == "define" || directive == "undef") {
+            item.kind = directive == "define" ? Kind::kDefine : Kind::kUndef;
+            item.name = !rest.empty() && IsIdentifier(rest[0]) ? Id(rest[0]) : -1;
+        } else {
+            item.kind = Kind::kOther;  // #version, #extension, #pragma, #line, #error, `#` alone
+        }
+        items_.push_back(std::move(item));
+    }
+    if (!open.empty()) {
+        followed_ = false;
+    }
+    for (const std::string& name : names_) {
+        undefined_.push_back(IsReserved(name) ? Truth::kUnknown : Truth::kFalse);
+    }
+    expanded_.assign(names_.size(), false);
+    for (const Item& item : items_) {
+        const bool expands =
+                item.kind == Kind::kCode || item.kind == Kind::kOther || item.kind == Kind::kDefine;
+        // A #define's first name is the one it defines; the rest are its body's.
+        const std::size_t first = item.kind == Kind::kDefine && item.name >= 0 ? 1 : 0;
+        for (std::size_t k = first; expands && k < item.names.size(); ++k) {
+            expanded_[static_cast<std::size_t>(item.names[k])] = true;
+        }
+    }
+}
+
+// A recursive descent over `defined`, `!`, `&&`, `||`, parentheses and decimal integers, in three
+// values; anything else (a macro, a comparison) is undecided, and so is the whole expression.
+class DefineRelevance::Evaluation {
+public:
+    Evaluation(const DefineRelevance& file, const std::vector<std::string>& tokens,
+               const std::vector<Truth>& defined)
+        : file_(file), tokens_(tokens), defined_(defined) {}
+
+    Truth Run() {
+        const Truth truth = tokens_.empty() ? Truth::kUnknown : Disjunction();
+        return malformed_ || at_ != tokens_.size() ? Truth::kUnknown : truth;
+    }
+
+private:
+    bool Peek(std::string_view token) const {
+        return at_ < tokens_.size() && tokens_[at_] == token;
+    }
+    void Expect(std::string_view token) {
+        malformed_ = malformed_ || !Peek(token);
+        ++at_;
+    }
+    // `operand (op operand)*`, where `absorbing` (true for ||, false for &&) on either side
+    // decides the whole; otherwise two equal sides do, and anything else is undecided.
+    Truth Chain(std::string_view op, Truth (Evaluation::*operand)(), Truth absorbing) {
+        Truth truth = (this->*operand)();
+        while (!malformed_ && Peek(op)) {
+            ++at_;
+            const Truth right = (this->*operand)();
+            truth = truth == absorbing || right == absorbing
+                            ? absorbing
+                            : (truth == right ? truth : Truth::kUnknown);
+        }
+        return truth;
+    }
+    Truth Disjunction() { return Chain("||", &Evaluation::Conjunction, Truth::kTrue); }
+    Truth Conjunction() { return Chain("&&", &Evaluation::Unary, Truth::kFalse); }
+    Truth Unary() {
+        // Hostile nesting ("!!!!…", "((((…") is undecided rather than a deep recursion.
+        if (++depth_ > kMaxDepth) {
+            malformed_ = true;
+            return Truth::kUnknown;
+        }
+        const Truth truth = Primary();
+        --depth_;
+        return truth;
+    }
+    Truth Primary() {
+        if (Peek("!")) {
+            ++at_;
+            const Truth inner = Unary();
+            return inner == Truth::kUnknown
+                           ? inner
+                           : (inner == Truth::kTrue ? Truth::kFalse : Truth::kTrue);
+        }
+        if (Peek("(")) {
+            ++at_;
+            const Truth inner = Disjunction();
+            Expect(")");
+            return inner;
+        }
+        if (Peek("defined")) {
+            ++at_;
+            const bool parenthesised = Peek("(");
+            at_ += parenthesised ? 1 : 0;
+            if (at_ >= tokens_.size() || !IsIdentifier(tokens_[at_])) {
+                malformed_ = true;
+                return Truth::kUnknown;
+            }
+            const auto it = file_.ids_.find(tokens_[at_++]);
+            const Truth truth = it != file_.ids_.end()
+                                        ? defined_[static_cast<std::size_t>(it->second)]
+                                        : Truth::kUnknown;
+            if (parenthesised) {
+                Expect(")");
+            }
+            return truth;
+        }
+        if (at_ < tokens_.size() &&
+            std::all_of(tokens_[at_].begin(), tokens_[at_].end(),
+                        [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; })) {
+            const bool zero = tokens_[at_].find_first_not_of('0') == std::string::npos;
+            ++at_;
+            return zero ? Truth::kFalse : Truth::kTrue;
+        }
+        malformed_ = true;
+        return Truth::kUnknown;
+    }
+
+    const DefineRelevance& file_;
+    const std::vector<std::string>& tokens_;
+    const std::vector<Truth>& defined_;
+    std::size_t at_ = 0;
+    bool malformed_ = false;
+    static constexpr int kMaxDepth = 200;
+    int depth_ = 0;
+};
+
+std::optional<std::string> DefineRelevance::Relevant(
+        const std::vector<std::string>& defines) const {
+    if (!followed_) {
+        return std::nullopt;
+    }
+    // The defines' names and values, as DefinePreamble gives them to glslang.
+    std::vector<std::string> define_names;
+    std::vector<std::string> define_values;
+    for (const std::string& define : defines) {
+        const std::size_t equals = define.find('=');
+        define_names.push_back(define.substr(0, equals));
+        define_values.push_back(equals == std::string::npos ? "1" : define.substr(equals + 1));
+        const std::string& name = define_names.back();
+        // A name in a value is expanded wherever the define is: which of the file's own
+        // definitions of it are in force would then matter on lines the walk does not follow.
+        if (!IsIdentifier(name) || IsReserved(name) || name == "defined" ||
+            std::count(define_names.begin(), define_names.end(), name) > 1 ||
+            HoldsName(define_values.back())) {
+            return std::nullopt;
+        }
+    }
+    // The renaming is planned over the preamble too; a define it touches could change the plan.
+    const RenamingScan renaming = ScanForRenaming(DefinePreamble(defines));
+    if (!renaming.es100_tokens.empty() || renaming.spells_length_stand_in ||
+        renaming.declares_length_member) {
+        return std::nullopt;
+    }
+
+    // Whether each name of the file is defined at the current line, as far as the walk knows.
+    std::vector<Truth> defined = undefined_;
+    for (const std::string& name : define_names) {
+        if (const auto it = ids_.find(name); it != ids_.end()) {
+            defined[static_cast<std::size_t>(it->second)] = Truth::kTrue;
+        }
+    }
+    // The items whose text reaches glslang's output ('1': code, or a directive that defines,
+    // undefines or tells glslang something), those of constructs whose branch the walk could not
+    // decide ('u'), and the names whose definition the preprocessor may read on those lines. The
+    // preprocessed text is a function of these lines and of those definitions alone: the lines
+    // of #if and its kin decide which lines are read, and the path records what they decided.
+    std::string path(items_.size(), '0');
+    std::vector<bool> consulted(names_.size(), false);
+    auto read = [&](std::size_t k, char mark) {
+        path[k] = mark;
+        for (int id : items_[k].names) {
+            consulted[static_cast<std::size_t>(id)] = true;
+        }
+    };
+    auto defines_or_undefines = [](const Item& item) {
+        return (item.kind == Kind::kDefine || item.kind == Kind::kUndef) && item.name >= 0;
+    };
+    // A construct whose branch the walk cannot decide: every line of it may be read, and a name it
+    // defines or undefines is undecided after it.
+    auto read_all = [&](std::size_t first, std::size_t last) {
+        for (std::size_t k = first; k <= last; ++k) {
+            read(k, 'u');
+            if (defines_or_undefines(items_[k])) {
+                defined[static_cast<std::size_t>(items_[k].name)] = Truth::kUnknown;
+            }
+        }
+    };
+    struct Frame {
+        std::size_t start;   // the construct's kIf, kIfdef or kIfndef
+        bool parent_active;  // whether the construct is read at all
+        bool active;         // whether the current branch is
+        bool taken;          // whether a branch was taken already
+    };
+    std::vector<Frame> frames;
+    auto active = [&] { return frames.empty() || frames.back().active; };
+    for (std::size_t i = 0; i < items_.size(); ++i) {
+        const Item& item = items_[i];
+        switch (item.kind) {
+            case Kind::kIf:
+            case Kind::kIfdef:
+            case Kind::kIfndef: {
+                if (!active()) {
+                    // Skipped text: glslang follows its nesting and evaluates nothing in it.
+                    frames.push_back(Frame{i, false, false, true});
+                    break;
+                }
+                Truth truth = Truth::kUnknown;
+                if (item.kind == Kind::kIf) {
+                    truth = Evaluation(*this, item.condition, defined).Run();
+                } else if (item.name >= 0) {
+                    truth = defined[static_cast<std::size_t>(item.name)];
+                    if (item.kind == Kind::kIfndef && truth != Truth::kUnknown) {
+                        truth = truth == Truth::kTrue ? Truth::kFalse : Truth::kTrue;
+                    }
+                }
+                if (truth == Truth::kUnknown) {
+                    read_all(i, item.end);
+                    i = item.end;
+                    break;
+                }
+                frames.push_back(Frame{i, true, truth == Truth::kTrue, truth == Truth::kTrue});
+                break;
+            }
+            case Kind::kElif: {
+                Frame& frame = frames.back();
+                if (!frame.parent_active) {
+                    break;
+                }
+                if (frame.taken) {
+                    frame.active = false;  // glslang does not evaluate it
+                    break;
+                }
+                const Truth truth = Evaluation(*this, item.condition, defined).Run();
+                if (truth == Truth::kUnknown) {
+                    const std::size_t start = frame.start;
+                    frames.pop_back();
+                    read_all(start, items_[start].end);
+                    i = items_[start].end;
+                    break;
+                }
+                frame.active = frame.taken = truth == Truth::kTrue;
+                break;
+            }
+            case Kind::kElse:
+                frames.back().active = frames.back().parent_active && !frames.back().taken;
+                frames.back().taken = true;
+                break;
+            case Kind::kEndif:
+                frames.pop_back();
+                break;
+            case Kind::kDefine:
+            case Kind::kUndef:
+                if (active()) {
+                    // The line itself gives no output. Its effect on which lines are read shows
+                    // on the path later; its effect on what a line expands to only where the
+                    // name is expanded at all. #undef reads no definition; #define reads the
+                    // user's (a redefinition is an error) and its body's, which expand later.
+                    const bool expanded =
+                            item.name >= 0 && expanded_[static_cast<std::size_t>(item.name)];
+                    if (item.kind == Kind::kDefine) {
+                        read(i, expanded ? '1' : '0');
+                    } else if (expanded || item.name < 0) {
+                        read(i, '1');
+                    }
+                    if (item.name >= 0) {
+                        // A reserved name is refused, so glslang's own definition stands.
+                        defined[static_cast<std::size_t>(item.name)] =
+                                IsReserved(names_[static_cast<std::size_t>(item.name)])
+                                        ? Truth::kUnknown
+                                        : (item.kind == Kind::kDefine ? Truth::kTrue
+                                                                      : Truth::kFalse);
+                    }
+                }
+                break;
+            case Kind::kCode:
+            case Kind::kOther:
+                if (active()) {
+                    read(i, '1');
+                }
+                break;
+        }
+    }
+
+    std::string key = path + "|";
+    for (std::size_t d = 0; d < defines.size(); ++d) {
+        const auto it = ids_.find(define_names[d]);
+        if (it != ids_.end() && consulted[static_cast<std::size_t>(it->second)]) {
+            key += defines[d] + ",";
+        }
+    }
+    return key;
+}
+
+}  // namespace tidepool

@@ -1,0 +1,55 @@
+// Which of a stage's defines can change glslang's preprocessed text of a file, worked out from the
+// file's conditional directives without running the preprocessor. The validator groups a
+// configuration's stage slots by it, so that each distinct stage program is parsed once and no
+// slot has to be preprocessed first to find its duplicates. Private to the compiler library.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+namespace tidepool {
+
+/// The conditional structure of one shader file: its directives and the identifiers of its code,
+/// read once, walked for each define list.
+class DefineRelevance {
+public:
+    /// Reads `text` (a shader file as written). Never fails: a text the walk does not follow (a
+    /// `\` line continuation, an unbalanced or misordered #if, a directive after a comment that
+    /// spans lines) makes Relevant answer nullopt for every define list.
+    explicit DefineRelevance(const std::string& text);
+
+    /// The entries of `defines` (NAME or NAME=VALUE, as DefinePreamble writes them) that can
+    /// change glslang's preprocessed text of the file, in their order, each followed by ",". Two
+    /// define lists with the same answer give glslang the same preprocessed text, so the same
+    /// parse. nullopt when the walk cannot tell: the text is beyond it, or a define's name is no
+    /// plain identifier, is one glslang reserves (GL_..., or containing "__") or appears twice, a
+    /// define's value holds a name, or a define holds a word the ES 1.00 keyword renaming renames.
+    std::optional<std::string> Relevant(const std::vector<std::string>& defines) const;
+
+private:
+    enum class Kind { kCode, kIf, kIfdef, kIfndef, kElif, kElse, kEndif, kDefine, kUndef, kOther };
+    struct Item {
+        Kind kind = Kind::kCode;
+        std::vector<std::string> condition;  // kIf, kElif: the expression's tokens
+        int name = -1;           // kIfdef, kIfndef, kDefine, kUndef: the one name; -1 when not one
+        std::vector<int> names;  // every identifier of the line (of the lines, for kCode)
+        std::size_t end = 0;     // kIf, kIfdef, kIfndef: the index of the matching kEndif
+    };
+    enum class Truth { kFalse, kTrue, kUnknown };
+
+    class Evaluation;  // of one #if or #elif expression
+
+    int Id(const std::string& name);
+
+    bool followed_ = true;  // false: the walk cannot follow this text
+    std::vector<Item> items_;
+    std::unordered_map<std::string, int> ids_;
+    std::vector<std::string> names_;  // by id
+    std::vector<Truth> undefined_;    // by id: each name's state when no define is given
+    std::vector<bool> expanded_;      // by id: whether a line may expand the name as a macro
+};
+
+}  // namespace tidepool

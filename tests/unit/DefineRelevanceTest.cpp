@@ -1,0 +1,260 @@
+#include "tidepool/TextFile.h"
+#include "tidepool/VariantConfig.h"
+#include "tidepool/VariantExpander.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "DefineRelevance.h"
+#include "GlslangSession.h"
+
+namespace tidepool {
+namespace {
+
+std::optional<std::string> RelevantOf(const std::string& text,
+                                      const std::vector<std::string>& defines) {
+    return DefineRelevance(text).Relevant(defines);
+}
+
+// glslang's preprocessed text of a fragment stage (and whether it preprocessed), the thing two
+// define lists with the same answer must agree on.
+std::pair<bool, std::string> Preprocessed(const std::string& text,
+                                          const std::vector<std::string>& defines) {
+    const PreprocessResult result =
+            PreprocessStage({"t.fsh", text, Stage::kFragment, GlslTarget::kEs100, defines});
+    return {result.ok, result.text};
+}
+
+TEST(DefineRelevanceTest, ADefineTestedOnlyInsideAnInactiveBlockIsIrrelevant) {
+    const std::string text =
+            "#version 100\n#ifdef A\n#ifdef B\nfloat b;\n#endif\n#endif\nvoid main() {}\n";
+    EXPECT_EQ(RelevantOf(text, {"B"}), RelevantOf(text, {}));
+    EXPECT_NE(RelevantOf(text, {"A", "B"}), RelevantOf(text, {"A"}));
+}
+
+TEST(DefineRelevanceTest, AnElifAfterATakenBranchIsNotEvaluated) {
+    const std::string text =
+            "#version 100\n#if defined(A)\nfloat a;\n#elif defined(B)\nfloat b;\n#else\n"
+            "float c;\n#endif\n";
+    EXPECT_EQ(RelevantOf(text, {"A", "B"}), RelevantOf(text, {"A"}));
+    EXPECT_NE(RelevantOf(text, {"B"}), RelevantOf(text, {}));
+}
+
+TEST(DefineRelevanceTest, AnUndefOfANameNoLineExpandsLeavesOnlyItsEffectOnConditions) {
+    // The water shaders' normalisation: a define that needs another is undefined without it.
+    const std::string text =
+            "#version 100\n#if defined(FRESNEL) && !defined(REFRACTION)\n#undef FRESNEL\n#endif\n"
+            "#ifdef FRESNEL\nfloat fresnel;\n#endif\n";
+    EXPECT_EQ(RelevantOf(text, {"FRESNEL"}), RelevantOf(text, {}));
+    EXPECT_EQ(RelevantOf(text, {"REFRACTION"}), RelevantOf(text, {}));
+    EXPECT_NE(RelevantOf(text, {"FRESNEL", "REFRACTION"}), RelevantOf(text, {"REFRACTION"}));
+}
+
+TEST(DefineRelevanceTest, AValueALineExpandsIsPartOfTheAnswer) {
+    const std::string text = "#version 100\nconst float scale = SCALE;\n";
+    EXPECT_NE(RelevantOf(text, {"SCALE=2.0"}), RelevantOf(text, {"SCALE=3.0"}));
+    EXPECT_EQ(RelevantOf(text, {"SCALE=2.0", "UNUSED"}), RelevantOf(text, {"SCALE=2.0"}));
+}
+
+TEST(DefineRelevanceTest, AConditionTheWalkCannotDecideMakesTheWholeConstructRelevant) {
+    // glslang defines GL_ES itself, and `A > 1` compares a value: the walk decides neither, so
+    // every name in the construct counts, B's in the block as much as A's in the condition.
+    const std::string block = "\n#ifdef B\nfloat b;\n#endif\n#endif\n";
+    const std::string on_glslang = "#version 100\n#ifdef GL_ES" + block;
+    EXPECT_NE(RelevantOf(on_glslang, {"B"}), RelevantOf(on_glslang, {}));
+    const std::string on_a_value = "#version 100\n#if A > 1" + block;
+    EXPECT_NE(RelevantOf(on_a_value, {"B", "A=0"}), RelevantOf(on_a_value, {"A=0"}));
+    EXPECT_NE(RelevantOf(on_a_value, {"A=2"}), RelevantOf(on_a_value, {"A=0"}));
+    // Nesting deeper than the walk follows is undecided too, not a deep recursion.
+    const std::string deep = "#version 100\n#if " + std::string(100000, '(') + "defined(A)" +
+                             std::string(100000, ')') + "\n#ifdef B\nfloat b;\n#endif\n#endif\n";
+    EXPECT_NE(RelevantOf(deep, {"B"}), RelevantOf(deep, {}));
+    const std::string shallow = "#version 100\n#if ((defined(A)))" + block;
+    EXPECT_EQ(RelevantOf(shallow, {"B"}), RelevantOf(shallow, {}));
+}
+
+TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
+    const std::string plain = "#version 100\n#ifdef A\nfloat a;\n#endif\n";
+    const struct {
+        std::string text;
+        std::vector<std::string> defines;
+        const char* why;
+    } cases[] = {
+            {"#version 300 es\n#ifdef A\\\nB\nfloat a;\n#endif\n", {}, "a line continuation"},
+            {"#version 100\n#ifdef A\nfloat a;\n", {}, "an #if without #endif"},
+            {"#version 100\n#endif\n", {}, "an #endif without #if"},
+            {"#version 100\n#ifdef A\n#else\n#else\n#endif\n", {}, "a second #else"},
+            {"#version 100\n/* a\n */ #ifdef A\nfloat a;\n#endif\n",
+             {},
+             "a directive after a comment that spans lines"},
+            {plain, {"GL_A"}, "a name glslang reserves"},
+            {plain, {"A__B"}, "a name with a double underscore"},
+            {plain, {"defined"}, "the word defined"},
+            {plain, {"A", "A=2"}, "a name given twice"},
+            {plain, {"A=B"}, "a value holding a name"},
+            {plain, {"filter"}, "a word the ES 1.00 renaming renames"},
+    };
+    for (const auto& c : cases) {
+        EXPECT_EQ(RelevantOf(c.text, c.defines), std::nullopt) << c.why;
+    }
+    EXPECT_NE(RelevantOf(plain, {"A=1.0e5"}), std::nullopt);  // a number is no name
+}
+
+// A random shader text of nested conditionals on A to E (E only the file defines), with
+// definitions, undefinitions and lines that expand the names, some conditions the walk cannot
+// decide, and some the preprocessor refuses.
+class RandomShader {
+public:
+    explicit RandomShader(unsigned seed) : random_(seed) {}
+
+    std::string Text() {
+        text_ = "#version 100\nprecision mediump float;\n";
+        lines_ = 0;
+        Block(0);
+        return text_;
+    }
+
+private:
+    std::string Name() { return std::string(1, static_cast<char>('A' + Pick(5))); }
+    std::size_t Pick(std::size_t n) {
+        return std::uniform_int_distribution<std::size_t>(0, n - 1)(random_);
+    }
+
+    void Block(int depth) {
+        for (std::size_t n = 1 + Pick(4); n > 0; --n) {
+            switch (Pick(depth < 3 ? 4 : 2)) {
+                case 0:
+                    text_ += "float v" + std::to_string(lines_++) + " = " +
+                             (Pick(3) == 0 ? std::string("1.0") : Name()) + ";\n";
+                    break;
+                case 1: {
+                    const std::string name = Name();
+                    const std::size_t kind = Pick(3);
+                    text_ += kind == 0 ? "#define " + name + "\n"
+                                       : (kind == 1 ? "#define " + name + " 2.0\n"
+                                                    : "#undef " + name + "\n");
+                    break;
+                }
+                default:
+                    Conditional(depth);
+                    break;
+            }
+        }
+    }
+
+    void Conditional(int depth) {
+        const std::string x = Name();
+        const std::string y = Name();
+        const std::string conditions[] = {
+                "#ifdef " + x,
+                "#ifndef " + x,
+                "#if defined(" + x + ") && !defined(" + y + ")",
+                "#if defined " + x + " || (defined(" + y + ") && 1)",
+                "#if 0",
+                "#ifdef GL_ES",
+                "#if " + x + " > 1",
+        };
+        text_ += conditions[Pick(std::size(conditions))] + "\n";
+        Block(depth + 1);
+        if (Pick(3) == 0) {
+            text_ += "#elif defined(" + Name() + ")\n";
+            Block(depth + 1);
+        }
+        if (Pick(2) == 0) {
+            text_ += "#else\n";
+            Block(depth + 1);
+        }
+        text_ += "#endif\n";
+    }
+
+    std::mt19937 random_;
+    std::string text_;
+    int lines_ = 0;
+};
+
+TEST(DefineRelevanceTest, DefineListsWithOneAnswerGetOnePreprocessedTextFromGlslang) {
+    // Every subset of four user defines, on random texts: wherever two lists get the same
+    // answer, glslang's preprocessor must agree on them too, errors included.
+    const std::vector<std::string> pool = {"A", "B", "C=2.0", "D"};
+    int shared = 0;
+    for (unsigned seed = 1; seed <= 150; ++seed) {
+        const std::string text = RandomShader(seed).Text();
+        const DefineRelevance relevance(text);
+        std::map<std::string, std::pair<std::vector<std::string>, std::pair<bool, std::string>>>
+                first_by_answer;
+        for (unsigned mask = 0; mask < 16; ++mask) {
+            std::vector<std::string> defines;
+            for (std::size_t k = 0; k < pool.size(); ++k) {
+                if ((mask & (1U << k)) != 0) {
+                    defines.push_back(pool[k]);
+                }
+            }
+            const std::optional<std::string> answer = relevance.Relevant(defines);
+            ASSERT_TRUE(answer.has_value()) << text;
+            const auto preprocessed = Preprocessed(text, defines);
+            const auto [it, inserted] =
+                    first_by_answer.emplace(*answer, std::make_pair(defines, preprocessed));
+            if (!inserted) {
+                ++shared;
+                EXPECT_EQ(it->second.second, preprocessed)
+                        << "seed " << seed << ", defines " << ::testing::PrintToString(defines)
+                        << " and " << ::testing::PrintToString(it->second.first) << ":\n"
+                        << text;
+            }
+        }
+    }
+    EXPECT_GT(shared, 500);  // the walk does find duplicates, or the check above checks little
+}
+
+TEST(DefineRelevanceTest, TheDefaultMatrixGroupsExactlyAsGlslangsPreprocessedTexts) {
+    // On the shaders tidepool ships, the walk finds every duplicate glslang's preprocessor would
+    // and no other: one answer per distinct preprocessed text.
+    const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
+    const ConfigResult loaded = LoadVariantConfig(root / "variants.yaml");
+    ASSERT_TRUE(loaded.config.has_value());
+    const VariantConfig& config = *loaded.config;
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
+    std::map<std::string, std::string> texts;
+    std::map<std::string, DefineRelevance> relevance;
+    std::map<std::pair<std::string, std::string>, std::set<std::string>> texts_by_answer;
+    std::map<std::pair<std::string, std::string>, std::set<std::string>> answers_by_text;
+    for (const Variant& variant : expansion.variants) {
+        const ProgramConfig* program = config.FindProgram(variant.program);
+        ASSERT_NE(program, nullptr);
+        for (const auto& [path, stage] :
+             {std::make_pair(program->vertex_path, Stage::kVertex),
+              std::make_pair(program->fragment_path, Stage::kFragment)}) {
+            if (texts.count(path) == 0) {
+                const TextFileRead read = ReadShaderFile(config.Resolve(path));
+                ASSERT_TRUE(read.ok) << path;
+                texts[path] = read.text;
+                relevance.emplace(path, DefineRelevance(read.text));
+            }
+            const std::optional<std::string> answer = relevance.at(path).Relevant(variant.defines);
+            ASSERT_TRUE(answer.has_value()) << path;
+            const PreprocessResult preprocessed = PreprocessStage(
+                    {path, texts[path], stage, GlslTarget::kEs100, variant.defines});
+            ASSERT_TRUE(preprocessed.ok) << path << " " << variant.Id();
+            texts_by_answer[{path, *answer}].insert(preprocessed.text);
+            answers_by_text[{path, preprocessed.text}].insert(*answer);
+        }
+    }
+    for (const auto& [answer, distinct] : texts_by_answer) {
+        EXPECT_EQ(distinct.size(), 1U) << answer.first;
+    }
+    for (const auto& [text, distinct] : answers_by_text) {
+        EXPECT_EQ(distinct.size(), 1U) << text.first;
+    }
+    EXPECT_EQ(texts_by_answer.size(), answers_by_text.size());
+}
+
+}  // namespace
+}  // namespace tidepool
