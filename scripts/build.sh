@@ -14,7 +14,8 @@ case "$flavour" in
   # here rather than in a build of their own saved the test command about 50 s of its 294 s for
   # these three phases (2026-11-26).
   sanitize) dir="$root/build/sanitize"; flags=(-DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Debug -DTIDEPOOL_SANITIZE=ON -DTIDEPOOL_FUZZ=ON -DTIDEPOOL_WERROR=ON -DTIDEPOOL_BUILD_BENCH=OFF)
-            targets=(--target tidepool_unit_tests VariantConfigFuzzer SceneDescriptionFuzzer) ;;
+            targets=(--target tidepool_unit_tests VariantConfigFuzzer SceneDescriptionFuzzer
+                     DefineRelevanceFuzzer) ;;
   *) echo "usage: $0 [release|sanitize]" >&2; exit 2 ;;
 esac
 cmake -S "$root" -B "$dir" -G Ninja "${flags[@]}" >/dev/null

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets (fuzz/) in the sanitizer build (scripts/build.sh sanitize, which
 # the test command has already run) and runs each for SECONDS (default 60), seeded with the
-# shipped variants.yaml and scenes/*.yaml. The corpus grows in build/fuzz/corpus/<target>/ across
+# shipped variants.yaml, scenes/*.yaml and shaders. The corpus grows in build/fuzz/corpus/<target>/ across
 # runs; crashes, hangs and leaks land in build/fuzz/artifacts/ and make the script fail. The
 # binaries are build/sanitize/fuzz/<target>. README.md ("Fuzzing") describes a longer
 # corpus-growing run.
@@ -34,11 +34,23 @@ run() {
   grep -E "^stat::number_of_executed_units|^stat::peak_rss_mb|^#[0-9]+ *DONE" "$dir/$target.log" || true
   return "$failed"
 }
-# The two targets run side by side: each fuzzer is one process on one core, so on the 2-core CI
-# machine this halves the phase's wall time without taking a second from either target.
+# The targets run side by side: each fuzzer is one process on one core, so on the 2-core CI
+# machine this keeps the phase's wall time at SECONDS (max_total_time is wall time), each target
+# getting two thirds of a core.
 pids=()
+# The define walk's inputs are a define list on the first line, then a shader: each shipped
+# shader under no defines and under a few of the water shader's.
+seeds="$dir/seeds/DefineRelevanceFuzzer"
+rm -rf "$seeds" && mkdir -p "$seeds"
+for shader in "$root"/shaders/*.vsh "$root"/shaders/*.fsh; do
+  name="$(basename "$shader")"
+  { echo; cat "$shader"; } > "$seeds/none-$name"
+  { echo "ENABLE_FOG ENABLE_FRESNEL ENABLE_REFRACTION REFLECTION_FOURIER"; cat "$shader"; } \
+    > "$seeds/some-$name"
+done
 run VariantConfigFuzzer "$root/variants.yaml" & pids+=($!)
 run SceneDescriptionFuzzer "$root"/scenes/*.yaml & pids+=($!)
+run DefineRelevanceFuzzer "$seeds"/* & pids+=($!)
 for pid in "${pids[@]}"; do
   wait "$pid" || status=1
 done

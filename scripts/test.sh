@@ -2,7 +2,8 @@
 # The test command (README.md): installs dependencies, checks the format (.clang-format), builds,
 # runs clang-tidy over the libraries (.clang-tidy, scripts/clang-tidy.sh), runs every test
 # (unit, gl, cli), then runs the unit tests again under AddressSanitizer +
-# UndefinedBehaviorSanitizer, then fuzzes each YAML loader for a minute (FUZZ_SECONDS).
+# UndefinedBehaviorSanitizer, then fuzzes the YAML loaders and the define walk for a minute
+# (FUZZ_SECONDS).
 # Each phase ends with its elapsed time, so a slow CI run shows where the time went.
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -35,6 +36,6 @@ phase "tests (release): unit, gl, cli" \
   ctest --test-dir "$root/build/release" --output-on-failure -j 2 --timeout 600
 phase "sanitizer build (ASan + UBSan)" "$root/scripts/build.sh" sanitize
 phase "unit tests under ASan + UBSan" "$root/scripts/sanitize-tests.sh"
-phase "fuzzing the YAML loaders (libFuzzer, ${FUZZ_SECONDS:-60} s each)" \
+phase "fuzzing the YAML loaders and the define walk (libFuzzer, ${FUZZ_SECONDS:-60} s)" \
   "$root/scripts/fuzz.sh" "${FUZZ_SECONDS:-60}"
 echo "== all phases passed in $SECONDS s, CPU $(children_cpu) s"
