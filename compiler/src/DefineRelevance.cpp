@@ -1,9 +1,11 @@
 #include "DefineRelevance.h"
 
 #include "tidepool/SourceAssembler.h"
+#include "tidepool/base/Sha256.h"
 
 #include <algorithm>
 #include <cctype>
+#include <sstream>
 #include <string_view>
 
 #include "KeywordRenaming.h"
@@ -39,15 +41,21 @@ struct Line {
     bool after_open_comment = false;
 };
 
-// The text's lines without comments: glslang reads a comment as one space, and a block comment's
-// line breaks still end lines.
+// The text's lines without comments, as glslang's preprocessor reads them: a comment is one
+// space and a block comment's line breaks still end lines; a `"` starts a string that runs to the
+// next `"` or the end of the line, in which `//` and `/*` start nothing (GLSL has no strings, but
+// glslang's preprocessor scans them, in skipped text too); `\r\n` and a lone `\r` end a line.
 std::vector<Line> LinesWithoutComments(const std::string& text) {
     std::vector<Line> lines(1);
+    auto line_end = [&](std::size_t i) {
+        return text[i] == '\n' ||
+               (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'));
+    };
     std::size_t i = 0;
     while (i < text.size()) {
         const char c = text[i];
         if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-            while (i < text.size() && text[i] != '\n') {
+            while (i < text.size() && !line_end(i)) {
                 ++i;
             }
         } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
@@ -55,13 +63,20 @@ std::vector<Line> LinesWithoutComments(const std::string& text) {
             i += 2;
             while (i < text.size() &&
                    !(text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/')) {
-                if (text[i] == '\n') {
+                if (line_end(i)) {
                     lines.push_back(Line{{}, true});
                 }
                 ++i;
             }
             i = std::min(i + 2, text.size());
-        } else if (c == '\n') {
+        } else if (c == '"') {
+            do {
+                lines.back().text += text[i++];
+            } while (i < text.size() && text[i] != '"' && !line_end(i));
+            if (i < text.size() && text[i] == '"') {
+                lines.back().text += text[i++];
+            }
+        } else if (line_end(i)) {
             lines.emplace_back();
             ++i;
         } else {
@@ -72,9 +87,10 @@ std::vector<Line> LinesWithoutComments(const std::string& text) {
     return lines;
 }
 
-// The preprocessing tokens of a line: identifiers, numbers (a digit and every letter, digit, `.`
-// and `_` after it, so that 1.0e5 holds no identifier) and punctuation, the two-character
-// operators of an #if expression kept whole.
+// The preprocessing tokens of a line: identifiers, numbers and punctuation, the two-character
+// operators of an #if expression kept whole. A number is its digits and dots only, so a letter
+// after it starts a name (`10A` is 10 and A to glslang); `1.0e5` then holds a name `e5` too,
+// which only makes the walk count one more name.
 std::vector<std::string> Tokens(std::string_view line) {
     std::vector<std::string> tokens;
     std::size_t i = 0;
@@ -92,7 +108,8 @@ std::vector<std::string> Tokens(std::string_view line) {
         } else if (std::isdigit(static_cast<unsigned char>(c)) != 0 ||
                    (c == '.' && i + 1 < line.size() &&
                     std::isdigit(static_cast<unsigned char>(line[i + 1])) != 0)) {
-            while (i < line.size() && (IsIdentifierPart(line[i]) || line[i] == '.')) {
+            while (i < line.size() &&
+                   (std::isdigit(static_cast<unsigned char>(line[i])) != 0 || line[i] == '.')) {
                 ++i;
             }
         } else {
@@ -116,6 +133,23 @@ bool HoldsName(std::string_view text) {
 
 }  // namespace
 
+std::set<std::string> MentionedIdentifiers(const std::string& text) {
+    std::set<std::string> names;
+    // A `\` line continuation (ES 3.00) may join `*` and `/` into the end of a comment, so with
+    // one anywhere the comments are read as code: more names, never fewer.
+    const std::vector<Line> lines = text.find('\\') == std::string::npos
+                                            ? LinesWithoutComments(text)
+                                            : std::vector<Line>{Line{text, false}};
+    for (const Line& line : lines) {
+        for (std::string& token : Tokens(line.text)) {
+            if (IsIdentifierStart(token[0])) {
+                names.insert(std::move(token));
+            }
+        }
+    }
+    return names;
+}
+
 int DefineRelevance::Id(const std::string& name) {
     const auto [it, inserted] = ids_.emplace(name, static_cast<int>(names_.size()));
     if (inserted) {
@@ -130,6 +164,14 @@ DefineRelevance::DefineRelevance(const std::string& text) {
     if (text.find('\\') != std::string::npos) {
         followed_ = false;
         return;
+    }
+    // glslang reads a text only up to a NUL. A lone `\r` ends a line for glslang; whether `\n\r`
+    // is one line end or two is not worth the walk's guess either.
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '\0' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) {
+            followed_ = false;
+            return;
+        }
     }
     std::vector<std::size_t> open;  // the kIf, kIfdef or kIfndef items not yet ended
     std::vector<bool> had_else;     // for each of them, whether its #else came
@@ -172,6 +214,12 @@ DefineRelevance::DefineRelevance(const std::string& text) {
             item.name = item.kind != Kind::kIf && one_name ? Id(rest[0]) : -1;
             open.push_back(items_.size());
             had_else.push_back(false);
+            // glslang limits the nesting of #if, counting skipped text otherwise than read text:
+            // past a depth well inside its limit the walk gives up rather than model that.
+            if (open.size() > kMaxNesting) {
+                followed_ = false;
+                return;
+            }
         } else if (directive == "elif" || directive == "else" || directive == "endif") {
             if (open.empty() || (directive != "endif" && had_else.back())) {
                 followed_ = false;  // glslang refuses it; the walk does not guess past the error
@@ -192,6 +240,26 @@ DefineRelevance::DefineRelevance(const std::string& text) {
         } else if (directive == "define" || directive == "undef") {
             item.kind = directive == "define" ? Kind::kDefine : Kind::kUndef;
             item.name = !rest.empty() && IsIdentifier(rest[0]) ? Id(rest[0]) : -1;
+            // A line glslang takes without a word: an object-like #define without `#` or `##` in
+            // its body (a function-like one's parameters may be refused), an #undef of one name;
+            // neither of a name glslang reserves.
+            const bool body_has_hash =
+                    std::any_of(rest.begin(), rest.end(),
+                                [](const std::string& t) { return t == "#" || t == "##"; });
+            item.plain = item.name >= 0 && !IsReserved(rest[0]) &&
+                         (item.kind == Kind::kDefine
+                                  ? (rest.size() == 1 || rest[1] != "(") && !body_has_hash
+                                  : rest.size() == 1);
+            if (item.kind == Kind::kDefine && item.name >= 0) {
+                // The body as written, each run of spaces one space: two bodies alike so are one
+                // token list to glslang, which takes such a redefinition without a word.
+                const std::size_t after_name =
+                        line.text.find(rest[0], line.text.find("define") + 6) + rest[0].size();
+                std::istringstream words(line.text.substr(after_name));
+                for (std::string word; words >> word;) {
+                    item.body += (item.body.empty() ? "" : " ") + word;
+                }
+            }
         } else {
             item.kind = Kind::kOther;  // #version, #extension, #pragma, #line, #error, `#` alone
         }
@@ -340,36 +408,63 @@ std::optional<std::string> DefineRelevance::Relevant(
         return std::nullopt;
     }
 
-    // Whether each name of the file is defined at the current line, as far as the walk knows.
+    // Whether each name of the file is defined at the current line, as far as the walk knows, and
+    // where that definition comes from: as given (the user's define, or none), an #undef of the
+    // file's, a #define of the file's (the item's index), or a block the walk did not decide.
+    constexpr int kAsGiven = -1;
+    constexpr int kUndefinedHere = -2;
+    constexpr int kUndecided = -3;
     std::vector<Truth> defined = undefined_;
     for (const std::string& name : define_names) {
         if (const auto it = ids_.find(name); it != ids_.end()) {
             defined[static_cast<std::size_t>(it->second)] = Truth::kTrue;
         }
     }
-    // The items whose text reaches glslang's output ('1': code, or a directive that defines,
-    // undefines or tells glslang something), those of constructs whose branch the walk could not
-    // decide ('u'), and the names whose definition the preprocessor may read on those lines. The
-    // preprocessed text is a function of these lines and of those definitions alone: the lines
-    // of #if and its kin decide which lines are read, and the path records what they decided.
+    std::vector<int> source(names_.size(), kAsGiven);
+    auto set_source = [&](int id, int from) {
+        source[static_cast<std::size_t>(id)] = from;
+        defined[static_cast<std::size_t>(id)] =
+                from == kUndecided ? Truth::kUnknown
+                                   : (from == kUndefinedHere ? Truth::kFalse : Truth::kTrue);
+    };
+    // The items whose text reaches glslang's output or its messages ('1': code, a directive that
+    // tells glslang something, a #define or #undef that can fail or changes a name some line
+    // expands), those of blocks whose branch the walk could not decide ('u'), and the names whose
+    // definition the preprocessor may read on those lines. The lines of #if and its kin decide
+    // which lines are read, and the path records what they decided; a #define or #undef whose
+    // only effect is on later conditions shows there. `undecided` holds, for each undecided
+    // block, where every name's definition came from when glslang read it.
     std::string path(items_.size(), '0');
+    std::string undecided;
     std::vector<bool> consulted(names_.size(), false);
-    auto read = [&](std::size_t k, char mark) {
-        path[k] = mark;
+    auto consult = [&](std::size_t k) {
         for (int id : items_[k].names) {
             consulted[static_cast<std::size_t>(id)] = true;
         }
     };
-    auto defines_or_undefines = [](const Item& item) {
-        return (item.kind == Kind::kDefine || item.kind == Kind::kUndef) && item.name >= 0;
+    auto read = [&](std::size_t k, char mark) {
+        path[k] = mark;
+        consult(k);
     };
-    // A construct whose branch the walk cannot decide: every line of it may be read, and a name it
-    // defines or undefines is undecided after it.
+    // A block whose branch the walk cannot decide: glslang may read any line of it, with any
+    // name's definition in force there (the file's own included, and the bodies of the file's
+    // definitions, which expand too); a name it defines or undefines is undecided after it.
     auto read_all = [&](std::size_t first, std::size_t last) {
+        undecided += std::to_string(first) + ":";
+        for (std::size_t id = 0; id < names_.size(); ++id) {
+            if (source[id] != kAsGiven) {
+                undecided += std::to_string(id) + "=" + std::to_string(source[id]) + ",";
+            }
+            if (source[id] >= 0) {
+                consult(static_cast<std::size_t>(source[id]));
+            }
+        }
+        undecided += ";";
         for (std::size_t k = first; k <= last; ++k) {
             read(k, 'u');
-            if (defines_or_undefines(items_[k])) {
-                defined[static_cast<std::size_t>(items_[k].name)] = Truth::kUnknown;
+            const Item& item = items_[k];
+            if ((item.kind == Kind::kDefine || item.kind == Kind::kUndef) && item.name >= 0) {
+                set_source(item.name, kUndecided);
             }
         }
     };
@@ -437,29 +532,33 @@ std::optional<std::string> DefineRelevance::Relevant(
                 frames.pop_back();
                 break;
             case Kind::kDefine:
-            case Kind::kUndef:
-                if (active()) {
-                    // The line itself gives no output. Its effect on which lines are read shows
-                    // on the path later; its effect on what a line expands to only where the
-                    // name is expanded at all. #undef reads no definition; #define reads the
-                    // user's (a redefinition is an error) and its body's, which expand later.
-                    const bool expanded =
-                            item.name >= 0 && expanded_[static_cast<std::size_t>(item.name)];
-                    if (item.kind == Kind::kDefine) {
-                        read(i, expanded ? '1' : '0');
-                    } else if (expanded || item.name < 0) {
-                        read(i, '1');
-                    }
-                    if (item.name >= 0) {
-                        // A reserved name is refused, so glslang's own definition stands.
-                        defined[static_cast<std::size_t>(item.name)] =
-                                IsReserved(names_[static_cast<std::size_t>(item.name)])
-                                        ? Truth::kUnknown
-                                        : (item.kind == Kind::kDefine ? Truth::kTrue
-                                                                      : Truth::kFalse);
-                    }
+            case Kind::kUndef: {
+                if (!active()) {
+                    break;
+                }
+                // Quiet: glslang takes the line without a word (a #define of a name not defined
+                // here, or defined by the file with the same body: no redefinition), and no line
+                // expands the name.
+                auto same_definition = [&] {
+                    const int from = source[static_cast<std::size_t>(item.name)];
+                    return from >= 0 && items_[static_cast<std::size_t>(from)].body == item.body;
+                };
+                const bool quiet = item.plain && !expanded_[static_cast<std::size_t>(item.name)] &&
+                                   (item.kind == Kind::kUndef ||
+                                    defined[static_cast<std::size_t>(item.name)] == Truth::kFalse ||
+                                    same_definition());
+                if (!quiet) {
+                    read(i, '1');
+                }
+                if (item.name >= 0) {
+                    // A line glslang may refuse may leave the name as it was: undecided.
+                    set_source(item.name,
+                               !item.plain ? kUndecided
+                                           : (item.kind == Kind::kDefine ? static_cast<int>(i)
+                                                                         : kUndefinedHere));
                 }
                 break;
+            }
             case Kind::kCode:
             case Kind::kOther:
                 if (active()) {
@@ -469,14 +568,16 @@ std::optional<std::string> DefineRelevance::Relevant(
         }
     }
 
-    std::string key = path + "|";
+    // Hashed: a key as long as the file has lines, kept for every program, would cost memory.
+    base::Sha256 key;
+    key.Update(path).Update("|").Update(undecided).Update("|");
     for (std::size_t d = 0; d < defines.size(); ++d) {
         const auto it = ids_.find(define_names[d]);
         if (it != ids_.end() && consulted[static_cast<std::size_t>(it->second)]) {
-            key += defines[d] + ",";
+            key.Update(defines[d]).Update(",");
         }
     }
-    return key;
+    return key.FinishHex();
 }
 
 }  // namespace tidepool

@@ -6,27 +6,38 @@
 
 #include <cstddef>
 #include <optional>
+#include <set>
 #include <string>
 #include <unordered_map>
 #include <vector>
 
 namespace tidepool {
 
+/// Every identifier-like token of `text` outside its comments, read as glslang's preprocessor
+/// reads comments, strings and lines (comments too when a `\` may join lines). GLSL ES has no
+/// token pasting (glslang rejects `##` for ES) and the preprocessor drops comments before it
+/// expands anything, so a define can only change the preprocessed text if its name is spelled
+/// out here; the shaders' header comments name every define they understand. Never fails.
+std::set<std::string> MentionedIdentifiers(const std::string& text);
+
 /// The conditional structure of one shader file: its directives and the identifiers of its code,
 /// read once, walked for each define list.
 class DefineRelevance {
 public:
     /// Reads `text` (a shader file as written). Never fails: a text the walk does not follow (a
-    /// `\` line continuation, an unbalanced or misordered #if, a directive after a comment that
-    /// spans lines) makes Relevant answer nullopt for every define list.
+    /// `\` line continuation, a lone carriage return, a NUL, an unbalanced or misordered #if, #if
+    /// nested deeper than kMaxNesting, a directive after a comment that spans lines) makes
+    /// Relevant answer nullopt for every define list.
     explicit DefineRelevance(const std::string& text);
 
-    /// The entries of `defines` (NAME or NAME=VALUE, as DefinePreamble writes them) that can
-    /// change glslang's preprocessed text of the file, in their order, each followed by ",". Two
-    /// define lists with the same answer give glslang the same preprocessed text, so the same
-    /// parse. nullopt when the walk cannot tell: the text is beyond it, or a define's name is no
-    /// plain identifier, is one glslang reserves (GL_..., or containing "__") or appears twice, a
-    /// define's value holds a name, or a define holds a word the ES 1.00 keyword renaming renames.
+    /// A digest of what decides glslang's preprocessed text of the file (and the preprocessor's
+    /// messages) under `defines` (NAME or NAME=VALUE, as DefinePreamble writes them, with no
+    /// other preamble): the lines glslang reads and the entries of `defines` those lines can see.
+    /// Two define lists with the same answer give glslang the same preprocessed text, so the
+    /// same parse. nullopt when the walk cannot tell: the text is beyond it, or a define's name is
+    /// no plain identifier, is one glslang reserves (GL_..., or containing "__") or appears twice,
+    /// a define's value holds a name, or a define holds a word the ES 1.00 keyword renaming
+    /// renames.
     std::optional<std::string> Relevant(const std::vector<std::string>& defines) const;
 
 private:
@@ -35,12 +46,18 @@ private:
         Kind kind = Kind::kCode;
         std::vector<std::string> condition;  // kIf, kElif: the expression's tokens
         int name = -1;           // kIfdef, kIfndef, kDefine, kUndef: the one name; -1 when not one
+        bool plain = false;      // kDefine, kUndef: a line glslang takes without a word
+        std::string body;        // kDefine: what the name stands for, spaces made single
         std::vector<int> names;  // every identifier of the line (of the lines, for kCode)
         std::size_t end = 0;     // kIf, kIfdef, kIfndef: the index of the matching kEndif
     };
     enum class Truth { kFalse, kTrue, kUnknown };
 
     class Evaluation;  // of one #if or #elif expression
+
+    // Deeper #if nesting is not followed (glslang's own limit is 64, counted differently in
+    // skipped text).
+    static constexpr std::size_t kMaxNesting = 50;
 
     int Id(const std::string& name);
 

@@ -346,37 +346,6 @@ void HashStage(StageJob& job) {
     job.key = job.file + "|" + job.hash;
 }
 
-// Every identifier-like token of a file outside its comments. GLSL ES has no token pasting
-// (glslang rejects `##` for ES) and the preprocessor drops comments before it expands anything,
-// so a define can only change the preprocessed text if its name is spelled out in the file's
-// code; the shaders' header comments name every define they understand, which made every slot
-// its own preprocessing group. A `\` line continuation (ES 3.00) can only turn more of the file
-// into a comment, so reading it as code over-counts, which only costs a preprocessor run.
-std::set<std::string> MentionedIdentifiers(const std::string& text) {
-    std::set<std::string> names;
-    std::size_t i = 0;
-    while (i < text.size()) {
-        const auto c = static_cast<unsigned char>(text[i]);
-        if (c == '/' && i + 1 < text.size() && text[i + 1] == '/') {
-            i = text.find('\n', i);
-            i = i == std::string::npos ? text.size() : i;
-        } else if (c == '/' && i + 1 < text.size() && text[i + 1] == '*') {
-            i = text.find("*/", i + 2);
-            i = i == std::string::npos ? text.size() : i + 2;
-        } else if (std::isalpha(c) != 0 || c == '_') {
-            const std::size_t start = i;
-            while (i < text.size() &&
-                   (std::isalnum(static_cast<unsigned char>(text[i])) != 0 || text[i] == '_')) {
-                ++i;
-            }
-            names.insert(text.substr(start, i - start));
-        } else {
-            ++i;
-        }
-    }
-    return names;
-}
-
 // The part of a stage's identity that can change glslang's preprocessed output: `target` is a
 // target's name or, for a plain file, PlainTargetLabel's. A define is kept when its name (before
 // any `=VALUE`, which plain files' -D may add) is mentioned, with its value.
@@ -726,8 +695,10 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     std::set<std::string> exact_keys;
     for (std::size_t i = 0; i < jobs.size(); ++i) {
         const StageJob& job = jobs[i];
+        // A 3.00 target gives a 1.00 file a preamble of macros (texture2D, ...) the walk does not
+        // know of; such slots are grouped by their text.
         std::optional<std::string> relevant;
-        if (!blocked(job)) {
+        if (!blocked(job) && TargetVersion(job.target) == 100) {
             relevant = relevance.at(job.file).Relevant(job.defines);
         }
         if (relevant) {

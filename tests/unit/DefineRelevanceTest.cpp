@@ -19,6 +19,14 @@
 namespace tidepool {
 namespace {
 
+std::string Repeat(const std::string& text, int times) {
+    std::string all;
+    for (int i = 0; i < times; ++i) {
+        all += text;
+    }
+    return all;
+}
+
 std::optional<std::string> RelevantOf(const std::string& text,
                                       const std::vector<std::string>& defines) {
     return DefineRelevance(text).Relevant(defines);
@@ -101,11 +109,47 @@ TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
             {plain, {"A", "A=2"}, "a name given twice"},
             {plain, {"A=B"}, "a value holding a name"},
             {plain, {"filter"}, "a word the ES 1.00 renaming renames"},
+            {"#version 100\n#ifdef A\rfloat a;\n#endif\n", {}, "a lone carriage return"},
+            {std::string("#version 100\n#ifdef A\n#endif\n\0\n#ifdef B\n", 32), {}, "a NUL"},
+            {"#version 100\n" + Repeat("#ifdef A\n", 51) + Repeat("#endif\n", 51),
+             {},
+             "#if nested deeper than the walk follows"},
     };
     for (const auto& c : cases) {
         EXPECT_EQ(RelevantOf(c.text, c.defines), std::nullopt) << c.why;
     }
-    EXPECT_NE(RelevantOf(plain, {"A=1.0e5"}), std::nullopt);  // a number is no name
+    EXPECT_NE(RelevantOf(plain, {"A=0.5"}), std::nullopt);  // a number is no name
+}
+
+TEST(DefineRelevanceTest, EachTextWhereADefineChangesGlslangsOutputGetsTwoAnswers) {
+    // Found by review: each text's output from glslang's preprocessor (or its verdict) differs
+    // with and without A, through a path an earlier walk did not count.
+    const struct {
+        std::string text;
+        const char* why;
+    } cases[] = {
+            {"#ifdef A\n#define X 1\n#else\n#define X 0\n#endif\n#if X\nfloat a;\n#endif\n",
+             "a value of the file's own that an undecided #if reads"},
+            {"#ifdef A\n#define X 1\n#endif\n#if defined(GL_ES)\n#ifdef X\nfloat a;\n#endif\n"
+             "#endif\n",
+             "a definition of the file's that an undecided block reads"},
+            {"#define X 1\n#ifdef A\n#undef X\n#endif\n#if defined(GL_ES)\n#ifdef X\nfloat a;\n"
+             "#endif\n#endif\n",
+             "an #undef that an undecided block reads"},
+            {"#ifdef A\n#define 1\n#endif\n", "a #define glslang refuses"},
+            {"#ifdef A\n#define X 1\n#endif\n#define X 2\n", "a redefinition"},
+            {"#ifdef A\n#undef GL_ES\n#endif\n", "an #undef of glslang's own macro"},
+            {"#ifdef A\n#undef X Y\n#endif\n", "an #undef with more than a name"},
+            {"#line 10A\n", "a name right after a number"},
+            {"#ifdef NEVER\n#error \"/*\"\n#endif\n#ifdef A\n#error boom\n#endif\n#ifdef NEVER\n"
+             "#error \"*/\"\n#endif\n",
+             "comment marks inside strings"},
+    };
+    for (const auto& c : cases) {
+        const std::string text = "#version 100\nprecision mediump float;\n" + c.text;
+        ASSERT_NE(Preprocessed(text, {"A"}), Preprocessed(text, {})) << c.why;
+        EXPECT_NE(RelevantOf(text, {"A"}), RelevantOf(text, {})) << c.why;
+    }
 }
 
 // A random shader text of nested conditionals on A to E (E only the file defines), with
@@ -131,16 +175,23 @@ private:
     void Block(int depth) {
         for (std::size_t n = 1 + Pick(4); n > 0; --n) {
             switch (Pick(depth < 3 ? 4 : 2)) {
-                case 0:
-                    text_ += "float v" + std::to_string(lines_++) + " = " +
-                             (Pick(3) == 0 ? std::string("1.0") : Name()) + ";\n";
+                case 0: {
+                    static const char* const kValues[] = {"1.0", "", "10", "#error ", "#line 10"};
+                    const std::string value = kValues[Pick(std::size(kValues))];
+                    text_ += value[0] == '#' ? value + Name() + "\n"
+                                             : "float v" + std::to_string(lines_++) + " = " +
+                                                       value + Name() + ";\n";
                     break;
+                }
                 case 1: {
                     const std::string name = Name();
-                    const std::size_t kind = Pick(3);
-                    text_ += kind == 0 ? "#define " + name + "\n"
-                                       : (kind == 1 ? "#define " + name + " 2.0\n"
-                                                    : "#undef " + name + "\n");
+                    static const char* const kLines[] = {"#define {}\n",     "#define {} 2.0\n",
+                                                         "#define {} 0\n",   "#define {} 1\n",
+                                                         "#undef {}\n",      "#undef {} E\n",
+                                                         "#define {}(x) x\n"};
+                    std::string line = kLines[Pick(std::size(kLines))];
+                    line.replace(line.find("{}"), 2, name);
+                    text_ += line;
                     break;
                 }
                 default:
@@ -161,6 +212,7 @@ private:
                 "#if 0",
                 "#ifdef GL_ES",
                 "#if " + x + " > 1",
+                "#if " + x,
         };
         text_ += conditions[Pick(std::size(conditions))] + "\n";
         Block(depth + 1);
