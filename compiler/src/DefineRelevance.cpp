@@ -31,7 +31,8 @@ bool IsIdentifier(std::string_view word) {
 // extensions' names, __VERSION__, __LINE__, __FILE__) are all of that form. The walk does not
 // know which of them are defined for a stage, so a condition on one is undecided.
 bool IsReserved(std::string_view name) {
-    return name.substr(0, 3) == "GL_" || name.find("__") != std::string_view::npos;
+    return name.substr(0, 3) == "GL_" || name.find("__") != std::string_view::npos ||
+           name == "defined";  // refused as a macro name, and an operator in #if
 }
 
 // One line of the text with its comments gone, and whether a block comment that began on an
@@ -39,6 +40,7 @@ bool IsReserved(std::string_view name) {
 struct Line {
     std::string text;
     bool after_open_comment = false;
+    bool opens_comment = false;  // a block comment starts on it and ends on a later line
 };
 
 // The text's lines without comments, as glslang's preprocessor reads them: a comment is one
@@ -64,6 +66,7 @@ std::vector<Line> LinesWithoutComments(const std::string& text) {
             while (i < text.size() &&
                    !(text[i] == '*' && i + 1 < text.size() && text[i + 1] == '/')) {
                 if (line_end(i)) {
+                    lines.back().opens_comment = true;
                     lines.push_back(Line{{}, true});
                 }
                 ++i;
@@ -125,13 +128,25 @@ std::vector<std::string> Tokens(std::string_view line) {
     return tokens;
 }
 
-bool HoldsName(std::string_view text) {
-    const std::vector<std::string> tokens = Tokens(text);
-    return std::any_of(tokens.begin(), tokens.end(),
-                       [](const std::string& token) { return IsIdentifierStart(token[0]); });
-}
-
 }  // namespace
+
+bool IsPlainDefine(const std::string& define) {
+    // glslang refuses a token over 1024 characters (MaxTokenLength).
+    constexpr std::size_t kLongestName = 1024;
+    const std::size_t equals = define.find('=');
+    const std::string_view name = std::string_view(define).substr(0, equals);
+    if (!IsIdentifier(name) || IsReserved(name) || name.size() > kLongestName) {
+        return false;
+    }
+    if (equals == std::string::npos) {
+        return true;
+    }
+    const std::string_view value = std::string_view(define).substr(equals + 1);
+    return !value.empty() && value.size() <= kLongestName &&
+           std::all_of(value.begin(), value.end(), [](char c) {
+               return std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.';
+           });
+}
 
 std::set<std::string> MentionedIdentifiers(const std::string& text) {
     std::set<std::string> names;
@@ -166,9 +181,11 @@ DefineRelevance::DefineRelevance(const std::string& text) {
         return;
     }
     // glslang reads a text only up to a NUL. A lone `\r` ends a line for glslang; whether `\n\r`
-    // is one line end or two is not worth the walk's guess either.
+    // is one line end or two is not worth the walk's guess either. A form feed or vertical tab is
+    // no white space to glslang's preprocessor, as it is to the walk's reading.
     for (std::size_t i = 0; i < text.size(); ++i) {
-        if (text[i] == '\0' || (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) {
+        if (text[i] == '\0' || text[i] == '\f' || text[i] == '\v' ||
+            (text[i] == '\r' && (i + 1 == text.size() || text[i + 1] != '\n'))) {
             followed_ = false;
             return;
         }
@@ -188,6 +205,10 @@ DefineRelevance::DefineRelevance(const std::string& text) {
                 item.names.push_back(Id(tokens[t]));
             }
         }
+        if (tokens[0] == "##") {
+            followed_ = false;
+            return;
+        }
         if (tokens[0] != "#") {
             if (!items_.empty() && items_.back().kind == Kind::kCode) {
                 std::vector<int>& names = items_.back().names;
@@ -197,8 +218,12 @@ DefineRelevance::DefineRelevance(const std::string& text) {
             }
             continue;
         }
-        if (line.after_open_comment) {
-            followed_ = false;  // whether glslang reads this `#` as a directive is not certain
+        // glslang reads a directive on through a block comment's line breaks, and in skipped
+        // text takes a second `#` (`##endif`) for the directive's own: texts the walk does not
+        // follow.
+        if (line.after_open_comment || line.opens_comment ||
+            (tokens.size() > 1 && tokens[1][0] == '#')) {
+            followed_ = false;
             return;
         }
         const std::string directive = tokens.size() > 1 ? tokens[1] : "";
@@ -252,9 +277,15 @@ DefineRelevance::DefineRelevance(const std::string& text) {
                                   : rest.size() == 1);
             if (item.kind == Kind::kDefine && item.name >= 0) {
                 // The body as written, each run of spaces one space: two bodies alike so are one
-                // token list to glslang, which takes such a redefinition without a word.
+                // token list to glslang, which takes such a redefinition without a word. A name
+                // not followed by a space (`#define X-1`) gets a warning and defines nothing; a
+                // string in the body would lose its spaces here.
                 const std::size_t after_name =
                         line.text.find(rest[0], line.text.find("define") + 6) + rest[0].size();
+                item.plain = item.plain &&
+                             (after_name == line.text.size() || line.text[after_name] == ' ' ||
+                              line.text[after_name] == '\t') &&
+                             line.text.find('"') == std::string::npos;
                 std::istringstream words(line.text.substr(after_name));
                 for (std::string word; words >> word;) {
                     item.body += (item.body.empty() ? "" : " ") + word;
@@ -395,9 +426,8 @@ std::optional<std::string> DefineRelevance::Relevant(
         const std::string& name = define_names.back();
         // A name in a value is expanded wherever the define is: which of the file's own
         // definitions of it are in force would then matter on lines the walk does not follow.
-        if (!IsIdentifier(name) || IsReserved(name) || name == "defined" ||
-            std::count(define_names.begin(), define_names.end(), name) > 1 ||
-            HoldsName(define_values.back())) {
+        if (!IsPlainDefine(define) ||
+            std::count(define_names.begin(), define_names.end(), name) > 1) {
             return std::nullopt;
         }
     }
@@ -446,27 +476,47 @@ std::optional<std::string> DefineRelevance::Relevant(
         path[k] = mark;
         consult(k);
     };
-    // A block whose branch the walk cannot decide: glslang may read any line of it, with any
-    // name's definition in force there (the file's own included, and the bodies of the file's
-    // definitions, which expand too); a name it defines or undefines is undecided after it.
+    // A block whose branch the walk cannot decide: glslang may read any line of it, with the
+    // definition in force of any name in it, and of any name in the bodies of the file's own
+    // definitions among those (they expand too); a name it defines or undefines is undecided
+    // after it. `kept` counts what the walk recorded, to give up past kMostKept.
+    std::size_t kept = 0;
+    std::vector<int> seen(names_.size(), -1);  // the block (its first item) that recorded a name
     auto read_all = [&](std::size_t first, std::size_t last) {
         undecided += std::to_string(first) + ":";
-        for (std::size_t id = 0; id < names_.size(); ++id) {
+        std::vector<int> pending;
+        auto reach = [&](const Item& item) {
+            for (int id : item.names) {
+                if (seen[static_cast<std::size_t>(id)] != static_cast<int>(first)) {
+                    seen[static_cast<std::size_t>(id)] = static_cast<int>(first);
+                    pending.push_back(id);
+                }
+            }
+        };
+        for (std::size_t k = first; k <= last; ++k) {
+            reach(items_[k]);
+        }
+        while (!pending.empty() && kept <= kMostKept) {
+            const auto id = static_cast<std::size_t>(pending.back());
+            pending.pop_back();
+            consulted[id] = true;
             if (source[id] != kAsGiven) {
                 undecided += std::to_string(id) + "=" + std::to_string(source[id]) + ",";
+                ++kept;
             }
             if (source[id] >= 0) {
-                consult(static_cast<std::size_t>(source[id]));
+                reach(items_[static_cast<std::size_t>(source[id])]);
             }
         }
         undecided += ";";
         for (std::size_t k = first; k <= last; ++k) {
-            read(k, 'u');
+            path[k] = 'u';
             const Item& item = items_[k];
             if ((item.kind == Kind::kDefine || item.kind == Kind::kUndef) && item.name >= 0) {
                 set_source(item.name, kUndecided);
             }
         }
+        kept += last - first + 1;
     };
     struct Frame {
         std::size_t start;   // the construct's kIf, kIfdef or kIfndef
@@ -498,6 +548,9 @@ std::optional<std::string> DefineRelevance::Relevant(
                 }
                 if (truth == Truth::kUnknown) {
                     read_all(i, item.end);
+                    if (kept > kMostKept) {
+                        return std::nullopt;
+                    }
                     i = item.end;
                     break;
                 }
@@ -518,6 +571,9 @@ std::optional<std::string> DefineRelevance::Relevant(
                     const std::size_t start = frame.start;
                     frames.pop_back();
                     read_all(start, items_[start].end);
+                    if (kept > kMostKept) {
+                        return std::nullopt;
+                    }
                     i = items_[start].end;
                     break;
                 }

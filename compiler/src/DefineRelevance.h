@@ -20,6 +20,12 @@ namespace tidepool {
 /// out here; the shaders' header comments name every define they understand. Never fails.
 std::set<std::string> MentionedIdentifiers(const std::string& text);
 
+/// Whether glslang takes `define` (NAME or NAME=VALUE, as DefinePreamble writes it) in its
+/// preamble without a word, so that it can change a text only where the text spells NAME: NAME a
+/// plain identifier of at most 1024 characters that glslang does not reserve (GL_..., "__",
+/// `defined`), VALUE absent or a decimal number. Any other define may break the preamble alone.
+bool IsPlainDefine(const std::string& define);
+
 /// The conditional structure of one shader file: its directives and the identifiers of its code,
 /// read once, walked for each define list.
 class DefineRelevance {
@@ -34,10 +40,10 @@ public:
     /// messages) under `defines` (NAME or NAME=VALUE, as DefinePreamble writes them, with no
     /// other preamble): the lines glslang reads and the entries of `defines` those lines can see.
     /// Two define lists with the same answer give glslang the same preprocessed text, so the
-    /// same parse. nullopt when the walk cannot tell: the text is beyond it, or a define's name is
-    /// no plain identifier, is one glslang reserves (GL_..., or containing "__") or appears twice,
-    /// a define's value holds a name, or a define holds a word the ES 1.00 keyword renaming
-    /// renames.
+    /// same parse. nullopt when the walk cannot tell: the text is beyond it, a define is not
+    /// plain (IsPlainDefine) or names what another does, a define holds a word the ES 1.00
+    /// keyword renaming renames, or an undecided block would read more definitions than the walk
+    /// keeps (kMostKept).
     std::optional<std::string> Relevant(const std::vector<std::string>& defines) const;
 
 private:
@@ -58,6 +64,9 @@ private:
     // Deeper #if nesting is not followed (glslang's own limit is 64, counted differently in
     // skipped text).
     static constexpr std::size_t kMaxNesting = 50;
+    // The most definitions a walk records for its undecided blocks: a bound on its time and
+    // memory whatever the text.
+    static constexpr std::size_t kMostKept = 100000;
 
     int Id(const std::string& name);
 

@@ -355,7 +355,8 @@ std::string StageGroupKey(const std::string& file, Stage stage, const std::strin
     std::string key = fmt::format("{}|{}|{}|{}|", file, StageName(stage), target,
                                   limits != nullptr ? limits->Text() : "");
     for (const std::string& define : defines) {
-        if (mentioned.count(define.substr(0, define.find('='))) != 0) {
+        // One glslang may refuse in the preamble counts wherever the file's text is.
+        if (mentioned.count(define.substr(0, define.find('='))) != 0 || !IsPlainDefine(define)) {
             key += define + ",";
         }
     }

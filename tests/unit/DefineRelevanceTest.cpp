@@ -110,6 +110,17 @@ TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
             {plain, {"A=B"}, "a value holding a name"},
             {plain, {"filter"}, "a word the ES 1.00 renaming renames"},
             {"#version 100\n#ifdef A\rfloat a;\n#endif\n", {}, "a lone carriage return"},
+            {"#version 100\n#define X 1\f\n", {}, "a form feed"},
+            {"#version 100\n#undef X\v\n", {}, "a vertical tab"},
+            {"#version 100\n#if 0 /*\n*/ || defined(A)\nfloat a;\n#endif\n",
+             {},
+             "a directive that a comment carries on to the next line"},
+            {"#version 100\n#/*\n*/define X 1\n", {}, "a directive after a comment's line break"},
+            {"#version 100\n#ifdef NEVER\n##endif\n#endif\n",
+             {},
+             "a second `#`, which glslang reads as the directive's own in skipped text"},
+            {plain, {std::string(1025, 'A')}, "a name longer than glslang's tokens"},
+            {plain, {"A=/*"}, "a value glslang's preamble refuses"},
             {std::string("#version 100\n#ifdef A\n#endif\n\0\n#ifdef B\n", 32), {}, "a NUL"},
             {"#version 100\n" + Repeat("#ifdef A\n", 51) + Repeat("#endif\n", 51),
              {},
@@ -119,6 +130,18 @@ TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
         EXPECT_EQ(RelevantOf(c.text, c.defines), std::nullopt) << c.why;
     }
     EXPECT_NE(RelevantOf(plain, {"A=0.5"}), std::nullopt);  // a number is no name
+}
+
+TEST(DefineRelevanceTest, APlainDefineIsANameGlslangTakesWithAtMostANumber) {
+    for (const std::string define : {"ENABLE_FOG", "A=1", "SCALE=0.5", "TP_NO_EYE_FLOOR"}) {
+        EXPECT_TRUE(IsPlainDefine(define)) << define;
+    }
+    for (const std::string define :
+         {"GL_X", "A__B", "defined", "1A", "A=B", "A=", "A=-1", "A=\"s\"", "A=/*", "A B"}) {
+        EXPECT_FALSE(IsPlainDefine(define)) << define;
+    }
+    EXPECT_TRUE(IsPlainDefine(std::string(1024, 'A')));
+    EXPECT_FALSE(IsPlainDefine(std::string(1025, 'A')));
 }
 
 TEST(DefineRelevanceTest, EachTextWhereADefineChangesGlslangsOutputGetsTwoAnswers) {
@@ -144,6 +167,12 @@ TEST(DefineRelevanceTest, EachTextWhereADefineChangesGlslangsOutputGetsTwoAnswer
             {"#ifdef NEVER\n#error \"/*\"\n#endif\n#ifdef A\n#error boom\n#endif\n#ifdef NEVER\n"
              "#error \"*/\"\n#endif\n",
              "comment marks inside strings"},
+            {"#define X-1\n#ifndef X\n#ifdef A\nfloat a;\n#endif\n#endif\n",
+             "a #define with no space after its name, which defines nothing"},
+            {"#ifdef A\n#define defined 1\n#endif\n", "a #define of `defined`"},
+            {"#ifdef A\n#undef defined\n#endif\n", "an #undef of `defined`"},
+            {"#define X \"a b\"\n#ifdef A\n#define X \"a  b\"\n#endif\n",
+             "a redefinition whose strings differ in spaces"},
     };
     for (const auto& c : cases) {
         const std::string text = "#version 100\nprecision mediump float;\n" + c.text;
