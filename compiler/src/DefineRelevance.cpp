@@ -142,10 +142,21 @@ bool IsPlainDefine(const std::string& define) {
         return true;
     }
     const std::string_view value = std::string_view(define).substr(equals + 1);
-    return !value.empty() && value.size() <= kLongestName &&
-           std::all_of(value.begin(), value.end(), [](char c) {
-               return std::isdigit(static_cast<unsigned char>(c)) != 0 || c == '.';
-           });
+    // A number glslang reads without a word: an integer below 2^31 with no leading zero (`08` is
+    // a bad octal literal, 2^32 too big), or such an integer, a dot and at most nine digits.
+    auto integer = [](std::string_view digits) {
+        return !digits.empty() && digits.size() <= 9 && (digits == "0" || digits[0] != '0') &&
+               std::all_of(digits.begin(), digits.end(),
+                           [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
+    };
+    const std::size_t dot = value.find('.');
+    if (dot == std::string_view::npos) {
+        return integer(value);
+    }
+    const std::string_view fraction = value.substr(dot + 1);
+    return integer(value.substr(0, dot)) && !fraction.empty() && fraction.size() <= 9 &&
+           std::all_of(fraction.begin(), fraction.end(),
+                       [](char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; });
 }
 
 std::set<std::string> MentionedIdentifiers(const std::string& text) {
@@ -605,6 +616,13 @@ std::optional<std::string> DefineRelevance::Relevant(
                                     same_definition());
                 if (!quiet) {
                     read(i, '1');
+                    // Whether glslang takes the line depends on the name's definition before it,
+                    // which a quiet line earlier may have set without a trace on the path.
+                    if (item.name >= 0) {
+                        undecided += std::to_string(i) + "<" +
+                                     std::to_string(source[static_cast<std::size_t>(item.name)]) +
+                                     ";";
+                    }
                 }
                 if (item.name >= 0) {
                     // A line glslang may refuse may leave the name as it was: undecided.

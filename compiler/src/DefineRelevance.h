@@ -23,7 +23,8 @@ std::set<std::string> MentionedIdentifiers(const std::string& text);
 /// Whether glslang takes `define` (NAME or NAME=VALUE, as DefinePreamble writes it) in its
 /// preamble without a word, so that it can change a text only where the text spells NAME: NAME a
 /// plain identifier of at most 1024 characters that glslang does not reserve (GL_..., "__",
-/// `defined`), VALUE absent or a decimal number. Any other define may break the preamble alone.
+/// `defined`), VALUE absent or a decimal number of at most nine digits each side of an optional
+/// dot, with no leading zero. Any other define may break the preamble alone.
 bool IsPlainDefine(const std::string& define);
 
 /// The conditional structure of one shader file: its directives and the identifiers of its code,

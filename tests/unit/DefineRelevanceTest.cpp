@@ -133,11 +133,13 @@ TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
 }
 
 TEST(DefineRelevanceTest, APlainDefineIsANameGlslangTakesWithAtMostANumber) {
-    for (const std::string define : {"ENABLE_FOG", "A=1", "SCALE=0.5", "TP_NO_EYE_FLOOR"}) {
+    for (const std::string define :
+         {"ENABLE_FOG", "A=1", "A=0", "SCALE=0.5", "A=10.25", "TP_NO_EYE_FLOOR"}) {
         EXPECT_TRUE(IsPlainDefine(define)) << define;
     }
     for (const std::string define :
-         {"GL_X", "A__B", "defined", "1A", "A=B", "A=", "A=-1", "A=\"s\"", "A=/*", "A B"}) {
+         {"GL_X", "A__B", "defined", "1A", "A=B", "A=", "A=-1", "A=\"s\"", "A=/*", "A B", "A=08",
+          "A=4294967296", "A=1.", "A=.5", "A=1.2.3"}) {
         EXPECT_FALSE(IsPlainDefine(define)) << define;
     }
     EXPECT_TRUE(IsPlainDefine(std::string(1024, 'A')));
@@ -173,6 +175,10 @@ TEST(DefineRelevanceTest, EachTextWhereADefineChangesGlslangsOutputGetsTwoAnswer
             {"#ifdef A\n#undef defined\n#endif\n", "an #undef of `defined`"},
             {"#define X \"a b\"\n#ifdef A\n#define X \"a  b\"\n#endif\n",
              "a redefinition whose strings differ in spaces"},
+            {"#ifdef A\n#define X\n#endif\n#define X(x) x\n",
+             "a function-like #define after a quiet one"},
+            {"#define Y 1\n#ifndef A\n#undef Y\n#endif\n#define Y \"s\"\n",
+             "a #define glslang may refuse after a quiet #undef"},
     };
     for (const auto& c : cases) {
         const std::string text = "#version 100\nprecision mediump float;\n" + c.text;

@@ -459,7 +459,7 @@ TEST(GlslValidatorTest, PlainFileDefineValuesAndTargetsAreKeptApartInTheCache) {
     webgl.target = GlslTarget::kWebGl1;
     for (int pass = 0; pass < 2; ++pass) {
         for (const std::vector<std::string>& defines : std::vector<std::vector<std::string>>{
-                     {"N=1"}, {"N=2"}, {"N=1", "KEEP"}, {"N"}, {"N=2", "Z=/*"}}) {
+                     {"N=1"}, {"N=2"}, {"N=1", "KEEP"}, {"N"}, {"N=2", "Z=/*"}, {"N=2", "Z=08"}}) {
             // Z is never mentioned either, but glslang refuses its value in the preamble.
             SCOPED_TRACE(defines.front());
             EXPECT_EQ(DescribedWithSteps(ValidateShaderFiles(files, defines, cached)),
