@@ -347,8 +347,9 @@ void HashStage(StageJob& job) {
 }
 
 // The part of a stage's identity that can change glslang's preprocessed output: `target` is a
-// target's name or, for a plain file, PlainTargetLabel's. A define is kept when its name (before
-// any `=VALUE`, which plain files' -D may add) is mentioned, with its value.
+// target's name or, for a plain file, PlainTargetLabel's. A define is kept, with its value, when
+// its name (before any `=VALUE`, which plain files' -D may add) is mentioned, or when glslang may
+// refuse it in the preamble (IsPlainDefine).
 std::string StageGroupKey(const std::string& file, Stage stage, const std::string& target,
                           const DeviceLimits* limits, const std::vector<std::string>& defines,
                           const std::set<std::string>& mentioned) {
