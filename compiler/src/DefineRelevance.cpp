@@ -427,18 +427,14 @@ std::optional<std::string> DefineRelevance::Relevant(
     if (!followed_) {
         return std::nullopt;
     }
-    // The defines' names and values, as DefinePreamble gives them to glslang.
+    // The defines' names, as DefinePreamble gives them to glslang. A define glslang may refuse
+    // in the preamble, or whose value holds a name (expanded wherever the define is), is beyond
+    // the walk (IsPlainDefine); so is a name given twice.
     std::vector<std::string> define_names;
-    std::vector<std::string> define_values;
     for (const std::string& define : defines) {
-        const std::size_t equals = define.find('=');
-        define_names.push_back(define.substr(0, equals));
-        define_values.push_back(equals == std::string::npos ? "1" : define.substr(equals + 1));
-        const std::string& name = define_names.back();
-        // A name in a value is expanded wherever the define is: which of the file's own
-        // definitions of it are in force would then matter on lines the walk does not follow.
+        define_names.push_back(define.substr(0, define.find('=')));
         if (!IsPlainDefine(define) ||
-            std::count(define_names.begin(), define_names.end(), name) > 1) {
+            std::count(define_names.begin(), define_names.end(), define_names.back()) > 1) {
             return std::nullopt;
         }
     }
