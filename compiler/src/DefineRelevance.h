@@ -32,8 +32,9 @@ bool IsPlainDefine(const std::string& define);
 class DefineRelevance {
 public:
     /// Reads `text` (a shader file as written). Never fails: a text the walk does not follow (a
-    /// `\` line continuation, a lone carriage return, a NUL, an unbalanced or misordered #if, #if
-    /// nested deeper than kMaxNesting, a directive after a comment that spans lines) makes
+    /// `\` line continuation, a lone carriage return, a NUL, a form feed or vertical tab, an
+    /// unbalanced or misordered #if, #if nested deeper than kMaxNesting, a directive that a block
+    /// comment spanning lines precedes or carries on, a line starting with `##` or `# #`) makes
     /// Relevant answer nullopt for every define list.
     explicit DefineRelevance(const std::string& text);
 
