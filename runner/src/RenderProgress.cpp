@@ -39,6 +39,11 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
     return std::max(alone + (work - alone * threads) / (threads + 1), own / threads);
 }
 
+double ContendedFramesCost(double contended_share) {
+    const double share = std::max(contended_share, 0.0);
+    return (1.0 + share * kContendedWallFactor) / (1.0 + share);
+}
+
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first,
                                       const std::vector<std::size_t>& early, bool probes) {
@@ -97,6 +102,14 @@ void ProgressMeter::ComparisonConfigurations(std::size_t k, std::size_t baseline
     if (k < comparison_configurations_.size()) {
         comparison_configurations_[k] = {baseline, candidate};
     }
+}
+
+void ProgressMeter::ComparisonCostPrior(double ratio) {
+    if (!(ratio > 0) || !std::isfinite(ratio)) {
+        return;
+    }
+    std::lock_guard<std::mutex> lock(mutex_);
+    cost_prior_ = ratio;
 }
 
 void ProgressMeter::ConfigurationCost(std::size_t i, double seconds) {
@@ -316,10 +329,10 @@ std::optional<double> ProgressMeter::CostOf(std::size_t k) const {
 }
 
 // Seconds comparison frames took per second of their price, recently (mutex_ held). A few
-// seconds of prior at 1 keep the first look's warm-up from setting it alone.
+// seconds of prior at cost_prior_ keep the first look's warm-up from setting it alone.
 double ProgressMeter::Calibration() const {
     constexpr double kPriorSeconds = 2.0;
-    return (priced_seconds_ + kPriorSeconds) / (priced_estimate_ + kPriorSeconds);
+    return (priced_seconds_ + kPriorSeconds * cost_prior_) / (priced_estimate_ + kPriorSeconds);
 }
 
 double ProgressMeter::PriceOf(std::size_t k) const {

@@ -37,6 +37,20 @@ struct WorkUnit {
 double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in,
                        double own = 0);
 
+/// How many seconds of its configurations' median as-run frame a comparison frame is expected
+/// to take before any has been measured (ProgressMeter::ComparisonCostPrior). Contended pairs,
+/// `contended_share` of the as-run pairs, share their core with a CoreCompetitor, so each of
+/// their frames takes kContendedWallFactor times an as-run frame's wall time; warm-up and
+/// per-pass frames cost about an as-run frame (their CPU time was within 2% of it, 2026-11-27).
+double ContendedFramesCost(double contended_share);
+
+/// A contended frame's wall time against an as-run frame's: about 2 on a quiet machine (the
+/// competitor takes half of the render thread's core) and about 1.5 beside two other CPU-bound
+/// processes (a third of a core instead of a half). The calibration of two main-job runs of
+/// 2026-11-27 settled at 1.30 quiet and 1.18 loaded, with the overhead frames counted; this
+/// factor gives 1.25 for the default contended share of 0.5.
+inline constexpr double kContendedWallFactor = 1.75;
+
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then with `probes` every comparison's probe, then
 /// `early` (the configurations the comparisons time), then every comparison (the rest of it,
@@ -122,9 +136,15 @@ public:
     /// frames done: frames counted by Step(kComparison, ...) would still count as left. Once both
     /// have a cost (ConfigurationCost), the frames k has left are priced at the mean of the two
     /// costs times the calibration, instead of at the comparisons' recent rate. The calibration is
-    /// the ratio of the seconds recent comparison frames took (with their warm-up, per-pass frames
-    /// and contended frames, which share a core) to their price, aged like the rates, 1 before any.
+    /// the ratio of the seconds recent comparison frames took (contended frames share a core) to
+    /// their price, aged like the rates, ComparisonCostPrior before any.
     void ComparisonConfigurations(std::size_t k, std::size_t baseline, std::size_t candidate);
+
+    /// What the calibration (above) is taken to be until comparison frames have been priced:
+    /// ContendedFramesCost. 1 when never given. Until the first comparison after the probes
+    /// runs (a fifth of the render), the calibration is this prior alone; at 1, the comparisons'
+    /// contended frames went unpriced and the ETA of those lines was up to 27% short.
+    void ComparisonCostPrior(double ratio);
 
     /// Configuration i's timed frame takes `seconds` (the median of its coarse frames).
     void ConfigurationCost(std::size_t i, double seconds);
@@ -206,6 +226,7 @@ private:
     // Comparison frames' seconds and their price, aged like the kinds' recent sums.
     double priced_seconds_ = 0;
     double priced_estimate_ = 0;
+    double cost_prior_ = 1.0;  // ComparisonCostPrior
     std::map<std::thread::id, Clock::time_point> last_step_;
     RunProgress state_;
 };

@@ -114,17 +114,24 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     const long per_configuration = FramesPerConfiguration(options);
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
+    // Frames a comparison renders besides its pairs: both sides' warm-up when it goes on from
+    // its probe (TimeComparisonUnit), and the per-pass pairs after its last look. About a fifth
+    // of a comparison that stops at the fewest pairs; left uncounted, the calibration had to
+    // learn them.
+    const long overhead_frames =
+            2L * ((ProbesComparisons(options) ? options.warmup_frames : 0) + options.pass_frames);
     // Frames of a comparison with `pairs` as-run pairs: both sides of those and of the contended
-    // pairs taken beside them (0 for none).
+    // pairs taken beside them, and the overhead frames (0 for none).
     auto frames_at = [&](long pairs) -> long {
         if (pairs <= 0) {
             return 0;
         }
         const int contended =
                 base::ContendedPairsBeforeNextLook(static_cast<int>(pairs), 0, options.rule);
-        return 2 * (pairs + contended);
+        return 2 * (pairs + contended) + overhead_frames;
     };
     meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess));
+    meter.ComparisonCostPrior(ContendedFramesCost(options.rule.contended_share));
     for (std::size_t k = 0; k < results.comparisons.size(); ++k) {
         const TimedComparison& c = results.comparisons[k].comparison;
         meter.ComparisonConfigurations(k, c.baseline, c.candidate);
@@ -176,8 +183,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             const long needed = base::PairsExpectedFromPairs(
                     so_far.samples.baseline_ms, so_far.samples.candidate_ms, so_far.stated, rule,
                     kInitialPairGuess);
+            // After the last look, its overhead frames are still to come.
             const bool finished = so_far.decision != base::StopDecision::kContinue;
-            meter.ComparisonExpects(k, finished ? frames : frames_at(needed), finished,
+            meter.ComparisonExpects(k, finished ? frames + overhead_frames : frames_at(needed),
+                                    false,
                                     frames_at(base::PairsForResolution(so_far.estimate, rule)));
         };
         TimeComparisonUnit(w, options, out, after_look, part);
@@ -195,7 +204,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
         keep_passes(c.baseline, out.timing.baseline_passes);
         keep_passes(c.candidate, out.timing.candidate_passes);
-        meter.StepComparison(k, c.label, 0);  // the per-pass frames' time too
+        meter.StepComparison(k, c.label, overhead_frames);
+        stepped[k] += overhead_frames;
+        meter.ComparisonExpects(k, stepped[k], true);
     };
 
     // Comparison k's unit: its probe (`probe`) or the rest of it. Each comparison is timed by one

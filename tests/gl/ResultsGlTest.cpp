@@ -11,6 +11,7 @@
 #include <utility>
 #include <vector>
 
+#include "ConfigurationImages.h"
 #include "SharedWaterRenderer.h"
 
 namespace tidepool::runner {
@@ -60,6 +61,51 @@ TEST(ResultsGlTest, ComparisonsArePairedUntilTheStoppingRuleAndConfigurationsTim
     EXPECT_EQ(results.configurations[2].pass_ms.count("refraction"), 1U);
     EXPECT_EQ(results.configurations[0].pass_ms.count("refraction"), 0U);
     EXPECT_GT(results.configurations[0].pass_ms.at("main"), 0.0);
+}
+
+// The progress line counts what the render does: every frame of the images, every pair of a
+// comparison with its contended pairs, and the frames a comparison renders besides them (both
+// sides' warm-up again after its probe, the per-pass pairs), so that it ends with all of its
+// expected frames done and none left.
+TEST(ResultsGlTest, ProgressCountsEveryFrameAComparisonRendersAndEndsWithNoneLeft) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    RunOptions options;
+    options.configurations = {WaterConfiguration({}), WaterConfiguration({"ENABLE_FOG"})};
+    options.views = {DefaultViews().front()};
+    options.settings.width = 32;
+    options.settings.height = 24;
+    options.warmup_frames = 1;
+    options.coarse_frames = 2;
+    options.comparisons = {{"fog", 0, 1}};
+    // Out of reach: the comparison takes its probe, then pairs up to the cap of 30.
+    options.rule.resolution_points = 0.001;
+    options.rule.min_pairs = 20;
+    options.rule.max_pairs = 30;
+    options.rule.contended_share = 0.5;
+    options.pass_frames = 2;
+    options.write_images = false;
+    options.compare_with_glslang = false;
+    ASSERT_TRUE(ProbesComparisons(options));
+    std::vector<RunProgress> seen;
+    const ProgressCallback progress = [&](const RunProgress& p) { seen.push_back(p); };
+    const RunResults results = RunRender(*shared.context, *shared.config, options, progress);
+    ASSERT_EQ(results.comparisons.size(), 1U);
+    const ComparisonTiming& timing = results.comparisons[0].timing;
+    ASSERT_EQ(results.comparisons[0].error, "");
+    ASSERT_EQ(timing.samples.baseline_ms.size(), 30U);
+    ASSERT_FALSE(timing.contended.baseline_ms.empty());
+    ASSERT_FALSE(seen.empty());
+    const long pairs = static_cast<long>(timing.samples.baseline_ms.size() +
+                                         timing.contended.baseline_ms.size());
+    const long overhead = 2L * (options.warmup_frames + options.pass_frames);
+    const long images = 2 * FramesPerConfiguration(options);
+    EXPECT_EQ(seen.back().done, images + 2 * pairs + overhead);
+    EXPECT_EQ(seen.back().total, seen.back().done);
+    EXPECT_DOUBLE_EQ(seen.back().percent, 100.0);
+    // Before the per-pass frames, the line still expected them.
+    EXPECT_EQ(seen[seen.size() - 2].done, images + 2 * pairs);
+    EXPECT_EQ(seen[seen.size() - 2].total, images + 2 * pairs + overhead);
 }
 
 // Two configurations (none and fog) at one view, 32x24, timed coarsely only, no images, no

@@ -300,6 +300,43 @@ TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost
     EXPECT_NEAR(meter.Last().eta_seconds, 200 * 0.080 * calibration, 0.02 * eta);
 }
 
+// Before a comparison frame has been priced, comparisons are priced at their configurations'
+// cost times the prior (their contended frames cost more than a frame); measured frames then
+// take over from it.
+TEST(RenderProgressTest, UntilComparisonFramesAreMeasuredTheirPriceCarriesThePrior) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    PriceComparisons(meter, {{0, 1}}, {0.040, 0.040});
+    meter.ComparisonCostPrior(ContendedFramesCost(0.5));
+    // Ignored: priors that are not a positive ratio.
+    for (double bad : {0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        meter.ComparisonCostPrior(bad);
+    }
+    meter.Step(ProgressMeter::kImage, "image", 1, start + std::chrono::milliseconds(40));
+    const double prior = (1 + 0.5 * kContendedWallFactor) / 1.5;
+    EXPECT_NEAR(meter.Last().eta_seconds, 100 * 0.040 * prior, 1e-6);
+    // 50 s of frames that took exactly their price outweigh the prior's 2 s.
+    Clock::time_point now = start;
+    for (int f = 0; f < 50; ++f) {
+        now += std::chrono::milliseconds(40);
+        meter.StepComparison(0, "row", 1, now);
+    }
+    const double calibration = (50 * 0.040 + 2 * prior) / (50 * 0.040 + 2);
+    EXPECT_NEAR(meter.Last().eta_seconds, 50 * 0.040 * calibration, 0.02);
+    EXPECT_LT(calibration, prior);
+}
+
+// A contended frame shares its core and costs kContendedWallFactor frames; no contended pairs
+// cost what the as-run ones do.
+TEST(RenderProgressTest, ContendedFramesCostTheirShareAtTheirWallFactor) {
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(0), 1.0);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(-1), 1.0);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(1), (1 + kContendedWallFactor) / 2);
+    EXPECT_GT(ContendedFramesCost(0.5), 1.2);
+    EXPECT_LT(ContendedFramesCost(0.5), kContendedWallFactor);
+}
+
 // Alone until the second process joins, then the rest split by threads: one thread here and
 // one there halve what is left at the join.
 TEST(RenderProgressTest, SecondsToFinishShareWhatIsLeftOnceTheSecondProcessJoins) {
