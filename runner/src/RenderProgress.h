@@ -46,9 +46,10 @@ double ContendedFramesCost(double contended_share);
 
 /// A contended frame's wall time against an as-run frame's: about 2 on a quiet machine (the
 /// competitor takes half of the render thread's core) and about 1.5 beside two other CPU-bound
-/// processes (a third of a core instead of a half). The calibration of two main-job runs of
-/// 2026-11-27 settled at 1.30 quiet and 1.18 loaded, with the overhead frames counted; this
-/// factor gives 1.25 for the default contended share of 0.5.
+/// processes (a third of a core instead of a half). In two traced main-job runs of 2026-11-27
+/// the calibration settled at 1.6 quiet and 1.35 loaded with the overhead frames uncounted,
+/// about 1.3 and 1.2 once they count; this factor gives 1.25 for the default contended share of
+/// 0.5.
 inline constexpr double kContendedWallFactor = 1.75;
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
