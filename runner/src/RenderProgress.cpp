@@ -82,9 +82,10 @@ void ProgressMeter::AddExpected(Kind kind, long frames) {
     kinds_[kind].total += frames;
 }
 
-void ProgressMeter::AddComparisons(std::size_t count, long guess) {
+void ProgressMeter::AddComparisons(std::size_t count, long guess, long overhead) {
     std::lock_guard<std::mutex> lock(mutex_);
     comparison_guess_ = guess;
+    comparison_overhead_ = std::max(0L, overhead);
     comparison_frames_.assign(count, guess);
     resolution_frames_.assign(count, 0);
     comparison_state_.assign(count, ComparisonState::kWaiting);
@@ -138,10 +139,10 @@ void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished,
 }
 
 void ProgressMeter::ExpectWaiting() {
-    // The guess: what the noise measured so far needs, with the boundary clauses' allowance;
-    // before any comparison has looked, the first guess. (A fixed guess of 60 pairs was short
-    // under load on one host, where comparisons took 52 to 88 pairs on average, and nearly three
-    // times too long on a faster one, where most stopped at the minimum 20.)
+    // The guess: what the noise measured so far needs, with the boundary clauses' allowance,
+    // and the overhead frames; before any comparison has looked, the first guess. (A fixed guess of
+    // 60 pairs was short under load on one host, where comparisons took 52 to 88 pairs on average,
+    // and nearly three times too long on a faster one, where most stopped at the minimum 20.)
     double guess = static_cast<double>(comparison_guess_);
     double noise_sum = 0;
     double noise_count = 0;
@@ -152,7 +153,8 @@ void ProgressMeter::ExpectWaiting() {
         }
     }
     if (noise_count > 0) {
-        guess = kBoundaryAllowance * noise_sum / noise_count;
+        guess = kBoundaryAllowance * noise_sum / noise_count +
+                static_cast<double>(comparison_overhead_);
     }
     // The mean, shrunk towards the guess: the ETA needs the sum of what the waiting
     // comparisons will take, and the mean is what a sum grows by. (The median, used before,

@@ -38,10 +38,12 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
                        double own = 0);
 
 /// How many seconds of its configurations' median as-run frame a comparison frame is expected
-/// to take before any has been measured (ProgressMeter::ComparisonCostPrior). Contended pairs,
-/// `contended_share` of the as-run pairs, share their core with a CoreCompetitor, so each of
-/// their frames takes kContendedWallFactor times an as-run frame's wall time; warm-up and
-/// per-pass frames cost about an as-run frame (their CPU time was within 2% of it, 2026-11-27).
+/// to take before any has been measured (ProgressMeter::ComparisonCostPrior), over its pairs'
+/// frames. Contended pairs, `contended_share` of the as-run pairs, share their core with a
+/// CoreCompetitor, so each of their frames takes kContendedWallFactor times an as-run frame's
+/// wall time. Warm-up and per-pass frames are left out: they cost about an as-run frame (an
+/// instrumented frame's CPU time was within 2% of it, 2026-11-27), which lowers the ratio over
+/// all of a comparison's frames a little (1.20 instead of 1.25 at the fewest pairs).
 double ContendedFramesCost(double contended_share);
 
 /// A contended frame's wall time against an as-run frame's: about 2 on a quiet machine (the
@@ -94,16 +96,17 @@ public:
 
     void AddExpected(Kind kind, long frames);
 
-    /// `count` comparisons, each expected to take `guess` frames until it says otherwise.
-    void AddComparisons(std::size_t count, long guess);
+    /// `count` comparisons, each expected to take `guess` frames until it says otherwise, of
+    /// which `overhead` (warm-up and per-pass frames) every comparison renders besides its pairs.
+    void AddComparisons(std::size_t count, long guess, long overhead = 0);
 
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
     /// still waiting then expect the mean of what the finished ones took, with a guess counting
     /// as kPriorComparisons of them. `resolution_frames`, when
     /// given (> 0), is what `k`'s noise at this look needs for the resolution alone
-    /// (base::PairsForResolution, in frames); once any comparison has said it, the guess is
-    /// kBoundaryAllowance times their mean instead of the first guess.
+    /// (base::PairsForResolution, in frames of pairs); once any comparison has said it, the guess
+    /// is kBoundaryAllowance times their mean, plus the overhead, instead of the first guess.
     void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
 
     /// How many comparisons the guess (from the noise, below) counts for in the expectation of the
@@ -218,6 +221,7 @@ private:
     mutable std::mutex mutex_;
     std::array<KindState, 2> kinds_;
     long comparison_guess_ = 0;
+    long comparison_overhead_ = 0;  // AddComparisons' overhead
     std::vector<long> comparison_frames_;
     std::vector<long> resolution_frames_;  // per comparison, its latest look's; 0: none yet
     std::vector<ComparisonState> comparison_state_;

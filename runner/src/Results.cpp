@@ -114,23 +114,28 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     const long per_configuration = FramesPerConfiguration(options);
     meter.AddExpected(ProgressMeter::kImage,
                       per_configuration * static_cast<long>(options.configurations.size()));
-    // Frames a comparison renders besides its pairs: both sides' warm-up when it goes on from
-    // its probe (TimeComparisonUnit), and the per-pass pairs after its last look. About a fifth
-    // of a comparison that stops at the fewest pairs; left uncounted, the calibration had to
-    // learn them.
-    const long overhead_frames =
-            2L * ((ProbesComparisons(options) ? options.warmup_frames : 0) + options.pass_frames);
     // Frames of a comparison with `pairs` as-run pairs: both sides of those and of the contended
-    // pairs taken beside them, and the overhead frames (0 for none).
-    auto frames_at = [&](long pairs) -> long {
+    // pairs taken beside them (0 for none).
+    auto pair_frames = [&](long pairs) -> long {
         if (pairs <= 0) {
             return 0;
         }
         const int contended =
                 base::ContendedPairsBeforeNextLook(static_cast<int>(pairs), 0, options.rule);
-        return 2 * (pairs + contended) + overhead_frames;
+        return 2 * (pairs + contended);
     };
-    meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess));
+    // What a comparison renders besides its pairs, expected before it starts: both sides'
+    // warm-up again when it goes on from its probe, and its per-pass pairs after its last look
+    // (TimeComparisonUnit). About a fifth of a comparison that stops at the fewest pairs; left
+    // uncounted, the calibration had to learn them. (The warm-up frames a worker renders the
+    // first time it uses a configuration, often in a probe, are not counted.)
+    const long warmup_frames = ProbesComparisons(options) ? 2L * options.warmup_frames : 0;
+    const long per_pass_frames = 2L * options.pass_frames;
+    auto frames_at = [&](long pairs) -> long {
+        return pairs <= 0 ? 0 : pair_frames(pairs) + warmup_frames + per_pass_frames;
+    };
+    meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess),
+                         warmup_frames + per_pass_frames);
     meter.ComparisonCostPrior(ContendedFramesCost(options.rule.contended_share));
     for (std::size_t k = 0; k < results.comparisons.size(); ++k) {
         const TimedComparison& c = results.comparisons[k].comparison;
@@ -174,20 +179,26 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         ComparisonResult& out = results.comparisons[k];
         const TimedComparison& c = out.comparison;
         const base::StoppingRule rule = ComparisonRule(options, c);
+        // The rest of a comparison that goes on from its probe warms both sides again before its
+        // first pair (TimeComparisonUnit): counted with its first look's frames.
+        const long warmed = part == ComparisonPart::kRest && !out.timing.samples.baseline_ms.empty()
+                                    ? 2L * options.warmup_frames
+                                    : 0;
         auto after_look = [&](const ComparisonTiming& so_far) {
             // Frames taken so far, and a new guess of the pairs the interval needs.
             const long frames = 2L * static_cast<long>(so_far.samples.baseline_ms.size() +
-                                                       so_far.contended.baseline_ms.size());
+                                                       so_far.contended.baseline_ms.size()) +
+                                warmed;
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
             const long needed = base::PairsExpectedFromPairs(
                     so_far.samples.baseline_ms, so_far.samples.candidate_ms, so_far.stated, rule,
                     kInitialPairGuess);
-            // After the last look, its overhead frames are still to come.
+            // After the last look, the per-pass frames are still to come.
             const bool finished = so_far.decision != base::StopDecision::kContinue;
-            meter.ComparisonExpects(k, finished ? frames + overhead_frames : frames_at(needed),
+            meter.ComparisonExpects(k, finished ? frames + per_pass_frames : frames_at(needed),
                                     false,
-                                    frames_at(base::PairsForResolution(so_far.estimate, rule)));
+                                    pair_frames(base::PairsForResolution(so_far.estimate, rule)));
         };
         TimeComparisonUnit(w, options, out, after_look, part);
         if (!out.error.empty()) {
@@ -204,8 +215,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         }
         keep_passes(c.baseline, out.timing.baseline_passes);
         keep_passes(c.candidate, out.timing.candidate_passes);
-        meter.StepComparison(k, c.label, overhead_frames);
-        stepped[k] += overhead_frames;
+        meter.StepComparison(k, c.label, per_pass_frames);
+        stepped[k] += per_pass_frames;
         meter.ComparisonExpects(k, stepped[k], true);
     };
 

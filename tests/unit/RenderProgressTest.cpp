@@ -266,8 +266,7 @@ TEST(RenderProgressTest, ComparisonsArePricedByTheirConfigurationsCosts) {
 }
 
 // Comparison frames that take longer than their configurations' coarse frames (contended
-// frames share a core; warm-up and per-pass frames add to a comparison) raise every price by
-// the same ratio; a comparison whose configurations have no cost yet takes the recent rate.
+// frames share a core) raise every price by the same ratio; a comparison whose configurations have no cost yet takes the recent rate.
 TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
@@ -324,7 +323,46 @@ TEST(RenderProgressTest, UntilComparisonFramesAreMeasuredTheirPriceCarriesThePri
     }
     const double calibration = (50 * 0.040 + 2 * prior) / (50 * 0.040 + 2);
     EXPECT_NEAR(meter.Last().eta_seconds, 50 * 0.040 * calibration, 0.02);
-    EXPECT_LT(calibration, prior);
+    EXPECT_LT(meter.Last().eta_seconds, 50 * 0.040 * prior - 0.1);
+}
+
+// After its last look a comparison still renders its per-pass frames: they stay in the ETA
+// and the total until they are done, and the comparison ends with none left.
+TEST(RenderProgressTest, AComparisonPastItsLastLookStillExpectsItsPerPassFrames) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    PriceComparisons(meter, {{0, 1}}, {0.040, 0.040});
+    Clock::time_point now = start;
+    for (int f = 0; f < 60; ++f) {
+        now += std::chrono::milliseconds(40);
+        meter.StepComparison(0, "row", 1, now);
+    }
+    meter.ComparisonExpects(0, 60 + 10, false);  // the last look: 10 per-pass frames to come
+    meter.StepComparison(0, "row", 0, now);
+    EXPECT_EQ(meter.Last().total, 70);
+    EXPECT_NEAR(meter.Last().eta_seconds, 10 * 0.040, 0.01);
+    now += std::chrono::milliseconds(400);
+    meter.StepComparison(0, "row", 10, now);
+    meter.ComparisonExpects(0, 70, true);
+    meter.StepComparison(0, "row", 0, now);
+    EXPECT_EQ(meter.Last().done, 70);
+    EXPECT_EQ(meter.Last().total, 70);
+    EXPECT_DOUBLE_EQ(meter.Last().eta_seconds, 0.0);
+}
+
+// The noise-based guess for a comparison not started yet scales the frames of its pairs by
+// the boundary clauses' allowance and adds the frames every comparison renders besides them
+// once, not scaled.
+TEST(RenderProgressTest, TheNoiseGuessAddsTheOverheadFramesOnce) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(2, 200, 14);
+    meter.ComparisonExpects(0, 90, false, 60);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(1));
+    EXPECT_EQ(meter.Last().total,
+              90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
 }
 
 // A contended frame shares its core and costs kContendedWallFactor frames; no contended pairs
