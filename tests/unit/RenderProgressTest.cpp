@@ -266,7 +266,8 @@ TEST(RenderProgressTest, ComparisonsArePricedByTheirConfigurationsCosts) {
 }
 
 // Comparison frames that take longer than their configurations' coarse frames (contended
-// frames share a core) raise every price by the same ratio; a comparison whose configurations have no cost yet takes the recent rate.
+// frames share a core) raise every price by the same ratio; a comparison whose configurations have
+// no cost yet takes the recent rate.
 TEST(RenderProgressTest, ThePriceFollowsWhatComparisonFramesTookAgainstTheirCost) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
@@ -361,8 +362,7 @@ TEST(RenderProgressTest, TheNoiseGuessAddsTheOverheadFramesOnce) {
     meter.AddComparisons(2, 200, 14);
     meter.ComparisonExpects(0, 90, false, 60);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(1));
-    EXPECT_EQ(meter.Last().total,
-              90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
+    EXPECT_EQ(meter.Last().total, 90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
 }
 
 // A contended frame shares its core and costs kContendedWallFactor frames; no contended pairs
