@@ -39,9 +39,10 @@ double SecondsToFinish(double work, double threads, std::optional<double> helper
     return std::max(alone + (work - alone * threads) / (threads + 1), own / threads);
 }
 
-double ContendedFramesCost(double contended_share) {
+double ContendedFramesCost(double contended_share, double core_share) {
     const double share = std::max(contended_share, 0.0);
-    return (1.0 + share * kContendedWallFactor) / (1.0 + share);
+    const double core = core_share > 0 && core_share <= 1 ? core_share : kDefaultCoreShare;
+    return (1.0 + share * (1.0 + core)) / (1.0 + share);
 }
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,

@@ -37,22 +37,23 @@ struct WorkUnit {
 double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in,
                        double own = 0);
 
+/// The core share ContendedFramesCost takes before a probe has measured one: halfway between
+/// a quiet machine and one loaded twice over.
+inline constexpr double kDefaultCoreShare = 0.75;
+
 /// How many seconds of its configurations' median as-run frame a comparison frame is expected
 /// to take before any has been measured (ProgressMeter::ComparisonCostPrior), over its pairs'
 /// frames. Contended pairs, `contended_share` of the as-run pairs, share their core with a
-/// CoreCompetitor, so each of their frames takes kContendedWallFactor times an as-run frame's
+/// CoreCompetitor. `core_share` is the share of its core the render thread gets, an as-run
+/// frame's CPU time over its wall time (1 on a quiet machine, about 0.5 beside one other busy
+/// process per core; out of (0, 1], kDefaultCoreShare): one more process on the core leaves it
+/// core_share / (1 + core_share), so a contended frame takes 1 + core_share as-run frames of
 /// wall time. Warm-up and per-pass frames are left out: they cost about an as-run frame (an
 /// instrumented frame's CPU time was within 2% of it, 2026-11-27), which lowers the ratio over
-/// all of a comparison's frames a little (1.20 instead of 1.25 at the fewest pairs).
-double ContendedFramesCost(double contended_share);
-
-/// A contended frame's wall time against an as-run frame's: about 2 on a quiet machine (the
-/// competitor takes half of the render thread's core) and about 1.5 beside two other CPU-bound
-/// processes (a third of a core instead of a half). In two traced main-job runs of 2026-11-27
-/// the calibration settled at 1.6 quiet and 1.35 loaded with the overhead frames uncounted,
-/// about 1.3 and 1.2 once they count; this factor gives 1.25 for the default contended share of
-/// 0.5.
-inline constexpr double kContendedWallFactor = 1.75;
+/// all of a comparison's frames a little. In two traced main-job runs of 2026-11-27, with the
+/// overhead frames counted, the calibration settled at 1.37 quiet and 1.19 beside two `yes`;
+/// this gives 1.33 and 1.17.
+double ContendedFramesCost(double contended_share, double core_share = kDefaultCoreShare);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then with `probes` every comparison's probe, then

@@ -206,11 +206,22 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             return;
         }
         if (part == ComparisonPart::kProbe) {
-            // The probe's frames are what the rest of this comparison's frames will cost.
-            meter.ConfigurationCost(c.baseline,
-                                    base::Median(out.timing.samples.baseline_wall_ms) / 1000.0);
-            meter.ConfigurationCost(c.candidate,
-                                    base::Median(out.timing.samples.candidate_wall_ms) / 1000.0);
+            // The probe's frames are what the rest of this comparison's frames will cost, and
+            // what its contended frames will cost on top depends on how much of its core the
+            // render thread has now: its frames' time on the run's clock over their wall time.
+            const PairSamples& probe = out.timing.samples;
+            meter.ConfigurationCost(c.baseline, base::Median(probe.baseline_wall_ms) / 1000.0);
+            meter.ConfigurationCost(c.candidate, base::Median(probe.candidate_wall_ms) / 1000.0);
+            std::vector<double> clock_ms = probe.baseline_ms;
+            clock_ms.insert(clock_ms.end(), probe.candidate_ms.begin(), probe.candidate_ms.end());
+            std::vector<double> wall_ms = probe.baseline_wall_ms;
+            wall_ms.insert(wall_ms.end(), probe.candidate_wall_ms.begin(),
+                           probe.candidate_wall_ms.end());
+            if (!clock_ms.empty() && !wall_ms.empty() && base::Median(wall_ms) > 0) {
+                meter.ComparisonCostPrior(ContendedFramesCost(
+                        options.rule.contended_share,
+                        std::min(1.0, base::Median(clock_ms) / base::Median(wall_ms))));
+            }
             return;
         }
         keep_passes(c.baseline, out.timing.baseline_passes);

@@ -314,7 +314,7 @@ TEST(RenderProgressTest, UntilComparisonFramesAreMeasuredTheirPriceCarriesThePri
         meter.ComparisonCostPrior(bad);
     }
     meter.Step(ProgressMeter::kImage, "image", 1, start + std::chrono::milliseconds(40));
-    const double prior = (1 + 0.5 * kContendedWallFactor) / 1.5;
+    const double prior = (1 + 0.5 * (1 + kDefaultCoreShare)) / 1.5;
     EXPECT_NEAR(meter.Last().eta_seconds, 100 * 0.040 * prior, 1e-6);
     // 50 s of frames that took exactly their price outweigh the prior's 2 s.
     Clock::time_point now = start;
@@ -365,14 +365,19 @@ TEST(RenderProgressTest, TheNoiseGuessAddsTheOverheadFramesOnce) {
     EXPECT_EQ(meter.Last().total, 90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
 }
 
-// A contended frame shares its core and costs kContendedWallFactor frames; no contended pairs
-// cost what the as-run ones do.
-TEST(RenderProgressTest, ContendedFramesCostTheirShareAtTheirWallFactor) {
-    EXPECT_DOUBLE_EQ(ContendedFramesCost(0), 1.0);
-    EXPECT_DOUBLE_EQ(ContendedFramesCost(-1), 1.0);
-    EXPECT_DOUBLE_EQ(ContendedFramesCost(1), (1 + kContendedWallFactor) / 2);
-    EXPECT_GT(ContendedFramesCost(0.5), 1.2);
-    EXPECT_LT(ContendedFramesCost(0.5), kContendedWallFactor);
+// A contended frame adds a process to its core: with the render thread getting all of its core
+// it takes twice an as-run frame's wall time, with half of it 1.5 times. No contended pairs cost
+// what the as-run ones do; a core share that is not one gives way to the default.
+TEST(RenderProgressTest, ContendedFramesCostMoreTheMoreOfItsCoreTheRenderHad) {
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(0, 1.0), 1.0);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(-1, 1.0), 1.0);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(1, 1.0), 1.5);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(1, 0.5), 1.25);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(0.5, 1.0), 2.0 / 1.5);
+    EXPECT_DOUBLE_EQ(ContendedFramesCost(0.5), ContendedFramesCost(0.5, kDefaultCoreShare));
+    for (double bad : {0.0, -0.5, 1.5, std::nan(""), std::numeric_limits<double>::infinity()}) {
+        EXPECT_DOUBLE_EQ(ContendedFramesCost(0.5, bad), ContendedFramesCost(0.5)) << bad;
+    }
 }
 
 // Alone until the second process joins, then the rest split by threads: one thread here and
