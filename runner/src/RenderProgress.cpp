@@ -45,6 +45,21 @@ double ContendedFramesCost(double contended_share, double core_share) {
     return (1.0 + share * (1.0 + core)) / (1.0 + share);
 }
 
+long ShrunkProbeGuess(long guess, std::vector<long> probes) {
+    probes.erase(std::remove_if(probes.begin(), probes.end(), [](long p) { return p <= 0; }),
+                 probes.end());
+    if (guess <= 0 || probes.empty()) {
+        return guess;
+    }
+    const auto middle = probes.begin() + static_cast<std::ptrdiff_t>(probes.size() / 2);
+    std::nth_element(probes.begin(), middle, probes.end());
+    double median = static_cast<double>(*middle);
+    if (probes.size() % 2 == 0) {
+        median = (median + static_cast<double>(*std::max_element(probes.begin(), middle))) / 2;
+    }
+    return std::lround(std::sqrt(static_cast<double>(guess) * median));
+}
+
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first,
                                       const std::vector<std::size_t>& early, bool probes) {

@@ -55,6 +55,17 @@ inline constexpr double kDefaultCoreShare = 0.75;
 /// this gives 1.33 and 1.17.
 double ContendedFramesCost(double contended_share, double core_share = kDefaultCoreShare);
 
+/// A comparison's pairs guessed at its probe (base::PairsExpectedFromPairs over 10 pairs), shrunk
+/// halfway, in ratio, towards the median of every probe's guess in the run so far (`probes`,
+/// this one's among them): the geometric mean of the two. Why: a 10-pair interval is wide, and a
+/// guess from it is the mean over where the comparison's change may lie, which the cap of 400
+/// pairs dominates. Probes taken while the machine was busiest guessed 240 to 320 pairs for
+/// rows that took 20 to 60 (2026-11-27), and the ETA was up to 89% long. Replayed over the
+/// comparisons of 19 main-job runs of 2026-11-27, the guessed work missed the actual by more than
+/// 20% of the render in 7 runs unshrunk, 2 shrunk (worst 78% and 56%); over the 43 runs of
+/// 2026-11-26 and 27 replayed before, in 5 runs either way (worst 53% and 35%).
+long ShrunkProbeGuess(long guess, std::vector<long> probes);
+
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then with `probes` every comparison's probe, then
 /// `early` (the configurations the comparisons time), then every comparison (the rest of it,
