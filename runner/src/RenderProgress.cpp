@@ -1,10 +1,13 @@
 // The render's order of work and its progress line (RenderProgress.h).
 #include "RenderProgress.h"
 
+#include "tidepool/base/SampleStatistics.h"
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
 #include <random>
+#include <utility>
 
 namespace tidepool::runner {
 namespace {
@@ -45,19 +48,17 @@ double ContendedFramesCost(double contended_share, double core_share) {
     return (1.0 + share * (1.0 + core)) / (1.0 + share);
 }
 
-long ShrunkProbeGuess(long guess, std::vector<long> probes) {
-    probes.erase(std::remove_if(probes.begin(), probes.end(), [](long p) { return p <= 0; }),
-                 probes.end());
-    if (guess <= 0 || probes.empty()) {
+long ShrunkProbeGuess(long guess, const std::vector<long>& probes) {
+    std::vector<double> guessed;
+    for (long p : probes) {
+        if (p > 0) {
+            guessed.push_back(static_cast<double>(p));
+        }
+    }
+    if (guess <= 0 || guessed.empty()) {
         return guess;
     }
-    const auto middle = probes.begin() + static_cast<std::ptrdiff_t>(probes.size() / 2);
-    std::nth_element(probes.begin(), middle, probes.end());
-    double median = static_cast<double>(*middle);
-    if (probes.size() % 2 == 0) {
-        median = (median + static_cast<double>(*std::max_element(probes.begin(), middle))) / 2;
-    }
-    return std::lround(std::sqrt(static_cast<double>(guess) * median));
+    return std::lround(std::sqrt(static_cast<double>(guess) * base::Median(std::move(guessed))));
 }
 
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,

@@ -64,7 +64,7 @@ double ContendedFramesCost(double contended_share, double core_share = kDefaultC
 /// comparisons of 19 main-job runs of 2026-11-27, the guessed work missed the actual by more than
 /// 20% of the render in 7 runs unshrunk, 2 shrunk (worst 78% and 56%); over the 43 runs of
 /// 2026-11-26 and 27 replayed before, in 5 runs either way (worst 53% and 35%).
-long ShrunkProbeGuess(long guess, std::vector<long> probes);
+long ShrunkProbeGuess(long guess, const std::vector<long>& probes);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then with `probes` every comparison's probe, then
