@@ -381,7 +381,7 @@ TEST(RenderProgressTest, AProbesGuessIsShrunkTowardsTheMedianProbe) {
 
 // A contended frame adds a process to its core: with the render thread getting all of its core
 // it takes twice an as-run frame's wall time, with half of it 1.5 times. No contended pairs cost
-// what the as-run ones do; a core share that is not one gives way to the default.
+// what the as-run ones do; a core share outside (0, 1] gives way to the default.
 TEST(RenderProgressTest, ContendedFramesCostMoreTheMoreOfItsCoreTheRenderHad) {
     EXPECT_DOUBLE_EQ(ContendedFramesCost(0, 1.0), 1.0);
     EXPECT_DOUBLE_EQ(ContendedFramesCost(-1, 1.0), 1.0);
