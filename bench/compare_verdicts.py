@@ -2,15 +2,20 @@
 """Prints two reports' whitepaper rows side by side (data.json of `tidepool report`), the verdict
 agreement, the contradictions and each row's interval width. A contradiction is a row that is
 firm in both runs (a claim a second run could refute: a magnitude, the opposite direction, or
-the direction of a qualitative figure; `firm` in data.json) with different verdicts, or
+a direction the figure states; `firm` in data.json) with verdicts that cannot both hold, or
 `opposite` in one run and not firm in the other (stricter than issue 11's wording, which needs
-both runs firm; both counts are printed). Also counts the rows that contention moved by more
+both runs firm; both counts are printed). "Magnitude at band edge" claims the direction and
+no magnitude, so it contradicts only `opposite`; the rows where it meets a magnitude verdict
+of the other run are counted and printed apart, so a reader can count them the other way.
+Also counts the rows that contention moved by more
 than their stated intervals (issue 11, Deliver 1): the two runs' stated 95% intervals are
 disjoint, so the shift between the estimates exceeds what both intervals together allow.
 Prints figures only; never pass/fail."""
 import json
 import statistics
 import sys
+
+EDGE = "same-direction-magnitude-at-band-edge"
 
 
 def rows(path):
@@ -35,9 +40,10 @@ def main():
     if len(sys.argv) != 5:
         sys.exit("usage: compare_verdicts.py LABEL_A data_a.json LABEL_B data_b.json")
     label_a, a, label_b, b = sys.argv[1], rows(sys.argv[2]), sys.argv[3], rows(sys.argv[4])
-    print(f"{'#':>2}  {'whitepaper':<22} {label_a + ' change [95%]':<28} {'verdict':<36} "
-          f"{label_b + ' change [95%]':<28} {'verdict':<36} agreement")
+    print(f"{'#':>2}  {'whitepaper':<22} {label_a + ' change [95%]':<28} {'verdict':<38} "
+          f"{label_b + ' change [95%]':<28} {'verdict':<38} agreement")
     same = contradictions = firm_pairs_differ = 0
+    edge_meets_magnitude = []
     firm_big = []
     moved = []
     for n in sorted(a):
@@ -47,14 +53,17 @@ def main():
         if va == vb:
             same += 1
             agreement = "same"
+        elif EDGE in (va, vb) and "opposite" not in (va, vb) and fa and fb:
+            edge_meets_magnitude.append(n)
+            agreement = "differs (magnitude at band edge claims the direction only)"
         elif (fa and fb) or "opposite" in (va, vb) and (fa or fb):
             contradictions += 1
             firm_pairs_differ += 1 if fa and fb else 0
             agreement = "CONTRADICTION" if fa and fb else "CONTRADICTION (opposite vs not firm)"
         else:
             agreement = "differs (not both firm)"
-        print(f"{n:>2}  {ra.get('whitepaper_figure', '')[:22]:<22} {cell(ra):<28} {va:<36} "
-              f"{cell(rb):<28} {vb:<36} {agreement}")
+        print(f"{n:>2}  {ra.get('whitepaper_figure', '')[:22]:<22} {cell(ra):<28} {va:<38} "
+              f"{cell(rb):<28} {vb:<38} {agreement}")
         ca = ra.get("measured_percent_ci") or [None, None]
         cb = rb.get("measured_percent_ci") or [None, None]
         if None not in ca and None not in cb and (ca[1] < cb[0] or cb[1] < ca[0]):
@@ -71,6 +80,9 @@ def main():
           f"one run, opposite or another firm category in the other): {firm_pairs_differ}; "
           f"the rest are 'opposite' in one run and not firm in the other, which this script "
           f"counts too")
+    print(f"rows where one run puts the magnitude at its band's edge and the other decides it "
+          f"(not contradictions: the edge claims the direction only): "
+          f"{edge_meets_magnitude if edge_meets_magnitude else 'none'}")
     print(f"rows moved by more than their stated intervals (the two intervals disjoint): "
           f"{', '.join(f'row {n} ({d:+.1f} points)' for n, d in moved) if moved else 'none'} "
           f"(target none)")

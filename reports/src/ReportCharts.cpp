@@ -37,6 +37,26 @@ std::string TickLabel(double value, double span) {
     return fmt::format("{:.{}f}", value, digits);
 }
 
+// The bar colour of a whitepaper row: green when it agrees in magnitude, blue when only its
+// direction is claimed, red when opposite, grey otherwise.
+const char* VerdictColour(Verdict verdict) {
+    switch (verdict) {
+        case Verdict::kSameDirectionAndMagnitude:
+            return "#27ae60";
+        case Verdict::kSameDirectionOnly:
+        case Verdict::kSameDirectionMagnitudeAtBandEdge:
+            return "#2e86c1";
+        case Verdict::kOpposite:
+            return "#c0392b";
+        case Verdict::kSameDirectionDifferentMagnitude:
+        case Verdict::kNegligibleAsClaimed:
+        case Verdict::kBelowResolution:
+        case Verdict::kFailed:
+            return "#95a5a6";
+    }
+    return "#95a5a6";
+}
+
 }  // namespace
 
 std::string ScatterSvg(const std::vector<ChartPoint>& points, const std::vector<std::size_t>& line,
@@ -179,10 +199,7 @@ std::string WhitepaperChartSvg(const ReportModel& model) {
         if (std::isfinite(r.change_percent)) {
             const double x0 = sx(0);
             const double x1 = sx(r.change_percent);
-            const char* colour = r.verdict == Verdict::kSameDirectionAndMagnitude ? "#27ae60"
-                                 : r.verdict == Verdict::kSameDirectionOnly       ? "#2e86c1"
-                                 : r.verdict == Verdict::kOpposite                ? "#c0392b"
-                                                                                  : "#95a5a6";
+            const char* colour = VerdictColour(r.verdict);
             svg += fmt::format(
                     "<rect x=\"{:.1f}\" y=\"{:.1f}\" width=\"{:.1f}\" height=\"12\" "
                     "fill=\"{}\"><title>row {}: {} ({})</title></rect>",

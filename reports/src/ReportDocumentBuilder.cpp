@@ -398,6 +398,7 @@ std::string VerdictCss(Verdict verdict) {
         case Verdict::kNegligibleAsClaimed:
             return "good";
         case Verdict::kSameDirectionDifferentMagnitude:
+        case Verdict::kSameDirectionMagnitudeAtBandEdge:
         case Verdict::kSameDirectionOnly:
             return "fair";
         case Verdict::kOpposite:
@@ -572,8 +573,12 @@ std::string VerdictRuleText(const ReportModel& /*model*/) {
             "beyond that margin is one a second run will repeat. Opposite when the whole "
             "interval lies beyond the margin on the other side. "
             "For a figure in percent, magnitude agreement is relative: same direction and "
-            "magnitude when the interval overlaps half to twice the whitepaper's figure (factor "
-            "{0:.0f}), different magnitude when it lies wholly outside. Row 6's \"<1%\" is "
+            "magnitude when the whole interval lies within half to twice the whitepaper's figure "
+            "(factor {0:.0f}), different magnitude when it lies wholly outside, and the magnitude "
+            "at the band's edge, decided neither way, when the interval holds an end of the band "
+            "(an effect on the end comes out on either side of it from run to run, so only a "
+            "verdict that claims neither side is one a second run will not contradict; the "
+            "direction is still claimed). Row 6's \"<1%\" is "
             "negligible as claimed when the whole interval lies within ±{0:.0f}%. Rows 8-11 "
             "quote no number, so only the direction is compared. Why relative: a fixed "
             "tolerance in points called a fifth of a figure \"the same magnitude\". The halves of "
@@ -805,11 +810,14 @@ std::string AtAGlance(const ReportModel& model) {
     }
     return fmt::format(
             "At a glance: of the whitepaper's 11 rows, {} agree in direction and magnitude, {} in "
-            "direction only, {} go the opposite way, {} are below the resolution reached and "
-            "{} failed. {} of {} configurations are on the time/accuracy Pareto frontier{}. The "
+            "direction only (a qualitative figure, a different magnitude or one at the band's "
+            "edge), {} go the opposite way, {} are below the resolution reached and {} failed. {} "
+            "of {} configurations are on the time/accuracy Pareto frontier{}. The "
             "static operation count ranks configurations by time with Spearman rho {}.{}",
             counts[Verdict::kSameDirectionAndMagnitude] + counts[Verdict::kNegligibleAsClaimed],
-            counts[Verdict::kSameDirectionOnly] + counts[Verdict::kSameDirectionDifferentMagnitude],
+            counts[Verdict::kSameDirectionOnly] +
+                    counts[Verdict::kSameDirectionDifferentMagnitude] +
+                    counts[Verdict::kSameDirectionMagnitudeAtBandEdge],
             counts[Verdict::kOpposite], counts[Verdict::kBelowResolution], counts[Verdict::kFailed],
             model.frontier.size(), model.accuracy.size(),
             frontier.empty() ? "" : " (presets among them: " + frontier + ")",

@@ -596,6 +596,8 @@ std::string_view VerdictName(Verdict verdict) {
             return "same-direction-and-magnitude";
         case Verdict::kSameDirectionDifferentMagnitude:
             return "same-direction-different-magnitude";
+        case Verdict::kSameDirectionMagnitudeAtBandEdge:
+            return "same-direction-magnitude-at-band-edge";
         case Verdict::kSameDirectionOnly:
             return "same-direction-only";
         case Verdict::kNegligibleAsClaimed:
@@ -614,6 +616,7 @@ bool IsFirmVerdict(Verdict verdict, FigureKind kind) {
     switch (verdict) {
         case Verdict::kSameDirectionAndMagnitude:
         case Verdict::kSameDirectionDifferentMagnitude:
+        case Verdict::kSameDirectionMagnitudeAtBandEdge:
         case Verdict::kNegligibleAsClaimed:
         case Verdict::kOpposite:
             return true;
@@ -693,18 +696,27 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
     const std::string band = row.kind == FigureKind::kNegligible
                                      ? fmt::format("|change| <= {:.0f}%", band_high)
                                      : fmt::format("{:.1f}% to {:.0f}%", band_low, band_high);
-    if (magnitude_high >= band_low && magnitude_low <= band_high) {
+    if (magnitude_low >= band_low && magnitude_high <= band_high) {
         *reason = fmt::format(
-                "the interval overlaps half to twice the whitepaper's figure ({}): "
+                "the whole interval lies within half to twice the whitepaper's figure ({}): "
                 "{}{}",
                 band, interval, halves);
         return Verdict::kSameDirectionAndMagnitude;
     }
+    if (magnitude_high < band_low || magnitude_low > band_high) {
+        *reason = fmt::format(
+                "the whole interval lies outside half to twice the whitepaper's "
+                "figure ({}): {}{}",
+                band, interval, halves);
+        return Verdict::kSameDirectionDifferentMagnitude;
+    }
+    // The interval holds an end of the band: the effect may lie on either side of it.
+    const double end = magnitude_low < band_low ? band_low : band_high;
     *reason = fmt::format(
-            "the whole interval lies outside half to twice the whitepaper's "
-            "figure ({}): {}{}",
-            band, interval, halves);
-    return Verdict::kSameDirectionDifferentMagnitude;
+            "the same direction; the interval holds the {:.1f}% end of half to twice the "
+            "whitepaper's figure ({}), so the magnitude is not decided either way: {}{}",
+            end, band, interval, halves);
+    return Verdict::kSameDirectionMagnitudeAtBandEdge;
 }
 
 std::vector<double> VerdictBoundaries(const WhitepaperRow& row) {

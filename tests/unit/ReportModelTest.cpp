@@ -33,6 +33,12 @@ PairedRatio Ratio(double ratio, double low, double high) {
     return r;
 }
 
+// A measured interval of performance change [low, high] percent.
+PairedRatio Change(double low, double high) {
+    return Ratio(1.0 / (1.0 + (low + high) / 200.0), 1.0 / (1.0 + high / 100.0),
+                 1.0 / (1.0 + low / 100.0));
+}
+
 const WhitepaperRow& Row(int number) {
     return WhitepaperRows()[static_cast<std::size_t>(number - 1)];
 }
@@ -44,15 +50,15 @@ struct GradeCase {
     Verdict expected;
 };
 
-TEST(ReportModelTest, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure) {
+TEST(ReportModelTest, VerdictsAreDecidedByTheWholeIntervalAgainstHalfToTwiceTheFigure) {
     // Frame-time ratio r is a performance change of (1/r - 1) * 100 %.
     const std::vector<GradeCase> cases = {
             {"row 1: [-58.3, -54.5] lies within 30..120% of -60%", 1, Ratio(2.3, 2.2, 2.4),
              Verdict::kSameDirectionAndMagnitude},
             {"row 1: [-25.9, -20] is slower but wholly under half of 60%", 1,
              Ratio(1.3, 1.25, 1.35), Verdict::kSameDirectionDifferentMagnitude},
-            {"row 1: [-33.3, -25.9] overlaps half of 60%", 1, Ratio(1.4, 1.35, 1.5),
-             Verdict::kSameDirectionAndMagnitude},
+            {"row 1: [-33.3, -25.9] holds 30%, the lower end of 30..120%", 1, Ratio(1.4, 1.35, 1.5),
+             Verdict::kSameDirectionMagnitudeAtBandEdge},
             {"row 1: +25% faster is the opposite", 1, Ratio(0.8, 0.78, 0.82), Verdict::kOpposite},
             {"row 1: an interval through no change claims no direction", 1, Ratio(1.2, 0.9, 1.5),
              Verdict::kBelowResolution},
@@ -62,12 +68,20 @@ TEST(ReportModelTest, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure
              Verdict::kSameDirectionAndMagnitude},
             {"row 2: [-3.8, -2] is under half of -9%", 2, Ratio(1.03, 1.02, 1.04),
              Verdict::kSameDirectionDifferentMagnitude},
+            {"row 4: [+6.6, +7.2] holds 7%, the upper end of 1.75..7% of +3.5%", 4,
+             Change(6.6, 7.2), Verdict::kSameDirectionMagnitudeAtBandEdge},
+            {"row 4: [+7.05, +7.7] lies wholly above twice +3.5%", 4, Change(7.05, 7.7),
+             Verdict::kSameDirectionDifferentMagnitude},
+            {"row 4: [+2, +6.9] lies within 1.75..7%", 4, Change(2.0, 6.9),
+             Verdict::kSameDirectionAndMagnitude},
             {"row 2: [-2, -1] excludes no change, but not by the margin", 2,
              Ratio(1.015, 1.01, 1.02), Verdict::kBelowResolution},
             {"row 6: [-1.5, +0.5] is negligible as the whitepaper's <1%", 6,
              Ratio(1.005, 0.995, 1.015), Verdict::kNegligibleAsClaimed},
             {"row 6: a definite 30% loss is not <1%", 6, Ratio(1.43, 1.4, 1.46),
              Verdict::kSameDirectionDifferentMagnitude},
+            {"row 6: [-2.5, -1.6] holds the 2% end of <1% x 2", 6, Change(-2.5, -1.6),
+             Verdict::kSameDirectionMagnitudeAtBandEdge},
             {"row 6: [-4.8, +1] is neither negligible nor a direction", 6, Ratio(1.02, 0.99, 1.05),
              Verdict::kBelowResolution},
             {"row 8: qualitative faster, measured faster", 8, Ratio(0.8, 0.78, 0.82),
@@ -87,12 +101,6 @@ TEST(ReportModelTest, VerdictsAreDecidedByTheIntervalAgainstHalfToTwiceTheFigure
     }
 }
 
-// A measured interval of performance change [low, high] percent.
-PairedRatio Change(double low, double high) {
-    return Ratio(1.0 / (1.0 + (low + high) / 200.0), 1.0 / (1.0 + high / 100.0),
-                 1.0 / (1.0 + low / 100.0));
-}
-
 TEST(ReportModelTest, EachVerdictBoundaryIsWhereTheRowsVerdictChanges) {
     EXPECT_EQ(VerdictBoundaries(Row(2)), (std::vector<double>{-4.5, -18.0}));  // "reduced by 9%"
     EXPECT_EQ(VerdictBoundaries(Row(6)), (std::vector<double>{-2.0, 2.0}));    // "<1%"
@@ -107,6 +115,27 @@ TEST(ReportModelTest, EachVerdictBoundaryIsWhereTheRowsVerdictChanges) {
                     << "row " << row.number << " at " << b << ": " << VerdictName(below);
         }
     }
+}
+
+TEST(ReportModelTest, AnIntervalHoldingABandEndClaimsTheDirectionButNoMagnitude) {
+    // Run g of 2026-11-27: row 4 (+3.5%, band 1.75..7%) read +7.0% [+6.6, +7.2] quiet and
+    // +7.4% [+7.0x, +7.7] loaded. "Overlaps the band" called the first the same magnitude and
+    // the second a different one; holding the 7% end, the first decides neither.
+    std::string reason;
+    const Verdict quiet = GradeRow(Row(4), Change(6.6, 7.2), nullptr, &reason);
+    EXPECT_EQ(quiet, Verdict::kSameDirectionMagnitudeAtBandEdge);
+    EXPECT_NE(reason.find("holds the 7.0% end of half to twice the whitepaper's figure (1.8% to "
+                          "7%), so the magnitude is not decided either way"),
+              std::string::npos)
+            << reason;
+    // The direction is still a claim another run could contradict.
+    EXPECT_TRUE(IsFirmVerdict(quiet, FigureKind::kPercent));
+    EXPECT_EQ(GradeRow(Row(4), Change(-7.2, -6.6), nullptr, &reason), Verdict::kOpposite);
+    // Either side of the end is decided once the interval clears it.
+    EXPECT_EQ(GradeRow(Row(4), Change(7.02, 7.7), nullptr, &reason),
+              Verdict::kSameDirectionDifferentMagnitude);
+    EXPECT_EQ(GradeRow(Row(4), Change(6.3, 6.98), nullptr, &reason),
+              Verdict::kSameDirectionAndMagnitude);
 }
 
 TEST(ReportModelTest, BelowResolutionSaysHowSmallTheChangeIs) {
@@ -138,6 +167,7 @@ TEST(ReportModelTest, HalvesThatDisagreeInSignAreSaidNotFoldedIntoTheCategory) {
 TEST(ReportModelTest, FirmVerdictsAreTheOnesASecondRunCouldContradict) {
     EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionAndMagnitude, FigureKind::kPercent));
     EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionDifferentMagnitude, FigureKind::kPercent));
+    EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionMagnitudeAtBandEdge, FigureKind::kPercent));
     EXPECT_TRUE(IsFirmVerdict(Verdict::kOpposite, FigureKind::kPercent));
     EXPECT_TRUE(IsFirmVerdict(Verdict::kNegligibleAsClaimed, FigureKind::kNegligible));
     EXPECT_TRUE(IsFirmVerdict(Verdict::kSameDirectionOnly, FigureKind::kDirection));

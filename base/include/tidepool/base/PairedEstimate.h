@@ -95,12 +95,14 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// them, stop as before.
 ///
 /// Why an interval holding one of `boundaries_points` goes on past the finest half-width: an
-/// interval that holds the direction margin gives no direction ("below resolution"), which no
-/// other run contradicts, but one that holds the edge of a magnitude band overlaps the band and
-/// so claims the same magnitude, a firm verdict. Row 4 read +8.4% [+7.7, +9.3] quiet, outside
-/// its band (up to 7%), and +7.3% [+6.9, +7.7] loaded after 20 pairs, where the half-width of 0.4
-/// was already below the finest and the rule stopped holding the edge: two firm verdicts that
-/// disagree. Such an interval takes pairs until it clears the edge or reaches the cap.
+/// interval that holds the direction margin gives no direction ("below resolution"), and one
+/// that holds the edge of a magnitude band decides no magnitude (once "overlapping the band"
+/// claimed the same magnitude, a firm verdict; report::GradeRow now calls it the band's edge),
+/// so the comparison goes on while more pairs can still decide it. Row 4 read +8.4% [+7.7,
+/// +9.3] quiet, outside its band (up to 7%), and +7.3% [+6.9, +7.7] loaded after 20 pairs, where
+/// the half-width of 0.4 was already below the finest and the rule stopped holding the edge:
+/// then two firm verdicts that disagreed. Such an interval takes pairs until it clears the edge
+/// or reaches the cap.
 struct StoppingRule {
     double resolution_points = 1.5;  // half-width of the 95% interval, percent points
     int min_pairs = 20;

@@ -28,11 +28,15 @@ namespace tidepool::report {
 inline constexpr std::string_view kReferencePreset = "reference";
 
 /// Magnitude agreement is relative: a measured change agrees with a whitepaper figure f when
-/// its 95% interval overlaps f / kMagnitudeFactor .. f x kMagnitudeFactor, and differs when
-/// the whole interval lies outside. For the "<1%" row the band is |change| <= 1% x
-/// kMagnitudeFactor. Why relative and decided by the interval: a fixed tolerance in points
-/// called -1.9% "the same magnitude" as -11%, and verdicts decided by the estimate alone flipped
-/// between runs whenever the estimate sat near a boundary.
+/// its whole 95% interval lies within f / kMagnitudeFactor .. f x kMagnitudeFactor, differs
+/// when the whole interval lies outside, and is not decided when the interval holds an end of
+/// that band. For the "<1%" row the band is |change| <= 1% x kMagnitudeFactor. Why relative
+/// and decided by the interval: a fixed tolerance in points called -1.9% "the same magnitude"
+/// as -11%, and verdicts decided by the estimate alone flipped between runs whenever the
+/// estimate sat near a boundary. Why an interval holding an end decides nothing: "overlaps the
+/// band" called +7.0% [+6.6, +7.2] the same magnitude as a band from 7%, while the next run's
+/// +7.4% [+7.0, +7.7] differed: an effect on a band's end is on both sides of it in turn, and
+/// only a verdict that claims neither side is one a second run cannot contradict.
 inline constexpr double kMagnitudeFactor = 2.0;
 
 /// A direction is claimed only beyond this margin (base/PairedEstimate.h says why).
@@ -43,30 +47,34 @@ inline constexpr std::size_t kMisleadingCount = 6;
 
 /// The verdict of one whitepaper row, decided by its 95% interval.
 enum class Verdict {
-    kSameDirectionAndMagnitude,        // the whole interval lies in the figure's magnitude band
-    kSameDirectionDifferentMagnitude,  // the figure's direction, the whole interval outside it
-    kSameDirectionOnly,                // the figure's direction; the figure is qualitative
-    kNegligibleAsClaimed,              // a "<1%" row whose interval lies within the band
-    kOpposite,                         // the whole interval on the other side of no change
-    kBelowResolution,                  // the interval reaches within kDirectionMarginPoints of
-                                       // no change: no direction
-    kFailed,                           // a configuration failed or is missing
+    kSameDirectionAndMagnitude,         // the whole interval lies in the figure's magnitude band
+    kSameDirectionDifferentMagnitude,   // the figure's direction, the whole interval outside it
+    kSameDirectionMagnitudeAtBandEdge,  // the figure's direction, the interval holds an end of
+                                        // the band: the magnitude is not decided
+    kSameDirectionOnly,                 // the figure's direction; the figure is qualitative
+    kNegligibleAsClaimed,               // a "<1%" row whose interval lies within the band
+    kOpposite,                          // the whole interval on the other side of no change
+    kBelowResolution,                   // the interval reaches within kDirectionMarginPoints of
+                                        // no change: no direction
+    kFailed,                            // a configuration failed or is missing
 };
 
 /// A stable lower-case name of `verdict` for tables and JSON; never fails.
 std::string_view VerdictName(Verdict verdict);
 
 /// True when `verdict` makes a claim another run could contradict: a magnitude (agreeing,
-/// different, negligible), the opposite direction, or the direction of a qualitative figure.
-/// "Below resolution" is not firm. Never fails.
+/// different, negligible), the opposite direction, or a direction the figure states (of a
+/// qualitative figure, or of a percent figure whose magnitude is at the band's edge). "Below
+/// resolution" is not firm. Never fails.
 bool IsFirmVerdict(Verdict verdict, FigureKind kind);
 
 /// Grades a measured paired ratio against a row by its 95% interval (as a performance change,
 /// + = faster): below resolution when the interval reaches within kDirectionMarginPoints of no
 /// change ("|change| < X%", X the larger end); opposite when it lies beyond the margin on the
-/// other side; for a percent figure, same direction and magnitude when it overlaps
-/// kMagnitudeFactor's band and different magnitude otherwise; for "<1%", negligible as claimed
-/// when the interval lies within the band; direction only for qualitative figures. `reason` says
+/// other side; for a percent figure, same direction and magnitude when it lies within
+/// kMagnitudeFactor's band, different magnitude when it lies wholly outside, and the magnitude
+/// at the band's edge when it holds an end; for "<1%", negligible as claimed when the interval
+/// lies within the band; direction only for qualitative figures. `reason` says
 /// why in one line, with the interval and, when `split` (may be null) shows the two halves of the
 /// pairs on opposite sides, that too. Never fails (no ratio is kFailed).
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,
