@@ -167,7 +167,10 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
     const double reach = rule.boundary_standard_errors * estimate.HalfWidthPoints() / z;
     const double low = estimate.change_low;
     const double high = estimate.change_high;
-    const double centre = (low + high) / 2.0;
+    // The estimate, not the interval's midpoint: an interval spanning the as-run and contended
+    // pairs (AcrossHostStates) is lopsided about it.
+    const double centre =
+            std::isfinite(estimate.change_percent) ? estimate.change_percent : (low + high) / 2.0;
     const double margin = kDirectionMarginPoints;
     if (std::fabs(high + margin) < reach || std::fabs(low - margin) < reach) {
         return true;
@@ -246,6 +249,7 @@ int FirstStopAfter(double change, int pairs, const HalfWidthAt& half_width_at,
     look.pairs = pairs + first;
     for (;;) {
         const double h = half_width_at(look.pairs);
+        look.change_percent = change;
         look.change_low = change - h;
         look.change_high = change + h;
         if (DecideStop(look, rule) != StopDecision::kContinue) {

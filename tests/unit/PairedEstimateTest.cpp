@@ -307,6 +307,19 @@ TEST(PairedEstimateTest, ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsI
     // At the finest half-width it stops wherever it lies.
     EXPECT_EQ(DecideStop(EstimateWithInterval(300, -2.2, -0.8), coarse), StopDecision::kResolved);
 
+    // The estimate decides, not the interval's midpoint. The half-size reflection beside two
+    // `yes` (2026-11-27): +2.8% [-0.7, +3.7] in performance after 20 pairs, the as-run and
+    // contended intervals spanned, midpoint +1.5, inside the margin; it stopped unclaimed.
+    PairedEstimate lopsided = EstimateWithInterval(20, -0.7, +3.7);
+    lopsided.change_percent = +2.8;
+    EXPECT_TRUE(NearVerdictBoundary(lopsided, coarse));
+    EXPECT_EQ(DecideStop(lopsided, coarse), StopDecision::kContinue);
+    // And the other way: the midpoint beyond the margin, the estimate inside it.
+    lopsided = EstimateWithInterval(20, -0.4, +4.2);
+    lopsided.change_percent = +0.6;
+    EXPECT_FALSE(NearVerdictBoundary(lopsided, coarse));
+    EXPECT_EQ(DecideStop(lopsided, coarse), StopDecision::kResolved);
+
     // Effects a little beyond the margin at the measured noise: with the clause, many more runs
     // claim the direction; without it, most stop early and do not. (80 runs each: the sequential
     // runs are slow under the sanitizers.)

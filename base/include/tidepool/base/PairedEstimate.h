@@ -86,7 +86,7 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// one run and below resolution in the next (bench/verdict_stability.sh saw it: -2.6% [-3.9,
 /// -1.4] quiet, -2.9% [-4.4, -1.6] loaded). Such a comparison keeps taking pairs until that end
 /// clears the margin by `boundary_standard_errors`, up to the finer resolution. So does one whose
-/// centre lies beyond a margin while its interval still reaches over it (the planner's
+/// estimate lies beyond a margin while its interval still reaches over it (the planner's
 /// half-size reflection: -2.0% [-3.3, -0.1] after 20 pairs quiet, stopped and not claimed;
 /// -2.7% [-3.4, -2.0] after 187 pairs loaded, claimed), and one whose interval holds or ends
 /// near any of `boundaries_points`, the other boundaries of its verdict (the whitepaper's
@@ -170,9 +170,12 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 /// True when stopping now could give a verdict the next run would not: an end of the interval
 /// lies within `rule.boundary_standard_errors` standard errors of the direction margin it is
 /// compared with (the upper end with -kDirectionMarginPoints, the lower end with
-/// +kDirectionMarginPoints); or the centre lies beyond a margin and the interval still reaches
-/// over it; or one of `rule.boundaries_points` lies inside the interval or within that many
-/// standard errors of an end. False when invalid.
+/// +kDirectionMarginPoints); or the estimate lies beyond a margin and the interval still reaches
+/// over it (the estimate, not the interval's midpoint: the interval AcrossHostStates states is
+/// lopsided about it; the planner's half-size reflection beside two `yes` read -2.7% [-3.6,
+/// +0.8] in frame time after 20 pairs, its midpoint inside the margin, and stopped unclaimed
+/// where the quiet run claimed -2.4% [-2.9, -1.7] after 150); or one of `rule.boundaries_points`
+/// lies inside the interval or within that many standard errors of an end. False when invalid.
 bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
 
 /// True when one of `rule.boundaries_points` lies strictly inside the interval. False when
