@@ -35,7 +35,7 @@ trap 'rm -rf "$logs"' EXIT
 long_tests=(
   PairedEstimateTest.NinetyFivePercentIntervalCoversTheTrueEffectUnderMeasuredNoise  # 15 (122 at -O0 in that CI run)
   VariantExpanderTest.PrunedCountsPerRuleEqualABruteForceOnRandomConfigs             # 12 (51)
-  PairedEstimateTest.ACentreBeyondTheMarginKeepsGoingUntilTheIntervalClearsIt        # 3 (26)
+  PairedEstimateTest.AnEstimateBeyondTheMarginKeepsGoingUntilTheIntervalClearsIt        # 3 (26)
 )
 without_long="-$(IFS=:; echo "${long_tests[*]}")"
 # run_job I: runs job I (a long test, then the shards) into its log and leaves its exit code

@@ -303,8 +303,9 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     if (DecideStop(estimate, rule) != StopDecision::kContinue) {
         return estimate.pairs;  // it stops at this look
     }
-    // Otherwise the mean over where the true change may lie, normal about the interval's centre
-    // with the interval's standard error. Why the mean over the change and not the pairs at the
+    // Otherwise the mean over where the true change may lie, normal about the estimate (as
+    // DecideStop reads it: a stated interval is lopsided about it) with the interval's standard
+    // error. Why the mean over the change and not the pairs at the
     // centre: the pairs a boundary needs grow as the inverse square of the distance, so the
     // centre's guess is short whenever the change lies nearer the boundary than the centre does,
     // and a sum of work needs the mean. Why not the formula used before (wait for a sixteenth of
@@ -313,7 +314,9 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     // that stopped at 40, and the ETA was 25% long for that look. PairedEstimateTest's
     // ExpectedPairsAtTheFirstLookFollowTheRulesStops measures the mean's.
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
-    const double centre = (estimate.change_low + estimate.change_high) / 2.0;
+    const double centre = std::isfinite(estimate.change_percent)
+                                  ? estimate.change_percent
+                                  : (estimate.change_low + estimate.change_high) / 2.0;
     return MeanOverTheChange(centre, half_width / z, [&](double change) {
         return PairsAtStopIf(change, estimate.pairs, half_width, rule);
     });

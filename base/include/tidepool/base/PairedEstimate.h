@@ -184,7 +184,7 @@ bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& ru
 
 /// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
 /// when DecideStop stops at this estimate; otherwise the mean, over where the true change may
-/// lie (normal about the interval's centre, with its standard error), of the first later look at
+/// lie (normal about the estimate, with the interval's standard error), of the first later look at
 /// which DecideStop would stop if the interval narrowed by the square-root law about that change;
 /// at most max_pairs. Without an interval, the first look at or after `fallback`.
 int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule, int fallback);
