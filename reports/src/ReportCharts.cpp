@@ -37,11 +37,12 @@ std::string TickLabel(double value, double span) {
     return fmt::format("{:.{}f}", value, digits);
 }
 
-// The bar colour of a whitepaper row: green when it agrees in magnitude, blue when only its
-// direction is claimed, red when opposite, grey otherwise.
+// The bar colour of a whitepaper row: green when it agrees in magnitude (or is negligible as
+// claimed), blue when only its direction is claimed, red when opposite, grey otherwise.
 const char* VerdictColour(Verdict verdict) {
     switch (verdict) {
         case Verdict::kSameDirectionAndMagnitude:
+        case Verdict::kNegligibleAsClaimed:
             return "#27ae60";
         case Verdict::kSameDirectionOnly:
         case Verdict::kSameDirectionMagnitudeAtBandEdge:
@@ -49,7 +50,6 @@ const char* VerdictColour(Verdict verdict) {
         case Verdict::kOpposite:
             return "#c0392b";
         case Verdict::kSameDirectionDifferentMagnitude:
-        case Verdict::kNegligibleAsClaimed:
         case Verdict::kBelowResolution:
         case Verdict::kFailed:
             return "#95a5a6";

@@ -693,29 +693,30 @@ Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const Sp
     const double band_low = figure / kMagnitudeFactor;
     const double band_high =
             row.kind == FigureKind::kNegligible ? kMagnitudeFactor : figure * kMagnitudeFactor;
-    const std::string band = row.kind == FigureKind::kNegligible
-                                     ? fmt::format("|change| <= {:.0f}%", band_high)
-                                     : fmt::format("{:.1f}% to {:.0f}%", band_low, band_high);
+    const std::string band =
+            row.kind == FigureKind::kNegligible
+                    ? fmt::format("the whitepaper's <1% times {:.0f}: |change| <= {:.0f}%",
+                                  kMagnitudeFactor, band_high)
+                    : fmt::format("half to twice the whitepaper's figure: {:.1f}% to {:.0f}%",
+                                  band_low, band_high);
     if (magnitude_low >= band_low && magnitude_high <= band_high) {
-        *reason = fmt::format(
-                "the whole interval lies within half to twice the whitepaper's figure ({}): "
-                "{}{}",
-                band, interval, halves);
+        *reason = fmt::format("the whole interval lies within {}: {}{}", band, interval, halves);
         return Verdict::kSameDirectionAndMagnitude;
     }
     if (magnitude_high < band_low || magnitude_low > band_high) {
-        *reason = fmt::format(
-                "the whole interval lies outside half to twice the whitepaper's "
-                "figure ({}): {}{}",
-                band, interval, halves);
+        *reason = fmt::format("the whole interval lies outside {}: {}{}", band, interval, halves);
         return Verdict::kSameDirectionDifferentMagnitude;
     }
-    // The interval holds an end of the band: the effect may lie on either side of it.
-    const double end = magnitude_low < band_low ? band_low : band_high;
+    // The interval holds an end of the band (or both): the effect may lie on either side.
+    const bool holds_low = magnitude_low < band_low;
+    const bool holds_high = magnitude_high > band_high;
+    const std::string held = holds_low && holds_high ? "the whole band"
+                             : holds_low             ? fmt::format("its {:.1f}% end", band_low)
+                                                     : fmt::format("its {:.1f}% end", band_high);
     *reason = fmt::format(
-            "the same direction; the interval holds the {:.1f}% end of half to twice the "
-            "whitepaper's figure ({}), so the magnitude is not decided either way: {}{}",
-            end, band, interval, halves);
+            "the same direction; the interval holds {} ({}), so the magnitude is not decided "
+            "either way: {}{}",
+            held, band, interval, halves);
     return Verdict::kSameDirectionMagnitudeAtBandEdge;
 }
 

@@ -84,7 +84,7 @@ TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
     }
     const nlohmann::json data = nlohmann::json::parse(ReadText(Out() / "default/data.json"));
     EXPECT_EQ(data["schema"], "tidepool.report");
-    EXPECT_EQ(data["version"], 1);
+    EXPECT_EQ(data["version"], 2);
     ASSERT_EQ(data["whitepaper_rows"].size(), 11u);
     for (const nlohmann::json& row : data["whitepaper_rows"]) {
         EXPECT_NE(row["verdict"], "failed") << row.dump();

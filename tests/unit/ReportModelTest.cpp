@@ -124,7 +124,7 @@ TEST(ReportModelTest, AnIntervalHoldingABandEndClaimsTheDirectionButNoMagnitude)
     std::string reason;
     const Verdict quiet = GradeRow(Row(4), Change(6.6, 7.2), nullptr, &reason);
     EXPECT_EQ(quiet, Verdict::kSameDirectionMagnitudeAtBandEdge);
-    EXPECT_NE(reason.find("holds the 7.0% end of half to twice the whitepaper's figure (1.8% to "
+    EXPECT_NE(reason.find("holds its 7.0% end (half to twice the whitepaper's figure: 1.8% to "
                           "7%), so the magnitude is not decided either way"),
               std::string::npos)
             << reason;
@@ -136,6 +136,16 @@ TEST(ReportModelTest, AnIntervalHoldingABandEndClaimsTheDirectionButNoMagnitude)
               Verdict::kSameDirectionDifferentMagnitude);
     EXPECT_EQ(GradeRow(Row(4), Change(6.3, 6.98), nullptr, &reason),
               Verdict::kSameDirectionAndMagnitude);
+    // An interval wider than the band holds both ends; the reason says so.
+    EXPECT_EQ(GradeRow(Row(4), Change(1.6, 7.5), nullptr, &reason),
+              Verdict::kSameDirectionMagnitudeAtBandEdge);
+    EXPECT_NE(reason.find("holds the whole band"), std::string::npos) << reason;
+    // Row 6's band is the whitepaper's "<1%" times 2, not half to twice a figure.
+    EXPECT_EQ(GradeRow(Row(6), Change(-2.5, -1.6), nullptr, &reason),
+              Verdict::kSameDirectionMagnitudeAtBandEdge);
+    EXPECT_NE(reason.find("holds its 2.0% end (the whitepaper's <1% times 2: |change| <= 2%)"),
+              std::string::npos)
+            << reason;
 }
 
 TEST(ReportModelTest, BelowResolutionSaysHowSmallTheChangeIs) {

@@ -100,7 +100,7 @@ TEST(ReportWriterTest, WritesAllFormatsAndReplacesOnlyItsOwnFolder) {
     }
     const nlohmann::json data = nlohmann::json::parse(ReadText(written.folder / "data.json"));
     EXPECT_EQ(data["schema"], "tidepool.report");
-    EXPECT_EQ(data["version"], 1);
+    EXPECT_EQ(data["version"], 2);
     EXPECT_EQ(data["whitepaper_rows"].size(), 11u);
     EXPECT_EQ(data["stability"]["present"], false);
     const std::string html = ReadText(written.folder / "index.html");

@@ -74,7 +74,8 @@ bool IsFirmVerdict(Verdict verdict, FigureKind kind);
 /// other side; for a percent figure, same direction and magnitude when it lies within
 /// kMagnitudeFactor's band, different magnitude when it lies wholly outside, and the magnitude
 /// at the band's edge when it holds an end; for "<1%", negligible as claimed when the interval
-/// lies within the band; direction only for qualitative figures. `reason` says
+/// lies within the band and, beyond the margin, different magnitude or at the band's edge as for
+/// a percent figure; direction only for qualitative figures. `reason` says
 /// why in one line, with the interval and, when `split` (may be null) shows the two halves of the
 /// pairs on opposite sides, that too. Never fails (no ratio is kFailed).
 Verdict GradeRow(const WhitepaperRow& row, const PairedRatio& measured, const SplitHalf* split,

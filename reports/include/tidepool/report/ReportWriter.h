@@ -15,9 +15,11 @@
 
 namespace tidepool::report {
 
-/// The schema name and version of data.json.
+/// The schema name and version of data.json. Version 2 (2026-11-27): a row's verdict may be
+/// "same-direction-magnitude-at-band-edge", and "same-direction-and-magnitude" needs the whole
+/// interval in the band (version 1 gave it to an interval overlapping the band).
 inline constexpr const char* kReportSchema = "tidepool.report";
-inline constexpr int kReportSchemaVersion = 1;
+inline constexpr int kReportSchemaVersion = 2;
 
 /// Upper bound on the bytes of PNG data embedded in index.html: images are downscaled by 2, 3,
 /// ... until they fit, so the page stays under about 10 MB (base64 adds a third) and opens
