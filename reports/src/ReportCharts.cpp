@@ -37,21 +37,17 @@ std::string TickLabel(double value, double span) {
     return fmt::format("{:.{}f}", value, digits);
 }
 
-// The bar colour of a whitepaper row: green when it agrees in magnitude (or is negligible as
-// claimed), blue when only its direction is claimed, red when opposite, grey otherwise.
+// The bar colour of a whitepaper row by its standing, as the table's rows are coloured: green,
+// blue, red, grey.
 const char* VerdictColour(Verdict verdict) {
-    switch (verdict) {
-        case Verdict::kSameDirectionAndMagnitude:
-        case Verdict::kNegligibleAsClaimed:
+    switch (StandingOf(verdict)) {
+        case VerdictStanding::kAgrees:
             return "#27ae60";
-        case Verdict::kSameDirectionOnly:
-        case Verdict::kSameDirectionMagnitudeAtBandEdge:
+        case VerdictStanding::kAgreesInDirection:
             return "#2e86c1";
-        case Verdict::kOpposite:
+        case VerdictStanding::kDisagrees:
             return "#c0392b";
-        case Verdict::kSameDirectionDifferentMagnitude:
-        case Verdict::kBelowResolution:
-        case Verdict::kFailed:
+        case VerdictStanding::kUndecided:
             return "#95a5a6";
     }
     return "#95a5a6";

@@ -392,18 +392,14 @@ std::string ScenesIntro(const stagefiles::PlansFile& plans) {
 }
 
 std::string VerdictCss(Verdict verdict) {
-    switch (verdict) {
-        case Verdict::kSameDirectionAndMagnitude:
-        case Verdict::kNegligibleAsClaimed:
+    switch (StandingOf(verdict)) {
+        case VerdictStanding::kAgrees:
             return "good";
-        case Verdict::kSameDirectionDifferentMagnitude:
-        case Verdict::kSameDirectionMagnitudeAtBandEdge:
-        case Verdict::kSameDirectionOnly:
+        case VerdictStanding::kAgreesInDirection:
             return "fair";
-        case Verdict::kOpposite:
-        case Verdict::kFailed:
+        case VerdictStanding::kDisagrees:
             return "bad";
-        case Verdict::kBelowResolution:
+        case VerdictStanding::kUndecided:
             return "unknown";
     }
     return "unknown";
@@ -799,8 +795,10 @@ std::string AccuracyIntro() {
 // One paragraph a reader can stop after: verdict counts, the frontier, the static-cost fit.
 std::string AtAGlance(const ReportModel& model) {
     std::map<Verdict, int> counts;
+    std::map<VerdictStanding, int> standings;
     for (const RowComparison& r : model.rows) {
         ++counts[r.verdict];
+        ++standings[StandingOf(r.verdict)];
     }
     std::string frontier;
     for (std::size_t i : model.frontier) {
@@ -815,10 +813,7 @@ std::string AtAGlance(const ReportModel& model) {
             "edge), {} go the opposite way, {} are below the resolution reached and {} failed. {} "
             "of {} configurations are on the time/accuracy Pareto frontier{}. The "
             "static operation count ranks configurations by time with Spearman rho {}.{}",
-            counts[Verdict::kSameDirectionAndMagnitude] + counts[Verdict::kNegligibleAsClaimed],
-            counts[Verdict::kSameDirectionOnly] +
-                    counts[Verdict::kSameDirectionDifferentMagnitude] +
-                    counts[Verdict::kSameDirectionMagnitudeAtBandEdge],
+            standings[VerdictStanding::kAgrees], standings[VerdictStanding::kAgreesInDirection],
             counts[Verdict::kOpposite], counts[Verdict::kBelowResolution], counts[Verdict::kFailed],
             model.frontier.size(), model.accuracy.size(),
             frontier.empty() ? "" : " (presets among them: " + frontier + ")",

@@ -612,6 +612,24 @@ std::string_view VerdictName(Verdict verdict) {
     return "failed";
 }
 
+VerdictStanding StandingOf(Verdict verdict) {
+    switch (verdict) {
+        case Verdict::kSameDirectionAndMagnitude:
+        case Verdict::kNegligibleAsClaimed:
+            return VerdictStanding::kAgrees;
+        case Verdict::kSameDirectionDifferentMagnitude:
+        case Verdict::kSameDirectionMagnitudeAtBandEdge:
+        case Verdict::kSameDirectionOnly:
+            return VerdictStanding::kAgreesInDirection;
+        case Verdict::kOpposite:
+        case Verdict::kFailed:
+            return VerdictStanding::kDisagrees;
+        case Verdict::kBelowResolution:
+            return VerdictStanding::kUndecided;
+    }
+    return VerdictStanding::kUndecided;
+}
+
 bool IsFirmVerdict(Verdict verdict, FigureKind kind) {
     switch (verdict) {
         case Verdict::kSameDirectionAndMagnitude:

@@ -186,6 +186,19 @@ TEST(ReportModelTest, FirmVerdictsAreTheOnesASecondRunCouldContradict) {
     EXPECT_FALSE(IsFirmVerdict(Verdict::kFailed, FigureKind::kPercent));
 }
 
+TEST(ReportModelTest, VerdictsStandAsAgreeingInDirectionOnlyWhenOnlyTheDirectionIsClaimed) {
+    EXPECT_EQ(StandingOf(Verdict::kSameDirectionAndMagnitude), VerdictStanding::kAgrees);
+    EXPECT_EQ(StandingOf(Verdict::kNegligibleAsClaimed), VerdictStanding::kAgrees);
+    EXPECT_EQ(StandingOf(Verdict::kSameDirectionMagnitudeAtBandEdge),
+              VerdictStanding::kAgreesInDirection);
+    EXPECT_EQ(StandingOf(Verdict::kSameDirectionDifferentMagnitude),
+              VerdictStanding::kAgreesInDirection);
+    EXPECT_EQ(StandingOf(Verdict::kSameDirectionOnly), VerdictStanding::kAgreesInDirection);
+    EXPECT_EQ(StandingOf(Verdict::kOpposite), VerdictStanding::kDisagrees);
+    EXPECT_EQ(StandingOf(Verdict::kFailed), VerdictStanding::kDisagrees);
+    EXPECT_EQ(StandingOf(Verdict::kBelowResolution), VerdictStanding::kUndecided);
+}
+
 TEST(ReportModelTest, WhitepaperRowsAreMeasuredFromPairedRounds) {
     TempDir dir;
     const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());

@@ -62,6 +62,13 @@ enum class Verdict {
 /// A stable lower-case name of `verdict` for tables and JSON; never fails.
 std::string_view VerdictName(Verdict verdict);
 
+/// How a verdict stands against the whitepaper, the one grouping the report's table and chart
+/// colour by: agrees (in magnitude, or negligible as claimed), agrees in direction (only the
+/// direction is claimed or the magnitude differs), disagrees (opposite, or failed), undecided
+/// (below resolution).
+enum class VerdictStanding { kAgrees, kAgreesInDirection, kDisagrees, kUndecided };
+VerdictStanding StandingOf(Verdict verdict);
+
 /// True when `verdict` makes a claim another run could contradict: a magnitude (agreeing,
 /// different, negligible), the opposite direction, or a direction the figure states (of a
 /// qualitative figure, or of a percent figure whose magnitude is at the band's edge). "Below
