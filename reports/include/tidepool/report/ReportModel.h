@@ -34,9 +34,10 @@ inline constexpr std::string_view kReferencePreset = "reference";
 /// and decided by the interval: a fixed tolerance in points called -1.9% "the same magnitude"
 /// as -11%, and verdicts decided by the estimate alone flipped between runs whenever the
 /// estimate sat near a boundary. Why an interval holding an end decides nothing: "overlaps the
-/// band" called +7.0% [+6.6, +7.2] the same magnitude as a band from 7%, while the next run's
-/// +7.4% [+7.0, +7.7] differed: an effect on a band's end is on both sides of it in turn, and
-/// only a verdict that claims neither side is one a second run cannot contradict.
+/// band" called row 4's +7.0% [+6.6, +7.2] the same magnitude as the whitepaper's +3.5% (band up
+/// to 7%), while the next run's +7.4% [+7.0, +7.7] differed: an effect on a band's end is on both
+/// sides of it in turn, and only a verdict that claims neither side is one a second run cannot
+/// contradict.
 inline constexpr double kMagnitudeFactor = 2.0;
 
 /// A direction is claimed only beyond this margin (base/PairedEstimate.h says why).
