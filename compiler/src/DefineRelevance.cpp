@@ -203,12 +203,15 @@ DefineRelevance::DefineRelevance(const std::string& text) {
     }
     std::vector<std::size_t> open;  // the kIf, kIfdef or kIfndef items not yet ended
     std::vector<bool> had_else;     // for each of them, whether its #else came
+    int line_number = 0;
     for (const Line& line : LinesWithoutComments(text)) {
+        ++line_number;
         std::vector<std::string> tokens = Tokens(line.text);
         if (tokens.empty()) {
             continue;
         }
         Item item;
+        item.lines = LineSpan{line_number, line_number};
         // A directive's own word (`define`, `ifdef`) is no name it reads.
         const std::size_t first_name = tokens[0] == "#" ? 2 : 0;
         for (std::size_t t = first_name; t < tokens.size(); ++t) {
@@ -224,6 +227,7 @@ DefineRelevance::DefineRelevance(const std::string& text) {
             if (!items_.empty() && items_.back().kind == Kind::kCode) {
                 std::vector<int>& names = items_.back().names;
                 names.insert(names.end(), item.names.begin(), item.names.end());
+                items_.back().lines.last = line_number;
             } else {
                 items_.push_back(std::move(item));
             }
@@ -422,8 +426,11 @@ private:
     int depth_ = 0;
 };
 
-std::optional<std::string> DefineRelevance::Relevant(
-        const std::vector<std::string>& defines) const {
+std::optional<std::string> DefineRelevance::Relevant(const std::vector<std::string>& defines,
+                                                     std::vector<LineSpan>* skipped) const {
+    if (skipped != nullptr) {
+        skipped->clear();
+    }
     if (!followed_) {
         return std::nullopt;
     }
@@ -638,6 +645,12 @@ std::optional<std::string> DefineRelevance::Relevant(
         }
     }
 
+    // Code the walk decided glslang skips: on no path, and in no undecided block ('u').
+    for (std::size_t k = 0; skipped != nullptr && k < items_.size(); ++k) {
+        if (items_[k].kind == Kind::kCode && path[k] == '0') {
+            skipped->push_back(items_[k].lines);
+        }
+    }
     // Hashed: a key as long as the file has lines, kept for every program, would cost memory.
     base::Sha256 key;
     key.Update(path).Update("|").Update(undecided).Update("|");

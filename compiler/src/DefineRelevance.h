@@ -27,6 +27,13 @@ std::set<std::string> MentionedIdentifiers(const std::string& text);
 /// dot, with no leading zero. Any other define may break the preamble alone.
 bool IsPlainDefine(const std::string& define);
 
+/// Lines of a file, 1-based, first to last inclusive.
+struct LineSpan {
+    int first = 0;
+    int last = 0;
+    bool operator==(const LineSpan&) const = default;
+};
+
 /// The conditional structure of one shader file: its directives and the identifiers of its code,
 /// read once, walked for each define list.
 class DefineRelevance {
@@ -46,7 +53,12 @@ public:
     /// plain (IsPlainDefine) or names what another does, a define holds a word the ES 1.00
     /// keyword renaming renames, or an undecided block would read more definitions than the walk
     /// keeps (kMostKept).
-    std::optional<std::string> Relevant(const std::vector<std::string>& defines) const;
+    ///
+    /// With `skipped`, also the lines of code (no directive) that the walk finds in a branch
+    /// glslang skips under `defines`, in order; left empty when the answer is nullopt. A block
+    /// whose branch the walk could not decide is never among them.
+    std::optional<std::string> Relevant(const std::vector<std::string>& defines,
+                                        std::vector<LineSpan>* skipped = nullptr) const;
 
 private:
     enum class Kind { kCode, kIf, kIfdef, kIfndef, kElif, kElse, kEndif, kDefine, kUndef, kOther };
@@ -58,6 +70,7 @@ private:
         std::string body;        // kDefine: what the name stands for, spaces made single
         std::vector<int> names;  // every identifier of the line (of the lines, for kCode)
         std::size_t end = 0;     // kIf, kIfdef, kIfndef: the index of the matching kEndif
+        LineSpan lines;          // where it is: one line, or for kCode the run of code lines
     };
     enum class Truth { kFalse, kTrue, kUnknown };
 

@@ -324,9 +324,10 @@ struct StageJob {
     const DeviceLimits* limits = nullptr;  // the device's, when given
     const Variant* variant = nullptr;      // the variant this slot belongs to
     std::string variant_id;
-    std::string key;     // dedupe key: file + stage + target + content hash
-    std::string hash;    // content hash of the preprocessed text
-    std::string digest;  // SHA-256 of the same text, for the cache's link keys
+    std::string key;                // dedupe key: file + stage + target + content hash
+    std::string hash;               // content hash of the preprocessed text
+    std::string digest;             // SHA-256 of the same text, for the cache's link keys
+    std::vector<LineSpan> skipped;  // code lines glslang skips here, when the walk followed it
 };
 
 void HashStage(StageJob& job) {
@@ -696,12 +697,12 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     std::map<std::string, std::vector<std::size_t>> groups;
     std::set<std::string> exact_keys;
     for (std::size_t i = 0; i < jobs.size(); ++i) {
-        const StageJob& job = jobs[i];
+        StageJob& job = jobs[i];
         // A 3.00 target gives a 1.00 file a preamble of macros (texture2D, ...) the walk does not
         // know of; such slots are grouped by their text.
         std::optional<std::string> relevant;
         if (!blocked(job) && TargetVersion(job.target) == 100) {
-            relevant = relevance.at(job.file).Relevant(job.defines);
+            relevant = relevance.at(job.file).Relevant(job.defines, &job.skipped);
         }
         if (relevant) {
             std::string key =
@@ -908,8 +909,10 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     }
     auto input_of = [&](std::size_t index) {
         const StageJob& job = *representative[index];
-        return GlslangStageInput{job.file,   job.source->text, job.stage,
-                                 job.target, job.defines,      job.limits};
+        GlslangStageInput input{job.file,   job.source->text, job.stage,
+                                job.target, job.defines,      job.limits};
+        input.skipped_lines = &job.skipped;
+        return input;
     };
     auto link_runs = [&](std::size_t i) {
         // Skipped when the cache decided it, or when it can neither link nor decide a stage: a

@@ -81,6 +81,113 @@ std::string WithoutLineComments(std::string_view text) {
     return out;
 }
 
+bool IsQuietWhenSkipped(std::string_view line) {
+    constexpr std::size_t kLongestName = 255;
+    constexpr std::size_t kMostDigits = 9;          // before the dot, and after it
+    constexpr std::size_t kMostExponentDigits = 2;  // 1e99 is no message even as a float
+    constexpr std::string_view kPunctuation = "+-*/%<>=!&|^~?:;,.(){}[]";
+    auto digit = [](char c) { return c >= '0' && c <= '9'; };
+    auto name_part = [&](char c) {
+        return digit(c) || c == '_' || (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z');
+    };
+    std::size_t i = 0;
+    auto digits = [&] {
+        const std::size_t start = i;
+        while (i < line.size() && digit(line[i])) {
+            ++i;
+        }
+        return i - start;
+    };
+    while (i < line.size()) {
+        const char c = line[i];
+        const char next = i + 1 < line.size() ? line[i + 1] : '\0';
+        if (c == ' ' || c == '\t' || (c == '\r' && i + 1 == line.size())) {
+            ++i;
+        } else if (name_part(c) && !digit(c)) {
+            const std::size_t start = i;
+            while (i < line.size() && name_part(line[i])) {
+                ++i;
+            }
+            if (i - start > kLongestName) {
+                return false;
+            }
+        } else if (digit(c) || (c == '.' && digit(next))) {
+            if (c == '0' && digit(next)) {
+                return false;  // octal: glslang checks its digits
+            }
+            if (digits() > kMostDigits) {
+                return false;
+            }
+            if (i < line.size() && line[i] == '.') {
+                ++i;
+                if (digits() > kMostDigits) {
+                    return false;
+                }
+            }
+            if (i < line.size() && (line[i] == 'e' || line[i] == 'E')) {
+                ++i;
+                if (i < line.size() && (line[i] == '+' || line[i] == '-')) {
+                    ++i;
+                }
+                const std::size_t exponent = digits();
+                if (exponent == 0 || exponent > kMostExponentDigits) {
+                    return false;
+                }
+            }
+            if (i < line.size() && (name_part(line[i]) || line[i] == '.')) {
+                return false;  // a suffix, a hexadecimal `x`, or a number run on
+            }
+        } else if (kPunctuation.find(c) != std::string_view::npos &&
+                   !(c == '/' && (next == '*' || next == '/')) && !(c == '*' && next == '/')) {
+            ++i;
+        } else {
+            return false;
+        }
+    }
+    return true;
+}
+
+std::vector<bool> QuietWhenSkippedLines(std::string_view text) {
+    std::vector<bool> quiet;
+    std::size_t start = 0;
+    for (;;) {
+        const std::size_t end = text.find('\n', start);
+        quiet.push_back(IsQuietWhenSkipped(text.substr(start, end - start)));
+        if (end == std::string_view::npos) {
+            return quiet;
+        }
+        start = end + 1;
+    }
+}
+
+std::string WithSkippedLinesBlanked(std::string_view text, const std::vector<LineSpan>& skipped,
+                                    const std::vector<bool>& quiet) {
+    std::string out;
+    out.reserve(text.size());
+    auto span = skipped.begin();
+    std::size_t index = 0;  // of the line, 0-based
+    std::size_t start = 0;
+    for (;;) {
+        std::size_t end = text.find('\n', start);
+        end = end == std::string_view::npos ? text.size() : end;
+        const auto number = static_cast<int>(index + 1);
+        while (span != skipped.end() && span->last < number) {
+            ++span;
+        }
+        const bool blank = span != skipped.end() && span->first <= number && index < quiet.size() &&
+                           quiet[index];
+        if (!blank) {
+            out.append(text.substr(start, end - start));
+        }
+        if (end == text.size()) {
+            return out;
+        }
+        out.push_back('\n');
+        start = end + 1;
+        ++index;
+    }
+}
+
 StageParse::StageParse() = default;
 StageParse::StageParse(StageParse&&) noexcept = default;
 StageParse& StageParse::operator=(StageParse&&) noexcept = default;
@@ -149,6 +256,10 @@ struct TextScan {
     // every text).
     mutable std::once_flag reserved_word_once;
     mutable bool may_use_es300_reserved_word = false;
+    // QuietWhenSkippedLines of without_line_comments: worked out the first time a stage of the
+    // text has lines glslang skips.
+    mutable std::once_flag quiet_once;
+    mutable std::vector<bool> quiet_when_skipped;
 };
 
 // The scan of `text`, from the texts this process scanned last (a worker keeps its own after
@@ -398,8 +509,22 @@ StageParse ParseStage(const GlslangStageInput& input) {
             late_extensions = CheckExtensionPlacement(preprocessed, input.file);
         }
     }
+    // What glslang parses: lines its preprocessor skips are empty where that changes nothing.
+    // The lines are judged before the renaming, which only swaps names for names a few
+    // characters longer: well inside what IsQuietWhenSkipped leaves to glslang's 1024.
+    std::string blanked;
+    const char* parse_chars = text;
+    if (input.skipped_lines != nullptr && !input.skipped_lines->empty()) {
+        const std::shared_ptr<const TextScan> scan = ScanOf(input.text);
+        std::call_once(scan->quiet_once, [&] {
+            scan->quiet_when_skipped = QuietWhenSkippedLines(scan->without_line_comments);
+        });
+        blanked = WithSkippedLinesBlanked(prepared.text, *input.skipped_lines,
+                                          scan->quiet_when_skipped);
+        parse_chars = blanked.c_str();
+    }
     auto parse = [&](EShMessages messages) {
-        auto shader = MakeShader(input, prepared, &text, ShaderUse::kParse);
+        auto shader = MakeShader(input, prepared, &parse_chars, ShaderUse::kParse);
         const bool ok = shader->parse(&resources, version, EEsProfile, prepared.force_version,
                                       false, messages);
         return std::make_pair(ok, std::move(shader));

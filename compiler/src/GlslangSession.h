@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ConformanceRules.h"
+#include "DefineRelevance.h"
 #include "KeywordRenaming.h"
 
 namespace glslang {
@@ -38,6 +39,10 @@ struct GlslangStageInput {
     /// (WebGL 2.0 §4.3 "Supported GLSL Constructs"). Variant configs leave it unset: their
     /// shaders are written once and compiled as each target's version.
     bool keep_version = false;
+    /// Lines of `text` that glslang's preprocessor skips under `defines`, as DefineRelevance's
+    /// walk found them; ParseStage gives glslang those of them WithSkippedLinesBlanked empties
+    /// as empty lines. Null: none known.
+    const std::vector<LineSpan>* skipped_lines = nullptr;
 };
 
 /// The preprocessed text of a stage (defines applied, comments and inactive blocks gone).
@@ -82,6 +87,27 @@ std::string GlslangIdentity();
 /// shaders/water.fsh). Block comments stay, and so does a `//` after a `"` on its line (it may be
 /// inside a string); a text with a `\` at a line's end is returned as it is.
 std::string WithoutLineComments(std::string_view text);
+
+/// Whether glslang's preprocessor can skip `line` (one line, no line break) without a message:
+/// only names of at most 255 characters, white space (space, tab, a `\r` ending the line),
+/// punctuation other than `#`,
+/// `"`, `'`, `\` and a comment's `/*`, `*/` or `//`, and decimal numbers it cannot refuse: no
+/// leading zero before a digit, at most nine digits before an optional dot, an exponent of at
+/// most two digits, and no letter or digit run on after them (a suffix). glslang scans skipped
+/// text token by token and reports what its scanner refuses there (a bad hexadecimal digit, a
+/// suffix its version lacks, a literal too long), so any other line is kept.
+bool IsQuietWhenSkipped(std::string_view line);
+
+/// IsQuietWhenSkipped of each line of `text` (lines end at `\n`).
+std::vector<bool> QuietWhenSkippedLines(std::string_view text);
+
+/// `text` with every line of `skipped` that `quiet` (by line, 0-based, as QuietWhenSkippedLines
+/// gives it for the same lines) marks made empty, its line break kept: glslang's preprocessor
+/// otherwise reads skipped lines a character at a time (a sixth of glslang's parsing of the
+/// default matrix), and an empty line gives it the same text, messages, lines and columns
+/// everywhere else. Directives are never in `skipped`.
+std::string WithSkippedLinesBlanked(std::string_view text, const std::vector<LineSpan>& skipped,
+                                    const std::vector<bool>& quiet);
 
 /// Initialises glslang once per process (thread-safe); every function below calls it.
 void EnsureGlslangInitialized();

@@ -8,13 +8,17 @@
 #include <map>
 #include <optional>
 #include <random>
+#include <regex>
 #include <set>
+#include <sstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "DefineRelevance.h"
 #include "GlslangSession.h"
+#include "PipelineFixture.h"
+#include "StaticCostAnalyzer.h"
 
 namespace tidepool {
 namespace {
@@ -341,6 +345,153 @@ TEST(DefineRelevanceTest, TheDefaultMatrixGroupsExactlyAsGlslangsPreprocessedTex
         EXPECT_EQ(distinct.size(), 1U) << text.first;
     }
     EXPECT_EQ(texts_by_answer.size(), answers_by_text.size());
+}
+
+TEST(DefineRelevanceTest, SkippedLinesAreTheCodeOfBranchesGlslangDoesNotRead) {
+    const std::string text =
+            "#version 100\n"                       // 1
+            "float a;\n"                           // 2
+            "#ifdef A\n"                           // 3
+            "float b;\n"                           // 4
+            "\n"                                   // 5
+            "float c;\n"                           // 6
+            "#else\n"                              // 7
+            "float d;\n"                           // 8
+            "#ifdef B\n"                           // 9
+            "float e;\n"                           // 10
+            "#endif\n"                             // 11
+            "#endif\n"                             // 12
+            "#ifdef GL_FRAGMENT_PRECISION_HIGH\n"  // 13: the walk does not decide it
+            "float f;\n"                           // 14
+            "#else\n"                              // 15
+            "float g;\n"                           // 16
+            "#endif\n";                            // 17
+    const DefineRelevance relevance(text);
+    std::vector<LineSpan> skipped;
+    ASSERT_TRUE(relevance.Relevant({"A"}, &skipped).has_value());
+    EXPECT_EQ(skipped, (std::vector<LineSpan>{{8, 8}, {10, 10}}));
+    ASSERT_TRUE(relevance.Relevant({}, &skipped).has_value());
+    EXPECT_EQ(skipped, (std::vector<LineSpan>{{4, 6}, {10, 10}}));
+    ASSERT_TRUE(relevance.Relevant({"B"}, &skipped).has_value());
+    EXPECT_EQ(skipped, (std::vector<LineSpan>{{4, 6}}));
+    // A text the walk does not follow has no skipped lines it knows of.
+    EXPECT_FALSE(DefineRelevance("#ifdef A\nfloat x;\n").Relevant({}, &skipped).has_value());
+    EXPECT_TRUE(skipped.empty());
+}
+
+// What a parse decides: its verdict, its messages and, for a valid stage, its cost.
+std::string OutcomeOf(const StageParse& parse) {
+    std::string outcome =
+            std::string(parse.ok ? "valid\n" : "invalid\n") + testing::Formatted(parse.diagnostics);
+    if (parse.ok && parse.intermediate != nullptr) {
+        outcome += ToJson(AnalyzeStageCost(*parse.intermediate)).dump();
+    }
+    return outcome;
+}
+
+TEST(DefineRelevanceTest, BlankingTheLinesTheWalkSkipsChangesNoParse) {
+    // Random texts whose code lines hold, among quiet ones, tokens glslang's scanner refuses
+    // even in skipped text (or that are too near such tokens to be left out); every subset of
+    // three defines. Given the skipped lines, ParseStage must decide and say exactly what it
+    // does without them.
+    static const char* const kValues[] = {"1.0",        "0x",   "09",    "1e",   "4294967296",
+                                          "1.0f",       "2.5A", "\"s\"", "$",    "b.c * 2.0",
+                                          "0.5e+3 + d", "(e)",  "1u",    "0x1F", "'q'"};
+    const std::regex code_line("^float v([0-9]+) = [^\n]*;$");
+    const std::vector<std::string> pool = {"A", "B", "C"};
+    int blanked = 0;
+    int kept_in_skipped = 0;
+    int differ_when_all_blanked = 0;
+    for (unsigned seed = 1; seed <= 60; ++seed) {
+        std::string text;
+        {
+            std::istringstream lines(RandomShader(seed).Text());
+            std::size_t k = seed;
+            for (std::string line; std::getline(lines, line);) {
+                std::smatch match;
+                if (std::regex_match(line, match, code_line)) {
+                    line = "float v" + match[1].str() + " = " + kValues[k++ % std::size(kValues)] +
+                           ";";
+                }
+                text += line + "\n";
+            }
+        }
+        const DefineRelevance relevance(text);
+        const std::vector<bool> quiet = QuietWhenSkippedLines(text);
+        for (unsigned mask = 0; mask < 8; ++mask) {
+            std::vector<std::string> defines;
+            for (std::size_t d = 0; d < pool.size(); ++d) {
+                if ((mask & (1U << d)) != 0) {
+                    defines.push_back(pool[d]);
+                }
+            }
+            std::vector<LineSpan> skipped;
+            ASSERT_TRUE(relevance.Relevant(defines, &skipped).has_value()) << text;
+            GlslangStageInput input{"t.fsh", text, Stage::kFragment, GlslTarget::kEs100, defines};
+            const std::string as_written = OutcomeOf(ParseStage(input));
+            input.skipped_lines = &skipped;
+            EXPECT_EQ(OutcomeOf(ParseStage(input)), as_written)
+                    << "seed " << seed << ", defines " << ::testing::PrintToString(defines) << ":\n"
+                    << text;
+            if (WithSkippedLinesBlanked(text, skipped, quiet) != text) {
+                ++blanked;
+            }
+            for (const LineSpan& span : skipped) {
+                for (int line = span.first; line <= span.last; ++line) {
+                    kept_in_skipped += quiet[static_cast<std::size_t>(line - 1)] ? 0 : 1;
+                }
+            }
+            // Blanking every skipped line, quiet or not, does change what glslang says: the
+            // comparison above can see a difference, and IsQuietWhenSkipped is needed.
+            const std::string all_blanked =
+                    WithSkippedLinesBlanked(text, skipped, std::vector<bool>(quiet.size(), true));
+            const GlslangStageInput blind{"t.fsh", all_blanked, Stage::kFragment,
+                                          GlslTarget::kEs100, defines};
+            differ_when_all_blanked += OutcomeOf(ParseStage(blind)) != as_written ? 1 : 0;
+        }
+    }
+    EXPECT_GT(blanked, 100);
+    EXPECT_GT(kept_in_skipped, 100);
+    EXPECT_GT(differ_when_all_blanked, 10);
+}
+
+TEST(DefineRelevanceTest, BlankingTheSkippedLinesOfTheDefaultMatrixChangesNoParse) {
+    const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
+    const ConfigResult loaded = LoadVariantConfig(root / "variants.yaml");
+    ASSERT_TRUE(loaded.config.has_value());
+    const VariantConfig& config = *loaded.config;
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
+    std::map<std::string, std::string> texts;
+    std::map<std::string, DefineRelevance> relevance;
+    std::set<std::pair<std::string, std::string>> parsed;  // (file, answer)
+    int blanked = 0;
+    for (const Variant& variant : expansion.variants) {
+        const ProgramConfig* program = config.FindProgram(variant.program);
+        ASSERT_NE(program, nullptr);
+        for (const auto& [path, stage] :
+             {std::make_pair(program->vertex_path, Stage::kVertex),
+              std::make_pair(program->fragment_path, Stage::kFragment)}) {
+            if (texts.count(path) == 0) {
+                const TextFileRead read = ReadShaderFile(config.Resolve(path));
+                ASSERT_TRUE(read.ok) << path;
+                texts[path] = read.text;
+                relevance.emplace(path, DefineRelevance(read.text));
+            }
+            std::vector<LineSpan> skipped;
+            const std::optional<std::string> answer =
+                    relevance.at(path).Relevant(variant.defines, &skipped);
+            ASSERT_TRUE(answer.has_value()) << path;
+            if (!parsed.emplace(path, *answer).second) {
+                continue;
+            }
+            GlslangStageInput input{path, texts[path], stage, GlslTarget::kEs100, variant.defines};
+            const std::string as_written = OutcomeOf(ParseStage(input));
+            input.skipped_lines = &skipped;
+            EXPECT_EQ(OutcomeOf(ParseStage(input)), as_written) << path << " " << variant.Id();
+            blanked += skipped.empty() ? 0 : 1;
+        }
+    }
+    EXPECT_GT(blanked, 100);  // most water.fsh programs skip lines
 }
 
 }  // namespace

@@ -205,6 +205,53 @@ TEST(GlslangSessionTest, DiagnosticsAfterLineCommentsKeepTheUsersLineAndColumn) 
     EXPECT_EQ(Formatted(parsed.diagnostics), "a.fsh:6:32: error: 'yy' : undeclared identifier\n");
 }
 
+TEST(GlslangSessionTest, OnlyLinesGlslangSkipsWithoutAMessageAreQuiet) {
+    for (const std::string& line :
+         std::vector<std::string>{"", "  \t", "float v = a.b * (c + 1.0) / 2.5e-3;",
+                                  "x <<= 3; y ^^ z ? q : r;", "int n = 999999999;", ".5e+12", "0",
+                                  "0.0", "a[1] = {}; !~%|&", "line end\r", std::string(255, 'n')}) {
+        EXPECT_TRUE(IsQuietWhenSkipped(line)) << line;
+    }
+    // Each of these is either refused by glslang's scanner in skipped text (a hexadecimal `x`
+    // without digits, an exponent without digits, a literal past 32 bits) or near enough to
+    // something that is to be left to it.
+    for (const std::string& line : std::vector<std::string>{"#ifdef A",
+                                                            "int h = 0x1F;",
+                                                            "int h = 0x;",
+                                                            "int o = 09;",
+                                                            "int big = 4294967296;",
+                                                            "int nine = 1234567890;",
+                                                            "float e = 1e;",
+                                                            "float s = 1.0f;",
+                                                            "uint u = 1u;",
+                                                            "float d = 1e100;",
+                                                            "x = 1.5.3;",
+                                                            "s = \"text\";",
+                                                            "c = 'a';",
+                                                            "a \\",
+                                                            "b /* c",
+                                                            "c */ d",
+                                                            "e // f",
+                                                            "g @ h",
+                                                            "i $ j",
+                                                            "k\rl",
+                                                            "\x80",
+                                                            std::string(256, 'n')}) {
+        EXPECT_FALSE(IsQuietWhenSkipped(line)) << line;
+    }
+}
+
+TEST(GlslangSessionTest, BlankingEmptiesOnlyQuietSkippedLinesAndKeepsEveryLineBreak) {
+    const std::string text = "a\nb 0x1\nc\nd\ne";
+    const std::vector<bool> quiet = QuietWhenSkippedLines(text);
+    EXPECT_EQ(quiet, (std::vector<bool>{true, false, true, true, true}));
+    EXPECT_EQ(WithSkippedLinesBlanked(text, {{2, 3}, {5, 5}}, quiet), "a\nb 0x1\n\nd\n");
+    EXPECT_EQ(WithSkippedLinesBlanked(text, {{1, 5}}, quiet), "\nb 0x1\n\n\n");
+    EXPECT_EQ(WithSkippedLinesBlanked(text, {}, quiet), text);
+    EXPECT_EQ(WithSkippedLinesBlanked(text + "\n", {{5, 6}}, QuietWhenSkippedLines(text + "\n")),
+              "a\nb 0x1\nc\nd\n\n");
+}
+
 TEST(GlslangSessionTest, IdentityIsStableAndNamesTheLimits) {
     const std::string identity = GlslangIdentity();
     EXPECT_EQ(identity, GlslangIdentity());
