@@ -19,6 +19,7 @@
 #include <mutex>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "CompilerSourceDigest.h"
 #include "DefineRelevance.h"
@@ -632,9 +633,24 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     // The run's results are read and written as one cache entry (CacheBundle.h).
     std::optional<base::CacheBundle> bundle;
     // Before the first workers fork, so none builds the tables again; not at all when the cache
-    // answers everything.
+    // answers everything. When the cache knows no earlier run of this configuration (or there is
+    // no cache), glslang will be needed: its tables are built on a second thread while this one
+    // reads the files and groups the stages (a tenth of a cold validation's time before the
+    // workers start), and warm_up waits for it, so the fork sees one thread.
+    const std::string lineage = cache != nullptr ? LineageKey(config, variants) : std::string();
+    std::jthread warming;
+    if (cache == nullptr || !cache->Load(lineage).has_value()) {
+        warming = std::jthread([targets = options.targets] { WarmUpGlslang(targets); });
+    }
     bool warm = false;
+    auto finish_warming = [&] {  // before every fork: a child has the forking thread only
+        if (warming.joinable()) {
+            warming.join();
+            warm = true;
+        }
+    };
     auto warm_up = [&] {
+        finish_warming();
         if (!warm) {
             WarmUpGlslang(options.targets);
             warm = true;
@@ -742,7 +758,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 run_digest.Update(group_cache_key[g]).Update("\n");
             }
         }
-        bundle.emplace(*cache, run_digest.FinishHex(), LineageKey(config, variants));
+        bundle.emplace(*cache, run_digest.FinishHex(), lineage);
         for (std::size_t g = 0; g < group_list.size(); ++g) {
             if (!group_cache_key[g].empty()) {
                 if (std::optional<std::string> payload = bundle->Load(group_cache_key[g])) {
@@ -759,6 +775,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             warm_up();
         }
     }
+    finish_warming();
     const std::vector<WorkerItemResult> hashed = RunInWorkerProcesses(
             group_list.size(), options.jobs, GlslangLimits(),
             [&](std::size_t g, const ProgressNote&) {
@@ -928,6 +945,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             ++kept.uses[links[i].fragment];
         }
     }
+    finish_warming();
     RunInWorkerProcesses(
             links.size(), options.jobs, GlslangLimits(),
             [&](std::size_t i, const ProgressNote& note) -> std::string {
