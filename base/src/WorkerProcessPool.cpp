@@ -124,12 +124,28 @@ bool SendRecord(int fd, char type, const std::string& bytes) {
     return SendAll(fd, record.data(), record.size());
 }
 
+// The longest note sent through a worker's notes socket; a longer one takes the main socket.
+constexpr std::size_t kLongestQuietNote = 64 * 1024;
+
+// A note through the notes socket: the item's index, then the note. One message (SOCK_SEQPACKET
+// sends all of it or none), never waiting: false when it cannot go at once.
+bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
+    if (text.size() > kLongestQuietNote) {
+        return false;
+    }
+    std::string message(sizeof index, '\0');
+    std::memcpy(message.data(), &index, sizeof index);
+    message += text;
+    return ::send(notes_fd, message.data(), message.size(), MSG_DONTWAIT | MSG_NOSIGNAL) ==
+           static_cast<ssize_t>(message.size());
+}
+
 [[noreturn]] void ExitOutOfMemory() {
     ::_exit(kOutOfMemoryExit);
 }
 
 [[noreturn]] void WorkerMain(
-        int fd, const WorkerLimits& limits,
+        int fd, int notes_fd, const WorkerLimits& limits,
         const std::function<std::string(std::size_t, const ProgressNote&)>& work) {
     const rlimit no_core{0, 0};
     ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
@@ -148,7 +164,17 @@ bool SendRecord(int fd, char type, const std::string& bytes) {
         if (!ReceiveAll(fd, &index, sizeof index)) {
             ::_exit(0);  // the parent has no more items
         }
-        const ProgressNote note = [fd](const std::string& text) { SendRecord(fd, 'P', text); };
+        // A note goes through the notes socket, which the parent reads only when a record comes
+        // or the worker ends, so that it does not wake the parent (a cold validate sends
+        // hundreds). One that cannot (too long, or the socket full) takes the main socket, and
+        // so does every later note of the item, which keeps its notes in order.
+        bool quiet = true;
+        const ProgressNote note = [fd, notes_fd, index, &quiet](const std::string& text) {
+            quiet = quiet && SendQuietNote(notes_fd, index, text);
+            if (!quiet) {
+                SendRecord(fd, 'P', text);
+            }
+        };
         std::string result;
         try {
             result = work(static_cast<std::size_t>(index), note);
@@ -166,6 +192,7 @@ bool SendRecord(int fd, char type, const std::string& bytes) {
 struct Worker {
     pid_t pid = -1;
     int fd = -1;
+    int notes_fd = -1;  // SendQuietNote's messages
     // The items handed to it, in the order it runs them: the front one is running, the others
     // wait in its socket (WorkerLimits::items_ahead).
     std::deque<std::size_t> items;
@@ -248,29 +275,43 @@ private:
 
     bool Start(Worker& worker) {
         int fds[2];
+        int notes[2];
         if (::socketpair(AF_UNIX, SOCK_STREAM | SOCK_CLOEXEC, 0, fds) != 0) {
             return false;
         }
-        const pid_t pid = ::fork();
-        if (pid < 0) {
+        if (::socketpair(AF_UNIX, SOCK_SEQPACKET | SOCK_CLOEXEC, 0, notes) != 0) {
             ::close(fds[0]);
             ::close(fds[1]);
             return false;
         }
-        if (pid == 0) {
-            // Every descriptor but stdio and this worker's socket goes: another worker's socket
-            // held open here would hide that worker's death from us, and a socket of a pool on
-            // another thread (`run` plans scenes on two) would keep that pool's worker from ever
-            // seeing its end, so both pools would wait forever.
-            if (fds[1] > 3) {
-                ::close_range(3, static_cast<unsigned>(fds[1]) - 1, 0);
+        const pid_t pid = ::fork();
+        if (pid < 0) {
+            for (int fd : {fds[0], fds[1], notes[0], notes[1]}) {
+                ::close(fd);
             }
-            ::close_range(static_cast<unsigned>(fds[1]) + 1, ~0U, 0);
-            WorkerMain(fds[1], limits_, work_);
+            return false;
+        }
+        if (pid == 0) {
+            // Every descriptor but stdio and this worker's two sockets goes: another worker's
+            // socket held open here would hide that worker's death from us, and a socket of a
+            // pool on another thread (`run` plans scenes on two) would keep that pool's worker
+            // from ever seeing its end, so both pools would wait forever.
+            const auto low = static_cast<unsigned>(std::min(fds[1], notes[1]));
+            const auto high = static_cast<unsigned>(std::max(fds[1], notes[1]));
+            if (low > 3) {
+                ::close_range(3, low - 1, 0);
+            }
+            if (high > low + 1) {
+                ::close_range(low + 1, high - 1, 0);
+            }
+            ::close_range(high + 1, ~0U, 0);
+            WorkerMain(fds[1], notes[1], limits_, work_);
         }
         ::close(fds[1]);
+        ::close(notes[1]);
         worker.pid = pid;
         worker.fd = fds[0];
+        worker.notes_fd = notes[0];
         worker.buffer.clear();
         return true;
     }
@@ -319,8 +360,13 @@ private:
         ::close(worker.fd);
         while (::waitpid(worker.pid, &status, 0) < 0 && errno == EINTR) {
         }
+        // All of them now that the worker has ended, but only the running item's: an item behind
+        // it that the worker had begun runs again elsewhere and sends its notes again.
+        TakeQuietNotes(worker, true);
+        ::close(worker.notes_fd);
         worker.pid = -1;
         worker.fd = -1;
+        worker.notes_fd = -1;
         worker.items.clear();
         return status;
     }
@@ -343,7 +389,34 @@ private:
         Fill(worker, Depth());
     }
 
-    // Parses whole records out of the worker's buffer.
+    // The notes waiting in the worker's notes socket, each to its item's result (with
+    // `front_only`, only those of the item the worker was running).
+    void TakeQuietNotes(Worker& worker, bool front_only = false) {
+        std::vector<char>& message = note_buffer_;
+        message.resize(sizeof(std::uint64_t) + kLongestQuietNote);
+        for (;;) {
+            const ssize_t got =
+                    ::recv(worker.notes_fd, message.data(), message.size(), MSG_DONTWAIT);
+            if (got < 0 && errno == EINTR) {
+                continue;
+            }
+            if (got < static_cast<ssize_t>(sizeof(std::uint64_t))) {
+                return;  // none left (or the worker has gone)
+            }
+            std::uint64_t index = 0;
+            std::memcpy(&index, message.data(), sizeof index);
+            const bool wanted =
+                    index < results_.size() &&
+                    (!front_only || (!worker.items.empty() && worker.items.front() == index));
+            if (wanted) {
+                results_[index].notes.emplace_back(message.data() + sizeof index,
+                                                   static_cast<std::size_t>(got) - sizeof index);
+            }
+        }
+    }
+
+    // Parses whole records out of the worker's buffer. The notes socket is read before each
+    // one: an item's notes there were sent before any record of it.
     void TakeRecords(Worker& worker) {
         constexpr std::size_t kHeader = 1 + sizeof(std::uint64_t);
         while (!worker.items.empty() && worker.buffer.size() >= kHeader) {
@@ -352,6 +425,7 @@ private:
             if (worker.buffer.size() < kHeader + size) {
                 return;
             }
+            TakeQuietNotes(worker);
             const char type = worker.buffer[0];
             std::string bytes = worker.buffer.substr(kHeader, size);
             worker.buffer.erase(0, kHeader + size);
@@ -429,6 +503,7 @@ private:
     std::vector<WorkerItemResult> results_;
     std::vector<Worker> workers_;
     std::deque<std::size_t> unstarted_;  // handed to a worker that failed before starting them
+    std::vector<char> note_buffer_;      // TakeQuietNotes's, kept for the next call
     std::size_t next_ = 0;
 };
 

@@ -73,6 +73,39 @@ TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
     EXPECT_EQ(results[3].payload, "ok");
 }
 
+TEST(WorkerProcessPoolTest, NotesKeepTheirOrderWhateverWayTheyTravel) {
+    // Short notes go without waking the parent; one that finds that way full (600 KB of notes
+    // is more than a socket holds), or is too long for it (the last one), goes with the
+    // records. Each item's notes come back whole and in the order sent, also when the item
+    // then crashes, and with items handed ahead.
+    WorkerLimits limits;
+    limits.items_ahead = 2;
+    auto notes_of = [](std::size_t i) {
+        std::vector<std::string> notes;
+        for (int n = 0; n < 600; ++n) {
+            notes.push_back(std::to_string(i) + ":" + std::to_string(n) + std::string(1000, 'x'));
+        }
+        notes.push_back(std::string(70000, static_cast<char>('a' + i)));
+        return notes;
+    };
+    const std::vector<WorkerItemResult> results =
+            RunInWorkerProcesses(6, 2, limits, [&](std::size_t i, const ProgressNote& note) {
+                for (const std::string& text : notes_of(i)) {
+                    note(text);
+                }
+                if (i == 3) {
+                    std::raise(SIGSEGV);
+                }
+                return std::string("done");
+            });
+    ASSERT_EQ(results.size(), 6U);
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        EXPECT_EQ(results[i].failure, i == 3 ? WorkerFailure::kCrashed : WorkerFailure::kNone);
+        EXPECT_TRUE(results[i].notes == notes_of(i))
+                << "item " << i << ": " << results[i].notes.size() << " notes";
+    }
+}
+
 TEST(WorkerProcessPoolTest, ItemsHandedAheadOfAFailureRunInAFreshWorker) {
     // Each worker holds two items beyond the one it runs; item 1 crashes with 2 and 3 waiting
     // behind it, item 4 hangs with 5 and 6 behind it. Every other item runs once, in a process
