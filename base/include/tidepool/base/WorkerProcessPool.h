@@ -42,7 +42,8 @@ struct WorkerItemResult {
 
 /// Sends a note from inside an item to the parent: what it is about to do, so that a failure can
 /// be attributed to the step that was running, or a partial result that must survive a later
-/// failure of the same item.
+/// failure of the same item. The parent collects an item's notes when the item ends, not as
+/// they are sent (a note does not wake it): they are no channel for live progress.
 using ProgressNote = std::function<void(const std::string&)>;
 
 /// Runs work(i, note) for each i in [0, count) in up to `workers` forked processes (each runs its
