@@ -640,7 +640,13 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     const std::string lineage = cache != nullptr ? LineageKey(config, variants) : std::string();
     std::jthread warming;
     if (cache == nullptr || !cache->Load(lineage).has_value()) {
-        warming = std::jthread([targets = options.targets] { WarmUpGlslang(targets); });
+        warming = std::jthread([targets = options.targets] {
+            try {
+                WarmUpGlslang(targets);
+            } catch (...) {
+                // Nothing lost but time: each worker then builds the tables it needs itself.
+            }
+        });
     }
     bool warm = false;
     auto finish_warming = [&] {  // before every fork: a child has the forking thread only
