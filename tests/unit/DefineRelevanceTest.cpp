@@ -305,39 +305,82 @@ TEST(DefineRelevanceTest, DefineListsWithOneAnswerGetOnePreprocessedTextFromGlsl
     EXPECT_GT(shared, 500);  // the walk does find duplicates, or the check above checks little
 }
 
+// The default matrix's stage slots (each variant's vertex and fragment file), with each file's
+// text and walk: what the tests below hold the walk to on the shaders tidepool ships.
+class DefaultMatrixSlots {
+public:
+    struct Slot {
+        const std::string& path;
+        const std::string& text;
+        Stage stage;
+        const Variant& variant;
+        const DefineRelevance& relevance;
+    };
+
+    DefaultMatrixSlots() {
+        const ConfigResult loaded =
+                LoadVariantConfig(std::filesystem::path(TIDEPOOL_SOURCE_ROOT) / "variants.yaml");
+        if (!loaded.config) {
+            ADD_FAILURE() << "the default variants.yaml does not load";
+            return;
+        }
+        config_ = *loaded.config;
+        expansion_ = ExpandVariants(*config_, ExpansionOptions{config_->max_variants});
+        for (const Variant& variant : expansion_.variants) {
+            const ProgramConfig* program = config_->FindProgram(variant.program);
+            if (program == nullptr) {
+                ADD_FAILURE() << variant.Id() << ": no program";
+                continue;
+            }
+            for (const std::string& path : {program->vertex_path, program->fragment_path}) {
+                if (texts_.count(path) == 0) {
+                    const TextFileRead read = ReadShaderFile(config_->Resolve(path));
+                    EXPECT_TRUE(read.ok) << path;
+                    texts_[path] = read.text;
+                    relevance_.emplace(path, DefineRelevance(read.text));
+                }
+            }
+        }
+    }
+
+    // Calls visit(Slot) for every slot, variant by variant.
+    template <typename Visit>
+    void ForEach(Visit visit) const {
+        for (const Variant& variant : expansion_.variants) {
+            const ProgramConfig* program = config_->FindProgram(variant.program);
+            if (program == nullptr) {
+                continue;
+            }
+            for (const auto& [path, stage] :
+                 {std::make_pair(program->vertex_path, Stage::kVertex),
+                  std::make_pair(program->fragment_path, Stage::kFragment)}) {
+                visit(Slot{path, texts_.at(path), stage, variant, relevance_.at(path)});
+            }
+        }
+    }
+
+private:
+    std::optional<VariantConfig> config_;
+    ExpansionResult expansion_;
+    std::map<std::string, std::string> texts_;
+    std::map<std::string, DefineRelevance> relevance_;
+};
+
 TEST(DefineRelevanceTest, TheDefaultMatrixGroupsExactlyAsGlslangsPreprocessedTexts) {
     // On the shaders tidepool ships, the walk finds every duplicate glslang's preprocessor would
     // and no other: one answer per distinct preprocessed text.
-    const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
-    const ConfigResult loaded = LoadVariantConfig(root / "variants.yaml");
-    ASSERT_TRUE(loaded.config.has_value());
-    const VariantConfig& config = *loaded.config;
-    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
-    std::map<std::string, std::string> texts;
-    std::map<std::string, DefineRelevance> relevance;
     std::map<std::pair<std::string, std::string>, std::set<std::string>> texts_by_answer;
     std::map<std::pair<std::string, std::string>, std::set<std::string>> answers_by_text;
-    for (const Variant& variant : expansion.variants) {
-        const ProgramConfig* program = config.FindProgram(variant.program);
-        ASSERT_NE(program, nullptr);
-        for (const auto& [path, stage] :
-             {std::make_pair(program->vertex_path, Stage::kVertex),
-              std::make_pair(program->fragment_path, Stage::kFragment)}) {
-            if (texts.count(path) == 0) {
-                const TextFileRead read = ReadShaderFile(config.Resolve(path));
-                ASSERT_TRUE(read.ok) << path;
-                texts[path] = read.text;
-                relevance.emplace(path, DefineRelevance(read.text));
-            }
-            const std::optional<std::string> answer = relevance.at(path).Relevant(variant.defines);
-            ASSERT_TRUE(answer.has_value()) << path;
-            const PreprocessResult preprocessed = PreprocessStage(
-                    {path, texts[path], stage, GlslTarget::kEs100, variant.defines});
-            ASSERT_TRUE(preprocessed.ok) << path << " " << variant.Id();
-            texts_by_answer[{path, *answer}].insert(preprocessed.text);
-            answers_by_text[{path, preprocessed.text}].insert(*answer);
-        }
-    }
+    DefaultMatrixSlots().ForEach([&](const DefaultMatrixSlots::Slot& slot) {
+        const std::optional<std::string> answer = slot.relevance.Relevant(slot.variant.defines);
+        ASSERT_TRUE(answer.has_value()) << slot.path;
+        const PreprocessResult preprocessed = PreprocessStage(
+                {slot.path, slot.text, slot.stage, GlslTarget::kEs100, slot.variant.defines});
+        ASSERT_TRUE(preprocessed.ok) << slot.path << " " << slot.variant.Id();
+        texts_by_answer[{slot.path, *answer}].insert(preprocessed.text);
+        answers_by_text[{slot.path, preprocessed.text}].insert(*answer);
+    });
+    EXPECT_FALSE(texts_by_answer.empty());
     for (const auto& [answer, distinct] : texts_by_answer) {
         EXPECT_EQ(distinct.size(), 1U) << answer.first;
     }
@@ -456,41 +499,24 @@ TEST(DefineRelevanceTest, BlankingTheLinesTheWalkSkipsChangesNoParse) {
 }
 
 TEST(DefineRelevanceTest, BlankingTheSkippedLinesOfTheDefaultMatrixChangesNoParse) {
-    const std::filesystem::path root = TIDEPOOL_SOURCE_ROOT;
-    const ConfigResult loaded = LoadVariantConfig(root / "variants.yaml");
-    ASSERT_TRUE(loaded.config.has_value());
-    const VariantConfig& config = *loaded.config;
-    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
-    std::map<std::string, std::string> texts;
-    std::map<std::string, DefineRelevance> relevance;
     std::set<std::pair<std::string, std::string>> parsed;  // (file, answer)
     int blanked = 0;
-    for (const Variant& variant : expansion.variants) {
-        const ProgramConfig* program = config.FindProgram(variant.program);
-        ASSERT_NE(program, nullptr);
-        for (const auto& [path, stage] :
-             {std::make_pair(program->vertex_path, Stage::kVertex),
-              std::make_pair(program->fragment_path, Stage::kFragment)}) {
-            if (texts.count(path) == 0) {
-                const TextFileRead read = ReadShaderFile(config.Resolve(path));
-                ASSERT_TRUE(read.ok) << path;
-                texts[path] = read.text;
-                relevance.emplace(path, DefineRelevance(read.text));
-            }
-            std::vector<LineSpan> skipped;
-            const std::optional<std::string> answer =
-                    relevance.at(path).Relevant(variant.defines, &skipped);
-            ASSERT_TRUE(answer.has_value()) << path;
-            if (!parsed.emplace(path, *answer).second) {
-                continue;
-            }
-            GlslangStageInput input{path, texts[path], stage, GlslTarget::kEs100, variant.defines};
-            const std::string as_written = OutcomeOf(ParseStage(input));
-            input.skipped_lines = &skipped;
-            EXPECT_EQ(OutcomeOf(ParseStage(input)), as_written) << path << " " << variant.Id();
-            blanked += skipped.empty() ? 0 : 1;
+    DefaultMatrixSlots().ForEach([&](const DefaultMatrixSlots::Slot& slot) {
+        std::vector<LineSpan> skipped;
+        const std::optional<std::string> answer =
+                slot.relevance.Relevant(slot.variant.defines, &skipped);
+        ASSERT_TRUE(answer.has_value()) << slot.path;
+        if (!parsed.emplace(slot.path, *answer).second) {
+            return;
         }
-    }
+        GlslangStageInput input{slot.path, slot.text, slot.stage, GlslTarget::kEs100,
+                                slot.variant.defines};
+        const std::string as_written = OutcomeOf(ParseStage(input));
+        input.skipped_lines = &skipped;
+        EXPECT_EQ(OutcomeOf(ParseStage(input)), as_written)
+                << slot.path << " " << slot.variant.Id();
+        blanked += skipped.empty() ? 0 : 1;
+    });
     EXPECT_GT(blanked, 100);  // most water.fsh programs skip lines
 }
 
