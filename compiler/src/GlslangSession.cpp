@@ -101,9 +101,7 @@ bool IsQuietWhenSkipped(std::string_view line) {
     while (i < line.size()) {
         const char c = line[i];
         const char next = i + 1 < line.size() ? line[i + 1] : '\0';
-        if (c == ' ' || c == '\t' || (c == '\r' && i + 1 == line.size())) {
-            ++i;
-        } else if (name_part(c) && !digit(c)) {
+        if (name_part(c) && !digit(c)) {
             const std::size_t start = i;
             while (i < line.size() && name_part(line[i])) {
                 ++i;
@@ -137,9 +135,10 @@ bool IsQuietWhenSkipped(std::string_view line) {
             if (i < line.size() && (name_part(line[i]) || line[i] == '.')) {
                 return false;  // a suffix, a hexadecimal `x`, or a number run on
             }
-        } else if (kPunctuation.find(c) != std::string_view::npos &&
-                   !(c == '/' && (next == '*' || next == '/')) && !(c == '*' && next == '/')) {
-            ++i;
+        } else if (c == ' ' || c == '\t' || (c == '\r' && i + 1 == line.size()) ||
+                   (kPunctuation.find(c) != std::string_view::npos &&
+                    !(c == '/' && (next == '*' || next == '/')) && !(c == '*' && next == '/'))) {
+            ++i;  // white space, or punctuation that starts no comment
         } else {
             return false;
         }
