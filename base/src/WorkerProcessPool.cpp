@@ -153,12 +153,12 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
         LimitMemory(limits.memory_bytes);
     }
     std::set_new_handler(ExitOutOfMemory);
-    // Freed memory stays mapped for the next item: by default glibc hands the top of the heap
-    // back to the system whenever 128 KiB of it are free, and a glslang parse allocates and
-    // frees that much, so every item paid a page fault for each page again (3,500 of the 6,100
-    // page faults of a cold `validate` of the default matrix). The peak is unchanged.
-    constexpr int kKeepFreedBytes = 1 << 30;
-    ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
+    if (limits.keep_freed_memory) {
+        // (3,500 of the 6,100 page faults of a cold `validate` of the default matrix.) The peak
+        // is unchanged.
+        constexpr int kKeepFreedBytes = 1 << 30;
+        ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
+    }
     for (;;) {
         std::uint64_t index = 0;
         if (!ReceiveAll(fd, &index, sizeof index)) {

@@ -73,8 +73,9 @@ namespace {
 // run goes on. The limits are per worker and item. 1 GiB is five times what validating the whole
 // default matrix takes (about 190 MB); 20 s is a hundred times the slowest shipped stage under
 // the sanitizers on a loaded two-core machine. Items take a millisecond or less, so each worker
-// holds the next one while it runs one.
-constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1};
+// holds the next one while it runs one, and each parse allocates and frees a few hundred KiB, so
+// a worker keeps freed memory mapped.
+constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1, true};
 
 // The limits in force. TIDEPOOL_TEST_GLSLANG_SECONDS (a number of seconds) lowers the time
 // limit so that tests can see a hang of glslang handled end to end in a second instead of 20;

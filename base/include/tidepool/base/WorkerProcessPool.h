@@ -21,6 +21,12 @@ struct WorkerLimits {
     /// worth it for items of a millisecond or less. 0 for long items, which one busy worker
     /// would otherwise hold back from an idle one.
     int items_ahead = 0;
+    /// Keep freed memory mapped for the worker's next item instead of handing the top of the
+    /// heap back to the system (glibc does that whenever 128 KiB of it are free): for many short
+    /// items that each allocate and free that much, as glslang parses do, which otherwise fault
+    /// their pages in again every time. It also fixes glibc's threshold for mapping large blocks
+    /// on their own at 128 KiB, so it is not for long items that allocate large buffers.
+    bool keep_freed_memory = false;
 };
 
 /// How an item ended.
