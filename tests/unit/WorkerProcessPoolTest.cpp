@@ -14,6 +14,15 @@
 #include <sys/resource.h>
 #include <unistd.h>
 
+// GCC says so with __SANITIZE_ADDRESS__, clang (the sanitizer build) with __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define TIDEPOOL_TEST_ADDRESS_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TIDEPOOL_TEST_ADDRESS_SANITIZER 1
+#endif
+#endif
+
 namespace tidepool::base {
 namespace {
 
@@ -219,7 +228,7 @@ std::vector<long> LaterItemsPageFaults(bool keep_freed_memory) {
 }
 
 TEST(WorkerProcessPoolTest, AWorkerAskedToKeepFreedMemoryDoesNotFaultItInAgain) {
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(TIDEPOOL_TEST_ADDRESS_SANITIZER)
     GTEST_SKIP() << "AddressSanitizer's allocator is not glibc's";
 #endif
     // glibc hands the heap's free top back after each item (20,480 pages here), unless asked
