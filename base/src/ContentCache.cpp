@@ -95,6 +95,12 @@ std::filesystem::path ContentCache::EntryPath(std::string_view key) const {
     return folder_ / "v1" / std::string(key.substr(0, 2)) / std::string(key);
 }
 
+bool ContentCache::Empty() const {
+    std::error_code error;
+    const std::filesystem::directory_iterator entries(folder_ / "v1", error);
+    return error || entries == std::filesystem::directory_iterator();
+}
+
 std::optional<std::string> ContentCache::Load(std::string_view key) {
     std::optional<std::string> payload;
     bool corrupt = false;

@@ -626,6 +626,22 @@ const std::string& ValidationCacheIdentity() {
     return CacheKeyPrefix();
 }
 
+GlslangWarmUp::GlslangWarmUp(std::vector<GlslTarget> targets)
+    : targets_(std::move(targets)), thread_([this] {
+          try {
+              WarmUpGlslang(targets_);
+          } catch (...) {
+              // Nothing lost but time: each worker then builds the tables it needs itself.
+          }
+      }) {}
+
+const std::vector<GlslTarget>& GlslangWarmUp::Finish() {
+    if (thread_.joinable()) {
+        thread_.join();
+    }
+    return targets_;
+}
+
 ValidationReport ValidateVariants(const VariantConfig& config, const std::vector<Variant>& variants,
                                   const ValidationOptions& options) {
     ValidationReport report;
@@ -635,32 +651,34 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     std::optional<base::CacheBundle> bundle;
     // Before the first workers fork, so none builds the tables again; not at all when the cache
     // answers everything. When the cache knows no earlier run of this configuration (or there is
-    // no cache), glslang will be needed: its tables are built on a second thread while this one
-    // reads the files and groups the stages (a tenth of a cold validation's time before the
-    // workers start), and warm_up waits for it, so the fork sees one thread.
+    // no cache), glslang will be needed: unless the caller started it earlier, its tables are
+    // built on a second thread while this one reads the files and groups the stages (a tenth of
+    // a cold validation's time before the workers start), and warm_up waits for it, so the fork
+    // sees one thread.
     const std::string lineage = cache != nullptr ? LineageKey(config, variants) : std::string();
-    std::jthread warming;
-    if (cache == nullptr || !cache->Load(lineage).has_value()) {
-        warming = std::jthread([targets = options.targets] {
-            try {
-                WarmUpGlslang(targets);
-            } catch (...) {
-                // Nothing lost but time: each worker then builds the tables it needs itself.
-            }
-        });
+    std::optional<GlslangWarmUp> own_warm_up;
+    GlslangWarmUp* warming = options.warm_up;
+    if (warming == nullptr && (cache == nullptr || !cache->Load(lineage).has_value())) {
+        warming = &own_warm_up.emplace(options.targets);
     }
-    bool warm = false;
-    auto finish_warming = [&] {  // before every fork: a child has the forking thread only
-        if (warming.joinable()) {
-            warming.join();
-            warm = true;
+    std::vector<GlslTarget> warmed;  // targets whose tables this process has
+    auto finish_warming = [&] {      // before every fork: a child has the forking thread only
+        if (warming != nullptr) {
+            warmed = warming->Finish();
+            warming = nullptr;
         }
     };
     auto warm_up = [&] {
         finish_warming();
-        if (!warm) {
-            WarmUpGlslang(options.targets);
-            warm = true;
+        std::vector<GlslTarget> missing;
+        for (GlslTarget target : options.targets) {
+            if (std::find(warmed.begin(), warmed.end(), target) == warmed.end()) {
+                missing.push_back(target);
+            }
+        }
+        if (!missing.empty()) {
+            WarmUpGlslang(missing);
+            warmed.insert(warmed.end(), missing.begin(), missing.end());
         }
     };
 
@@ -777,12 +795,12 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     auto hash_group = [&](std::size_t g) {
         return !blocked(jobs[group_list[g]->front()]) && !group_cached[g] && !exact[g];
     };
-    for (std::size_t g = 0; g < group_list.size() && !warm; ++g) {
-        if (hash_group(g)) {
+    for (std::size_t g = 0; g < group_list.size(); ++g) {
+        if (hash_group(g)) {  // (a pool forks only for an item it runs)
             warm_up();
+            break;
         }
     }
-    finish_warming();
     const std::vector<WorkerItemResult> hashed = RunInWorkerProcesses(
             group_list.size(), options.jobs, GlslangLimits(),
             [&](std::size_t g, const ProgressNote&) {

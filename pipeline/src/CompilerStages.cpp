@@ -86,6 +86,13 @@ ExpandResult Expand(const ExpandOptions& options) {
 
 ValidateResult ValidateMatrix(const ValidateOptions& options) {
     ValidateResult result;
+    // A cache that holds nothing (or none) answers nothing, so glslang will run: its tables for
+    // GLSL ES 1.00, which every configuration targets, are built while the configuration loads.
+    const std::unique_ptr<base::ContentCache> cache = OpenValidationCache(options.cache);
+    std::optional<GlslangWarmUp> warm_up;
+    if (cache == nullptr || cache->Empty()) {
+        warm_up.emplace(std::vector<GlslTarget>{GlslTarget::kEs100});
+    }
     result.matrix =
             LoadProgram(options.config, options.limits, options.program, &result.files_read);
     Outcome& outcome = result.matrix.outcome;
@@ -114,8 +121,8 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     validation_options.jobs = options.jobs > 0 ? options.jobs : DefaultJobs();
     validation_options.targets = config.targets;
     validation_options.limits = device_limits ? &*device_limits : nullptr;
-    const std::unique_ptr<base::ContentCache> cache = OpenValidationCache(options.cache);
     validation_options.cache = cache.get();
+    validation_options.warm_up = warm_up ? &*warm_up : nullptr;
     result.report = ValidateVariants(config, variants, validation_options);
     WarnAboutCache(cache.get(), &outcome);
     outcome.Add(result.report.diagnostics);

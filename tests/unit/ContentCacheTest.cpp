@@ -66,6 +66,18 @@ TEST(ContentCacheTest, AbsentKeyIsAMissAndNotCorrupt) {
     EXPECT_EQ(cache.Stats().corrupt, 0U);
 }
 
+TEST(ContentCacheTest, IsEmptyUntilTheFirstStore) {
+    TempDir dir;
+    ContentCache absent(dir.Path() / "not-yet");
+    EXPECT_TRUE(absent.Empty());
+    std::filesystem::create_directories(dir.Path() / "made" / "v1");
+    ContentCache made(dir.Path() / "made");
+    EXPECT_TRUE(made.Empty());
+    made.Store(EntryKey("a"), "payload");
+    EXPECT_FALSE(made.Empty());
+    EXPECT_FALSE(ContentCache(dir.Path() / "made").Empty());
+}
+
 TEST(ContentCacheTest, KeyThatIsNotHexIsNeverAPath) {
     TempDir dir;
     ContentCache cache(dir.Path());

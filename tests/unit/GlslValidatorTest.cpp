@@ -213,6 +213,24 @@ TEST(GlslValidatorTest, CacheHitGivesTheSameReportAsAMiss) {
     EXPECT_EQ(uncached.InvalidCount(), 3);
 }
 
+TEST(GlslValidatorTest, WarmUpTheCallerStartedGivesTheSameReport) {
+    TempDir dir;
+    VariantConfig config = MixedConfig(dir);
+    config.targets = {GlslTarget::kEs100, GlslTarget::kEs300};
+    const ValidationReport own = ValidateAll(config, 2);
+    // The caller's warm-up covers 1.00 only: validation warms 3.00 itself before it forks.
+    GlslangWarmUp warm_up({GlslTarget::kEs100});
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
+    ValidationOptions options;
+    options.jobs = 2;
+    options.targets = config.targets;
+    options.warm_up = &warm_up;
+    const ValidationReport given = ValidateVariants(config, expansion.variants, options);
+    EXPECT_EQ(Described(given), Described(own));
+    EXPECT_EQ(given.verdicts.size(), 8U);  // 4 variants, 2 targets
+    EXPECT_EQ(warm_up.Finish(), std::vector<GlslTarget>{GlslTarget::kEs100});  // idempotent
+}
+
 TEST(GlslValidatorTest, CorruptCacheEntryIsIgnoredAndRewritten) {
     TempDir dir;
     const VariantConfig config = MixedConfig(dir);

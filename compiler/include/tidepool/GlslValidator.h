@@ -13,10 +13,29 @@
 #include <array>
 #include <optional>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 namespace tidepool {
+
+/// glslang's built-in symbol tables for some targets, built on a second thread from construction
+/// on, so that worker processes forked after Finish() inherit them instead of each building them
+/// again. A caller who knows glslang will run (its cache holds nothing) starts one before loading
+/// its configuration and hands it to ValidateVariants (ValidationOptions::warm_up).
+class GlslangWarmUp {
+public:
+    explicit GlslangWarmUp(std::vector<GlslTarget> targets);
+    GlslangWarmUp(const GlslangWarmUp&) = delete;  // the thread holds `this`
+    GlslangWarmUp& operator=(const GlslangWarmUp&) = delete;
+    /// Waits for the thread (a fork must see one thread); the targets it was given. A warm-up
+    /// that failed costs time only: each worker then builds the tables it needs. Idempotent.
+    const std::vector<GlslTarget>& Finish();
+
+private:
+    std::vector<GlslTarget> targets_;
+    std::jthread thread_;  // last: it reads targets_, and is joined before they go
+};
 
 /// How to validate.
 struct ValidationOptions {
@@ -29,6 +48,9 @@ struct ValidationOptions {
     base::ContentCache* cache = nullptr;
     /// A device's limits, checked instead of the GLSL ES minimums; none: the minimums. Not owned.
     const DeviceLimits* limits = nullptr;
+    /// A warm-up the caller started, finished before the first fork; none: validation starts its
+    /// own when the cache cannot answer everything. Not owned.
+    GlslangWarmUp* warm_up = nullptr;
 };
 
 /// One distinct stage program: all variants whose preprocessed stage source is identical share it.

@@ -42,6 +42,10 @@ public:
     /// unreadable or corrupt (counted in Stats().corrupt; the next Store of the key replaces it).
     std::optional<std::string> Load(std::string_view key);
 
+    /// True when the folder holds no entries at all (absent, unreadable, or never stored into), so
+    /// that no Load can hit; a cache whose entries were all trimmed may still say false.
+    bool Empty() const;
+
     /// Stores `payload` under `key` atomically (last writer wins; concurrent writers of one key
     /// store the same content, since the key names it).
     void Store(std::string_view key, std::string_view payload);
