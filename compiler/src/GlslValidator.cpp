@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <charconv>
 #include <cstdlib>
 #include <fstream>
 #include <functional>
@@ -116,79 +117,214 @@ std::string InternalCompilerError(const WorkerItemResult& result, std::string_vi
             what, doing);
 }
 
-// Worker notes of a stage-and-link item: "P<i>" before parsing stage i, "S<i>" + CBOR with its
-// outcome after, "L" before linking. The last note names the step a failure happened in.
+// Worker notes of a stage-and-link item: "P<i>" before parsing stage i, "S<i>:" and its outcome's
+// record (WriteOutcome) after, "L" before linking. The last note names the step a failure
+// happened in.
 struct StageOutcome {
     bool valid = false;
     std::vector<Diagnostic> diagnostics;
     StageCost cost;
 };
 
-nlohmann::json DiagnosticsToJson(const std::vector<Diagnostic>& diagnostics) {
-    nlohmann::json list = nlohmann::json::array();
+// The bytes a worker reports a stage or a link in, and the cache keeps them in: fixed-width
+// little-endian integers and length-prefixed strings, not CBOR (nlohmann's CBOR reader made the
+// decoding of a warm run's stages a fifth of the run). Diagnostics may quote bytes that are not
+// UTF-8, which this carries unchanged. The reader checks every length against what is left, so
+// bytes that are not a record read as none.
+class EntryWriter {
+public:
+    void Int(std::int64_t value) {
+        const auto bits = static_cast<std::uint64_t>(value);
+        for (int shift = 0; shift < 64; shift += 8) {
+            bytes_.push_back(static_cast<char>((bits >> shift) & 0xffU));
+        }
+    }
+    void Text(std::string_view text) {
+        Int(static_cast<std::int64_t>(text.size()));
+        bytes_.append(text);
+    }
+    std::string& Bytes() { return bytes_; }
+
+private:
+    std::string bytes_;
+};
+
+class EntryReader {
+public:
+    explicit EntryReader(std::string_view bytes) : rest_(bytes) {}
+    bool Tag(std::string_view tag) {
+        if (rest_.substr(0, tag.size()) != tag) {
+            return Fail();
+        }
+        rest_.remove_prefix(tag.size());
+        return true;
+    }
+    std::int64_t Int() {
+        if (rest_.size() < 8) {
+            Fail();
+            return 0;
+        }
+        std::uint64_t bits = 0;
+        for (int i = 7; i >= 0; --i) {
+            bits = (bits << 8) | static_cast<unsigned char>(rest_[static_cast<std::size_t>(i)]);
+        }
+        rest_.remove_prefix(8);
+        return static_cast<std::int64_t>(bits);
+    }
+    // An int that must fit `int` (line numbers, counts): anything else is not an entry.
+    int SmallInt() {
+        const std::int64_t value = Int();
+        if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
+            Fail();
+            return 0;
+        }
+        return static_cast<int>(value);
+    }
+    std::string Text() {
+        const std::int64_t size = Int();
+        if (size < 0 || static_cast<std::uint64_t>(size) > rest_.size()) {
+            Fail();
+            return {};
+        }
+        std::string text(rest_.substr(0, static_cast<std::size_t>(size)));
+        rest_.remove_prefix(static_cast<std::size_t>(size));
+        return text;
+    }
+    // A count of items that each take at least `min_bytes`, so a bad count cannot reserve much.
+    std::size_t Count(std::size_t min_bytes) {
+        const std::int64_t count = Int();
+        if (count < 0 || static_cast<std::uint64_t>(count) > rest_.size() / min_bytes) {
+            Fail();
+            return 0;
+        }
+        return static_cast<std::size_t>(count);
+    }
+    bool Ok() const { return ok_; }
+    bool AtEnd() const { return ok_ && rest_.empty(); }
+
+private:
+    bool Fail() {
+        ok_ = false;
+        rest_ = {};
+        return false;
+    }
+    std::string_view rest_;
+    bool ok_ = true;
+};
+
+void WriteDiagnostics(EntryWriter& out, const std::vector<Diagnostic>& diagnostics) {
+    out.Int(static_cast<std::int64_t>(diagnostics.size()));
     for (const Diagnostic& d : diagnostics) {
-        list.push_back({static_cast<int>(d.severity), d.file, d.line, d.column, d.message});
+        out.Int(static_cast<int>(d.severity));
+        out.Text(d.file);
+        out.Int(d.line);
+        out.Int(d.column);
+        out.Text(d.message);
     }
-    return list;
 }
 
-std::vector<Diagnostic> DiagnosticsFromJson(const nlohmann::json& list) {
-    std::vector<Diagnostic> diagnostics;
-    for (const nlohmann::json& d : list) {
-        diagnostics.push_back(Diagnostic{static_cast<Severity>(d[0].get<int>()),
-                                         d[1].get<std::string>(),
-                                         d[2].get<int>(),
-                                         d[3].get<int>(),
-                                         d[4].get<std::string>(),
-                                         {}});
+bool ReadDiagnostics(EntryReader& in, std::vector<Diagnostic>* diagnostics) {
+    const std::size_t count = in.Count(40);  // five fields of at least 8 bytes
+    for (std::size_t i = 0; i < count && in.Ok(); ++i) {
+        Diagnostic d;
+        const int severity = in.SmallInt();
+        if (severity < 0 || severity > static_cast<int>(Severity::kNote)) {
+            return false;
+        }
+        d.severity = static_cast<Severity>(severity);
+        d.file = in.Text();
+        d.line = in.SmallInt();
+        d.column = in.SmallInt();
+        d.message = in.Text();
+        diagnostics->push_back(std::move(d));
     }
-    return diagnostics;
+    return in.Ok();
 }
 
-// CBOR rather than JSON text: diagnostics may quote bytes that are not UTF-8, and CBOR carries
-// them unchanged.
+void WriteOutcome(EntryWriter& out, bool valid, const std::vector<Diagnostic>& diagnostics,
+                  const StageCost& cost) {
+    out.Int(valid ? 1 : 0);
+    WriteDiagnostics(out, diagnostics);
+    for (int value :
+         {cost.arithmetic_ops, cost.texture_samples, cost.branches, cost.loops, cost.uniforms,
+          cost.varyings, cost.samplers, cost.shortest_path_ops, cost.longest_path_ops}) {
+        out.Int(value);
+    }
+    out.Int(static_cast<std::int64_t>(cost.builtin_calls.size()));
+    for (const auto& [name, count] : cost.builtin_calls) {
+        out.Text(name);
+        out.Int(count);
+    }
+}
+
+// The outcome WriteOutcome wrote, up to the end of the bytes; none when they are not one.
+std::optional<StageOutcome> ReadOutcome(EntryReader& in) {
+    StageOutcome outcome;
+    const std::int64_t valid = in.Int();
+    outcome.valid = valid == 1;
+    if (!ReadDiagnostics(in, &outcome.diagnostics)) {
+        return std::nullopt;
+    }
+    StageCost& cost = outcome.cost;
+    for (int* field :
+         {&cost.arithmetic_ops, &cost.texture_samples, &cost.branches, &cost.loops, &cost.uniforms,
+          &cost.varyings, &cost.samplers, &cost.shortest_path_ops, &cost.longest_path_ops}) {
+        *field = in.SmallInt();
+    }
+    const std::size_t calls = in.Count(16);
+    for (std::size_t i = 0; i < calls && in.Ok(); ++i) {
+        std::string name = in.Text();
+        cost.builtin_calls[std::move(name)] = in.SmallInt();
+    }
+    if (!in.AtEnd() || (valid != 0 && valid != 1)) {
+        return std::nullopt;
+    }
+    return outcome;
+}
+
+// A link's record starts with this, so that a cache entry of another kind is not taken for one.
+constexpr std::string_view kLinkTag = "tidepool link 1\n";
+
 std::string EncodeStage(std::size_t index, const StageParse& parse) {
-    nlohmann::json json{{"valid", parse.ok}, {"diagnostics", DiagnosticsToJson(parse.diagnostics)}};
-    if (parse.ok && parse.intermediate != nullptr) {
-        json["cost"] = ToJson(AnalyzeStageCost(*parse.intermediate));
-    }
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(json);
-    return fmt::format("S{}:", index) + std::string(bytes.begin(), bytes.end());
-}
-
-StageCost CostFromJson(const nlohmann::json& json) {
     StageCost cost;
-    cost.arithmetic_ops = json.at("arithmetic_ops").get<int>();
-    cost.texture_samples = json.at("texture_samples").get<int>();
-    cost.builtin_calls = json.at("builtin_calls").get<std::map<std::string, int>>();
-    cost.branches = json.at("branches").get<int>();
-    cost.loops = json.at("loops").get<int>();
-    cost.uniforms = json.at("uniforms").get<int>();
-    cost.varyings = json.at("varyings").get<int>();
-    cost.samplers = json.at("samplers").get<int>();
-    cost.shortest_path_ops = json.at("shortest_path_ops").get<int>();
-    cost.longest_path_ops = json.at("longest_path_ops").get<int>();
-    return cost;
+    if (parse.ok && parse.intermediate != nullptr) {
+        cost = AnalyzeStageCost(*parse.intermediate);
+    }
+    EntryWriter out;
+    out.Bytes() = fmt::format("S{}:", index);
+    WriteOutcome(out, parse.ok, parse.diagnostics, cost);
+    return std::move(out.Bytes());
 }
 
-// The stage outcomes an item reported, by stage index.
-std::map<std::size_t, StageOutcome> DecodeStages(const std::vector<std::string>& notes) {
-    std::map<std::size_t, StageOutcome> stages;
+// The stage outcomes an item reported, by index into `programs`; none for a report that does
+// not decode.
+std::map<std::size_t, std::optional<StageOutcome>> DecodeStages(
+        const std::vector<std::string>& notes, const std::vector<StageProgram>& programs) {
+    std::map<std::size_t, std::optional<StageOutcome>> stages;
     for (const std::string& note : notes) {
         const std::size_t colon = note.find(':');
         if (note.empty() || note[0] != 'S' || colon == std::string::npos) {
             continue;
         }
-        const nlohmann::json json = nlohmann::json::from_cbor(note.substr(colon + 1));
-        StageOutcome outcome;
-        outcome.valid = json.at("valid").get<bool>();
-        outcome.diagnostics = DiagnosticsFromJson(json.at("diagnostics"));
-        if (json.contains("cost")) {
-            outcome.cost = CostFromJson(json.at("cost"));
+        std::size_t index = 0;
+        const char* digits = note.data() + 1;
+        if (std::from_chars(digits, note.data() + colon, index).ptr != note.data() + colon ||
+            index >= programs.size()) {
+            continue;  // names no stage program
         }
-        stages[std::stoul(note.substr(1, colon - 1))] = std::move(outcome);
+        EntryReader in(std::string_view(note).substr(colon + 1));
+        stages[index] = ReadOutcome(in);
     }
     return stages;
+}
+
+// What a stage whose worker's report does not decode comes to.
+StageOutcome UnreadableStageReport(const std::string& file) {
+    return {false,
+            {MakeError(file, 0, 0,
+                       "internal compiler error: the worker's report of this stage could not be "
+                       "read; run again, and report a bug if it persists")},
+            {}};
 }
 
 // One stage of a link item, as the worker sees it.
@@ -254,25 +390,49 @@ std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNot
             }
         }
     }
-    const std::vector<std::uint8_t> bytes = nlohmann::json::to_cbor(
-            nlohmann::json{{"ok", link.ok}, {"diagnostics", DiagnosticsToJson(link.diagnostics)}});
-    return std::string(bytes.begin(), bytes.end());
+    EntryWriter out;
+    out.Bytes().append(kLinkTag);
+    out.Int(link.ok ? 1 : 0);
+    WriteDiagnostics(out, link.diagnostics);
+    return std::move(out.Bytes());
 }
 
-// A link's outcome from ParseAndLink's encoding (also the link entries of the cache).
-LinkResult DecodeLink(const std::string& payload) {
-    const nlohmann::json json = nlohmann::json::from_cbor(payload);
-    return LinkResult{json.at("ok").get<bool>(), DiagnosticsFromJson(json.at("diagnostics"))};
+// A link's outcome from ParseAndLink's encoding (also the link entries of the cache); none when
+// the bytes are not one.
+std::optional<LinkResult> DecodeLink(std::string_view payload) {
+    EntryReader in(payload);
+    if (!in.Tag(kLinkTag)) {
+        return std::nullopt;
+    }
+    LinkResult link;
+    const std::int64_t ok = in.Int();
+    link.ok = ok == 1;
+    if (!ReadDiagnostics(in, &link.diagnostics) || !in.AtEnd() || (ok != 0 && ok != 1)) {
+        return std::nullopt;
+    }
+    return link;
 }
 
 // Parent side of a link item: the link's outcome, or the internal compiler error of whichever
 // step failed (a stage, reported through `on_stage_error`, or the link itself).
+// `*glslangs_verdict` says whether the outcome is glslang's own verdict on a link that ran, the
+// one the cache may keep (the item's payload).
 LinkResult LinkOutcome(const WorkerItemResult& result, std::string_view link_file,
-                       const std::function<void(std::size_t, const std::string&)>& on_stage_error) {
+                       const std::function<void(std::size_t, const std::string&)>& on_stage_error,
+                       bool* glslangs_verdict) {
     LinkResult link;
+    *glslangs_verdict = false;
     if (result.failure == WorkerFailure::kNone) {
         if (!result.payload.empty()) {
-            link = DecodeLink(result.payload);
+            if (std::optional<LinkResult> decoded = DecodeLink(result.payload)) {
+                link = std::move(*decoded);
+                *glslangs_verdict = true;
+            } else {
+                link.diagnostics.push_back(MakeError(
+                        std::string(link_file), 0, 0,
+                        "internal compiler error: the worker's report of this link could not be "
+                        "read; run again, and report a bug if it persists"));
+            }
         }
         return link;
     }
@@ -443,118 +603,16 @@ struct CachedStage {
     StageOutcome outcome;
 };
 
-// A cached stage's bytes: a tag, then fixed-width little-endian integers and length-prefixed
-// strings, not CBOR: a warm run decodes every stage of the matrix, and nlohmann's CBOR reader
-// made that a fifth of the run. The entry is already checksummed by the cache; the reader still
-// checks every length against what is left, so bytes that are not an entry are a miss.
+// A cached stage's bytes: a tag, the two hashes, then the outcome as a worker reports it. The
+// entry is already checksummed by the cache; bytes that are not an entry are a miss.
 constexpr std::string_view kCachedStageTag = "tidepool stage 1\n";
-
-class EntryWriter {
-public:
-    void Int(std::int64_t value) {
-        const auto bits = static_cast<std::uint64_t>(value);
-        for (int shift = 0; shift < 64; shift += 8) {
-            bytes_.push_back(static_cast<char>((bits >> shift) & 0xffU));
-        }
-    }
-    void Text(std::string_view text) {
-        Int(static_cast<std::int64_t>(text.size()));
-        bytes_.append(text);
-    }
-    std::string& Bytes() { return bytes_; }
-
-private:
-    std::string bytes_;
-};
-
-class EntryReader {
-public:
-    explicit EntryReader(std::string_view bytes) : rest_(bytes) {}
-    bool Tag(std::string_view tag) {
-        if (rest_.substr(0, tag.size()) != tag) {
-            return Fail();
-        }
-        rest_.remove_prefix(tag.size());
-        return true;
-    }
-    std::int64_t Int() {
-        if (rest_.size() < 8) {
-            Fail();
-            return 0;
-        }
-        std::uint64_t bits = 0;
-        for (int i = 7; i >= 0; --i) {
-            bits = (bits << 8) | static_cast<unsigned char>(rest_[static_cast<std::size_t>(i)]);
-        }
-        rest_.remove_prefix(8);
-        return static_cast<std::int64_t>(bits);
-    }
-    // An int that must fit `int` (line numbers, counts): anything else is not an entry.
-    int SmallInt() {
-        const std::int64_t value = Int();
-        if (value < std::numeric_limits<int>::min() || value > std::numeric_limits<int>::max()) {
-            Fail();
-            return 0;
-        }
-        return static_cast<int>(value);
-    }
-    std::string Text() {
-        const std::int64_t size = Int();
-        if (size < 0 || static_cast<std::uint64_t>(size) > rest_.size()) {
-            Fail();
-            return {};
-        }
-        std::string text(rest_.substr(0, static_cast<std::size_t>(size)));
-        rest_.remove_prefix(static_cast<std::size_t>(size));
-        return text;
-    }
-    // A count of items that each take at least `min_bytes`, so a bad count cannot reserve much.
-    std::size_t Count(std::size_t min_bytes) {
-        const std::int64_t count = Int();
-        if (count < 0 || static_cast<std::uint64_t>(count) > rest_.size() / min_bytes) {
-            Fail();
-            return 0;
-        }
-        return static_cast<std::size_t>(count);
-    }
-    bool Ok() const { return ok_; }
-    bool AtEnd() const { return ok_ && rest_.empty(); }
-
-private:
-    bool Fail() {
-        ok_ = false;
-        rest_ = {};
-        return false;
-    }
-    std::string_view rest_;
-    bool ok_ = true;
-};
 
 std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
     EntryWriter out;
     out.Bytes().append(kCachedStageTag);
     out.Text(program.hash);
     out.Text(digest);
-    out.Int(program.valid ? 1 : 0);
-    out.Int(static_cast<std::int64_t>(program.diagnostics.size()));
-    for (const Diagnostic& d : program.diagnostics) {
-        out.Int(static_cast<int>(d.severity));
-        out.Text(d.file);
-        out.Int(d.line);
-        out.Int(d.column);
-        out.Text(d.message);
-    }
-    const StageCost& cost = program.cost;
-    for (int value :
-         {cost.arithmetic_ops, cost.texture_samples, cost.branches, cost.loops, cost.uniforms,
-          cost.varyings, cost.samplers, cost.shortest_path_ops, cost.longest_path_ops}) {
-        out.Int(value);
-    }
-    out.Int(static_cast<std::int64_t>(cost.builtin_calls.size()));
-    for (const auto& [name, count] : cost.builtin_calls) {
-        out.Text(name);
-        out.Int(count);
-    }
+    WriteOutcome(out, program.valid, program.diagnostics, program.cost);
     return std::move(out.Bytes());
 }
 
@@ -567,36 +625,11 @@ std::optional<CachedStage> DecodeCachedStage(const std::string& payload) {
     CachedStage stage;
     stage.hash = in.Text();
     stage.digest = in.Text();
-    const std::int64_t valid = in.Int();
-    stage.outcome.valid = valid == 1;
-    const std::size_t diagnostics = in.Count(40);  // five fields of at least 8 bytes
-    for (std::size_t i = 0; i < diagnostics && in.Ok(); ++i) {
-        Diagnostic d;
-        const int severity = in.SmallInt();
-        if (severity < 0 || severity > static_cast<int>(Severity::kNote)) {
-            return std::nullopt;
-        }
-        d.severity = static_cast<Severity>(severity);
-        d.file = in.Text();
-        d.line = in.SmallInt();
-        d.column = in.SmallInt();
-        d.message = in.Text();
-        stage.outcome.diagnostics.push_back(std::move(d));
-    }
-    StageCost& cost = stage.outcome.cost;
-    for (int* field :
-         {&cost.arithmetic_ops, &cost.texture_samples, &cost.branches, &cost.loops, &cost.uniforms,
-          &cost.varyings, &cost.samplers, &cost.shortest_path_ops, &cost.longest_path_ops}) {
-        *field = in.SmallInt();
-    }
-    const std::size_t calls = in.Count(16);
-    for (std::size_t i = 0; i < calls && in.Ok(); ++i) {
-        std::string name = in.Text();
-        cost.builtin_calls[std::move(name)] = in.SmallInt();
-    }
-    if (!in.AtEnd() || (valid != 0 && valid != 1)) {
+    std::optional<StageOutcome> outcome = ReadOutcome(in);
+    if (!outcome) {
         return std::nullopt;
     }
+    stage.outcome = std::move(*outcome);
     return stage;
 }
 
@@ -938,13 +971,11 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 continue;
             }
             if (std::optional<std::string> payload = bundle->Load(link.cache_key)) {
-                try {
-                    const LinkResult outcome = DecodeLink(*payload);
-                    link.linked = outcome.ok;
-                    link.diagnostics = outcome.diagnostics;
+                // One that does not decode is recomputed below, and the entry replaced.
+                if (std::optional<LinkResult> outcome = DecodeLink(*payload)) {
+                    link.linked = outcome->ok;
+                    link.diagnostics = std::move(outcome->diagnostics);
                     link.cached = true;
-                } catch (const nlohmann::json::exception&) {
-                    // Recomputed below, and the entry replaced.
                 }
             }
         }
@@ -996,20 +1027,27 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 if (links[i].cached) {
                     return;  // skipped: the cache's outcome stands
                 }
-                for (auto& [index, outcome] : DecodeStages(result.notes)) {
+                for (auto& [index, outcome] : DecodeStages(result.notes, report.stage_programs)) {
                     if (!decided[index]) {
                         StageProgram& program = report.stage_programs[index];
-                        program.valid = outcome.valid;
-                        program.diagnostics = std::move(outcome.diagnostics);
-                        program.cost = outcome.cost;
+                        // glslang's own verdict, not an internal compiler error: the cache may
+                        // keep it.
+                        keepable[index] = outcome.has_value();
+                        if (!outcome) {
+                            outcome = UnreadableStageReport(program.file);
+                            report.internal_errors = true;
+                        }
+                        program.valid = outcome->valid;
+                        program.diagnostics = std::move(outcome->diagnostics);
+                        program.cost = outcome->cost;
                         decided[index] = true;
-                        keepable[index] = true;
                     }
                 }
                 LinkJob& link = links[i];
                 report.internal_errors =
                         report.internal_errors || (result.failure != WorkerFailure::kNone &&
                                                    result.failure != WorkerFailure::kSkipped);
+                bool glslangs_verdict = false;
                 const LinkResult outcome = LinkOutcome(
                         result, representative[link.fragment]->file,
                         [&](std::size_t index, const std::string& message) {
@@ -1017,11 +1055,13 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                             program.valid = false;
                             program.diagnostics = {MakeError(program.file, 0, 0, message)};
                             decided[index] = true;
-                        });
+                        },
+                        &glslangs_verdict);
+                report.internal_errors =
+                        report.internal_errors || (!glslangs_verdict && !result.payload.empty());
                 link.linked = outcome.ok;
                 link.diagnostics = outcome.diagnostics;
-                if (cache != nullptr && !link.cache_key.empty() &&
-                    result.failure == WorkerFailure::kNone && !result.payload.empty()) {
+                if (cache != nullptr && !link.cache_key.empty() && glslangs_verdict) {
                     bundle->Store(link.cache_key, result.payload);
                 }
             });
@@ -1162,11 +1202,8 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 cached_links[g] = LinkResult{};  // no link is attempted with an invalid stage
             } else if (all_cached) {
                 if (std::optional<std::string> payload = bundle->Load(link_keys[g])) {
-                    try {
-                        cached_links[g] = DecodeLink(*payload);
-                    } catch (const nlohmann::json::exception&) {
-                        // Recomputed below, and the entry replaced.
-                    }
+                    // One that does not decode is recomputed below, and the entry replaced.
+                    cached_links[g] = DecodeLink(*payload);
                 }
             }
         }
@@ -1202,23 +1239,32 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
             }
             link = *cached_links[g];
         } else {
-            for (auto& [index, outcome] : DecodeStages(results[g].notes)) {
+            for (auto& [index, outcome] : DecodeStages(results[g].notes, report.stage_programs)) {
                 StageProgram& program = report.stage_programs[index];
-                program.valid = outcome.valid;
-                program.diagnostics = std::move(outcome.diagnostics);
-                program.cost = outcome.cost;
                 // glslang's own verdict, not an internal compiler error: the cache may keep it.
-                if (bundle && !stage_keys[index].empty()) {
+                const bool own_verdict = outcome.has_value();
+                if (!own_verdict) {
+                    outcome = UnreadableStageReport(program.file);
+                    report.internal_errors = true;
+                }
+                program.valid = outcome->valid;
+                program.diagnostics = std::move(outcome->diagnostics);
+                program.cost = outcome->cost;
+                if (own_verdict && bundle && !stage_keys[index].empty()) {
                     bundle->Store(stage_keys[index], EncodeCachedStage(program, ""));
                 }
             }
-            link = LinkOutcome(results[g], files[groups[g].back()].path,
-                               [&](std::size_t index, const std::string& message) {
-                                   report.stage_programs[index].diagnostics = {
-                                           MakeError(files[index].path, 0, 0, message)};
-                               });
-            if (bundle && !link_keys[g].empty() && results[g].failure == WorkerFailure::kNone &&
-                !results[g].payload.empty()) {
+            bool glslangs_verdict = false;
+            link = LinkOutcome(
+                    results[g], files[groups[g].back()].path,
+                    [&](std::size_t index, const std::string& message) {
+                        report.stage_programs[index].diagnostics = {
+                                MakeError(files[index].path, 0, 0, message)};
+                    },
+                    &glslangs_verdict);
+            report.internal_errors =
+                    report.internal_errors || (!glslangs_verdict && !results[g].payload.empty());
+            if (bundle && !link_keys[g].empty() && glslangs_verdict) {
                 bundle->Store(link_keys[g], results[g].payload);
             }
         }

@@ -263,6 +263,39 @@ TEST(GlslValidatorTest, CorruptCacheEntryIsIgnoredAndRewritten) {
     EXPECT_EQ(Described(rewritten), Described(cold));
 }
 
+TEST(GlslValidatorTest, CachedResultThatDoesNotDecodeIsIgnoredAndRewritten) {
+    TempDir dir;
+    const VariantConfig config = MixedConfig(dir);
+    const std::filesystem::path folder = dir.Path() / "cache";
+    base::ContentCache cache(folder);
+    const ValidationReport cold = ValidateAll(config, 1, &cache);
+    // Every stage and link result of the bundle loses its second half, and the bundle is stored
+    // again: its checksum is right, so only the results' own reading can tell. (What the first
+    // halves would give, read leniently, is not what the run found: a link without its verdict,
+    // stages without their diagnostics or costs.)
+    std::size_t cut = 0;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(folder)) {
+        const std::string key = entry.path().filename().string();
+        const auto payload = entry.is_regular_file() ? cache.Load(key) : std::nullopt;
+        if (auto bundle = payload ? base::CacheBundle::Decode(*payload) : std::nullopt) {
+            for (auto& [result_key, result] : *bundle) {
+                result.resize(result.size() / 2);
+                ++cut;
+            }
+            cache.Store(key, base::CacheBundle::Encode(*bundle));
+        }
+    }
+    ASSERT_GT(cut, 4U);  // 2 vertex and fragment programs at least, and links
+    base::ContentCache reopened(folder);
+    const ValidationReport damaged = ValidateAll(config, 1, &reopened);
+    EXPECT_EQ(reopened.Stats().corrupt, 0U);
+    EXPECT_EQ(Described(damaged), Described(cold));
+    base::ContentCache again(folder);
+    const ValidationReport rewritten = ValidateAll(config, 1, &again);
+    EXPECT_EQ(again.Stats().misses, 0U);
+    EXPECT_EQ(Described(rewritten), Described(cold));
+}
+
 // The results a run kept: every entry of the bundle the cache folder holds.
 std::size_t BundledResults(const std::filesystem::path& folder) {
     base::ContentCache cache(folder);
