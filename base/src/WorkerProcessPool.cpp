@@ -196,6 +196,9 @@ struct Worker {
     // The items handed to it, in the order it runs them: the front one is running, the others
     // wait in its socket (WorkerLimits::items_ahead).
     std::deque<std::size_t> items;
+    // Its share of the items not yet handed out, [next, end) (WorkerLimits::contiguous_shares).
+    std::size_t next = 0;
+    std::size_t end = 0;
     Clock::time_point started;  // when the front item started, as the parent saw it
     std::string buffer;         // bytes received and not yet parsed into records
 };
@@ -226,6 +229,10 @@ public:
 
     std::vector<WorkerItemResult> Run(int worker_count) {
         workers_.resize(static_cast<std::size_t>(std::max(worker_count, 1)));
+        for (std::size_t w = 0; w < workers_.size(); ++w) {
+            workers_[w].next = w * count_ / workers_.size();
+            workers_[w].end = (w + 1) * count_ / workers_.size();
+        }
         // One item each first, so that a few long items spread over the workers.
         for (Worker& worker : workers_) {
             Fill(worker, 1);
@@ -254,23 +261,40 @@ private:
         }
     }
 
-    // The next item to run: one a failed worker left unstarted, else the next one in order,
-    // marking skipped ones on the way; -1 when none is left.
-    long NextItem() {
+    // The next item for `worker` to run: one a failed worker left unstarted, else the next one
+    // in order (WorkerLimits::contiguous_shares: of its share, else the last of the largest share
+    // left), marking skipped ones on the way; -1 when none is left.
+    long NextItem(Worker& worker) {
         if (!unstarted_.empty()) {
             const std::size_t i = unstarted_.front();
             unstarted_.pop_front();
             return static_cast<long>(i);
         }
-        while (next_ < count_) {
-            const std::size_t i = next_++;
+        for (;;) {
+            std::size_t i = 0;
+            if (!limits_.contiguous_shares) {
+                if (next_ >= count_) {
+                    return -1;
+                }
+                i = next_++;
+            } else if (worker.next < worker.end) {
+                i = worker.next++;
+            } else {
+                Worker& largest = *std::max_element(workers_.begin(), workers_.end(),
+                                                    [](const Worker& a, const Worker& b) {
+                                                        return a.end - a.next < b.end - b.next;
+                                                    });
+                if (largest.next >= largest.end) {
+                    return -1;
+                }
+                i = --largest.end;
+            }
             if (!should_run_ || should_run_(i)) {
                 return static_cast<long>(i);
             }
             results_[i].failure = WorkerFailure::kSkipped;
             Ended(i);
         }
-        return -1;
     }
 
     bool Start(Worker& worker) {
@@ -320,7 +344,7 @@ private:
     // is left for it.
     void Fill(Worker& worker, std::size_t depth) {
         while (worker.items.size() < depth) {
-            const long item = NextItem();
+            const long item = NextItem(worker);
             if (item < 0) {
                 break;
             }

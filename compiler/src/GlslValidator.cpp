@@ -74,9 +74,10 @@ namespace {
 // run goes on. The limits are per worker and item. 1 GiB is five times what validating the whole
 // default matrix takes (about 190 MB); 20 s is a hundred times the slowest shipped stage under
 // the sanitizers on a loaded two-core machine. Items take a millisecond or less, so each worker
-// holds the next one while it runs one, and each parse allocates and frees a few hundred KiB, so
-// a worker keeps freed memory mapped.
-constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1, true};
+// holds the next one while it runs one, each parse allocates and frees a few hundred KiB, so
+// a worker keeps freed memory mapped, and a worker's items are next to each other, so that it
+// parses a stage that several links share once.
+constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1, true, true};
 
 // The limits in force. TIDEPOOL_TEST_GLSLANG_SECONDS (a number of seconds) lowers the time
 // limit so that tests can see a hang of glslang handled end to end in a second instead of 20;
@@ -935,17 +936,24 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         std::string cache_key;  // "" when the cache is off or a stage has no digest
         bool cached = false;    // decided by the cache
     };
-    std::vector<LinkJob> links;
+    // In the order of their stages, so that the links of one vertex stage are next to each other
+    // and mostly go to one worker, which parses that stage once for all of them (kept parses,
+    // WorkerLimits::contiguous_shares).
     std::map<std::pair<std::size_t, std::size_t>, std::size_t> link_index;
+    for (std::size_t v = 0; v < jobs.size() / 2; ++v) {
+        link_index.emplace(
+                std::make_pair(program_index[jobs[2 * v].key], program_index[jobs[2 * v + 1].key]),
+                0);
+    }
+    std::vector<LinkJob> links;
+    for (auto& [stages, index] : link_index) {
+        index = links.size();
+        links.push_back(LinkJob{stages.first, stages.second, false, {}, {}, false});
+    }
     std::vector<std::size_t> verdict_link(jobs.size() / 2);
     for (std::size_t v = 0; v < jobs.size() / 2; ++v) {
-        const std::size_t vs = program_index[jobs[2 * v].key];
-        const std::size_t fs = program_index[jobs[2 * v + 1].key];
-        auto [it, inserted] = link_index.emplace(std::make_pair(vs, fs), links.size());
-        if (inserted) {
-            links.push_back(LinkJob{vs, fs, false, {}, {}, false});
-        }
-        verdict_link[v] = it->second;
+        verdict_link[v] = link_index.at(
+                std::make_pair(program_index[jobs[2 * v].key], program_index[jobs[2 * v + 1].key]));
     }
     // Which stage programs this process (a worker, after fork) has already reported, and the
     // parses it keeps for later links.

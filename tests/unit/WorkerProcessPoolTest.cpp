@@ -156,6 +156,82 @@ TEST(WorkerProcessPoolTest, ItemsAheadStillSpreadFewItemsOverTheWorkers) {
     EXPECT_NE(results[0].payload, results[1].payload);
 }
 
+// How often the worker (the process id each item returned) changes from one item to the next.
+std::size_t WorkerChanges(const std::vector<WorkerItemResult>& results) {
+    std::size_t changes = 0;
+    for (std::size_t i = 1; i < results.size(); ++i) {
+        changes += results[i].payload != results[i - 1].payload ? 1U : 0U;
+    }
+    return changes;
+}
+
+TEST(WorkerProcessPoolTest, ContiguousSharesKeepNeighbouringItemsInOneWorker) {
+    WorkerLimits limits;
+    limits.items_ahead = 1;
+    auto run = [&limits](bool contiguous) {
+        limits.contiguous_shares = contiguous;
+        return RunInWorkerProcesses(40, 2, limits, [](std::size_t, const ProgressNote&) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+            return std::to_string(::getpid());
+        });
+    };
+    const std::vector<WorkerItemResult> shared = run(true);
+    // Each worker runs its own half in order, and the one done first then the last items of
+    // the other's: the worker changes at most twice along the items.
+    EXPECT_LE(WorkerChanges(shared), 2U);
+    EXPECT_NE(shared.front().payload, shared.back().payload);
+    // The control: handed out in plain order, the two workers take turns.
+    EXPECT_GT(WorkerChanges(run(false)), 2U);
+}
+
+TEST(WorkerProcessPoolTest, AWorkerDoneWithItsShareTakesTheLastItemsOfAnother) {
+    // The first half's items take 10 ms, the second half's 1 ms: the second worker finishes its
+    // half first and then takes the first half's items from its end, until the two meet.
+    WorkerLimits limits;
+    limits.contiguous_shares = true;
+    const std::vector<WorkerItemResult> results =
+            RunInWorkerProcesses(40, 2, limits, [](std::size_t i, const ProgressNote&) {
+                std::this_thread::sleep_for(std::chrono::milliseconds(i < 20 ? 10 : 1));
+                return std::to_string(::getpid());
+            });
+    EXPECT_EQ(WorkerChanges(results), 1U);
+    std::size_t meet = 1;
+    while (meet < results.size() && results[meet].payload == results[0].payload) {
+        ++meet;
+    }
+    EXPECT_LT(meet, 20U);  // the second worker ran some of the first half
+    EXPECT_GT(meet, 0U);
+}
+
+TEST(WorkerProcessPoolTest, ContiguousSharesRunEveryItemOnceThroughCrashesAndSkips) {
+    WorkerLimits limits;
+    limits.contiguous_shares = true;
+    limits.items_ahead = 2;
+    std::vector<int> ended(30, 0);
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            30, 3, limits,
+            [](std::size_t i, const ProgressNote& note) {
+                note("item " + std::to_string(i));
+                if (i == 7 || i == 18) {
+                    std::raise(SIGSEGV);
+                }
+                return "done " + std::to_string(i);
+            },
+            [](std::size_t i) { return i % 5 != 0; },
+            [&ended](std::size_t i, const WorkerItemResult&) { ++ended[i]; });
+    for (std::size_t i = 0; i < results.size(); ++i) {
+        EXPECT_EQ(ended[i], 1) << i;
+        if (i % 5 == 0) {
+            EXPECT_EQ(results[i].failure, WorkerFailure::kSkipped) << i;
+        } else if (i == 7 || i == 18) {
+            EXPECT_EQ(results[i].failure, WorkerFailure::kCrashed) << i;
+        } else {
+            EXPECT_EQ(results[i].payload, "done " + std::to_string(i));
+            EXPECT_EQ(results[i].notes, std::vector<std::string>{"item " + std::to_string(i)});
+        }
+    }
+}
+
 TEST(WorkerProcessPoolTest, ItemThatTakesTooLongIsKilledAndReportedAsTimedOut) {
     const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
             2, 1, WorkerLimits{0, 0.5}, [](std::size_t i, const ProgressNote&) {

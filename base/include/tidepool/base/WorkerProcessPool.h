@@ -27,6 +27,13 @@ struct WorkerLimits {
     /// their pages in again every time. It also fixes glibc's threshold for mapping large blocks
     /// on their own at 128 KiB, so it is not for long items that allocate large buffers.
     bool keep_freed_memory = false;
+    /// Each worker takes its items in order from its own contiguous share of [0, count) (one of
+    /// as many equal parts as there are workers), and one whose share is done takes the last
+    /// item of the largest share left. For items next to each other that share work a worker
+    /// keeps between items (the links of one vertex stage, ordered so by the caller): handed out
+    /// in plain order, every worker would do that work. Items are then handed out, and
+    /// should_run asked, in another order than [0, count).
+    bool contiguous_shares = false;
 };
 
 /// How an item ended.
