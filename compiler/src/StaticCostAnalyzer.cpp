@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <climits>
 #include <cstddef>
+#include <cstring>
 #include <iterator>
 #include <set>
 #include <string>
@@ -321,33 +322,28 @@ public:
           summary_(summary) {}
 
     void visitSymbol(glslang::TIntermSymbol* symbol) override {
-        const std::string name(symbol->getName().c_str());
-        if (name.rfind("gl_", 0) == 0) {
-            return;
-        }
+        // Most symbols are locals and temporaries: the storage decides before the name is read.
         const glslang::TType& type = symbol->getType();
+        std::set<std::string>* names = nullptr;
         switch (type.getQualifier().storage) {
             case glslang::EvqUniform:
-                if (type.getBasicType() == glslang::EbtSampler) {
-                    summary_->samplers.insert(name);
-                } else {
-                    summary_->uniforms.insert(name);
-                }
+                names = type.getBasicType() == glslang::EbtSampler ? &summary_->samplers
+                                                                   : &summary_->uniforms;
                 break;
             // In a vertex shader EvqVaryingIn is an attribute, in a fragment shader EvqVaryingOut
             // is a user output (ES 3.00), so each stage has one varying direction.
             case glslang::EvqVaryingIn:
-                if (stage_ != EShLangVertex) {
-                    summary_->varyings.insert(name);
-                }
+                names = stage_ != EShLangVertex ? &summary_->varyings : nullptr;
                 break;
             case glslang::EvqVaryingOut:
-                if (stage_ != EShLangFragment) {
-                    summary_->varyings.insert(name);
-                }
+                names = stage_ != EShLangFragment ? &summary_->varyings : nullptr;
                 break;
             default:
                 break;
+        }
+        const char* name = symbol->getName().c_str();
+        if (names != nullptr && std::strncmp(name, "gl_", 3) != 0) {
+            names->insert(name);
         }
     }
 
@@ -549,8 +545,9 @@ private:
         return path;
     }
 
-    int OwnOps(const glslang::TIntermOperator& node) const {
-        return ClassifyOperator(node, stage_, version_).kind == OpKind::kFree ? 0 : 1;
+    // ClassifyOperator's kind is kFree exactly for these; the name it builds is not needed here.
+    static int OwnOps(const glslang::TIntermOperator& node) {
+        return IsFreeOperator(node.getOp()) || node.isConstructor() ? 0 : 1;
     }
 
     // A selection takes the cheaper or dearer arm; everything else is the sum of its parts.

@@ -46,6 +46,29 @@ void main() {
     EXPECT_EQ(cost.longest_path_ops, 3);
 }
 
+TEST(StaticCostAnalyzerTest, StraightLineCodeHasOnePathThatCostsEveryCountedOp) {
+    // No branch: the path counts exactly the operators the totals count, whatever their kind
+    // (constructors, swizzles and moves are free in both).
+    const StageCost cost = AnalyzeFragment(R"(
+precision mediump float;
+uniform sampler2D u_tex;
+varying vec2 v_uv;
+void main() {
+    vec4 c = texture2D(u_tex, v_uv * 2.0);          // texture2D, *
+    vec3 n = normalize(c.xyz);                      // normalize
+    float d = -dot(n, vec3(0.0, 1.0, 0.0));         // dot, unary -
+    bool lit = !(d > 0.5);                          // >, !
+    float k = float(lit) + d;                       // +
+    k += 1.0;                                       // +=
+    gl_FragColor = vec4(n * k, c.a);                // *
+})");
+    EXPECT_EQ(cost.builtin_calls, (Calls{{"dot", 1}, {"normalize", 1}, {"texture2D", 1}}));
+    EXPECT_EQ(cost.arithmetic_ops, 7);
+    EXPECT_EQ(cost.TotalOps(), 10);
+    EXPECT_EQ(cost.shortest_path_ops, cost.TotalOps());
+    EXPECT_EQ(cost.longest_path_ops, cost.TotalOps());
+}
+
 TEST(StaticCostAnalyzerTest, TextureLookupsAreSamplesAndNamedCalls) {
     const StageCost cost = AnalyzeFragment(R"(
 precision mediump float;
