@@ -125,6 +125,7 @@ struct StageOutcome {
     bool valid = false;
     std::vector<Diagnostic> diagnostics;
     StageCost cost;
+    bool has_cost = false;  // the cost was worked out (ValidationOptions::static_costs)
 };
 
 // The bytes a worker reports a stage or a link in, and the cache keeps them in: fixed-width
@@ -242,17 +243,22 @@ bool ReadDiagnostics(EntryReader& in, std::vector<Diagnostic>* diagnostics) {
     return in.Ok();
 }
 
+// `cost` null: the cost was not worked out.
 void WriteOutcome(EntryWriter& out, bool valid, const std::vector<Diagnostic>& diagnostics,
-                  const StageCost& cost) {
+                  const StageCost* cost) {
     out.Int(valid ? 1 : 0);
     WriteDiagnostics(out, diagnostics);
+    out.Int(cost != nullptr ? 1 : 0);
+    if (cost == nullptr) {
+        return;
+    }
     for (int value :
-         {cost.arithmetic_ops, cost.texture_samples, cost.branches, cost.loops, cost.uniforms,
-          cost.varyings, cost.samplers, cost.shortest_path_ops, cost.longest_path_ops}) {
+         {cost->arithmetic_ops, cost->texture_samples, cost->branches, cost->loops, cost->uniforms,
+          cost->varyings, cost->samplers, cost->shortest_path_ops, cost->longest_path_ops}) {
         out.Int(value);
     }
-    out.Int(static_cast<std::int64_t>(cost.builtin_calls.size()));
-    for (const auto& [name, count] : cost.builtin_calls) {
+    out.Int(static_cast<std::int64_t>(cost->builtin_calls.size()));
+    for (const auto& [name, count] : cost->builtin_calls) {
         out.Text(name);
         out.Int(count);
     }
@@ -266,6 +272,11 @@ std::optional<StageOutcome> ReadOutcome(EntryReader& in) {
     if (!ReadDiagnostics(in, &outcome.diagnostics)) {
         return std::nullopt;
     }
+    const std::int64_t has_cost = in.Int();
+    outcome.has_cost = has_cost == 1;
+    if (has_cost == 0 && in.AtEnd() && (valid == 0 || valid == 1)) {
+        return outcome;
+    }
     StageCost& cost = outcome.cost;
     for (int* field :
          {&cost.arithmetic_ops, &cost.texture_samples, &cost.branches, &cost.loops, &cost.uniforms,
@@ -277,7 +288,7 @@ std::optional<StageOutcome> ReadOutcome(EntryReader& in) {
         std::string name = in.Text();
         cost.builtin_calls[std::move(name)] = in.SmallInt();
     }
-    if (!in.AtEnd() || (valid != 0 && valid != 1)) {
+    if (!in.AtEnd() || (valid != 0 && valid != 1) || has_cost != 1) {
         return std::nullopt;
     }
     return outcome;
@@ -286,14 +297,15 @@ std::optional<StageOutcome> ReadOutcome(EntryReader& in) {
 // A link's record starts with this, so that a cache entry of another kind is not taken for one.
 constexpr std::string_view kLinkTag = "tidepool link 1\n";
 
-std::string EncodeStage(std::size_t index, const StageParse& parse) {
+// With `costs`, the stage's StaticCost is worked out (an invalid stage's is empty).
+std::string EncodeStage(std::size_t index, const StageParse& parse, bool costs) {
     StageCost cost;
-    if (parse.ok && parse.intermediate != nullptr) {
+    if (costs && parse.ok && parse.intermediate != nullptr) {
         cost = AnalyzeStageCost(*parse.intermediate);
     }
     EntryWriter out;
     out.Bytes() = fmt::format("S{}:", index);
-    WriteOutcome(out, parse.ok, parse.diagnostics, cost);
+    WriteOutcome(out, parse.ok, parse.diagnostics, costs ? &cost : nullptr);
     return std::move(out.Bytes());
 }
 
@@ -347,11 +359,12 @@ struct KeptParses {
 // 0.35 MB; a worker may use 1 GiB).
 constexpr std::size_t kMaxKeptParses = 64;
 
-// Worker side of a link item: parses each stage (reporting it through a note unless this worker
-// already did: its cost analysis is not free) or takes the parse `kept` holds, and when all
-// parsed, links them; returns the link's outcome, or "" when no link ran. With `kept`, a parse a
-// later link may use and that the link left reusable is kept for it.
-std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note,
+// Worker side of a link item: parses each stage (reporting it through a note, with its cost when
+// `costs` asks, unless this worker already did: its cost analysis is not free) or takes the
+// parse `kept` holds, and when all parsed, links them; returns the link's outcome, or "" when no
+// link ran. With `kept`, a parse a later link may use and that the link left reusable is kept
+// for it.
+std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNote& note, bool costs,
                          std::vector<bool>* reported, KeptParses* kept = nullptr) {
     std::vector<StageParse> parses;
     bool all_ok = true;
@@ -367,7 +380,7 @@ std::string ParseAndLink(const std::vector<ItemStage>& stages, const ProgressNot
         note(fmt::format("P{}", stage.index));
         parses.push_back(ParseStage(stage.input));
         if (!(*reported)[stage.index]) {
-            note(EncodeStage(stage.index, parses.back()));
+            note(EncodeStage(stage.index, parses.back(), costs));
             (*reported)[stage.index] = true;
         }
         all_ok = all_ok && parses.back().ok;
@@ -608,12 +621,13 @@ struct CachedStage {
 // entry is already checksummed by the cache; bytes that are not an entry are a miss.
 constexpr std::string_view kCachedStageTag = "tidepool stage 1\n";
 
-std::string EncodeCachedStage(const StageProgram& program, const std::string& digest) {
+std::string EncodeCachedStage(const StageProgram& program, const std::string& digest,
+                              bool has_cost) {
     EntryWriter out;
     out.Bytes().append(kCachedStageTag);
     out.Text(program.hash);
     out.Text(digest);
-    WriteOutcome(out, program.valid, program.diagnostics, program.cost);
+    WriteOutcome(out, program.valid, program.diagnostics, has_cost ? &program.cost : nullptr);
     return std::move(out.Bytes());
 }
 
@@ -821,7 +835,12 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         for (std::size_t g = 0; g < group_list.size(); ++g) {
             if (!group_cache_key[g].empty()) {
                 if (std::optional<std::string> payload = bundle->Load(group_cache_key[g])) {
-                    group_cached[g] = DecodeCachedStage(*payload);
+                    // One without the cost this validation wants answers nothing: the stage is
+                    // parsed again and the entry replaced.
+                    std::optional<CachedStage> cached = DecodeCachedStage(*payload);
+                    if (cached && (cached->outcome.has_cost || !options.static_costs)) {
+                        group_cached[g] = std::move(cached);
+                    }
                 }
             }
         }
@@ -1020,7 +1039,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                     for (std::size_t index : {link.vertex, link.fragment}) {
                         if (!decided[index] && !reported[index]) {
                             note(fmt::format("P{}", index));
-                            note(EncodeStage(index, ParseStage(input_of(index))));
+                            note(EncodeStage(index, ParseStage(input_of(index)),
+                                             options.static_costs));
                             reported[index] = true;
                         }
                     }
@@ -1028,7 +1048,7 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 }
                 return ParseAndLink({{link.vertex, input_of(link.vertex)},
                                      {link.fragment, input_of(link.fragment)}},
-                                    note, &reported, &kept);
+                                    note, options.static_costs, &reported, &kept);
             },
             link_runs,
             [&](std::size_t i, const WorkerItemResult& result) {
@@ -1079,7 +1099,8 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             const std::size_t index = program_index[first.key];
             if (!group_cache_key[g].empty() && !group_cached[g] && keepable[index]) {
                 bundle->Store(group_cache_key[g],
-                              EncodeCachedStage(report.stage_programs[index], first.digest));
+                              EncodeCachedStage(report.stage_programs[index], first.digest,
+                                                options.static_costs));
             }
         }
         bundle->Save();
@@ -1201,6 +1222,9 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 keys.push_back(stage_keys[i]);
                 if (std::optional<std::string> payload = bundle->Load(stage_keys[i])) {
                     cached_stages[i] = DecodeCachedStage(*payload);
+                    if (cached_stages[i] && !cached_stages[i]->outcome.has_cost) {
+                        cached_stages[i].reset();  // plain files always get their cost
+                    }
                 }
                 all_cached = all_cached && cached_stages[i].has_value();
                 all_valid = all_valid && cached_stages[i] && cached_stages[i]->outcome.valid;
@@ -1233,7 +1257,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                       {files[i].path, texts[i].text, files[i].stage, options.target,
                                        defines, options.limits, /*keep_version=*/true}});
                 }
-                return ParseAndLink(stages, note, &reported);
+                return ParseAndLink(stages, note, true, &reported);
             },
             group_runs);
     for (std::size_t g = 0; g < groups.size(); ++g) {
@@ -1259,7 +1283,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                 program.diagnostics = std::move(outcome->diagnostics);
                 program.cost = outcome->cost;
                 if (own_verdict && bundle && !stage_keys[index].empty()) {
-                    bundle->Store(stage_keys[index], EncodeCachedStage(program, ""));
+                    bundle->Store(stage_keys[index], EncodeCachedStage(program, "", true));
                 }
             }
             bool glslangs_verdict = false;

@@ -123,6 +123,8 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     validation_options.limits = device_limits ? &*device_limits : nullptr;
     validation_options.cache = cache.get();
     validation_options.warm_up = warm_up ? &*warm_up : nullptr;
+    // The costs appear only in the manifest.
+    validation_options.static_costs = options.manifest_wanted || !options.out.empty();
     result.report = ValidateVariants(config, variants, validation_options);
     WarnAboutCache(cache.get(), &outcome);
     outcome.Add(result.report.diagnostics);

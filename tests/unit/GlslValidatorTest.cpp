@@ -158,8 +158,9 @@ TEST(GlslValidatorTest, ValidationWithSeveralJobsGivesTheSameVerdicts) {
     }
 }
 
-// Everything a report says about its variants, as text, to compare two reports whole.
-std::vector<std::string> Described(const ValidationReport& report) {
+// Everything a report says about its variants, as text, to compare two reports whole (without
+// `costs`, all but the stage programs' costs).
+std::vector<std::string> Described(const ValidationReport& report, bool costs = true) {
     std::vector<std::string> lines{"slots " + std::to_string(report.stage_slots) + " programs " +
                                    std::to_string(report.stage_programs.size()) + " links " +
                                    std::to_string(report.links)};
@@ -172,7 +173,8 @@ std::vector<std::string> Described(const ValidationReport& report) {
     }
     for (const StageProgram& program : report.stage_programs) {
         lines.push_back(program.file + " " + program.hash +
-                        (program.valid ? " valid " : " invalid ") + ToJson(program.cost).dump());
+                        (program.valid ? " valid " : " invalid ") +
+                        (costs ? ToJson(program.cost).dump() : ""));
     }
     return lines;
 }
@@ -229,6 +231,49 @@ TEST(GlslValidatorTest, WarmUpTheCallerStartedGivesTheSameReport) {
     EXPECT_EQ(Described(given), Described(own));
     EXPECT_EQ(given.verdicts.size(), 8U);  // 4 variants, 2 targets
     EXPECT_EQ(warm_up.Finish(), std::vector<GlslTarget>{GlslTarget::kEs100});  // idempotent
+}
+
+ValidationReport ValidateWithoutCosts(const VariantConfig& config,
+                                      base::ContentCache* cache = nullptr) {
+    const ExpansionResult expansion = ExpandVariants(config, ExpansionOptions{config.max_variants});
+    ValidationOptions options;
+    options.jobs = 2;
+    options.targets = config.targets;
+    options.cache = cache;
+    options.static_costs = false;
+    return ValidateVariants(config, expansion.variants, options);
+}
+
+TEST(GlslValidatorTest, ValidationWithoutCostsGivesTheSameVerdictsAndNoCosts) {
+    TempDir dir;
+    const VariantConfig config = MixedConfig(dir);
+    const ValidationReport with = ValidateAll(config, 2);
+    const ValidationReport without = ValidateWithoutCosts(config);
+    EXPECT_EQ(Described(without, false), Described(with, false));
+    int costed = 0;
+    for (std::size_t i = 0; i < with.stage_programs.size(); ++i) {
+        costed += with.stage_programs[i].cost.TotalOps() > 0 ? 1 : 0;
+        EXPECT_EQ(without.stage_programs[i].cost.TotalOps(), 0) << i;
+    }
+    EXPECT_GT(costed, 0);  // so the check above can fail
+}
+
+TEST(GlslValidatorTest, CachedStageWithoutCostDoesNotAnswerAValidationThatWantsOne) {
+    TempDir dir;
+    const VariantConfig config = MixedConfig(dir);
+    const ValidationReport uncached = ValidateAll(config, 2);
+    base::ContentCache cache(dir.Path() / "cache");
+    static_cast<void>(ValidateWithoutCosts(config, &cache));
+    const std::uint64_t stored_without = cache.Stats().stored;
+    // The stages are parsed again for their costs, and their entries replaced.
+    const ValidationReport with = ValidateAll(config, 2, &cache);
+    EXPECT_EQ(Described(with), Described(uncached));
+    EXPECT_GT(cache.Stats().stored, stored_without);
+    // Entries with a cost answer a validation that wants none: nothing is stored again.
+    const std::uint64_t stored_with = cache.Stats().stored;
+    const ValidationReport again = ValidateWithoutCosts(config, &cache);
+    EXPECT_EQ(Described(again, false), Described(uncached, false));
+    EXPECT_EQ(cache.Stats().stored, stored_with);
 }
 
 TEST(GlslValidatorTest, CorruptCacheEntryIsIgnoredAndRewritten) {

@@ -51,6 +51,10 @@ struct ValidationOptions {
     /// A warm-up the caller started, finished before the first fork; none: validation starts its
     /// own when the cache cannot answer everything. Not owned.
     GlslangWarmUp* warm_up = nullptr;
+    /// Whether each valid stage program gets its StaticCost (the manifest's costs); without, its
+    /// `cost` may stay empty, which spares the analysis when nothing will show it. A cached stage
+    /// without a cost does not answer a validation that wants one: it is parsed again.
+    bool static_costs = true;
 };
 
 /// One distinct stage program: all variants whose preprocessed stage source is identical share it.
