@@ -1,5 +1,7 @@
 #include "tidepool/base/WorkerProcessPool.h"
 
+#include "tidepool/base/CpuPlacement.h"
+
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
@@ -316,6 +318,7 @@ private:
             return false;
         }
         if (pid == 0) {
+            placement_.AllowAll();
             // Every descriptor but stdio and this worker's two sockets goes: another worker's
             // socket held open here would hide that worker's death from us, and a socket of a
             // pool on another thread (`run` plans scenes on two) would keep that pool's worker
@@ -331,6 +334,7 @@ private:
             ::close_range(high + 1, ~0U, 0);
             WorkerMain(fds[1], notes[1], limits_, work_);
         }
+        placement_.StartProcessAway(pid, static_cast<int>(&worker - workers_.data()));
         ::close(fds[1]);
         ::close(notes[1]);
         worker.pid = pid;
@@ -526,6 +530,7 @@ private:
     const std::function<void(std::size_t, const WorkerItemResult&)>& on_result_;
     std::vector<WorkerItemResult> results_;
     std::vector<Worker> workers_;
+    CpuPlacement placement_;             // workers start on other CPUs than the parent's
     std::deque<std::size_t> unstarted_;  // handed to a worker that failed before starting them
     std::vector<char> note_buffer_;      // TakeQuietNotes's, kept for the next call
     std::size_t next_ = 0;

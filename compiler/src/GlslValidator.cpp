@@ -676,12 +676,15 @@ const std::string& ValidationCacheIdentity() {
 
 GlslangWarmUp::GlslangWarmUp(std::vector<GlslTarget> targets)
     : targets_(std::move(targets)), thread_([this] {
+          placement_.AllowAll();
           try {
               WarmUpGlslang(targets_);
           } catch (...) {
               // Nothing lost but time: each worker then builds the tables it needs itself.
           }
-      }) {}
+      }) {
+    placement_.StartThreadAway(thread_.native_handle(), 0);
+}
 
 const std::vector<GlslTarget>& GlslangWarmUp::Finish() {
     if (thread_.joinable()) {

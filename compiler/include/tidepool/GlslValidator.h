@@ -9,6 +9,7 @@
 #include "tidepool/VariantConfig.h"
 #include "tidepool/VariantExpander.h"
 #include "tidepool/base/ContentCache.h"
+#include "tidepool/base/CpuPlacement.h"
 
 #include <array>
 #include <optional>
@@ -34,7 +35,8 @@ public:
 
 private:
     std::vector<GlslTarget> targets_;
-    std::jthread thread_;  // last: it reads targets_, and is joined before they go
+    base::CpuPlacement placement_;  // the thread starts on another CPU than its creator's
+    std::jthread thread_;           // last: it reads the above, and is joined before they go
 };
 
 /// How to validate.
