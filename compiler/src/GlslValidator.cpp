@@ -331,13 +331,26 @@ std::map<std::size_t, std::optional<StageOutcome>> DecodeStages(
     return stages;
 }
 
-// What a stage whose worker's report does not decode comes to.
-StageOutcome UnreadableStageReport(const std::string& file) {
-    return {false,
-            {MakeError(file, 0, 0,
-                       "internal compiler error: the worker's report of this stage could not be "
-                       "read; run again, and report a bug if it persists")},
-            {}};
+// Puts a worker's report of a stage into `program`: its outcome, or an internal compiler error
+// when the report does not decode (then `*internal_errors` is set). True when the outcome is
+// glslang's own verdict, the one the cache may keep.
+bool TakeStageReport(std::optional<StageOutcome> outcome, StageProgram& program,
+                     bool* internal_errors) {
+    const bool own_verdict = outcome.has_value();
+    if (!own_verdict) {
+        outcome = StageOutcome{
+                false,
+                {MakeError(program.file, 0, 0,
+                           "internal compiler error: the worker's report of this stage could not "
+                           "be read; run again, and report a bug if it persists")},
+                {},
+                false};
+        *internal_errors = true;
+    }
+    program.valid = outcome->valid;
+    program.diagnostics = std::move(outcome->diagnostics);
+    program.cost = std::move(outcome->cost);
+    return own_verdict;
 }
 
 // One stage of a link item, as the worker sees it.
@@ -1060,17 +1073,9 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
                 }
                 for (auto& [index, outcome] : DecodeStages(result.notes, report.stage_programs)) {
                     if (!decided[index]) {
-                        StageProgram& program = report.stage_programs[index];
-                        // glslang's own verdict, not an internal compiler error: the cache may
-                        // keep it.
-                        keepable[index] = outcome.has_value();
-                        if (!outcome) {
-                            outcome = UnreadableStageReport(program.file);
-                            report.internal_errors = true;
-                        }
-                        program.valid = outcome->valid;
-                        program.diagnostics = std::move(outcome->diagnostics);
-                        program.cost = outcome->cost;
+                        keepable[index] =
+                                TakeStageReport(std::move(outcome), report.stage_programs[index],
+                                                &report.internal_errors);
                         decided[index] = true;
                     }
                 }
@@ -1276,15 +1281,8 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
         } else {
             for (auto& [index, outcome] : DecodeStages(results[g].notes, report.stage_programs)) {
                 StageProgram& program = report.stage_programs[index];
-                // glslang's own verdict, not an internal compiler error: the cache may keep it.
-                const bool own_verdict = outcome.has_value();
-                if (!own_verdict) {
-                    outcome = UnreadableStageReport(program.file);
-                    report.internal_errors = true;
-                }
-                program.valid = outcome->valid;
-                program.diagnostics = std::move(outcome->diagnostics);
-                program.cost = outcome->cost;
+                const bool own_verdict =
+                        TakeStageReport(std::move(outcome), program, &report.internal_errors);
                 if (own_verdict && bundle && !stage_keys[index].empty()) {
                     bundle->Store(stage_keys[index], EncodeCachedStage(program, "", true));
                 }
