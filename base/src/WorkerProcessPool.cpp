@@ -148,7 +148,8 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
 
 [[noreturn]] void WorkerMain(
         int fd, int notes_fd, const WorkerLimits& limits,
-        const std::function<std::string(std::size_t, const ProgressNote&)>& work) {
+        const std::function<std::string(std::size_t, const ProgressNote&)>& work,
+        const CpuPlacement& placement) {
     const rlimit no_core{0, 0};
     ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
     if (limits.memory_bytes > 0) {
@@ -161,10 +162,15 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
         constexpr int kKeepFreedBytes = 1 << 30;
         ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
     }
-    for (;;) {
+    for (bool first = true;; first = false) {
         std::uint64_t index = 0;
         if (!ReceiveAll(fd, &index, sizeof index)) {
             ::_exit(0);  // the parent has no more items
+        }
+        if (first) {
+            // The parent placed this process before it sent the first item: from now on it may
+            // run on any allowed CPU (CpuPlacement).
+            placement.AllowAll();
         }
         // A note goes through the notes socket, which the parent reads only when a record comes
         // or the worker ends, so that it does not wake the parent (a cold validate sends
@@ -318,7 +324,6 @@ private:
             return false;
         }
         if (pid == 0) {
-            placement_.AllowAll();
             // Every descriptor but stdio and this worker's two sockets goes: another worker's
             // socket held open here would hide that worker's death from us, and a socket of a
             // pool on another thread (`run` plans scenes on two) would keep that pool's worker
@@ -332,7 +337,7 @@ private:
                 ::close_range(low + 1, high - 1, 0);
             }
             ::close_range(high + 1, ~0U, 0);
-            WorkerMain(fds[1], notes[1], limits_, work_);
+            WorkerMain(fds[1], notes[1], limits_, work_, placement_);
         }
         placement_.StartProcessAway(pid, static_cast<int>(&worker - workers_.data()));
         ::close(fds[1]);

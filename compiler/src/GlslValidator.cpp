@@ -689,6 +689,7 @@ const std::string& ValidationCacheIdentity() {
 
 GlslangWarmUp::GlslangWarmUp(std::vector<GlslTarget> targets)
     : targets_(std::move(targets)), thread_([this] {
+          placed_.wait(false);  // so that AllowAll comes after StartThreadAway
           placement_.AllowAll();
           try {
               WarmUpGlslang(targets_);
@@ -697,6 +698,8 @@ GlslangWarmUp::GlslangWarmUp(std::vector<GlslTarget> targets)
           }
       }) {
     placement_.StartThreadAway(thread_.native_handle(), 0);
+    placed_ = true;
+    placed_.notify_one();
 }
 
 const std::vector<GlslTarget>& GlslangWarmUp::Finish() {

@@ -12,6 +12,7 @@
 #include "tidepool/base/CpuPlacement.h"
 
 #include <array>
+#include <atomic>
 #include <optional>
 #include <string>
 #include <thread>
@@ -35,8 +36,9 @@ public:
 
 private:
     std::vector<GlslTarget> targets_;
-    base::CpuPlacement placement_;  // the thread starts on another CPU than its creator's
-    std::jthread thread_;           // last: it reads the above, and is joined before they go
+    base::CpuPlacement placement_;     // the thread starts on another CPU than its creator's
+    std::atomic<bool> placed_{false};  // the thread has been placed there
+    std::jthread thread_;              // last: it reads the above, and is joined before they go
 };
 
 /// How to validate.

@@ -25,7 +25,9 @@ public:
     /// The same for a thread the caller just started.
     void StartThreadAway(pthread_t thread, int n) const;
 
-    /// Lets the calling thread run on every CPU of the set again. For the new task's first step.
+    /// Lets the calling thread run on every CPU of the set again: the new task's first step once
+    /// its creator has placed it (a worker when its first item arrives, a thread when its
+    /// creator says so). One that did it before being placed would stay on the one CPU.
     void AllowAll() const;
 
 private:
