@@ -297,7 +297,8 @@ std::optional<StageOutcome> ReadOutcome(EntryReader& in) {
 // A link's record starts with this, so that a cache entry of another kind is not taken for one.
 constexpr std::string_view kLinkTag = "tidepool link 1\n";
 
-// With `costs`, the stage's StaticCost is worked out (an invalid stage's is empty).
+// With `costs`, the stage's StaticCost is worked out. An invalid stage's is empty, and known
+// without it.
 std::string EncodeStage(std::size_t index, const StageParse& parse, bool costs) {
     StageCost cost;
     if (costs && parse.ok && parse.intermediate != nullptr) {
@@ -305,7 +306,7 @@ std::string EncodeStage(std::size_t index, const StageParse& parse, bool costs) 
     }
     EntryWriter out;
     out.Bytes() = fmt::format("S{}:", index);
-    WriteOutcome(out, parse.ok, parse.diagnostics, costs ? &cost : nullptr);
+    WriteOutcome(out, parse.ok, parse.diagnostics, costs || !parse.ok ? &cost : nullptr);
     return std::move(out.Bytes());
 }
 
@@ -1110,8 +1111,9 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
             const std::size_t index = program_index[first.key];
             if (!group_cache_key[g].empty() && !group_cached[g] && keepable[index]) {
                 bundle->Store(group_cache_key[g],
-                              EncodeCachedStage(report.stage_programs[index], first.digest,
-                                                options.static_costs));
+                              EncodeCachedStage(
+                                      report.stage_programs[index], first.digest,
+                                      options.static_costs || !report.stage_programs[index].valid));
             }
         }
         bundle->Save();
