@@ -1041,12 +1041,16 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
         return !link.cached && !((broken(link.vertex) || broken(link.fragment)) &&
                                  decided[link.vertex] && decided[link.fragment]);
     };
+    bool any_link_runs = false;
     for (std::size_t i = 0; i < links.size(); ++i) {
         if (link_runs(i)) {
-            warm_up();
+            any_link_runs = true;
             ++kept.uses[links[i].vertex];
             ++kept.uses[links[i].fragment];
         }
+    }
+    if (any_link_runs) {
+        warm_up();  // each target's tables once, before the workers fork
     }
     finish_warming();
     RunInWorkerProcesses(
