@@ -159,12 +159,23 @@ double FinestHalfWidthPoints(const StoppingRule& rule) {
     return std::min(rule.resolution_points, kDirectionMarginPoints) / 2.0;
 }
 
-bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
+namespace {
+
+// How near a boundary, in percent points, an end of the interval counts as near it:
+// `rule.boundary_standard_errors` standard errors of the estimate.
+double BoundaryReach(const PairedEstimate& estimate, const StoppingRule& rule) {
+    const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
+    return rule.boundary_standard_errors * estimate.HalfWidthPoints() / z;
+}
+
+// NearVerdictBoundary's clauses of the direction margins: an end of the interval within reach
+// of the margin it is compared with, or the estimate beyond a margin while the interval still
+// reaches over it.
+bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
         return false;
     }
-    const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
-    const double reach = rule.boundary_standard_errors * estimate.HalfWidthPoints() / z;
+    const double reach = BoundaryReach(estimate, rule);
     const double low = estimate.change_low;
     const double high = estimate.change_high;
     // The estimate, not the interval's midpoint: an interval spanning the as-run and contended
@@ -172,12 +183,22 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
     const double centre =
             std::isfinite(estimate.change_percent) ? estimate.change_percent : (low + high) / 2.0;
     const double margin = kDirectionMarginPoints;
-    if (std::fabs(high + margin) < reach || std::fabs(low - margin) < reach) {
+    return std::fabs(high + margin) < reach || std::fabs(low - margin) < reach ||
+           (centre < -margin && high > -margin) || (centre > margin && low < margin);
+}
+
+}  // namespace
+
+bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
+    if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
+        return false;
+    }
+    if (NearDirectionMargin(estimate, rule)) {
         return true;
     }
-    if ((centre < -margin && high > -margin) || (centre > margin && low < margin)) {
-        return true;
-    }
+    const double reach = BoundaryReach(estimate, rule);
+    const double low = estimate.change_low;
+    const double high = estimate.change_high;
     return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
         return (low < b && b < high) || std::fabs(low - b) < reach || std::fabs(high - b) < reach;
     });
@@ -190,11 +211,27 @@ bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& ru
            });
 }
 
+bool NearUnheldBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
+    if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
+        return false;
+    }
+    const double reach = BoundaryReach(estimate, rule);
+    const double low = estimate.change_low;
+    const double high = estimate.change_high;
+    return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
+        const bool held = low < b && b < high;
+        return !held && (std::fabs(low - b) < reach || std::fabs(high - b) < reach);
+    });
+}
+
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (estimate.pairs >= rule.min_pairs && estimate.Valid()) {
         const double half_width = estimate.HalfWidthPoints();
+        const bool bounded = rule.boundary_pairs > 0 && estimate.pairs >= rule.boundary_pairs;
         if ((half_width <= FinestHalfWidthPoints(rule) && !HoldsVerdictBoundary(estimate, rule)) ||
-            (half_width <= rule.resolution_points && !NearVerdictBoundary(estimate, rule))) {
+            (half_width <= rule.resolution_points && !NearVerdictBoundary(estimate, rule)) ||
+            (bounded && half_width <= rule.resolution_points &&
+             !NearDirectionMargin(estimate, rule) && !NearUnheldBoundary(estimate, rule))) {
             return StopDecision::kResolved;
         }
     }

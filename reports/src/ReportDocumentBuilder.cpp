@@ -3,6 +3,7 @@
 #include "tidepool/Manifest.h"
 #include "tidepool/base/CoreCompetitor.h"
 #include "tidepool/base/ImageMetrics.h"
+#include "tidepool/base/PairedEstimate.h"
 #include "tidepool/report/ReportCharts.h"
 #include "tidepool/report/WhitepaperTable.h"
 
@@ -117,8 +118,12 @@ std::string TimingMethodText(const ReportModel& model) {
             "the row's magnitude band (half to twice the whitepaper's figure) inside or near the "
             "interval. Stopping there would give a verdict in one run and another in the next. "
             "An interval that holds an end of the magnitude band goes on past half the "
-            "resolution, until it clears that end or reaches the cap, since an interval on the "
-            "end decides no magnitude while more pairs may still decide it. {}"
+            "resolution, since an interval on the end decides no magnitude while more pairs may "
+            "still decide it, but only until {} pairs: a change that lies on the end took pairs "
+            "to the cap and still held it, and the band's edge, its verdict then, contradicts no "
+            "other run. From that many pairs on, a comparison stops at the resolution unless an "
+            "end of its interval lies near the direction margin or near an end of the band that "
+            "it does not hold (a firm verdict that the next run could read the other way). {}"
             "Configurations that no comparison names "
             "get a few coarse "
             "frames each, enough for the accuracy-versus-time chart. Why this method: on a "
@@ -145,7 +150,7 @@ std::string TimingMethodText(const ReportModel& model) {
             std::isfinite(model.inputs->resolution_points)
                     ? fmt::format("{:.1f}", model.inputs->resolution_points)
                     : std::string("–"),
-            ProbeText(model.inputs->results));
+            base::StoppingRule{}.boundary_pairs, ProbeText(model.inputs->results));
 }
 
 // Why each comparison is also timed with its core shared, and what that did in this run.

@@ -78,7 +78,9 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// `resolution_points` and it is not near a verdict's boundary (NearVerdictBoundary), or its
 /// half-width is at most FinestHalfWidthPoints (half the resolution or half the direction
 /// margin, whichever is smaller) and it holds none of `boundaries_points`
-/// (HoldsVerdictBoundary), or it has `max_pairs`. Never fewer than `min_pairs`.
+/// (HoldsVerdictBoundary), or it has `boundary_pairs`, its half-width is at most
+/// `resolution_points` and no end lies near one of `boundaries_points` that it does not hold
+/// (NearUnheldBoundary), or it has `max_pairs`. Never fewer than `min_pairs`.
 ///
 /// Why the boundary clause: a direction is claimed when an end of the interval clears
 /// +/-kDirectionMarginPoints. An interval that stops with that end within a standard error or so
@@ -101,8 +103,21 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// so the comparison goes on while more pairs can still decide it. Row 4 read +8.4% [+7.7,
 /// +9.3] quiet, outside its band (up to 7%), and +7.3% [+6.9, +7.7] loaded after 20 pairs, where
 /// the half-width of 0.4 was already below the finest and the rule stopped holding the edge:
-/// then two firm verdicts that disagreed. Such an interval takes pairs until it clears the edge
-/// or reaches the cap.
+/// then two firm verdicts that disagreed. Such an interval takes pairs until it clears the edge,
+/// or until it has `boundary_pairs` (see below), or reaches the cap.
+///
+/// Why a comparison that holds a boundary stops at `boundary_pairs`: an interval that holds a
+/// boundary gives an undecided verdict there (below resolution, or the magnitude at the band's
+/// edge), never a firm one, so stopping it cannot make two runs contradict each other. Going on
+/// decides it only when the change lies clear of the boundary; when the change lies on it, the
+/// pairs run to the cap. On the default matrix row 4 (+7.1 to +7.7% against its band's end at
+/// 7%) ran to the cap of 400 pairs in 7 of 11 main-job halves of 2026-11-27 (up to 85 s beside
+/// two `yes`) and still held the edge in 6 of them; rows 2, 3 and 8 (2 to 3%, beside the
+/// direction margin) took up to 291 pairs, and some still ended below resolution in one half
+/// and firm in the other. Those pairs were the part of the main job's time that the progress
+/// line could not foresee (its ETA was 45 to 62% short). An interval with an end near a band's
+/// boundary that it does not hold still goes on: that magnitude is firm, and a run that read it
+/// the other way would contradict it.
 struct StoppingRule {
     double resolution_points = 1.5;  // half-width of the 95% interval, percent points
     int min_pairs = 20;
@@ -115,6 +130,11 @@ struct StoppingRule {
     // direction margin before the rule stops at `resolution_points` (0: no boundary clause at
     // all, NearVerdictBoundary is then always false).
     double boundary_standard_errors = 1.5;
+    // Pairs after which a comparison stops once its half-width is at most `resolution_points`,
+    // unless an end lies near a band's boundary it does not hold (NearUnheldBoundary); 0: the
+    // boundary clauses go on to `max_pairs`. 80 is four times `min_pairs`; the looks fall at
+    // 77 and 96 pairs, so such a comparison stops at 96.
+    int boundary_pairs = 80;
     // Performance changes (percent points, + = faster) at which the comparison's verdict changes
     // beyond the direction margins, e.g. the ends of a whitepaper row's magnitude band; none for
     // most comparisons.
@@ -181,6 +201,14 @@ bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rul
 /// True when one of `rule.boundaries_points` lies strictly inside the interval. False when
 /// invalid.
 bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// True when an end of the interval lies within `rule.boundary_standard_errors` standard errors
+/// of one of `rule.boundaries_points` that the interval does not hold. Its verdict there is
+/// firm (the same or a different magnitude) and would turn into the other firm one if the end
+/// crossed: a contradiction between two runs. (The direction margins are left out: an end
+/// crossing one turns a direction into "below resolution", never into the opposite direction.)
+/// False when invalid.
+bool NearUnheldBoundary(const PairedEstimate& estimate, const StoppingRule& rule);
 
 /// A guess, for progress reports, of the pairs the rule will have stopped at: the pairs so far
 /// when DecideStop stops at this estimate; otherwise the mean, over where the true change may
