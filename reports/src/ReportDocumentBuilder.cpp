@@ -91,8 +91,9 @@ std::string ProbeText(const stagefiles::ResultsFile& results) {
         return {};
     }
     return fmt::format(
-            "Each comparison's first {} pairs (its probe) are taken in the run's first seconds "
-            "and the rest later, on from the probe: the pairs, looks and stop are those of one "
+            "Each comparison's first {} pairs (its probe), with the pairs its first look takes "
+            "with the core shared, are taken in the run's first seconds and the rest later, on "
+            "from the probe: the pairs of each kind, the looks and the stop are those of one "
             "uninterrupted comparison, both sides are warmed again before going on, and the two "
             "frames of every pair still lie milliseconds apart. The probes tell the progress line "
             "early which comparisons lie near a boundary and will take many pairs. ",

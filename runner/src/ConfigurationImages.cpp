@@ -200,7 +200,7 @@ void TimeComparisonUnit(RenderWorker& w, const RunOptions& options, ComparisonRe
         return w.timer->Time(is_candidate ? candidate : baseline, *timing_view);
     };
     if (part == ComparisonPart::kProbe) {
-        out.timing = ProbeComparison(time_side, kProbePairs);
+        out.timing = ProbeComparison(time_side, kProbePairs, ComparisonRule(options, c));
         if (after_look) {
             after_look(out.timing);
         }

@@ -166,15 +166,34 @@ void TakePair(const TimeSide& time_side, PairSamples& s) {
     s.candidate_wall_ms.push_back(candidate.wall_ms);
 }
 
+// The contended pairs `rule` asks for after the as-run pairs `out` holds
+// (base::ContendedPairsBeforeNextLook), with a base::CoreCompetitor on the calling thread's core.
+void TakeContendedPairs(const TimeSide& time_side, const base::StoppingRule& rule,
+                        ComparisonTiming& out) {
+    const int contended = base::ContendedPairsBeforeNextLook(
+            static_cast<int>(out.samples.baseline_ms.size()),
+            static_cast<int>(out.contended.baseline_ms.size()), rule);
+    if (contended > 0) {
+        const base::CoreCompetitor competitor;
+        for (int k = 0; k < contended; ++k) {
+            TakePair(time_side, out.contended);
+        }
+    }
+}
+
 }  // namespace
 
-ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs) {
+ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs,
+                                 const base::StoppingRule& rule) {
     ComparisonTiming out;
     for (int k = 0; k < pairs; ++k) {
         TakePair(time_side, out.samples);
     }
+    TakeContendedPairs(time_side, rule, out);
     out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);
-    out.stated = out.estimate;
+    out.contended_estimate =
+            base::EstimatePaired(out.contended.baseline_ms, out.contended.candidate_ms);
+    out.stated = base::AcrossHostStates(out.estimate, out.contended_estimate);
     return out;
 }
 
@@ -190,15 +209,7 @@ ComparisonTiming TimeComparison(
         for (int k = 0; k < batch; ++k) {
             TakePair(time_side, out.samples);
         }
-        const int contended = base::ContendedPairsBeforeNextLook(
-                static_cast<int>(out.samples.baseline_ms.size()),
-                static_cast<int>(out.contended.baseline_ms.size()), rule);
-        if (contended > 0) {
-            const base::CoreCompetitor competitor;
-            for (int k = 0; k < contended; ++k) {
-                TakePair(time_side, out.contended);
-            }
-        }
+        TakeContendedPairs(time_side, rule, out);
         out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);
         out.contended_estimate =
                 base::EstimatePaired(out.contended.baseline_ms, out.contended.candidate_ms);

@@ -48,19 +48,6 @@ double ContendedFramesCost(double contended_share, double core_share) {
     return (1.0 + share * (1.0 + core)) / (1.0 + share);
 }
 
-long ShrunkProbeGuess(long guess, const std::vector<long>& probes) {
-    std::vector<double> guessed;
-    for (long p : probes) {
-        if (p > 0) {
-            guessed.push_back(static_cast<double>(p));
-        }
-    }
-    if (guess <= 0 || guessed.empty()) {
-        return guess;
-    }
-    return std::lround(std::sqrt(static_cast<double>(guess) * base::Median(std::move(guessed))));
-}
-
 std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t configurations,
                                       std::optional<std::size_t> first,
                                       const std::vector<std::size_t>& early, bool probes) {

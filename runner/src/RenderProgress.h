@@ -55,17 +55,6 @@ inline constexpr double kDefaultCoreShare = 0.75;
 /// this gives 1.33 and 1.17.
 double ContendedFramesCost(double contended_share, double core_share = kDefaultCoreShare);
 
-/// A comparison's pairs guessed at its probe (base::PairsExpectedFromPairs over 10 pairs), shrunk
-/// halfway, in ratio, towards the median of every probe's guess in the run so far (`probes`,
-/// this one's among them): the geometric mean of the two. Why: a 10-pair interval is wide, and a
-/// guess from it is the mean over where the comparison's change may lie, which the cap of 400
-/// pairs dominates. Probes taken while the machine was busiest guessed 240 to 320 pairs for
-/// rows that took 20 to 60 (2026-11-27), and the ETA was up to 89% long. Replayed over the
-/// comparisons of 19 main-job runs of 2026-11-27, the guessed work missed the actual by more than
-/// 20% of the render in 7 runs unshrunk, 2 shrunk (worst 78% and 56%); over the 43 runs of
-/// 2026-11-26 and 27 replayed before, in 5 runs either way (worst 53% and 35%).
-long ShrunkProbeGuess(long guess, const std::vector<long>& probes);
-
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
 /// images the others are compared with), then with `probes` every comparison's probe, then
 /// `early` (the configurations the comparisons time), then every comparison (the rest of it,
@@ -73,11 +62,12 @@ long ShrunkProbeGuess(long guess, const std::vector<long>& probes);
 /// heavy variants to light ones).
 ///
 /// Why the probes come first: how many pairs a comparison takes is the run's one large unknown.
-/// Most stop at the minimum, but one whose effect lies near a verdict's boundary takes up to the
-/// cap: row 4 of the default matrix took 14 s quiet and 48 to 85 s beside two `yes` (2026-11-27),
-/// a fifth of the run, and the ETA before its turn was 45 to 50% short. Ten pairs of each
-/// comparison (a second or two each) tell the progress line which ones those are
-/// (base::PairsExpectedFromPairs) within the first seconds of the run. Why the comparisons before
+/// Most stop at the minimum, but one whose effect lies near a verdict's boundary takes many more
+/// (before base::StoppingRule::boundary_pairs, row 4 of the default matrix took 14 s quiet and
+/// 48 to 85 s beside two `yes` on 2026-11-27, a fifth of the run, and the ETA before its turn
+/// was 45 to 50% short). Each comparison's first pairs, as-run and contended (ProbeComparison,
+/// two or three seconds each), tell the progress line which ones those are
+/// (base::PairsExpectedAtStop) within the first seconds of the run. Why the comparisons before
 /// the other configurations: a second process takes units from the end, and a comparison left to
 /// the end would keep this one busy long after that process ran out of units; images are short.
 /// `early`'s images measure what an image frame costs before the comparisons start.

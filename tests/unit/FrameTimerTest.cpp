@@ -130,6 +130,7 @@ TimeSide NumberedFrames(int* frames) {
     };
 }
 
+// A probe, then the rest of the comparison from it, renders what one call from the start does.
 TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
     base::StoppingRule rule;
     rule.contended_share = 0.5;
@@ -140,26 +141,37 @@ TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
     ASSERT_GT(whole.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
 
     int frames_split = 0;
-    const ComparisonTiming probe = ProbeComparison(NumberedFrames(&frames_split), 10);
+    const ComparisonTiming probe = ProbeComparison(NumberedFrames(&frames_split), 10, rule);
     EXPECT_EQ(probe.samples.baseline_ms.size(), 10U);
-    EXPECT_TRUE(probe.contended.baseline_ms.empty());
+    // The contended pairs the first look takes come with the probe, and state its interval.
+    EXPECT_EQ(probe.contended.baseline_ms.size(), static_cast<std::size_t>(base::kMinimumPairs));
     EXPECT_EQ(probe.decision, base::StopDecision::kContinue);
     EXPECT_EQ(probe.estimate.pairs, 10);
-    EXPECT_TRUE(probe.stated.Valid());
+    EXPECT_TRUE(probe.contended_estimate.Valid());
+    const base::PairedEstimate across =
+            base::AcrossHostStates(probe.estimate, probe.contended_estimate);
+    EXPECT_EQ(probe.stated.ratio_low, across.ratio_low);
+    EXPECT_EQ(probe.stated.ratio_high, across.ratio_high);
     int looks_split = 0;
     const ComparisonTiming rest = TimeComparison(
             NumberedFrames(&frames_split), rule, [&](const ComparisonTiming&) { ++looks_split; },
             probe);
 
+    // The same frames, looks and pairs of each kind as one call; only the order of the first
+    // look's as-run and contended pairs differs, so their times do.
     EXPECT_EQ(frames_split, frames_whole);
     EXPECT_EQ(looks_split, looks_whole);
-    EXPECT_EQ(rest.samples.baseline_ms, whole.samples.baseline_ms);
-    EXPECT_EQ(rest.samples.candidate_ms, whole.samples.candidate_ms);
-    EXPECT_EQ(rest.contended.baseline_ms, whole.contended.baseline_ms);
-    EXPECT_EQ(rest.contended.candidate_ms, whole.contended.candidate_ms);
+    EXPECT_EQ(rest.samples.baseline_ms.size(), whole.samples.baseline_ms.size());
+    EXPECT_EQ(rest.contended.baseline_ms.size(), whole.contended.baseline_ms.size());
     EXPECT_EQ(rest.decision, whole.decision);
-    EXPECT_EQ(rest.stated.ratio_low, whole.stated.ratio_low);
-    EXPECT_EQ(rest.stated.ratio_high, whole.stated.ratio_high);
+    EXPECT_TRUE(rest.stated.Valid());
+
+    // Without contended pairs in the rule, a probe takes none.
+    rule.contended_share = 0;
+    int frames_plain = 0;
+    EXPECT_TRUE(
+            ProbeComparison(NumberedFrames(&frames_plain), 10, rule).contended.baseline_ms.empty());
+    EXPECT_EQ(frames_plain, 20);
 }
 
 TEST(FrameTimerTest, PassFramesAlternateLikeThePairsAndKeepEachSidesMedians) {

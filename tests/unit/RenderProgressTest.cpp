@@ -365,20 +365,6 @@ TEST(RenderProgressTest, TheNoiseGuessAddsTheOverheadFramesOnce) {
     EXPECT_EQ(meter.Last().total, 90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
 }
 
-// A probe's guess meets its peers halfway in ratio: the geometric mean of it and the median of
-// every probe's guess. No peers, or no guess, leaves it as it is.
-TEST(RenderProgressTest, AProbesGuessIsShrunkTowardsTheMedianProbe) {
-    EXPECT_EQ(ShrunkProbeGuess(300, {20, 30, 300}), std::lround(std::sqrt(300.0 * 30)));
-    EXPECT_EQ(ShrunkProbeGuess(20, {20, 30, 300}), std::lround(std::sqrt(20.0 * 30)));
-    // An even count takes the mean of the two middle guesses; unknown guesses (0) are no peers.
-    EXPECT_EQ(ShrunkProbeGuess(80, {0, 20, 40, 60, 300}), std::lround(std::sqrt(80.0 * 50)));
-    EXPECT_EQ(ShrunkProbeGuess(80, {}), 80);
-    EXPECT_EQ(ShrunkProbeGuess(80, {0, 0}), 80);
-    EXPECT_EQ(ShrunkProbeGuess(0, {20, 40}), 0);
-    // Every probe agreeing leaves each guess alone.
-    EXPECT_EQ(ShrunkProbeGuess(45, {45, 45, 45}), 45);
-}
-
 // A contended frame adds a process to its core: with the render thread getting all of its core
 // it takes twice an as-run frame's wall time, with half of it 1.5 times. No contended pairs cost
 // what the as-run ones do; a core share outside (0, 1] gives way to the default.
