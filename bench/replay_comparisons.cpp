@@ -1,0 +1,192 @@
+// Replays the comparisons a `tidepool run` recorded (its results.json) through the stopping rule
+// and the progress line's guesses as built, look by look: the figures behind issue 11's ETA
+// target, without rendering a frame.
+//
+// Usage: replay_comparisons RESULTS.json...
+//
+// Method, stated again next to the figures it prints:
+//  * Each comparison's recorded pairs, as-run and contended, are taken in the order the run took
+//    them: a probe of kProbePairs as-run pairs and the contended pairs its first look takes,
+//    then the looks of base::PairsBeforeNextLook, each followed by its contended pairs
+//    (base::ContendedPairsBeforeNextLook). The rule is the one built now (base::StoppingRule's
+//    defaults) with the file's resolution, pair counts and contended share, and each
+//    whitepaper row's magnitude band (report::ComparedPresetPairs). A comparison whose recording
+//    ends before the rule stops (a run on another rule stopped it sooner) is marked "≥".
+//  * The guesses are those of runner/src/Results.cpp: at the probe base::PairsExpectedAtStop of
+//    the interval it states, at every later look base::PairsExpectedFromPairs.
+//  * The guessed work's miss at a look of comparison k: its guessed frames less the frames it
+//    took, plus the same for every later comparison at its probe's guess, each frame weighed by
+//    its comparison's mean frame time; the worst over all looks, in percent of all the
+//    comparisons' work. A frame of a comparison: its pairs' and contended pairs' two frames each,
+//    and 14 for the warm-up and per-pass frames every comparison renders. Contended frames are
+//    weighed as as-run ones.
+//
+// Exit codes: 0 (figures printed), 1 when a file cannot be read, 2 on no argument.
+#include "tidepool/base/PairedEstimate.h"
+#include "tidepool/report/ReportModel.h"
+#include "tidepool/stagefiles/ResultsFile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numeric>
+#include <string>
+#include <vector>
+
+namespace {
+
+using tidepool::base::PairedEstimate;
+using tidepool::base::StoppingRule;
+
+constexpr int kProbePairs = tidepool::base::kMinimumPairs;
+constexpr int kOverheadFrames = 14;  // 2 warm-up and 5 per-pass frames of each side
+
+std::vector<double> First(const std::vector<double>& samples, int n) {
+    const std::size_t count = std::min(static_cast<std::size_t>(std::max(n, 0)), samples.size());
+    return {samples.begin(), samples.begin() + static_cast<std::ptrdiff_t>(count)};
+}
+
+// One comparison replayed: the guess of its pairs at each look (the probe's first), the pairs
+// each look had, and where it stopped.
+struct Replay {
+    std::vector<int> look_pairs;
+    std::vector<int> guesses;
+    int stopped_at = 0;
+    bool recording_ended = false;
+};
+
+Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
+                        const StoppingRule& rule) {
+    using namespace tidepool::base;
+    Replay out;
+    const int recorded = static_cast<int>(c.baseline_ms.size());
+    const int recorded_contended = static_cast<int>(c.contended_baseline_ms.size());
+    int n = std::min(kProbePairs, recorded);
+    int m = 0;
+    bool probe = true;
+    for (;;) {
+        const int contended = ContendedPairsBeforeNextLook(n, m, rule);
+        if (m + contended > recorded_contended) {
+            out.recording_ended = true;
+            break;
+        }
+        m += contended;
+        const PairedEstimate as_run =
+                EstimatePaired(First(c.baseline_ms, n), First(c.candidate_ms, n));
+        const PairedEstimate stated =
+                AcrossHostStates(as_run, EstimatePaired(First(c.contended_baseline_ms, m),
+                                                        First(c.contended_candidate_ms, m)));
+        const bool stops = !probe && DecideStop(stated, rule) != StopDecision::kContinue;
+        out.look_pairs.push_back(n);
+        out.guesses.push_back(stops   ? n
+                              : probe ? PairsExpectedAtStop(stated, rule, 60)
+                                      : PairsExpectedFromPairs(First(c.baseline_ms, n),
+                                                               First(c.candidate_ms, n), stated,
+                                                               rule, 60));
+        out.stopped_at = n;
+        if (stops) {
+            break;
+        }
+        const int batch = PairsBeforeNextLook(n, rule);
+        if (batch <= 0) {
+            break;
+        }
+        if (n + batch > recorded) {
+            out.recording_ended = true;
+            break;
+        }
+        n += batch;
+        probe = false;
+    }
+    return out;
+}
+
+double Frames(int pairs, const StoppingRule& rule) {
+    const int contended = tidepool::base::ContendedPairsBeforeNextLook(pairs, 0, rule);
+    return 2.0 * (pairs + contended) + kOverheadFrames;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) {
+        std::fprintf(stderr, "usage: replay_comparisons RESULTS.json...\n");
+        return 2;
+    }
+    std::map<std::string, std::vector<double>> boundaries;
+    for (const auto& pair : tidepool::report::ComparedPresetPairs()) {
+        boundaries[pair.label] = pair.boundaries_points;
+    }
+    std::printf(
+            "Comparisons replayed through the stopping rule as built (boundary_pairs %d), "
+            "pairs recorded -> replayed; '>=' where the recording ended first.\n",
+            StoppingRule{}.boundary_pairs);
+    std::vector<double> misses;
+    for (int f = 1; f < argc; ++f) {
+        const auto read = tidepool::stagefiles::ReadResultsFile(argv[f]);
+        if (!read.value) {
+            std::fprintf(stderr, "%s\n", read.error.c_str());
+            return 1;
+        }
+        const tidepool::stagefiles::ResultsFile& results = *read.value;
+        StoppingRule rule;
+        rule.resolution_points = results.timing.resolution_points.value_or(rule.resolution_points);
+        rule.min_pairs = results.timing.min_pairs;
+        rule.max_pairs = results.timing.max_pairs;
+        rule.batch_pairs = results.timing.batch_pairs;
+        rule.contended_share = results.timing.contended_share;
+        std::vector<Replay> replays;
+        std::vector<double> cost;  // a frame's mean time, ms
+        std::printf("%s\n ", argv[f]);
+        int recorded_total = 0;
+        int replayed_total = 0;
+        for (const auto& c : results.comparisons) {
+            rule.boundaries_points =
+                    boundaries.count(c.label) ? boundaries[c.label] : std::vector<double>{};
+            replays.push_back(ReplayComparison(c, rule));
+            const std::vector<double>& b = c.baseline_ms;
+            const std::vector<double>& k = c.candidate_ms;
+            cost.push_back(b.empty() ? 0.0
+                                     : (std::accumulate(b.begin(), b.end(), 0.0) +
+                                        std::accumulate(k.begin(), k.end(), 0.0)) /
+                                               static_cast<double>(b.size() + k.size()));
+            recorded_total += c.pairs;
+            replayed_total += replays.back().stopped_at;
+            std::printf(" %d->%s%d", c.pairs, replays.back().recording_ended ? ">=" : "",
+                        replays.back().stopped_at);
+        }
+        rule.boundaries_points.clear();
+        double all = 0;
+        for (std::size_t i = 0; i < replays.size(); ++i) {
+            all += Frames(replays[i].stopped_at, rule) * cost[i];
+        }
+        double worst = 0;
+        for (std::size_t i = 0; i < replays.size(); ++i) {
+            double later = 0;
+            for (std::size_t j = i + 1; j < replays.size(); ++j) {
+                const int probe_guess = replays[j].guesses.empty() ? 0 : replays[j].guesses.front();
+                later +=
+                        (Frames(probe_guess, rule) - Frames(replays[j].stopped_at, rule)) * cost[j];
+            }
+            for (int guess : replays[i].guesses) {
+                const double miss =
+                        (Frames(guess, rule) - Frames(replays[i].stopped_at, rule)) * cost[i] +
+                        later;
+                worst = std::fabs(miss) > std::fabs(worst) ? miss : worst;
+            }
+        }
+        const double percent = all > 0 ? 100.0 * worst / all : 0.0;
+        misses.push_back(std::fabs(percent));
+        std::printf(
+                "\n  pairs %d recorded, %d replayed; guessed comparison work missed by at most "
+                "%+.0f%%\n",
+                recorded_total, replayed_total, percent);
+    }
+    std::sort(misses.begin(), misses.end());
+    std::printf(
+            "worst miss of the guessed comparison work over %zu files: median %.0f%%, largest "
+            "%.0f%% (the progress line's ETA target: within 20%%)\n",
+            misses.size(), misses[misses.size() / 2], misses.back());
+    return 0;
+}
