@@ -187,21 +187,27 @@ bool NearDirectionMargin(const PairedEstimate& estimate, const StoppingRule& rul
            (centre < -margin && high > -margin) || (centre > margin && low < margin);
 }
 
+// One of `rule.boundaries_points` within reach of an end of the interval and outside it, or,
+// with `count_held`, inside it.
+bool NearBandEnd(const PairedEstimate& estimate, const StoppingRule& rule, bool count_held) {
+    const double reach = BoundaryReach(estimate, rule);
+    const double low = estimate.change_low;
+    const double high = estimate.change_high;
+    return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
+        if (low < b && b < high) {
+            return count_held;
+        }
+        return std::fabs(low - b) < reach || std::fabs(high - b) < reach;
+    });
+}
+
 }  // namespace
 
 bool NearVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
     if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
         return false;
     }
-    if (NearDirectionMargin(estimate, rule)) {
-        return true;
-    }
-    const double reach = BoundaryReach(estimate, rule);
-    const double low = estimate.change_low;
-    const double high = estimate.change_high;
-    return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
-        return (low < b && b < high) || std::fabs(low - b) < reach || std::fabs(high - b) < reach;
-    });
+    return NearDirectionMargin(estimate, rule) || NearBandEnd(estimate, rule, true);
 }
 
 bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
@@ -212,16 +218,8 @@ bool HoldsVerdictBoundary(const PairedEstimate& estimate, const StoppingRule& ru
 }
 
 bool NearUnheldBoundary(const PairedEstimate& estimate, const StoppingRule& rule) {
-    if (!estimate.Valid() || rule.boundary_standard_errors <= 0) {
-        return false;
-    }
-    const double reach = BoundaryReach(estimate, rule);
-    const double low = estimate.change_low;
-    const double high = estimate.change_high;
-    return std::any_of(rule.boundaries_points.begin(), rule.boundaries_points.end(), [&](double b) {
-        const bool held = low < b && b < high;
-        return !held && (std::fabs(low - b) < reach || std::fabs(high - b) < reach);
-    });
+    return estimate.Valid() && rule.boundary_standard_errors > 0 &&
+           NearBandEnd(estimate, rule, false);
 }
 
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule) {

@@ -112,12 +112,12 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// decides it only when the change lies clear of the boundary; when the change lies on it, the
 /// pairs run to the cap. On the default matrix row 4 (+7.1 to +7.7% against its band's end at
 /// 7%) ran to the cap of 400 pairs in 7 of 11 main-job halves of 2026-11-27 (up to 85 s beside
-/// two `yes`) and still held the edge in 6 of them; rows 2, 3 and 8 (2 to 3%, beside the
-/// direction margin) took up to 291 pairs, and some still ended below resolution in one half
-/// and firm in the other. Those pairs were the part of the main job's time that the progress
-/// line could not foresee (its ETA was 45 to 62% short). An interval with an end near a band's
-/// boundary that it does not hold still goes on: that magnitude is firm, and a run that read it
-/// the other way would contradict it.
+/// two `yes`) and still held the edge in 6 of them. Those pairs were the largest part of the
+/// main job's time that the progress line could not foresee (its ETA was 45 to 62% short). An
+/// interval with an end near a band's boundary that it does not hold still goes on: that
+/// magnitude is firm, and a run that read it the other way would contradict it. So does one
+/// near the direction margin (NearVerdictBoundary's first clauses, unbounded as before): an
+/// effect of 3% must stay firm in every run.
 struct StoppingRule {
     double resolution_points = 1.5;  // half-width of the 95% interval, percent points
     int min_pairs = 20;

@@ -151,9 +151,9 @@ ComparisonTiming TimeComparison(
 /// comparisons will need many pairs (those near a verdict's boundary,
 /// base::PairsExpectedAtStop) long before their turn, and goes on with TimeComparison later.
 /// Why the contended pairs too: they are noisier than the as-run ones, so they widen the
-/// interval a comparison states and set how long it runs; from the as-run pairs alone, the
+/// interval a comparison states and set how long it runs. From the as-run pairs alone, the
 /// guessed work of 11 main-job halves of 2026-11-27, replayed, fell short of the comparisons'
-/// by up to 36 to 70% (median 61%).
+/// by 36 to 70% at its worst moment (median 61%).
 /// `pairs` should stay below the rule's min_pairs, so that no look is skipped.
 ComparisonTiming ProbeComparison(const TimeSide& time_side, int pairs,
                                  const base::StoppingRule& rule);
