@@ -12,8 +12,8 @@
 //    defaults) with the file's resolution, pair counts and contended share, and each
 //    whitepaper row's magnitude band (report::ComparedPresetPairs). A comparison whose recording
 //    ends before the rule stops (a run on another rule stopped it sooner) is marked "≥".
-//  * The guesses are those of runner/src/Results.cpp: at the probe base::PairsExpectedAtStop of
-//    the interval it states, at every later look base::PairsExpectedFromPairs.
+//  * The guesses are those of runner/src/Results.cpp: base::PairsExpectedFromPairs at every
+//    look, the probe's included (from its few pairs, the interval's guess alone).
 //  * The guessed work's miss at a look of comparison k: its guessed frames less the frames it
 //    took, plus the same for every later comparison at its probe's guess, each frame weighed by
 //    its comparison's mean frame time; the worst over all looks, in percent of all the
@@ -79,11 +79,10 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
                                                         First(c.contended_candidate_ms, m)));
         const bool stops = !probe && DecideStop(stated, rule) != StopDecision::kContinue;
         out.look_pairs.push_back(n);
-        out.guesses.push_back(stops   ? n
-                              : probe ? PairsExpectedAtStop(stated, rule, 60)
-                                      : PairsExpectedFromPairs(First(c.baseline_ms, n),
-                                                               First(c.candidate_ms, n), stated,
-                                                               rule, 60));
+        out.guesses.push_back(stops ? n
+                                    : PairsExpectedFromPairs(First(c.baseline_ms, n),
+                                                             First(c.candidate_ms, n), stated, rule,
+                                                             60));
         out.stopped_at = n;
         if (stops) {
             break;

@@ -402,7 +402,8 @@ int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
                            const std::vector<double>& candidate_ms, const PairedEstimate& stated,
                            const StoppingRule& rule, int fallback) {
     const int from_interval = PairsExpectedAtStop(stated, rule, fallback);
-    if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue) {
+    if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue ||
+        baseline_ms.size() < static_cast<std::size_t>(rule.min_pairs)) {
         return from_interval;
     }
     const int from_spread = PairsExpectedFromSpread(baseline_ms, candidate_ms, rule);

@@ -191,18 +191,9 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                 warmed;
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
-            // A probe's guess comes from the interval it states alone: the spread's guess
-            // (PairsExpectedFromPairs) reads the as-run pairs, and ten of them leave out the
-            // contended pairs' noise that sets how long a comparison runs. Replayed over 11
-            // main-job halves of 2026-11-27, the guessed work then missed the comparisons' work
-            // at its worst moment by 10 to 43% (median 21%), against 28 to 60% (median 46%)
-            // with both guesses.
-            const long needed =
-                    part == ComparisonPart::kProbe
-                            ? base::PairsExpectedAtStop(so_far.stated, rule, kInitialPairGuess)
-                            : base::PairsExpectedFromPairs(so_far.samples.baseline_ms,
-                                                           so_far.samples.candidate_ms,
-                                                           so_far.stated, rule, kInitialPairGuess);
+            const long needed = base::PairsExpectedFromPairs(
+                    so_far.samples.baseline_ms, so_far.samples.candidate_ms, so_far.stated, rule,
+                    kInitialPairGuess);
             // After the last look, the per-pass frames are still to come.
             const bool finished = so_far.decision != base::StopDecision::kContinue;
             meter.ComparisonExpects(k, finished ? frames + per_pass_frames : frames_at(needed),

@@ -623,6 +623,16 @@ TEST(PairedEstimateTest, TheProgressGuessIsTheGeometricMeanOfTheIntervalsAndTheS
     EXPECT_EQ(PairsExpectedFromPairs({baseline.begin(), baseline.begin() + 5},
                                      {candidate.begin(), candidate.begin() + 5}, wide, rule, 60),
               from_interval);
+    // A probe's ten pairs, fewer than the rule's first look takes: the interval's guess alone,
+    // though ten pairs give a spread.
+    const std::vector<double> probe_baseline(baseline.begin(), baseline.begin() + 10);
+    const std::vector<double> probe_candidate(candidate.begin(), candidate.begin() + 10);
+    ASSERT_GT(PairsExpectedFromSpread(probe_baseline, probe_candidate, rule), 0);
+    const PairedEstimate probe_wide = EstimateWithInterval(10, -15.0, -3.0);
+    ASSERT_NE(PairsExpectedAtStop(probe_wide, rule, 60),
+              PairsExpectedFromSpread(probe_baseline, probe_candidate, rule));
+    EXPECT_EQ(PairsExpectedFromPairs(probe_baseline, probe_candidate, probe_wide, rule, 60),
+              PairsExpectedAtStop(probe_wide, rule, 60));
 }
 
 // The guess at a comparison's first look against where the rule then stops, over simulated runs
