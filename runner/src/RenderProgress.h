@@ -32,8 +32,8 @@ struct WorkUnit {
 /// same work order at the same speed once it joins in `helper_joins_in` seconds (0: it is taking
 /// units now; nothing: it will take none). Until it joins, this process works alone; after, the
 /// two share what is left in proportion to their threads, except `own` seconds of it, units this
-/// process has claimed (the comparisons it has probed), which only it can do: when the second
-/// process runs out of the rest first, `own` sets the end.
+/// process has claimed (the comparisons it has begun; a probe claims nothing), which only it can
+/// do: when the second process runs out of the rest first, `own` sets the end.
 double SecondsToFinish(double work, double threads, std::optional<double> helper_joins_in,
                        double own = 0);
 

@@ -250,6 +250,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     auto owner_takes = [&](std::size_t unit) {
         return claims == nullptr || unit >= claims->Size() || claims->ClaimForOwner(unit);
     };
+    // Whether the second process has claimed `unit`.
+    auto helper_has = [&](std::size_t unit) {
+        return claims != nullptr && claims->HelperHas(unit);
+    };
 
     // A rendering thread: its own context (but the calling thread's), renderer and timer; takes
     // units from the queue until it is empty.
@@ -267,7 +271,11 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
         for (std::size_t u = next_unit++; u < units.size(); u = next_unit++) {
             const std::size_t index = units[u].index;
             if (units[u].comparison) {
-                if (owner_takes(SharedComparisonUnit(options, index))) {
+                // A probe leaves its comparison unclaimed: a second process that runs out of
+                // images takes the comparisons the render has not gone on with, whole (its
+                // results replace the probe's), instead of waiting for the render to finish them.
+                const std::size_t unit = SharedComparisonUnit(options, index);
+                if (units[u].probe ? !helper_has(unit) : owner_takes(unit)) {
                     run_comparison(w, index, units[u].probe);
                 }
             } else if (owner_takes(index)) {

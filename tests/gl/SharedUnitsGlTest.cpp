@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "ConfigurationImages.h"
 #include "FileContents.h"
 #include "SharedWaterRenderer.h"
 #include "TempDir.h"
@@ -152,6 +153,49 @@ TEST(SharedUnitsGlTest, AComparisonTheSecondProcessTimedIsReadBackWhole) {
     EXPECT_EQ(handed.timed_by, "render");
     EXPECT_TRUE(c.timed_by_second_process);
     EXPECT_EQ(ToResultsFile(results).comparisons.front().timed_by, "second_process");
+}
+
+// The render probes every comparison first, but a probe claims nothing: a second process that
+// runs out of other units before the render goes on with the comparison takes it whole, and its
+// results replace the probe's.
+TEST(SharedUnitsGlTest, AComparisonTheRenderProbedIsStillTheSecondProcesssToTakeWhole) {
+    test_support::SharedRenderer& shared = test_support::SharedWaterRenderer();
+    ASSERT_TRUE(shared.context) << shared.error;
+    const testing::TempDir out;
+    SharedRun run = WithASecondProcess(out.Path());
+    ASSERT_TRUE(run.claims);
+    run.options.rule = {50.0, kProbePairs + 2, kProbePairs + 2, kProbePairs + 2};
+    ASSERT_TRUE(ProbesComparisons(run.options));
+    // The second process's results file of the comparison, from a claim table of its own.
+    const std::unique_ptr<base::SharedClaims> earlier = base::SharedClaims::Create(5);
+    ASSERT_TRUE(earlier);
+    RunOptions helper_options = run.options;
+    helper_options.shared.claims = earlier.get();
+    ASSERT_EQ(RenderSharedUnits(*shared.context, *shared.config, helper_options).comparisons, 1);
+    const stagefiles::ReadResult<stagefiles::ResultsFile> unit =
+            stagefiles::ReadResultsFile(out.Path() / ".second-process/4.json");
+    ASSERT_TRUE(unit.value);
+    ASSERT_EQ(unit.value->comparisons.size(), 1U);
+
+    // The second process claims and hands over the comparison right after its probe's first
+    // frames: what it could do once the render had probed them all.
+    bool probed = false;
+    bool claimed = false;
+    const RunResults results =
+            RunRender(*shared.context, *shared.config, run.options, [&](const RunProgress& p) {
+                if (p.stage == "comparisons" && !probed) {
+                    probed = true;
+                    claimed = run.claims->ClaimForHelper(4) && run.claims->FinishForHelper(4);
+                }
+            });
+    EXPECT_TRUE(probed);
+    EXPECT_TRUE(claimed);
+    ASSERT_EQ(results.comparisons.size(), 1U);
+    const ComparisonResult& c = results.comparisons.front();
+    EXPECT_TRUE(c.timed_by_second_process);
+    EXPECT_EQ(c.timing.samples.baseline_ms, unit.value->comparisons.front().baseline_ms);
+    EXPECT_EQ(c.timing.samples.candidate_ms, unit.value->comparisons.front().candidate_ms);
+    EXPECT_EQ(c.timing.estimate.pairs, kProbePairs + 2);
 }
 
 // Both sides, with the second process's results file of claim-table unit `unit` cut short: the

@@ -464,8 +464,9 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
 }
 
-// The comparisons this process has claimed (probed) are its own: a second process that takes
-// every image cannot shorten them, and once it would run out of images the ETA is theirs.
+// The comparisons this process has claimed (begun after their probes) are its own: a second
+// process that takes every image cannot shorten them, and once it would run out of images the
+// ETA is theirs.
 TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
@@ -484,7 +485,7 @@ TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
     }
     // 3 configurations' images (3 s) and 20 s of comparisons left, nothing claimed: shared.
     EXPECT_NEAR(meter.Last().eta_seconds, (3.0 + 20.0) / 2, 1e-6);
-    // This process probes both comparisons: their 20 s are its own, and the second process has
+    // This process claims both comparisons: their 20 s are its own, and the second process has
     // only the images' 3 s to take.
     ASSERT_TRUE(claims->ClaimForOwner(kConfigurations));
     ASSERT_TRUE(claims->ClaimForOwner(kConfigurations + 1));
