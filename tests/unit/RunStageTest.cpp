@@ -88,26 +88,29 @@ TEST(RunStageTest, ARenderFolderTidepoolDidNotWriteIsRefusedAndKept) {
 }
 
 // The second process's forecast: its time so far over the share of its stages done, the stability
-// catalogue a third of them and the plans the rest.
+// catalogue kStabilityShareOfStages of them and the plans the rest.
 TEST(RunStageTest, TheSecondProcessForecastsItsJoinFromTheShareOfItsStagesDone) {
     const std::unique_ptr<base::SharedClaims> claims = base::SharedClaims::Create(1);
     ASSERT_TRUE(claims);
     using std::chrono::seconds;
     const JoinForecast::Clock::time_point start{};
     const JoinForecast forecast(claims.get(), true, true, start);
-    // The forecast to a microsecond (a share of a third is not exact in binary).
+    // The forecast to a microsecond (the share is not exact in binary).
     auto said = [&]() -> double {
         const auto at = claims->HelperExpectedAt();
         return at ? std::chrono::duration<double>(*at - start).count() : -1.0;
     };
+    constexpr double kStability = kStabilityShareOfStages;
     forecast.Stability(0.0, start + seconds(1));  // nothing done: nothing said
     EXPECT_FALSE(claims->HelperExpectedAt());
-    forecast.Stability(0.5, start + seconds(10));  // a sixth of the work in 10 s
-    EXPECT_NEAR(said(), 60.0, 1e-6);
-    forecast.Plans(0.5, start + seconds(40));  // two thirds in 40 s
-    EXPECT_NEAR(said(), 60.0, 1e-6);
-    forecast.Plans(1.0, start + seconds(70));  // all of it
-    EXPECT_NEAR(said(), 70.0, 1e-6);
+    forecast.Stability(0.5, start + seconds(10));  // half the catalogue in 10 s
+    EXPECT_NEAR(said(), 10.0 / (0.5 * kStability), 1e-6);
+    forecast.Stability(1.0, start + seconds(13));  // the catalogue in 13 s: the join at 100 s
+    EXPECT_NEAR(said(), 13.0 / kStability, 1e-6);
+    forecast.Plans(0.5, start + seconds(60));  // and half the plans by 60 s
+    EXPECT_NEAR(said(), 60.0 / (kStability + (1 - kStability) * 0.5), 1e-6);
+    forecast.Plans(1.0, start + seconds(110));  // all of it
+    EXPECT_NEAR(said(), 110.0, 1e-6);
     // Plans alone, or the catalogue alone, are all of the work.
     JoinForecast(claims.get(), false, true, start).Plans(0.25, start + seconds(5));
     EXPECT_NEAR(said(), 20.0, 1e-6);

@@ -324,7 +324,7 @@ JoinForecast::JoinForecast(base::SharedClaims* claims, bool stability, bool plan
                            Clock::time_point start)
     : claims_(claims),
       stability_share_(!plans      ? 1.0
-                       : stability ? 1.0 / 3.0
+                       : stability ? kStabilityShareOfStages
                                    : 0.0),
       start_(start) {}
 

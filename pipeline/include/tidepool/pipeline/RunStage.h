@@ -62,13 +62,20 @@ struct RunResult {
 /// Must be called while the process has one thread (it forks).
 RunResult Run(const RunRequest& request, ProgressSink& progress);
 
+/// The share of the second process's own stages that the stability catalogue takes when the scene
+/// plans follow it. In twelve main-job runs of 2026-11-27 and 28 on the default matrix, six
+/// quiet and six beside two `yes`, the catalogue took 12 to 13 s quiet and 26 to 31 s loaded, the
+/// plans 67 to 120 s and 129 to 216 s: the catalogue was 10 to 19% of the two, median 13%. (A
+/// third, from a catalogue that took 25 of 73 s before, put the join after the catalogue at 39 s
+/// in runs that joined after 79 to 132 s, and the render's ETA leaned on it.)
+inline constexpr double kStabilityShareOfStages = 0.13;
+
 /// The second process's forecast of when it will start taking the render's units
 /// (base::SharedClaims::ExpectHelperAt), from the share of its own stages done so far: the time
-/// they have taken over that share. The stability catalogue counts for a third of the two stages
-/// and the scene plans for the rest: on the default matrix here the catalogue took 25 of 73 s
-/// quiet and 61 of 241 s with two other processes competing (the plans' timing is adaptive, so
-/// noise lengthens them most). Each forecast also beats the claim table's heartbeat: the render
-/// counts on a forecast only while it is renewed (runner's ProgressMeter::kForecastSilence).
+/// they have taken over that share. The stability catalogue counts for kStabilityShareOfStages
+/// of the two stages and the scene plans for the rest. Each forecast also beats the claim
+/// table's heartbeat: the render counts on a forecast only while it is renewed (runner's
+/// ProgressMeter::kForecastSilence).
 class JoinForecast {
 public:
     using Clock = std::chrono::steady_clock;
