@@ -20,6 +20,11 @@
 //    comparisons' work. A frame of a comparison: its pairs' and contended pairs' two frames each,
 //    and 14 for the warm-up and per-pass frames every comparison renders. Contended frames are
 //    weighed as as-run ones.
+//  * The floor: the same miss at the run's start, before any comparison has gone past its
+//    probe, with every comparison's guess at its probe, against a guess that knew each
+//    comparison's mean pairs over all the files given (in-sample: no guess made in a run from
+//    its own pairs does better on average). When that guess misses as far, the miss comes from
+//    how much the pairs a comparison takes vary from run to run, not from the probe's guess.
 //
 // Exit codes: 0 (figures printed), 1 when a file cannot be read, 2 on no argument.
 #include "tidepool/base/PairedEstimate.h"
@@ -122,6 +127,14 @@ int main(int argc, char** argv) {
             "pairs recorded -> replayed; '>=' where the recording ended first.\n",
             StoppingRule{}.boundary_pairs);
     std::vector<double> misses;
+    // Each file's comparisons: label, replay and a frame's mean time, for the floor.
+    struct Replayed {
+        std::string label;
+        Replay replay;
+        double cost = 0;
+    };
+    std::vector<std::vector<Replayed>> files;
+    std::vector<StoppingRule> file_rules;
     for (int f = 1; f < argc; ++f) {
         const auto read = tidepool::stagefiles::ReadResultsFile(argv[f]);
         if (!read.value) {
@@ -129,6 +142,7 @@ int main(int argc, char** argv) {
             return 1;
         }
         const tidepool::stagefiles::ResultsFile& results = *read.value;
+        files.emplace_back();
         StoppingRule rule;
         rule.resolution_points = results.timing.resolution_points.value_or(rule.resolution_points);
         rule.min_pairs = results.timing.min_pairs;
@@ -150,12 +164,14 @@ int main(int argc, char** argv) {
                                      : (std::accumulate(b.begin(), b.end(), 0.0) +
                                         std::accumulate(k.begin(), k.end(), 0.0)) /
                                                static_cast<double>(b.size() + k.size()));
+            files.back().push_back({c.label, replays.back(), cost.back()});
             recorded_total += c.pairs;
             replayed_total += replays.back().stopped_at;
             std::printf(" %d->%s%d", c.pairs, replays.back().recording_ended ? ">=" : "",
                         replays.back().stopped_at);
         }
         rule.boundaries_points.clear();
+        file_rules.push_back(rule);
         double all = 0;
         for (std::size_t i = 0; i < replays.size(); ++i) {
             all += Frames(replays[i].stopped_at, rule) * cost[i];
@@ -187,5 +203,41 @@ int main(int argc, char** argv) {
             "worst miss of the guessed comparison work over %zu files: median %.0f%%, largest "
             "%.0f%% (the progress line's ETA target: within 20%%)\n",
             misses.size(), misses[misses.size() / 2], misses.back());
+
+    // The floor: at the start, the probes' guesses against each comparison's mean pairs.
+    std::map<std::string, std::pair<double, int>> pairs_by_label;  // sum, count
+    for (const auto& file : files) {
+        for (const Replayed& r : file) {
+            pairs_by_label[r.label].first += r.replay.stopped_at;
+            pairs_by_label[r.label].second += 1;
+        }
+    }
+    std::vector<double> probe_misses;
+    std::vector<double> mean_misses;
+    for (std::size_t f = 0; f < files.size(); ++f) {
+        const StoppingRule& rule = file_rules[f];
+        double all = 0;
+        double probe = 0;
+        double mean = 0;
+        for (const Replayed& r : files[f]) {
+            const double taken = Frames(r.replay.stopped_at, rule) * r.cost;
+            all += taken;
+            const int guess = r.replay.guesses.empty() ? 0 : r.replay.guesses.front();
+            probe += Frames(guess, rule) * r.cost - taken;
+            const auto& [sum, count] = pairs_by_label[r.label];
+            const int mean_pairs = static_cast<int>(std::lround(sum / count));
+            mean += Frames(mean_pairs, rule) * r.cost - taken;
+        }
+        probe_misses.push_back(all > 0 ? std::fabs(100.0 * probe / all) : 0.0);
+        mean_misses.push_back(all > 0 ? std::fabs(100.0 * mean / all) : 0.0);
+    }
+    std::sort(probe_misses.begin(), probe_misses.end());
+    std::sort(mean_misses.begin(), mean_misses.end());
+    std::printf(
+            "at the start, every comparison at its probe's guess: the work missed by median "
+            "%.0f%%, largest %.0f%%; at each comparison's mean pairs over these %zu files "
+            "instead (in-sample): median %.0f%%, largest %.0f%%\n",
+            probe_misses[probe_misses.size() / 2], probe_misses.back(), files.size(),
+            mean_misses[mean_misses.size() / 2], mean_misses.back());
     return 0;
 }
