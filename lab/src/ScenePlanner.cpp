@@ -307,6 +307,14 @@ std::vector<PlanCandidate> ProposeCandidates(const VariantConfig& config,
     return candidates;
 }
 
+base::StoppingRule CandidateRule(const base::StoppingRule& rule, bool misses_target) {
+    base::StoppingRule out = rule;
+    if (misses_target) {
+        out.max_pairs = std::min(rule.max_pairs, rule.min_pairs);
+    }
+    return out;
+}
+
 CandidateChoice ChooseCandidate(const std::vector<CandidateMeasure>& candidates,
                                 bool quality_bounds, std::optional<double> frame_budget_ms,
                                 double tie_points) {
@@ -601,6 +609,8 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
 
     // Every valid candidate against the full configuration, pair by pair, through the timing
     // engine on the clock the renderer calls for.
+    const QualityTarget& target = scene.target;
+    const bool quality_bounds = target.min_psnr_db || target.max_share_visible;
     FrameTimer timer(*renderer, options.clock);
     PlanCandidate& full_candidate = plan.candidates.front();
     std::vector<double> full_samples;
@@ -615,7 +625,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                     use_settings(side);
                     return timer.Time(side.configuration, view);
                 },
-                options.rule);
+                CandidateRule(options.rule, quality_bounds && !c.meets_quality));
         const base::PairedEstimate& e = timing.stated;
         c.time_ms = base::Median(timing.samples.candidate_ms);
         c.time_change_percent = (e.ratio - 1.0) * 100.0;
@@ -635,8 +645,6 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
 
     // The choice, on the measurements only.
     plan.full = 0;
-    const QualityTarget& target = scene.target;
-    const bool quality_bounds = target.min_psnr_db || target.max_share_visible;
     std::vector<CandidateMeasure> measures;
     for (const PlanCandidate& c : plan.candidates) {
         measures.push_back({c.valid, c.meets_quality, c.time_ms, c.time_change_low,
@@ -758,7 +766,8 @@ stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
                                    const PlanOptions& options) {
     stagefiles::PlansFile file;
     file.size = {options.settings.width, options.settings.height};
-    file.timing = {options.rule.resolution_points, options.rule.min_pairs, options.rule.max_pairs};
+    file.timing = {options.rule.resolution_points, options.rule.min_pairs, options.rule.max_pairs,
+                   CandidateRule(options.rule, true).max_pairs};
     auto configuration = [&options](const PlanCandidate& c) {
         stagefiles::PlanConfiguration out;
         out.id = c.configuration.id;

@@ -379,7 +379,7 @@ SceneTables BuildSceneTables(const stagefiles::PlansFile& plans) {
 std::string ScenesIntro(const stagefiles::PlansFile& plans) {
     // How the candidates were timed, from plans.json's `timing` (a hand-made file may lack it).
     const stagefiles::PlansTiming& timing = plans.timing;
-    const std::string how =
+    std::string how =
             timing.resolution_points > 0
                     ? fmt::format(
                               "each candidate timed against the full effect pair by pair "
@@ -387,6 +387,12 @@ std::string ScenesIntro(const stagefiles::PlansFile& plans) {
                               "pairs)",
                               timing.resolution_points, timing.min_pairs, timing.max_pairs)
                     : std::string("each candidate timed against the full effect pair by pair");
+    if (timing.missed_target_pairs > 0) {
+        how += fmt::format(
+                "; a candidate whose image misses the target, which is never chosen while "
+                "another meets it, only for {} pairs, with the wider interval they give",
+                timing.missed_target_pairs);
+    }
     return fmt::format(
             "Per scene (scenes/*.yaml), the cheapest configuration whose image meets the scene's "
             "target against the full-effect configuration (docs/SCENES.md), from `tidepool plan` "

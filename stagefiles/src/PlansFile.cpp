@@ -166,6 +166,7 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Field(o, path, "resolution_points", &out->resolution_points);
     r.Field(o, path, "min_pairs", &out->min_pairs);
     r.Field(o, path, "max_pairs", &out->max_pairs);
+    r.Field(o, path, "missed_target_pairs", &out->missed_target_pairs);
 }
 
 void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path, PlansFile* out) {
@@ -214,7 +215,8 @@ nlohmann::json ToJson(const PlansFile& file) {
     out["size"] = file.size;
     out["timing"] = {{"resolution_points", file.timing.resolution_points},
                      {"min_pairs", file.timing.min_pairs},
-                     {"max_pairs", file.timing.max_pairs}};
+                     {"max_pairs", file.timing.max_pairs},
+                     {"missed_target_pairs", file.timing.missed_target_pairs}};
     out["plans"] = nlohmann::json::array();
     for (const PlannedScene& plan : file.plans) {
         out["plans"].push_back(ToJson(plan));

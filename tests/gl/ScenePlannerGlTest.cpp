@@ -130,6 +130,29 @@ TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarge
     EXPECT_TRUE(plan.met);
 }
 
+// A candidate whose image misses the scene's target is never chosen while another meets it, so
+// it is timed for the rule's fewest pairs only; one that meets it goes on as the rule says. A
+// resolution no interval reaches sends every candidate that meets the target to the cap.
+TEST(ScenePlannerGlTest, ACandidateThatMissesTheTargetIsTimedForTheFewestPairsOnly) {
+    REQUIRE_GL();
+    PlanOptions options = SmallOptions();
+    options.rule = {0.01, 10, 24, 10};
+    const ScenePlan plan =
+            PlanScene(*Get().context, *Get().config, LoadScene("murky_pond"), options);
+    int missing = 0;
+    int meeting = 0;
+    for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
+        const PlanCandidate& c = plan.candidates[i];
+        if (!c.valid) {
+            continue;
+        }
+        EXPECT_EQ(c.pairs, c.meets_quality ? 24 : 10) << c.configuration.id;
+        (c.meets_quality ? meeting : missing) += 1;
+    }
+    EXPECT_GT(missing, 0);
+    EXPECT_GT(meeting, 0);
+}
+
 // The tie rule (ChooseCandidate) may keep a more accurate candidate over one faster by less
 // than their intervals, but never one that another qualifying candidate beats beyond both.
 // The choice rule on real plans (PlannerChoiceTest has it on synthetic measures): the fastest

@@ -155,7 +155,8 @@ TEST(ReportWriterTest, StabilityTablesAreRenderedGenerically) {
 
 // A plans.json of two scenes as `tidepool plan --all` writes it (docs/SCENES.md).
 constexpr const char* kPlansJson = R"js({"schema": "tidepool.plans", "version": 1,
-    "size": [160, 120], "timing": {"resolution_points": 3.0, "min_pairs": 20, "max_pairs": 200},
+    "size": [160, 120], "timing": {"resolution_points": 3.0, "min_pairs": 20, "max_pairs": 200,
+               "missed_target_pairs": 20},
     "plans": [
     {"scene": "murky_pond", "description": "murky", "target": {"min_psnr_db": 30},
      "chosen": {"id": "water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128", "variant": "water:x",
@@ -189,7 +190,9 @@ TEST(ReportWriterTest, PlansBesideTheResultsAreShownPerSceneWithEveryDecisionAnd
     EXPECT_NE(md.find("## 8. Scenes"), std::string::npos);
     // The method as plans.json records it, not placeholders.
     EXPECT_NE(md.find("at 160x120, each candidate timed against the full effect pair by pair "
-                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs)"),
+                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs); a "
+                      "candidate whose image misses the target, which is never chosen while "
+                      "another meets it, only for 20 pairs"),
               std::string::npos)
             << md;
     EXPECT_EQ(md.find("paired rounds of"), std::string::npos);

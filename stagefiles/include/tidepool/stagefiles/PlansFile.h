@@ -134,6 +134,9 @@ struct PlansTiming {
     double resolution_points = 0;
     int min_pairs = 0;
     int max_pairs = 0;
+    // The pairs a candidate whose image misses the scene's target is stopped at
+    // (lab::CandidateRule); 0: timed like the others (a file from before 2026-11-28).
+    int missed_target_pairs = 0;
 
     bool operator==(const PlansTiming&) const = default;
 };
