@@ -105,7 +105,7 @@ TEST(RunStageTest, TheSecondProcessForecastsItsJoinFromTheShareOfItsStagesDone) 
     EXPECT_FALSE(claims->HelperExpectedAt());
     forecast.Stability(0.5, start + seconds(10));  // half the catalogue in 10 s
     EXPECT_NEAR(said(), 10.0 / (0.5 * kStability), 1e-6);
-    forecast.Stability(1.0, start + seconds(13));  // the catalogue in 13 s: the join at 100 s
+    forecast.Stability(1.0, start + seconds(13));  // the catalogue in 13 s
     EXPECT_NEAR(said(), 13.0 / kStability, 1e-6);
     forecast.Plans(0.5, start + seconds(60));  // and half the plans by 60 s
     EXPECT_NEAR(said(), 60.0 / (kStability + (1 - kStability) * 0.5), 1e-6);
