@@ -107,8 +107,9 @@ public:
     /// still waiting then expect the mean of what the finished ones took, with a guess counting
     /// as kPriorComparisons of them. `resolution_frames`, when
     /// given (> 0), is what `k`'s noise at this look needs for the resolution alone
-    /// (base::PairsForResolution, in frames of pairs); once any comparison has said it, the guess
-    /// is kBoundaryAllowance times their mean, plus the overhead, instead of the first guess.
+    /// (base::PairsForResolution of the interval it states, in frames of pairs); once any
+    /// comparison has said it, the guess is kBoundaryAllowance times their mean, plus the overhead,
+    /// instead of the first guess.
     void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
 
     /// How many comparisons the guess (from the noise, below) counts for in the expectation of the
