@@ -389,8 +389,9 @@ std::string ScenesIntro(const stagefiles::PlansFile& plans) {
                     : std::string("each candidate timed against the full effect pair by pair");
     if (timing.missed_target_pairs > 0) {
         how += fmt::format(
-                "; a candidate whose image misses the target, which is never chosen while "
-                "another meets it, only for {} pairs, with the wider interval they give",
+                "; in a scene with no frame budget, a candidate whose image misses the target, "
+                "which is then never chosen, only for {} pairs, with the wider interval they "
+                "give",
                 timing.missed_target_pairs);
     }
     return fmt::format(

@@ -153,6 +153,26 @@ TEST(ScenePlannerGlTest, ACandidateThatMissesTheTargetIsTimedForTheFewestPairsOn
     EXPECT_GT(meeting, 0);
 }
 
+// With a frame budget the fastest candidate of all may be chosen when none that meets the image
+// bounds fits it, so one that misses them is timed like the others.
+TEST(ScenePlannerGlTest, WithAFrameBudgetEveryCandidateIsTimedToTheResolution) {
+    REQUIRE_GL();
+    PlanOptions options = SmallOptions();
+    options.rule = {0.01, 10, 24, 10};
+    SceneDescription scene = LoadScene("murky_pond");
+    scene.target.frame_budget_ms = 1000.0;
+    const ScenePlan plan = PlanScene(*Get().context, *Get().config, scene, options);
+    int missing = 0;
+    for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
+        const PlanCandidate& c = plan.candidates[i];
+        if (c.valid) {
+            EXPECT_EQ(c.pairs, 24) << c.configuration.id;
+            missing += c.meets_quality ? 0 : 1;
+        }
+    }
+    EXPECT_GT(missing, 0);
+}
+
 // The tie rule (ChooseCandidate) may keep a more accurate candidate over one faster by less
 // than their intervals, but never one that another qualifying candidate beats beyond both.
 // The choice rule on real plans (PlannerChoiceTest has it on synthetic measures): the fastest

@@ -190,9 +190,9 @@ TEST(ReportWriterTest, PlansBesideTheResultsAreShownPerSceneWithEveryDecisionAnd
     EXPECT_NE(md.find("## 8. Scenes"), std::string::npos);
     // The method as plans.json records it, not placeholders.
     EXPECT_NE(md.find("at 160x120, each candidate timed against the full effect pair by pair "
-                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs); a "
-                      "candidate whose image misses the target, which is never chosen while "
-                      "another meets it, only for 20 pairs"),
+                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs); in a "
+                      "scene with no frame budget, a candidate whose image misses the target, "
+                      "which is then never chosen, only for 20 pairs"),
               std::string::npos)
             << md;
     EXPECT_EQ(md.find("paired rounds of"), std::string::npos);

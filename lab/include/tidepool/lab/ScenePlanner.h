@@ -135,12 +135,14 @@ struct CandidateChoice {
 };
 
 /// The stopping rule a candidate is timed against the full configuration by: `rule`, or, for a
-/// candidate whose image misses the scene's quality bounds (`misses_target`), `rule` stopped at
-/// its fewest pairs with the interval they give. ChooseCandidate never prefers such a candidate
-/// while another meets the bounds (the full configuration always does), so its time only says
-/// what keeping the effect costs (ScenePlan::kept); on the default scenes the missing candidates
-/// had taken 68% of the planner's pairs (2,369 of 3,484 beside two `yes`, 2026-11-28), up to
-/// the cap of 400 for a change near no change.
+/// candidate whose image misses the quality bounds of a scene with no frame budget
+/// (`misses_target`), `rule` stopped at its fewest pairs with the interval they give.
+/// ChooseCandidate then never prefers such a candidate (the full configuration always meets the
+/// bounds), so its time only says what keeping the effect costs (ScenePlan::kept); on the
+/// default scenes those candidates had taken 68% of the planner's pairs (2,369 of 3,484 beside
+/// two `yes`, 2026-11-28), up to the cap of 400 for a change near no change. With a frame
+/// budget, the fastest of all candidates may be chosen when none that meets the bounds fits it,
+/// so every candidate is timed to the resolution.
 base::StoppingRule CandidateRule(const base::StoppingRule& rule, bool misses_target);
 
 /// Chooses among measured candidates (index 0 is the full configuration). With quality bounds:
