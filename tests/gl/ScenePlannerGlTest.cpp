@@ -130,15 +130,21 @@ TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarge
     EXPECT_TRUE(plan.met);
 }
 
+// `scene` planned under a resolution no interval reaches: a candidate timed to the resolution
+// runs to the cap of kCapPairs, one timed coarsely stops at the fewest, kFewestPairs.
+constexpr int kFewestPairs = 10;
+constexpr int kCapPairs = 24;
+ScenePlan PlanToTheCap(const SceneDescription& scene) {
+    PlanOptions options = SmallOptions();
+    options.rule = {0.01, kFewestPairs, kCapPairs, 10};
+    return PlanScene(*Get().context, *Get().config, scene, options);
+}
+
 // A candidate whose image misses the scene's target is never chosen while another meets it, so
-// it is timed for the rule's fewest pairs only; one that meets it goes on as the rule says. A
-// resolution no interval reaches sends every candidate that meets the target to the cap.
+// it is timed for the rule's fewest pairs only; one that meets it goes on as the rule says.
 TEST(ScenePlannerGlTest, ACandidateThatMissesTheTargetIsTimedForTheFewestPairsOnly) {
     REQUIRE_GL();
-    PlanOptions options = SmallOptions();
-    options.rule = {0.01, 10, 24, 10};
-    const ScenePlan plan =
-            PlanScene(*Get().context, *Get().config, LoadScene("murky_pond"), options);
+    const ScenePlan plan = PlanToTheCap(LoadScene("murky_pond"));
     int missing = 0;
     int meeting = 0;
     for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
@@ -146,7 +152,7 @@ TEST(ScenePlannerGlTest, ACandidateThatMissesTheTargetIsTimedForTheFewestPairsOn
         if (!c.valid) {
             continue;
         }
-        EXPECT_EQ(c.pairs, c.meets_quality ? 24 : 10) << c.configuration.id;
+        EXPECT_EQ(c.pairs, c.meets_quality ? kCapPairs : kFewestPairs) << c.configuration.id;
         (c.meets_quality ? meeting : missing) += 1;
     }
     EXPECT_GT(missing, 0);
@@ -157,16 +163,14 @@ TEST(ScenePlannerGlTest, ACandidateThatMissesTheTargetIsTimedForTheFewestPairsOn
 // bounds fits it, so one that misses them is timed like the others.
 TEST(ScenePlannerGlTest, WithAFrameBudgetEveryCandidateIsTimedToTheResolution) {
     REQUIRE_GL();
-    PlanOptions options = SmallOptions();
-    options.rule = {0.01, 10, 24, 10};
     SceneDescription scene = LoadScene("murky_pond");
     scene.target.frame_budget_ms = 1000.0;
-    const ScenePlan plan = PlanScene(*Get().context, *Get().config, scene, options);
+    const ScenePlan plan = PlanToTheCap(scene);
     int missing = 0;
     for (std::size_t i = 1; i < plan.candidates.size(); ++i) {
         const PlanCandidate& c = plan.candidates[i];
         if (c.valid) {
-            EXPECT_EQ(c.pairs, 24) << c.configuration.id;
+            EXPECT_EQ(c.pairs, kCapPairs) << c.configuration.id;
             missing += c.meets_quality ? 0 : 1;
         }
     }
