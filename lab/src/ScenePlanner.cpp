@@ -198,8 +198,20 @@ bool Keeps(const RenderConfiguration& chosen, const RenderConfiguration& full,
     return true;
 }
 
-std::string PercentText(double percent) {
-    return fmt::format("{}{:.0f}%", percent < 0 ? "\u2212" : "+", std::fabs(percent));
+// "+2.5" or "\u22122.5" (the minus sign the report writes), to one decimal; a value that rounds
+// to zero reads "+0.0".
+std::string SignedText(double value) {
+    const double rounded = std::round(value * 10.0) / 10.0;
+    return fmt::format("{}{:.1f}", rounded < 0 ? "\u2212" : "+", std::fabs(rounded));
+}
+
+// A candidate's frame-time change vs full as a plan's reasons quote it: the estimate with its 95%
+// interval and the pairs behind them, so that a coarse figure (a candidate that misses the
+// target is timed for the fewest pairs, CandidateRule) reads as coarse, and a change its
+// interval does not separate from none is not read as a saving.
+std::string TimeChangeText(const PlanCandidate& c) {
+    return fmt::format("{}% [{}, {}] over {} pairs", SignedText(c.time_change_percent),
+                       SignedText(c.time_change_low), SignedText(c.time_change_high), c.pairs);
 }
 
 }  // namespace
@@ -744,7 +756,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
                             alone != nullptr ? "dropped alone"
                                              : "in the chosen "
                                                "configuration",
-                            measured.error.psnr_db, PercentText(measured.time_change_percent));
+                            measured.error.psnr_db, TimeChangeText(measured));
         plan.dropped.push_back(std::move(d));
     }
     for (const PlanCandidate& c : plan.candidates) {
@@ -759,8 +771,7 @@ ScenePlan PlanScene(GlContext& context, const VariantConfig& config, const Scene
         k.reason = fmt::format(
                 "{} kept: dropping it alone gives {:.1f} dB PSNR and {:.1f}% "
                 "visibly different pixels vs full (time {}), outside the target",
-                c.drops, c.error.psnr_db, 100.0 * c.error.share_visible,
-                PercentText(c.time_change_percent));
+                c.drops, c.error.psnr_db, 100.0 * c.error.share_visible, TimeChangeText(c));
         plan.kept.push_back(std::move(k));
     }
     return plan;

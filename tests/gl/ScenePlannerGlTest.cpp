@@ -11,6 +11,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -18,6 +19,7 @@
 
 #include "GlTestEnvironment.h"
 #include "TempDir.h"
+#include <fmt/format.h>
 
 namespace tidepool::lab {
 namespace {
@@ -128,6 +130,27 @@ TEST(ScenePlannerGlTest, ClearLakeKeepsRefractionBecauseDroppingItBreaksTheTarge
     EXPECT_TRUE(chosen.configuration.Has("ENABLE_REFRACTION")) << chosen.configuration.id;
     EXPECT_TRUE(HasPass(chosen.frame, "refraction"));
     EXPECT_TRUE(plan.met);
+}
+
+// The time a kept effect's reason quotes is the estimate with its interval and pairs: the drop
+// was timed coarsely (it misses the target), and its change alone would read as a firm saving.
+TEST(ScenePlannerGlTest, AKeptEffectQuotesItsTimeWithTheIntervalAndPairs) {
+    REQUIRE_GL();
+    const ScenePlan& plan = LakePlan();
+    const PlanCandidate* drop = Dropping(plan, "refraction");
+    ASSERT_NE(drop, nullptr);
+    const auto kept = std::find_if(plan.kept.begin(), plan.kept.end(),
+                                   [](const DroppedEffect& k) { return k.effect == "refraction"; });
+    ASSERT_NE(kept, plan.kept.end());
+    const std::string& reason = kept->reason;
+    EXPECT_NE(reason.find(fmt::format("over {} pairs", drop->pairs)), std::string::npos) << reason;
+    for (double figure :
+         {drop->time_change_percent, drop->time_change_low, drop->time_change_high}) {
+        const double tenths = std::round(std::fabs(figure) * 10.0) / 10.0;
+        EXPECT_NE(reason.find(fmt::format("{:.1f}", tenths)), std::string::npos)
+                << figure << " in: " << reason;
+    }
+    EXPECT_GT(drop->time_change_high, drop->time_change_low) << reason;
 }
 
 // `scene` planned under a resolution no interval reaches: a candidate timed to the resolution
