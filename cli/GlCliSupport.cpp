@@ -114,6 +114,7 @@ runner::ProgressCallback MakeProgressPrinter() {
         bool terminal = isatty(fileno(stderr)) != 0;
         std::string last_stage;
         double last_print = -1e9;
+        bool printed_complete = false;  // the line where done reached total
     };
     auto state = std::make_shared<State>();
     return [state](const runner::RunProgress& p) {
@@ -122,7 +123,10 @@ runner::ProgressCallback MakeProgressPrinter() {
                          p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
             std::fflush(stderr);
         } else if (p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
-                   p.done == p.total) {
+                   (p.done == p.total && !state->printed_complete)) {
+            // Once per run at done == total: a render waiting for a second process's last units
+            // stays there for seconds, and says so every 10 s.
+            state->printed_complete = p.done == p.total;
             std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent,
                          p.stage.c_str(), p.configuration.c_str(),
                          FormatDuration(p.elapsed_seconds).c_str(),

@@ -128,7 +128,8 @@ bool SharedClaims::HelperHas(std::size_t unit) const {
 }
 
 std::vector<std::size_t> SharedClaims::AwaitHelper(std::chrono::milliseconds stall,
-                                                   std::chrono::milliseconds poll) {
+                                                   std::chrono::milliseconds poll,
+                                                   const std::function<void()>& each_poll) {
     const auto stall_ns = std::chrono::duration_cast<std::chrono::nanoseconds>(stall).count();
     while (true) {
         std::vector<std::size_t> working;
@@ -149,6 +150,9 @@ std::vector<std::size_t> SharedClaims::AwaitHelper(std::chrono::milliseconds sta
                 }
             }
             return taken;
+        }
+        if (each_poll) {
+            each_poll();
         }
         std::this_thread::sleep_for(poll);
     }

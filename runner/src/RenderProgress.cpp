@@ -217,13 +217,23 @@ void ProgressMeter::StepLocked(Kind kind, const std::string& what, long frames,
             priced_estimate_ += *cost * static_cast<double>(frames);
         }
     }
+    PublishLocked(kind == kComparison ? "comparisons" : "images", what, now);
+}
+
+void ProgressMeter::Waiting(const std::string& what, Clock::time_point now) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    PublishLocked("waiting for", what, now);
+}
+
+void ProgressMeter::PublishLocked(const char* stage, const std::string& what,
+                                  Clock::time_point now) {
     // The units a second process has claimed are its work, not this meter's.
     const std::array<long, 2> helper_frames = HelperClaimedFrames();
     std::array<long, 2> totals{};
     for (std::size_t i = 0; i < kinds_.size(); ++i) {
         totals[i] = std::max(kinds_[i].total - helper_frames[i], kinds_[i].done);
     }
-    state_.stage = kind == kComparison ? "comparisons" : "images";
+    state_.stage = stage;
     state_.configuration = what;
     state_.done = kinds_[0].done + kinds_[1].done;
     state_.total = totals[0] + totals[1];
@@ -243,7 +253,15 @@ void ProgressMeter::StepLocked(Kind kind, const std::string& what, long frames,
         }
     }
     const double threads = static_cast<double>(last_step_.size());
-    state_.eta_seconds = SecondsToFinish(left_seconds, threads, HelperJoinsIn(now), own_seconds);
+    // The second process finishes the units it is working on before it takes any other, and
+    // the run ends no sooner than they do: this process collects their results at the end.
+    const double helper_busy = HelperSecondsLeft(now);
+    std::optional<double> joins = HelperJoinsIn(now);
+    if (joins) {
+        joins = std::max(*joins, helper_busy);
+    }
+    state_.eta_seconds =
+            std::max(SecondsToFinish(left_seconds, threads, joins, own_seconds), helper_busy);
     // The work this process will do itself before the end: its threads for the ETA.
     const double left_here = state_.eta_seconds * threads;
     state_.percent = done_seconds + left_here > 0
@@ -262,6 +280,7 @@ void ProgressMeter::ShareUnits(const base::SharedClaims* claims, long frames_per
     shared_frames_per_configuration_ = frames_per_configuration;
     shared_configurations_ = configurations;
     forecast_silence_ = forecast_silence;
+    helper_seen_.assign(claims != nullptr ? claims->Size() : 0, std::nullopt);
 }
 
 // Seconds until the second process starts taking units: 0 while it takes them, its own forecast
@@ -296,6 +315,37 @@ std::array<long, 2> ProgressMeter::HelperClaimedFrames() const {
                 shared_->HelperHas(shared_configurations_ + k) ? comparison_frames_[k] : 0;
     }
     return frames;
+}
+
+// Seconds the second process still needs for the units it is working on (mutex_ held): each
+// unit's expected seconds (a configuration's image frames at the image rate, a comparison's
+// expected frames at its price; it times a comparison whole) less the time since this meter
+// first saw it claimed, which is within a step of its claim.
+double ProgressMeter::HelperSecondsLeft(Clock::time_point now) {
+    if (shared_ == nullptr) {
+        return 0.0;
+    }
+    double seconds = 0;
+    const std::size_t units = std::min(shared_->Size(), helper_seen_.size());
+    for (std::size_t unit = 0; unit < units; ++unit) {
+        if (shared_->StateOf(unit) != base::SharedClaims::State::kHelperWorking) {
+            continue;
+        }
+        std::optional<Clock::time_point>& seen = helper_seen_[unit];
+        if (!seen) {
+            seen = now;
+        }
+        double expected = 0;
+        if (unit < shared_configurations_) {
+            expected =
+                    static_cast<double>(shared_frames_per_configuration_) * SecondsPerFrame(kImage);
+        } else if (const std::size_t k = unit - shared_configurations_;
+                   k < comparison_frames_.size()) {
+            expected = static_cast<double>(comparison_frames_[k]) * PriceOf(k);
+        }
+        seconds += std::max(0.0, expected - SecondsOf(now - *seen));
+    }
+    return seconds;
 }
 
 RunProgress ProgressMeter::Last() const {

@@ -163,12 +163,19 @@ public:
         StepComparison(k, what, frames, Clock::now());
     }
 
+    /// Publishes the progress line again at `now` without a step, while this process waits for
+    /// the second process to finish `what` (the units it claimed): the ETA is then what those
+    /// units have left. The rates and totals stay as they are.
+    void Waiting(const std::string& what, Clock::time_point now);
+
     /// A second process takes units off the same work order from its end (`claims`: one unit per
     /// configuration, `configurations` of them with `frames_per_configuration` image frames
     /// each, then one per comparison). The units it claims leave this meter's work; the ETA
     /// counts on it for its share of the units nobody has claimed yet from the time it said it
     /// would start taking them (SecondsToFinish), as long as it renews that forecast within
-    /// `forecast_silence` (a second process that goes silent may have died).
+    /// `forecast_silence` (a second process that goes silent may have died). The units it is
+    /// working on count as its own until their expected seconds have passed: it takes no other
+    /// before they end, and the run ends no sooner than they do.
     void ShareUnits(const base::SharedClaims* claims, long frames_per_configuration,
                     std::size_t configurations,
                     std::chrono::milliseconds forecast_silence = kForecastSilence);
@@ -193,6 +200,9 @@ private:
 
     void StepLocked(Kind kind, const std::string& what, long frames, Clock::time_point now,
                     std::optional<std::size_t> comparison);
+    // Works out the line's state at `now` and passes it to the callback.
+    void PublishLocked(const char* stage, const std::string& what, Clock::time_point now);
+    double HelperSecondsLeft(Clock::time_point now);
     double SecondsPerFrame(std::size_t kind) const;
     // Seconds of the comparison frames left in this process (those the second process has not
     // claimed), each comparison priced by PriceOf; `owned` of them in comparisons this process
@@ -219,6 +229,8 @@ private:
     long shared_frames_per_configuration_ = 0;
     std::size_t shared_configurations_ = 0;
     std::chrono::milliseconds forecast_silence_ = kForecastSilence;
+    // By unit: when this meter first saw the second process working on it.
+    std::vector<std::optional<Clock::time_point>> helper_seen_;
     Clock::time_point start_;
     Clock::time_point decayed_to_;  // when the recent sums were last aged
     mutable std::mutex mutex_;

@@ -24,6 +24,7 @@ namespace {
 // apart. A minute is far beyond any of them.
 constexpr std::chrono::seconds kHelperStall{60};
 constexpr std::chrono::milliseconds kPoll{20};
+constexpr std::chrono::milliseconds kWaitingLineEvery{500};
 
 Diagnostic FromEntry(const stagefiles::DiagnosticEntry& e) {
     return Diagnostic{SeverityFromName(e.severity).value_or(Severity::kError),
@@ -198,7 +199,16 @@ CollectedUnits CollectSharedUnits(RenderWorker& w, const ImageUnitContext& conte
             time_comparison(unit - configurations.size());
         }
     };
-    for (std::size_t unit : claims.AwaitHelper(kHelperStall, kPoll)) {
+    // While the second process finishes its units, the progress line says so, with their ETA.
+    ProgressMeter::Clock::time_point told{};
+    const auto tell = [&] {
+        const ProgressMeter::Clock::time_point now = ProgressMeter::Clock::now();
+        if (context.meter != nullptr && now - told >= kWaitingLineEvery) {
+            context.meter->Waiting("the second process's units", now);
+            told = now;
+        }
+    };
+    for (std::size_t unit : claims.AwaitHelper(kHelperStall, kPoll, tell)) {
         redo(unit);
     }
     // Configurations first: their units keep the per-pass times already here, which a shared

@@ -453,6 +453,8 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     EXPECT_NEAR(meter.Last().eta_seconds, 4.3 + 8, 1e-3);
     ASSERT_TRUE(claims->ClaimForHelper(9));
     ASSERT_TRUE(claims->ClaimForHelper(kConfigurations + 1));  // the second comparison
+    ASSERT_TRUE(claims->FinishForHelper(9));
+    ASSERT_TRUE(claims->FinishForHelper(kConfigurations + 1));
     claims->SetHelperTaking(true);
     meter.Step(ProgressMeter::kImage, "0", 0, now);
     // Its unit and its comparison are gone; of the 8 units and 1 comparison left, this process
@@ -462,6 +464,72 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     claims->SetHelperTaking(false);  // it stopped taking: the rest is this process's
     meter.Step(ProgressMeter::kImage, "0", 0, now);
     EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
+}
+
+// A unit the second process is working on keeps it from the rest until the unit's expected
+// seconds have passed (it takes no other unit before), counted from when the meter first saw it.
+TEST(RenderProgressTest, AUnitTheSecondProcessIsWorkingOnDelaysItsShareOfTheRest) {
+    using namespace std::chrono_literals;
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    constexpr std::size_t kConfigurations = 10;
+    constexpr long kFramesPerUnit = 7;
+    meter.AddComparisons(2, 70);
+    const std::unique_ptr<base::SharedClaims> claims =
+            ShareWithSecondProcess(meter, kConfigurations, kFramesPerUnit);
+    ASSERT_TRUE(claims);
+    Clock::time_point now = start;
+    ASSERT_TRUE(claims->ClaimForOwner(0));
+    for (int f = 0; f < kFramesPerUnit; ++f) {
+        now += 100ms;
+        meter.Step(ProgressMeter::kImage, "0", 1, now);
+    }
+    claims->SetHelperTaking(true);
+    ASSERT_TRUE(claims->ClaimForHelper(kConfigurations + 1));  // 70 frames at 100 ms: 7 s
+    meter.Step(ProgressMeter::kImage, "0", 0, now);
+    // 9 units (6.3 s) and the first comparison (7 s) are left here; the second process takes
+    // its half of what is left then only after its comparison's 7 s.
+    EXPECT_NEAR(meter.Last().eta_seconds, 7.0 + (13.3 - 7.0) / 2, 1e-6);
+    now += 3s;  // no frame here meanwhile: published without a step, so the rates stay
+    meter.Waiting("the second process's units", now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 4.0 + (13.3 - 4.0) / 2, 1e-6);
+    ASSERT_TRUE(claims->FinishForHelper(kConfigurations + 1));
+    meter.Waiting("the second process's units", now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 13.3 / 2, 1e-6);
+}
+
+// With its own units done, the render waits for the second process's last ones and collects
+// their results: the line says so and counts down their expected seconds, never below none.
+TEST(RenderProgressTest, WaitingForTheSecondProcessCountsDownItsUnitsExpectedSeconds) {
+    using namespace std::chrono_literals;
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddComparisons(1, 50);
+    const std::unique_ptr<base::SharedClaims> claims = ShareWithSecondProcess(meter, 1, 7);
+    ASSERT_TRUE(claims);
+    Clock::time_point now = start;
+    ASSERT_TRUE(claims->ClaimForOwner(0));
+    for (int f = 0; f < 7; ++f) {
+        now += 100ms;
+        meter.Step(ProgressMeter::kImage, "0", 1, now);
+    }
+    claims->SetHelperTaking(true);
+    ASSERT_TRUE(claims->ClaimForHelper(1));  // the comparison: 50 frames at 100 ms
+    meter.Waiting("the second process's units", now);
+    EXPECT_EQ(meter.Last().stage, "waiting for");
+    EXPECT_NEAR(meter.Last().eta_seconds, 5.0, 1e-6);
+    EXPECT_LT(meter.Last().percent, 100.0);
+    now += 2s;
+    meter.Waiting("the second process's units", now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 3.0, 1e-6);
+    now += 4s;  // past its expected end
+    meter.Waiting("the second process's units", now);
+    EXPECT_NEAR(meter.Last().eta_seconds, 0.0, 1e-9);
+    ASSERT_TRUE(claims->FinishForHelper(1));
+    meter.Waiting("the second process's units", now);
+    EXPECT_NEAR(meter.Last().percent, 100.0, 1e-9);
 }
 
 // The comparisons this process has claimed (begun after their probes) are its own: a second

@@ -107,8 +107,10 @@ TEST(SharedClaimsTest, AwaitingAHelperThatFinishesReturnsNothingToRedo) {
         ::_exit(0);
     }
     ASSERT_GT(pid, 0);
-    EXPECT_TRUE(claims->AwaitHelper(60s, 5ms).empty());
+    int polls = 0;  // the owner's progress line is told at each poll while it waits
+    EXPECT_TRUE(claims->AwaitHelper(60s, 5ms, [&] { ++polls; }).empty());
     EXPECT_EQ(claims->StateOf(2), State::kHelperDone);
+    EXPECT_GE(polls, 2);  // about 100 ms of 5 ms polls
     int status = 0;
     ::waitpid(pid, &status, 0);
 }

@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -60,11 +61,13 @@ public:
     void ExpectHelperAt(std::chrono::steady_clock::time_point when);
     std::optional<std::chrono::steady_clock::time_point> HelperExpectedAt() const;
 
-    /// Waits until the helper has finished every unit it claimed, checking every `poll`. When its
-    /// heartbeat is older than `stall`, takes its unfinished units back for the owner and returns
-    /// them (the owner must then do them itself); otherwise returns nothing.
+    /// Waits until the helper has finished every unit it claimed, checking every `poll` and
+    /// calling `each_poll` (when given) before each wait. When its heartbeat is older than
+    /// `stall`, takes its unfinished units back for the owner and returns them (the owner must
+    /// then do them itself); otherwise returns nothing.
     std::vector<std::size_t> AwaitHelper(std::chrono::milliseconds stall,
-                                         std::chrono::milliseconds poll);
+                                         std::chrono::milliseconds poll,
+                                         const std::function<void()>& each_poll = {});
 
 private:
     struct Header {
