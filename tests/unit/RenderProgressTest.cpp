@@ -425,25 +425,49 @@ std::unique_ptr<base::SharedClaims> ShareWithSecondProcess(ProgressMeter& meter,
     return claims;
 }
 
+// This process claims configuration 0 and renders its `frames` image frames at 100 ms each from
+// `start`; returns the time after the last.
+Clock::time_point RenderConfigurationZero(ProgressMeter& meter, base::SharedClaims& claims,
+                                          Clock::time_point start, long frames) {
+    EXPECT_TRUE(claims.ClaimForOwner(0));
+    Clock::time_point now = start;
+    for (long f = 0; f < frames; ++f) {
+        now += std::chrono::milliseconds(100);
+        meter.Step(ProgressMeter::kImage, "0", 1, now);
+    }
+    return now;
+}
+
+// A meter that shares ten configurations of 7 image frames and two comparisons of 70 frames with
+// a second process, after this process rendered configuration 0 at 100 ms a frame.
+struct TenConfigurationsAndTwoComparisons {
+    static constexpr std::size_t kConfigurations = 10;
+    static constexpr long kFramesPerUnit = 7;
+    TenConfigurationsAndTwoComparisons() {
+        meter.AddComparisons(2, 70);
+        claims = ShareWithSecondProcess(meter, kConfigurations, kFramesPerUnit);
+        if (claims) {
+            now = RenderConfigurationZero(meter, *claims, start, kFramesPerUnit);
+        }
+    }
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter{none, start};
+    std::unique_ptr<base::SharedClaims> claims;
+    Clock::time_point now;
+};
+
 // The units a second process claims, configurations' and comparisons' alike, leave the meter's
 // totals; before it joins the ETA counts on it from the time it said, while it takes units from
 // now, and once it has stopped not at all.
 TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta) {
-    const ProgressCallback none;
-    const Clock::time_point start = Clock::now();
-    ProgressMeter meter(none, start);
-    constexpr std::size_t kConfigurations = 10;
-    constexpr long kFramesPerUnit = 7;
-    meter.AddComparisons(2, 70);
-    const std::unique_ptr<base::SharedClaims> claims =
-            ShareWithSecondProcess(meter, kConfigurations, kFramesPerUnit);
-    ASSERT_TRUE(claims);
-    Clock::time_point now = start;
-    ASSERT_TRUE(claims->ClaimForOwner(0));
-    for (int f = 0; f < kFramesPerUnit; ++f) {
-        now += std::chrono::milliseconds(100);
-        meter.Step(ProgressMeter::kImage, "0", 1, now);
-    }
+    TenConfigurationsAndTwoComparisons run;
+    ASSERT_TRUE(run.claims);
+    ProgressMeter& meter = run.meter;
+    base::SharedClaims* const claims = run.claims.get();
+    const Clock::time_point now = run.now;
+    constexpr std::size_t kConfigurations = TenConfigurationsAndTwoComparisons::kConfigurations;
+    constexpr long kFramesPerUnit = TenConfigurationsAndTwoComparisons::kFramesPerUnit;
     // Alone: 9 units of 7 frames and 2 comparisons of 70 frames, all at 100 ms a frame.
     EXPECT_EQ(meter.Last().total, 10 * kFramesPerUnit + 140);
     EXPECT_NEAR(meter.Last().eta_seconds, 6.3 + 14, 1e-6);
@@ -470,21 +494,12 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
 // seconds have passed (it takes no other unit before), counted from when the meter first saw it.
 TEST(RenderProgressTest, AUnitTheSecondProcessIsWorkingOnDelaysItsShareOfTheRest) {
     using namespace std::chrono_literals;
-    const ProgressCallback none;
-    const Clock::time_point start = Clock::now();
-    ProgressMeter meter(none, start);
-    constexpr std::size_t kConfigurations = 10;
-    constexpr long kFramesPerUnit = 7;
-    meter.AddComparisons(2, 70);
-    const std::unique_ptr<base::SharedClaims> claims =
-            ShareWithSecondProcess(meter, kConfigurations, kFramesPerUnit);
-    ASSERT_TRUE(claims);
-    Clock::time_point now = start;
-    ASSERT_TRUE(claims->ClaimForOwner(0));
-    for (int f = 0; f < kFramesPerUnit; ++f) {
-        now += 100ms;
-        meter.Step(ProgressMeter::kImage, "0", 1, now);
-    }
+    TenConfigurationsAndTwoComparisons run;
+    ASSERT_TRUE(run.claims);
+    ProgressMeter& meter = run.meter;
+    base::SharedClaims* const claims = run.claims.get();
+    Clock::time_point now = run.now;
+    constexpr std::size_t kConfigurations = TenConfigurationsAndTwoComparisons::kConfigurations;
     claims->SetHelperTaking(true);
     ASSERT_TRUE(claims->ClaimForHelper(kConfigurations + 1));  // 70 frames at 100 ms: 7 s
     meter.Step(ProgressMeter::kImage, "0", 0, now);
@@ -509,12 +524,7 @@ TEST(RenderProgressTest, WaitingForTheSecondProcessCountsDownItsUnitsExpectedSec
     meter.AddComparisons(1, 50);
     const std::unique_ptr<base::SharedClaims> claims = ShareWithSecondProcess(meter, 1, 7);
     ASSERT_TRUE(claims);
-    Clock::time_point now = start;
-    ASSERT_TRUE(claims->ClaimForOwner(0));
-    for (int f = 0; f < 7; ++f) {
-        now += 100ms;
-        meter.Step(ProgressMeter::kImage, "0", 1, now);
-    }
+    Clock::time_point now = RenderConfigurationZero(meter, *claims, start, 7);
     claims->SetHelperTaking(true);
     ASSERT_TRUE(claims->ClaimForHelper(1));  // the comparison: 50 frames at 100 ms
     meter.Waiting("the second process's units", now);
