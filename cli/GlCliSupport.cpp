@@ -114,7 +114,7 @@ runner::ProgressCallback MakeProgressPrinter() {
         bool terminal = isatty(fileno(stderr)) != 0;
         std::string last_stage;
         double last_print = -1e9;
-        bool printed_complete = false;  // the line where done reached total
+        bool printed_complete = false;  // the last line printed said the run is complete
     };
     auto state = std::make_shared<State>();
     return [state](const runner::RunProgress& p) {
@@ -122,11 +122,12 @@ runner::ProgressCallback MakeProgressPrinter() {
             std::fprintf(stderr, "\r\033[K[%3.0f%%] %-11s %s  ETA %s", p.percent, p.stage.c_str(),
                          p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
             std::fflush(stderr);
-        } else if (p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
-                   (p.done == p.total && !state->printed_complete)) {
-            // Once per run at done == total: a render waiting for a second process's last units
-            // stays there for seconds, and says so every 10 s.
-            state->printed_complete = p.done == p.total;
+        } else if (const bool complete = p.done == p.total && p.eta_seconds <= 0;
+                   p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
+                   (complete && !state->printed_complete)) {
+            // The complete line once: a render waiting for a second process's last units has
+            // done all of its own frames for seconds before, and says so every 10 s.
+            state->printed_complete = complete;
             std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent,
                          p.stage.c_str(), p.configuration.c_str(),
                          FormatDuration(p.elapsed_seconds).c_str(),

@@ -260,10 +260,12 @@ void ProgressMeter::PublishLocked(const char* stage, const std::string& what,
     if (joins) {
         joins = std::max(*joins, helper_busy);
     }
-    state_.eta_seconds =
-            std::max(SecondsToFinish(left_seconds, threads, joins, own_seconds), helper_busy);
-    // The work this process will do itself before the end: its threads for the ETA.
-    const double left_here = state_.eta_seconds * threads;
+    const double own_end = SecondsToFinish(left_seconds, threads, joins, own_seconds);
+    state_.eta_seconds = std::max(own_end, helper_busy);
+    // The work this process will do itself before its own end: its threads for that time. (Not
+    // for the ETA: waiting for the second process is no work of this one, and counting it would
+    // throw the percentage back when that process claims a long comparison.)
+    const double left_here = own_end * threads;
     state_.percent = done_seconds + left_here > 0
                              ? 100.0 * done_seconds / (done_seconds + left_here)
                              : 100.0;

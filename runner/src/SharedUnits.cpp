@@ -211,6 +211,9 @@ CollectedUnits CollectSharedUnits(RenderWorker& w, const ImageUnitContext& conte
     for (std::size_t unit : claims.AwaitHelper(kHelperStall, kPoll, tell)) {
         redo(unit);
     }
+    if (context.meter != nullptr && told != ProgressMeter::Clock::time_point{}) {
+        context.meter->Waiting("the second process's units", ProgressMeter::Clock::now());
+    }
     // Configurations first: their units keep the per-pass times already here, which a shared
     // comparison's unit then fills where there are none.
     CollectedUnits collected;

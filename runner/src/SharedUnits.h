@@ -25,7 +25,7 @@ struct CollectedUnits {
 /// ComparisonResult, with the per-pass times of its two configurations where this process has
 /// none of its own. Does on `w` any unit the second process left unfinished (its heartbeat
 /// stopped) or whose results cannot be read, a comparison through `time_comparison`, so no unit
-/// is ever missing.
+/// is ever missing. While it waits, the progress line says so (ProgressMeter::Waiting).
 CollectedUnits CollectSharedUnits(RenderWorker& w, const ImageUnitContext& context,
                                   RunResults& results,
                                   const std::function<void(std::size_t k)>& time_comparison);

@@ -142,15 +142,16 @@ TEST(ScenePlannerGlTest, AKeptEffectQuotesItsTimeWithTheIntervalAndPairs) {
     const auto kept = std::find_if(plan.kept.begin(), plan.kept.end(),
                                    [](const DroppedEffect& k) { return k.effect == "refraction"; });
     ASSERT_NE(kept, plan.kept.end());
-    const std::string& reason = kept->reason;
-    EXPECT_NE(reason.find(fmt::format("over {} pairs", drop->pairs)), std::string::npos) << reason;
-    for (double figure :
-         {drop->time_change_percent, drop->time_change_low, drop->time_change_high}) {
-        const double tenths = std::round(std::fabs(figure) * 10.0) / 10.0;
-        EXPECT_NE(reason.find(fmt::format("{:.1f}", tenths)), std::string::npos)
-                << figure << " in: " << reason;
-    }
-    EXPECT_GT(drop->time_change_high, drop->time_change_low) << reason;
+    // One decimal, the minus sign the report writes.
+    const auto figure = [](double value) {
+        const double tenths = std::round(value * 10.0) / 10.0;
+        return fmt::format("{}{:.1f}", tenths < 0 ? "\u2212" : "+", std::fabs(tenths));
+    };
+    const std::string quoted =
+            fmt::format("time {}% [{}, {}] over {} pairs", figure(drop->time_change_percent),
+                        figure(drop->time_change_low), figure(drop->time_change_high), drop->pairs);
+    EXPECT_NE(kept->reason.find(quoted), std::string::npos) << quoted << " in: " << kept->reason;
+    EXPECT_GT(drop->time_change_high, drop->time_change_low);
 }
 
 // `scene` planned under a resolution no interval reaches: a candidate timed to the resolution

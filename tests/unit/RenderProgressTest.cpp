@@ -515,7 +515,8 @@ TEST(RenderProgressTest, AUnitTheSecondProcessIsWorkingOnDelaysItsShareOfTheRest
 }
 
 // With its own units done, the render waits for the second process's last ones and collects
-// their results: the line says so and counts down their expected seconds, never below none.
+// their results: the line says so and counts down their expected seconds, never below none, at
+// 100% of this process's own work.
 TEST(RenderProgressTest, WaitingForTheSecondProcessCountsDownItsUnitsExpectedSeconds) {
     using namespace std::chrono_literals;
     const ProgressCallback none;
@@ -530,7 +531,8 @@ TEST(RenderProgressTest, WaitingForTheSecondProcessCountsDownItsUnitsExpectedSec
     meter.Waiting("the second process's units", now);
     EXPECT_EQ(meter.Last().stage, "waiting for");
     EXPECT_NEAR(meter.Last().eta_seconds, 5.0, 1e-6);
-    EXPECT_LT(meter.Last().percent, 100.0);
+    // Its own work is done: waiting is none of it (counted as work, 0.7 s of 5.7 would read 12%).
+    EXPECT_NEAR(meter.Last().percent, 100.0, 1e-9);
     now += 2s;
     meter.Waiting("the second process's units", now);
     EXPECT_NEAR(meter.Last().eta_seconds, 3.0, 1e-6);

@@ -12,7 +12,7 @@ namespace tidepool::pipeline {
 
 /// How far a long stage is.
 struct StageProgress {
-    std::string stage;  // the part of the stage at work ("images", "comparisons")
+    std::string stage;  // the part of the stage at work ("images", "comparisons", "waiting for")
     std::string item;   // what it works on (a configuration id, a comparison's label)
     long done = 0;      // units of work finished
     long total = 0;     // units of work expected (may be re-estimated as the stage goes)

@@ -180,19 +180,23 @@ struct RunResults {
 
 /// Where a run is, for the CLI's progress line.
 struct RunProgress {
-    std::string stage;          // "images", "comparisons"
-    std::string configuration;  // id of the configuration (or label of the comparison)
+    std::string stage;          // "images", "comparisons", "waiting for" (the second process)
+    std::string configuration;  // id of the configuration (or label of the comparison, or
+                                // "the second process's units")
     long done = 0;              // frames finished
     long total = 0;             // frames expected: comparisons' pairs are re-estimated at
                                 // every look from the interval's width
     double elapsed_seconds = 0;
     // The remaining frames of each kind (comparisons, images) times that kind's measured
-    // thread-seconds per frame, over the rendering threads; 0 until something is done.
+    // thread-seconds per frame, over the rendering threads, shared with a second process as it
+    // takes units; at least what the units that process is working on have left (the run
+    // collects their results at its end); 0 until something is done.
     double eta_seconds = 0;
-    double percent = 0;  // the share of the work done, each kind's frames weighed alike
+    double percent = 0;  // this process's share of its work done, by the seconds it takes
 };
 
-/// Called after every unit of work; may print, must not throw.
+/// Called after every unit of work, and every half second while the render waits for a second
+/// process's last units; may print, must not throw.
 using ProgressCallback = std::function<void(const RunProgress&)>;
 
 /// Compiles every configuration in Mesa, renders an image per view (written as PNG when asked)
