@@ -208,10 +208,12 @@ CollectedUnits CollectSharedUnits(RenderWorker& w, const ImageUnitContext& conte
             told = now;
         }
     };
-    for (std::size_t unit : claims.AwaitHelper(kHelperStall, kPoll, tell)) {
-        redo(unit);
+    const std::vector<std::size_t> taken_back = claims.AwaitHelper(kHelperStall, kPoll, tell);
+    for (std::size_t unit : taken_back) {
+        redo(unit);  // its steps publish the line from here on
     }
-    if (context.meter != nullptr && told != ProgressMeter::Clock::time_point{}) {
+    if (context.meter != nullptr && taken_back.empty() &&
+        told != ProgressMeter::Clock::time_point{}) {
         context.meter->Waiting("the second process's units", ProgressMeter::Clock::now());
     }
     // Configurations first: their units keep the per-pass times already here, which a shared
