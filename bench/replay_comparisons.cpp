@@ -9,8 +9,9 @@
 //    them: a probe of kProbePairs as-run pairs and the contended pairs its first look takes,
 //    then the looks of base::PairsBeforeNextLook, each followed by its contended pairs
 //    (base::ContendedPairsBeforeNextLook). The rule is the one built now (base::StoppingRule's
-//    defaults) with the file's resolution, pair counts and contended share, and each
-//    whitepaper row's magnitude band (report::ComparedPresetPairs). A comparison whose recording
+//    defaults) with the file's resolution, pair counts, contended share and boundary clauses
+//    (the defaults where an older file has none), and each whitepaper row's magnitude band
+//    (report::ComparedPresetPairs). A comparison whose recording
 //    ends before the rule stops (a run on another rule stopped it sooner) is marked "≥".
 //  * The guesses are those of runner/src/Results.cpp: base::PairsExpectedFromPairs at every
 //    look, the probe's included (from its few pairs, the interval's guess alone).
@@ -123,8 +124,9 @@ int main(int argc, char** argv) {
         boundaries[pair.label] = pair.boundaries_points;
     }
     std::printf(
-            "Comparisons replayed through the stopping rule as built (boundary_pairs %d), "
-            "pairs recorded -> replayed; '>=' where the recording ended first.\n",
+            "Comparisons replayed through the stopping rule as built, with the boundary clauses "
+            "each file recorded (as built, boundary_pairs %d, where it recorded none), pairs "
+            "recorded -> replayed; '>=' where the recording ended first.\n",
             StoppingRule{}.boundary_pairs);
     std::vector<double> misses;
     // Each file's comparisons: label, replay and a frame's mean time, for the floor.
@@ -149,6 +151,9 @@ int main(int argc, char** argv) {
         rule.max_pairs = results.timing.max_pairs;
         rule.batch_pairs = results.timing.batch_pairs;
         rule.contended_share = results.timing.contended_share;
+        rule.boundary_pairs = results.timing.boundary_pairs.value_or(rule.boundary_pairs);
+        rule.boundary_standard_errors =
+                results.timing.boundary_standard_errors.value_or(rule.boundary_standard_errors);
         std::vector<Replay> replays;
         std::vector<double> cost;  // a frame's mean time, ms
         std::printf("%s\n ", argv[f]);

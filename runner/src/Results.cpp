@@ -521,7 +521,9 @@ stagefiles::ResultsFile ToResultsFile(const RunResults& results) {
                    o.rule.contended_share,
                    base::kConfidenceLevel,
                    "Hodges-Lehmann median of Walsh averages of per-pair log "
-                   "ratios; Wilcoxon signed-rank interval"};
+                   "ratios; Wilcoxon signed-rank interval",
+                   o.rule.boundary_pairs,
+                   o.rule.boundary_standard_errors};
     for (const ComparisonResult& c : results.comparisons) {
         const base::PairedEstimate& e = c.timing.estimate;
         const bool indices_ok = c.comparison.baseline < results.configurations.size() &&

@@ -112,6 +112,12 @@ nlohmann::json ToJson(const ResultsTiming& t) {
     if (t.resolution_points) {
         timing["resolution_points"] = *t.resolution_points;
     }
+    if (t.boundary_pairs) {
+        timing["boundary_pairs"] = *t.boundary_pairs;
+    }
+    if (t.boundary_standard_errors) {
+        timing["boundary_standard_errors"] = *t.boundary_standard_errors;
+    }
     return timing;
 }
 
@@ -408,6 +414,8 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Field(o, path, "contended_share", &out->contended_share);
     r.Field(o, path, "confidence", &out->confidence);
     r.Field(o, path, "estimator", &out->estimator);
+    r.Field(o, path, "boundary_pairs", &out->boundary_pairs);
+    r.Field(o, path, "boundary_standard_errors", &out->boundary_standard_errors);
 }
 
 void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path,

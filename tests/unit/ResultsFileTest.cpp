@@ -66,7 +66,17 @@ ResultsFile OneOfEachResult() {
         c.ok = true;
     }
     file.configurations[1].glslang_valid.reset();
-    file.timing = {"thread_cpu", "software", 1.5, 20, 400, 10, 0.5, 0.95, "Hodges-Lehmann"};
+    file.timing = {.clock = "thread_cpu",
+                   .clock_reason = "software",
+                   .resolution_points = 1.5,
+                   .min_pairs = 20,
+                   .max_pairs = 400,
+                   .batch_pairs = 10,
+                   .contended_share = 0.5,
+                   .confidence = 0.95,
+                   .estimator = "Hodges-Lehmann",
+                   .boundary_pairs = 80,
+                   .boundary_standard_errors = 1.5};
     file.comparisons = {{"row 1",
                          "water:A",
                          "water:B",
@@ -123,7 +133,8 @@ TEST(ResultsFileTest, NullVerdictIsAbsentAndNullNumbersReadAsNaN) {
 }
 
 // Results written before the runner recorded CPU time, statistics, per-view draw calls, the
-// refraction's own size or the resolution asked: those fields are absent and read as absent.
+// refraction's own size, the resolution asked or the stopping rule's boundary clauses: those
+// fields are absent and read as absent.
 TEST(ResultsFileTest, FieldsOlderRunnersDidNotWriteAreOptional) {
     json document = ToJson(OneOfEachResult());
     json& c = document["configurations"][0];
@@ -133,10 +144,14 @@ TEST(ResultsFileTest, FieldsOlderRunnersDidNotWriteAreOptional) {
     c["passes"].erase("refraction_size");
     c["views"][0].erase("draw_calls");
     c["views"][0].erase("accuracy");
-    document["timing"].erase("resolution_points");
+    for (const char* key : {"resolution_points", "boundary_pairs", "boundary_standard_errors"}) {
+        document["timing"].erase(key);
+    }
     const ReadResult<ResultsFile> read = ResultsFileFromJson(document, "r.json");
     ASSERT_TRUE(read.value) << read.error;
     EXPECT_FALSE(read.value->timing.resolution_points);
+    EXPECT_FALSE(read.value->timing.boundary_pairs);
+    EXPECT_FALSE(read.value->timing.boundary_standard_errors);
     const ResultsConfiguration& r = read.value->configurations[0];
     EXPECT_TRUE(r.cpu_samples_ms.empty());
     EXPECT_FALSE(r.cpu_statistics);

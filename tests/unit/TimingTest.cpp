@@ -1,6 +1,7 @@
 #include "tidepool/pipeline/Host.h"
 #include "tidepool/pipeline/Timing.h"
 #include "tidepool/report/ReportModel.h"
+#include "tidepool/runner/Results.h"
 
 #include <gtest/gtest.h>
 
@@ -43,6 +44,27 @@ TEST(TimingTest, SettingsBecomeTheRuleTheFramesAndOneThreadByDefault) {
 
 // Only pairs whose two presets are both rendered become comparisons, each named as the report
 // names it and with its verdict's boundaries.
+// results.json states the stopping rule the comparisons were timed by, its boundary clauses too,
+// so that a replay of the file (bench/replay_comparisons) runs the rule the run ran.
+TEST(TimingTest, TheResultsFileRecordsTheRuleItsComparisonsWereTimedBy) {
+    TimingSettings settings;
+    settings.resolution = 0.75;
+    settings.min_pairs = 30;
+    settings.max_pairs = 90;
+    runner::RunResults results;
+    ApplyTiming(settings, runner::BackendKind::kAuto, &results.options);
+    results.options.rule.boundary_pairs = 96;
+    results.options.rule.boundary_standard_errors = 2.0;
+    const stagefiles::ResultsTiming timing = runner::ToResultsFile(results).timing;
+    EXPECT_EQ(timing.resolution_points, 0.75);
+    EXPECT_EQ(timing.min_pairs, 30);
+    EXPECT_EQ(timing.max_pairs, 90);
+    EXPECT_EQ(timing.batch_pairs, results.options.rule.batch_pairs);
+    EXPECT_EQ(timing.contended_share, results.options.rule.contended_share);
+    EXPECT_EQ(timing.boundary_pairs, 96);
+    EXPECT_EQ(timing.boundary_standard_errors, 2.0);
+}
+
 TEST(TimingTest, ComparisonsAreTheComparedPresetPairsBothOfWhoseSidesAreRendered) {
     const report::PresetPair row = report::ComparedPresetPairs().front();
     runner::RunOptions run;

@@ -210,6 +210,12 @@ struct ResultsTiming {
     double contended_share = 0;
     double confidence = 0;
     std::string estimator;
+    // The stopping rule's boundary clauses (base::StoppingRule): the pairs after which a
+    // comparison stops at the resolution unless an end lies near a boundary it does not hold,
+    // and how many standard errors an end must clear the direction margin by. Absent in older
+    // files.
+    std::optional<int> boundary_pairs;
+    std::optional<double> boundary_standard_errors;
 
     bool operator==(const ResultsTiming&) const = default;
 };
