@@ -100,19 +100,41 @@ TEST(SharedClaimsTest, AwaitingAHelperThatFinishesReturnsNothingToRedo) {
     const std::unique_ptr<SharedClaims> claims = SharedClaims::Create(3);
     ASSERT_TRUE(claims);
     ASSERT_TRUE(claims->ClaimForHelper(2));
+    // The helper finishes only after the owner has polled twice (a byte down the pipe at each
+    // poll), so the count below does not depend on how the two processes are scheduled.
+    int told[2];
+    ASSERT_EQ(::pipe(told), 0);
     const pid_t pid = ::fork();
     if (pid == 0) {
-        std::this_thread::sleep_for(100ms);
+        ::close(told[1]);
+        char polled[2];
+        std::size_t got = 0;
+        while (got < sizeof polled) {
+            const ssize_t n = ::read(told[0], polled + got, sizeof polled - got);
+            if (n <= 0) {
+                ::_exit(1);  // the owner closed the pipe early: it failed already
+            }
+            got += static_cast<std::size_t>(n);
+        }
         claims->FinishForHelper(2);
         ::_exit(0);
     }
     ASSERT_GT(pid, 0);
+    ::close(told[0]);
     int polls = 0;  // the owner's progress line is told at each poll while it waits
-    EXPECT_TRUE(claims->AwaitHelper(60s, 5ms, [&] { ++polls; }).empty());
+    const std::vector<std::size_t> redo = claims->AwaitHelper(20s, 5ms, [&] {
+        if (++polls <= 2) {
+            const char byte = 'p';
+            EXPECT_EQ(::write(told[1], &byte, 1), 1);
+        }
+    });
+    ::close(told[1]);
+    EXPECT_TRUE(redo.empty());
     EXPECT_EQ(claims->StateOf(2), State::kHelperDone);
-    EXPECT_GE(polls, 2);  // about 100 ms of 5 ms polls
+    EXPECT_GE(polls, 2);
     int status = 0;
     ::waitpid(pid, &status, 0);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
 }
 
 TEST(SharedClaimsTest, AStalledHelpersUnfinishedUnitsAreTakenBackAndItsLateFinishIsRefused) {
