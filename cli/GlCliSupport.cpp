@@ -110,27 +110,29 @@ std::string FormatDuration(double seconds) {
 }
 
 runner::ProgressCallback MakeProgressPrinter() {
+    return MakeProgressPrinter(stderr, isatty(fileno(stderr)) != 0);
+}
+
+runner::ProgressCallback MakeProgressPrinter(std::FILE* out, bool terminal) {
     struct State {
-        bool terminal = isatty(fileno(stderr)) != 0;
         std::string last_stage;
         double last_print = -1e9;
         bool printed_complete = false;  // the last line printed said the run is complete
     };
     auto state = std::make_shared<State>();
-    return [state](const runner::RunProgress& p) {
-        if (state->terminal) {
-            std::fprintf(stderr, "\r\033[K[%3.0f%%] %-11s %s  ETA %s", p.percent, p.stage.c_str(),
+    return [state, out, terminal](const runner::RunProgress& p) {
+        if (terminal) {
+            std::fprintf(out, "\r\033[K[%3.0f%%] %-11s %s  ETA %s", p.percent, p.stage.c_str(),
                          p.configuration.c_str(), FormatDuration(p.eta_seconds).c_str());
-            std::fflush(stderr);
+            std::fflush(out);
         } else if (const bool complete = p.done == p.total && p.eta_seconds <= 0;
                    p.stage != state->last_stage || p.elapsed_seconds - state->last_print >= 10.0 ||
                    (complete && !state->printed_complete)) {
             // The complete line once: a render waiting for a second process's last units has
             // done all of its own frames for seconds before, and says so every 10 s.
             state->printed_complete = complete;
-            std::fprintf(stderr, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent,
-                         p.stage.c_str(), p.configuration.c_str(),
-                         FormatDuration(p.elapsed_seconds).c_str(),
+            std::fprintf(out, "[%3.0f%%] %s %s (elapsed %s, ETA %s)\n", p.percent, p.stage.c_str(),
+                         p.configuration.c_str(), FormatDuration(p.elapsed_seconds).c_str(),
                          FormatDuration(p.eta_seconds).c_str());
             state->last_print = p.elapsed_seconds;
         }

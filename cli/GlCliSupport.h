@@ -8,6 +8,7 @@
 #include "tidepool/runner/GlBackend.h"
 #include "tidepool/runner/Results.h"
 
+#include <cstdio>
 #include <string>
 
 #include "CliSupport.h"
@@ -43,6 +44,12 @@ std::string FormatDuration(double seconds);
 /// (FinishProgress ends it), in a log a plain line on every stage change and at most every 10
 /// seconds. Never fails.
 runner::ProgressCallback MakeProgressPrinter();
+
+/// The same printer writing to `out`, as on a terminal when `terminal` (tests give it a file).
+/// A plain line is printed on every change of stage, when 10 s have passed since the last one,
+/// and once when the render is complete (all frames done, no ETA left): a render waiting for a
+/// second process's last units is told so every half second and must not repeat the line.
+runner::ProgressCallback MakeProgressPrinter(std::FILE* out, bool terminal);
 
 /// Ends the line a terminal progress printer left open. Never fails.
 void FinishProgress();
