@@ -93,8 +93,8 @@ double PerformanceChangePercent(double frame_time_ratio);
 /// -2.7% [-3.4, -2.0] after 187 pairs loaded, claimed), and one whose interval holds or ends
 /// near any of `boundaries_points`, the other boundaries of its verdict (the whitepaper's
 /// magnitude band: row 2 read -3.2% [-4.8, -2.6] quiet, overlapping the band that starts at
-/// 4.8%, and -3.4% [-4.5, -2.4] loaded, outside it). Comparisons far from every boundary, most of
-/// them, stop as before.
+/// -4.5% (half the whitepaper's -9%), and -3.4% [-4.5, -2.4] loaded, outside it). Comparisons far
+/// from every boundary, most of them, stop as before.
 ///
 /// Why an interval holding one of `boundaries_points` goes on past the finest half-width: an
 /// interval that holds the direction margin gives no direction ("below resolution"), and one
