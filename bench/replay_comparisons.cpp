@@ -8,12 +8,14 @@
 //  * Each comparison's recorded pairs, as-run and contended, are taken in the order the run took
 //    them: a probe of kProbePairs as-run pairs and the contended pairs its first look takes,
 //    then the looks of base::PairsBeforeNextLook, each followed by its contended pairs
-//    (base::ContendedPairsBeforeNextLook). The rule is the one built now (base::StoppingRule's
-//    defaults) with the file's resolution, pair counts, contended share and boundary clauses
-//    (the defaults where an older file has none), and each whitepaper row's magnitude band
-//    (report::ComparedPresetPairs). A comparison whose recording
-//    ends before the rule stops (a run on another rule stopped it sooner) is marked "≥".
-//  * The guesses are those of runner/src/Results.cpp: base::PairsExpectedFromPairs at every
+//    (base::ContendedPairsBeforeNextLook), or, while the contended interval holds the as-run
+//    one (base::ContendedIntervalBinds), of base::ContendedPairsWhileBinding contended pairs
+//    alone; each look decides by base::DecideStopAcrossStates. The rule is the one built now
+//    (base::StoppingRule's defaults) with the file's resolution, pair counts, contended share and
+//    boundary clauses (the defaults where an older file has none), and each whitepaper row's
+//    magnitude band (report::ComparedPresetPairs). A comparison whose recording ends before the
+//    rule stops (a run on another rule stopped it sooner) is marked "≥".
+//  * The guesses are those of runner/src/Results.cpp: base::PairsExpectedAcrossStates at every
 //    look, the probe's included (from its few pairs, the interval's guess alone).
 //  * The guessed work's miss at a look of comparison k: its guessed frames less the frames it
 //    took, plus the same for every later comparison at its probe's guess, each frame weighed by
@@ -23,7 +25,7 @@
 //    weighed as as-run ones.
 //  * The floor: the same miss at the run's start, before any comparison has gone past its
 //    probe, with every comparison's guess at its probe, against a guess that knew each
-//    comparison's mean pairs over all the files given (in-sample: no guess made in a run from
+//    comparison's mean frames over all the files given (in-sample: no guess made in a run from
 //    its own pairs does better on average). When that guess misses as far, the miss comes from
 //    how much the pairs a comparison takes vary from run to run, not from the probe's guess.
 //
@@ -57,8 +59,9 @@ std::vector<double> First(const std::vector<double>& samples, int n) {
 // each look had, and where it stopped.
 struct Replay {
     std::vector<int> look_pairs;
-    std::vector<int> guesses;
-    int stopped_at = 0;
+    std::vector<double> guesses;  // frames
+    int stopped_at = 0;           // as-run pairs
+    int contended_at_stop = 0;    // contended pairs
     bool recording_ended = false;
 };
 
@@ -69,29 +72,41 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
     const int recorded = static_cast<int>(c.baseline_ms.size());
     const int recorded_contended = static_cast<int>(c.contended_baseline_ms.size());
     int n = std::min(kProbePairs, recorded);
-    int m = 0;
+    int m = ContendedPairsBeforeNextLook(n, 0, rule);
     bool probe = true;
     for (;;) {
-        const int contended = ContendedPairsBeforeNextLook(n, m, rule);
-        if (m + contended > recorded_contended) {
+        if (m > recorded_contended) {
             out.recording_ended = true;
             break;
         }
-        m += contended;
         const PairedEstimate as_run =
                 EstimatePaired(First(c.baseline_ms, n), First(c.candidate_ms, n));
-        const PairedEstimate stated =
-                AcrossHostStates(as_run, EstimatePaired(First(c.contended_baseline_ms, m),
-                                                        First(c.contended_candidate_ms, m)));
-        const bool stops = !probe && DecideStop(stated, rule) != StopDecision::kContinue;
+        const PairedEstimate contended = EstimatePaired(First(c.contended_baseline_ms, m),
+                                                        First(c.contended_candidate_ms, m));
+        const PairedEstimate stated = AcrossHostStates(as_run, contended);
+        const bool stops =
+                !probe && DecideStopAcrossStates(stated, m, rule) != StopDecision::kContinue;
         out.look_pairs.push_back(n);
-        out.guesses.push_back(stops ? n
-                                    : PairsExpectedFromPairs(First(c.baseline_ms, n),
-                                                             First(c.candidate_ms, n), stated, rule,
-                                                             60));
+        const ExpectedPairs expected =
+                stops ? ExpectedPairs{n, m}
+                      : PairsExpectedAcrossStates(First(c.baseline_ms, n), First(c.candidate_ms, n),
+                                                  First(c.contended_baseline_ms, m),
+                                                  First(c.contended_candidate_ms, m), stated, rule,
+                                                  60);
+        out.guesses.push_back(2.0 * (expected.as_run + expected.contended) + kOverheadFrames);
         out.stopped_at = n;
+        out.contended_at_stop = m;
         if (stops) {
             break;
+        }
+        probe = false;
+        if (n >= rule.min_pairs && ContendedIntervalBinds(as_run, contended)) {
+            const int more = ContendedPairsWhileBinding(m, rule);
+            if (more <= 0) {
+                break;
+            }
+            m += more;
+            continue;
         }
         const int batch = PairsBeforeNextLook(n, rule);
         if (batch <= 0) {
@@ -102,14 +117,15 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
             break;
         }
         n += batch;
-        probe = false;
+        m += ContendedPairsBeforeNextLook(n, m, rule);
     }
     return out;
 }
 
-double Frames(int pairs, const StoppingRule& rule) {
-    const int contended = tidepool::base::ContendedPairsBeforeNextLook(pairs, 0, rule);
-    return 2.0 * (pairs + contended) + kOverheadFrames;
+// The frames a replayed comparison took: its as-run and contended pairs' two frames each, and
+// the warm-up and per-pass frames.
+double Taken(const Replay& replay) {
+    return 2.0 * (replay.stopped_at + replay.contended_at_stop) + kOverheadFrames;
 }
 
 }  // namespace
@@ -136,7 +152,6 @@ int main(int argc, char** argv) {
         double cost = 0;
     };
     std::vector<std::vector<Replayed>> files;
-    std::vector<StoppingRule> file_rules;
     for (int f = 1; f < argc; ++f) {
         const auto read = tidepool::stagefiles::ReadResultsFile(argv[f]);
         if (!read.value) {
@@ -176,23 +191,20 @@ int main(int argc, char** argv) {
                         replays.back().stopped_at);
         }
         rule.boundaries_points.clear();
-        file_rules.push_back(rule);
         double all = 0;
         for (std::size_t i = 0; i < replays.size(); ++i) {
-            all += Frames(replays[i].stopped_at, rule) * cost[i];
+            all += Taken(replays[i]) * cost[i];
         }
         double worst = 0;
         for (std::size_t i = 0; i < replays.size(); ++i) {
             double later = 0;
             for (std::size_t j = i + 1; j < replays.size(); ++j) {
-                const int probe_guess = replays[j].guesses.empty() ? 0 : replays[j].guesses.front();
-                later +=
-                        (Frames(probe_guess, rule) - Frames(replays[j].stopped_at, rule)) * cost[j];
+                const double probe_guess =
+                        replays[j].guesses.empty() ? 0.0 : replays[j].guesses.front();
+                later += (probe_guess - Taken(replays[j])) * cost[j];
             }
-            for (int guess : replays[i].guesses) {
-                const double miss =
-                        (Frames(guess, rule) - Frames(replays[i].stopped_at, rule)) * cost[i] +
-                        later;
+            for (double guess : replays[i].guesses) {
+                const double miss = (guess - Taken(replays[i])) * cost[i] + later;
                 worst = std::fabs(miss) > std::fabs(worst) ? miss : worst;
             }
         }
@@ -209,29 +221,27 @@ int main(int argc, char** argv) {
             "%.0f%% (the progress line's ETA target: within 20%%)\n",
             misses.size(), misses[misses.size() / 2], misses.back());
 
-    // The floor: at the start, the probes' guesses against each comparison's mean pairs.
-    std::map<std::string, std::pair<double, int>> pairs_by_label;  // sum, count
+    // The floor: at the start, the probes' guesses against each comparison's mean frames.
+    std::map<std::string, std::pair<double, int>> frames_by_label;  // sum, count
     for (const auto& file : files) {
         for (const Replayed& r : file) {
-            pairs_by_label[r.label].first += r.replay.stopped_at;
-            pairs_by_label[r.label].second += 1;
+            frames_by_label[r.label].first += Taken(r.replay);
+            frames_by_label[r.label].second += 1;
         }
     }
     std::vector<double> probe_misses;
     std::vector<double> mean_misses;
     for (std::size_t f = 0; f < files.size(); ++f) {
-        const StoppingRule& rule = file_rules[f];
         double all = 0;
         double probe = 0;
         double mean = 0;
         for (const Replayed& r : files[f]) {
-            const double taken = Frames(r.replay.stopped_at, rule) * r.cost;
+            const double taken = Taken(r.replay) * r.cost;
             all += taken;
-            const int guess = r.replay.guesses.empty() ? 0 : r.replay.guesses.front();
-            probe += Frames(guess, rule) * r.cost - taken;
-            const auto& [sum, count] = pairs_by_label[r.label];
-            const int mean_pairs = static_cast<int>(std::lround(sum / count));
-            mean += Frames(mean_pairs, rule) * r.cost - taken;
+            const double guess = r.replay.guesses.empty() ? 0.0 : r.replay.guesses.front();
+            probe += guess * r.cost - taken;
+            const auto& [sum, count] = frames_by_label[r.label];
+            mean += sum / count * r.cost - taken;
         }
         probe_misses.push_back(all > 0 ? std::fabs(100.0 * probe / all) : 0.0);
         mean_misses.push_back(all > 0 ? std::fabs(100.0 * mean / all) : 0.0);
@@ -240,7 +250,7 @@ int main(int argc, char** argv) {
     std::sort(mean_misses.begin(), mean_misses.end());
     std::printf(
             "at the start, every comparison at its probe's guess: the work missed by median "
-            "%.0f%%, largest %.0f%%; at each comparison's mean pairs over these %zu files "
+            "%.0f%%, largest %.0f%%; at each comparison's mean frames over these %zu files "
             "instead (in-sample): median %.0f%%, largest %.0f%%\n",
             probe_misses[probe_misses.size() / 2], probe_misses.back(), files.size(),
             mean_misses[mean_misses.size() / 2], mean_misses.back());

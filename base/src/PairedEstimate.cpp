@@ -155,6 +155,24 @@ int ContendedPairsBeforeNextLook(int as_run_pairs, int contended_pairs, const St
     return static_cast<int>(std::max(0.0, target - contended_pairs));
 }
 
+bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended) {
+    return as_run.Valid() && contended.Valid() && contended.change_low < as_run.change_low &&
+           as_run.change_high < contended.change_high;
+}
+
+int ContendedPairsWhileBinding(int contended_pairs, const StoppingRule& rule) {
+    const int so_far = std::max(contended_pairs, 0);
+    const int target = so_far + std::max(rule.batch_pairs, so_far / 4);
+    return std::max(0, std::min(target, rule.max_pairs) - so_far);
+}
+
+StopDecision DecideStopAcrossStates(const PairedEstimate& stated, int contended_pairs,
+                                    const StoppingRule& rule) {
+    PairedEstimate look = stated;
+    look.pairs = std::max(stated.pairs, contended_pairs);
+    return DecideStop(look, rule);
+}
+
 double FinestHalfWidthPoints(const StoppingRule& rule) {
     return std::min(rule.resolution_points, kDirectionMarginPoints) / 2.0;
 }
@@ -412,6 +430,38 @@ int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
     }
     return static_cast<int>(
             std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));
+}
+
+ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
+                                        const std::vector<double>& candidate_ms,
+                                        const std::vector<double>& contended_baseline_ms,
+                                        const std::vector<double>& contended_candidate_ms,
+                                        const PairedEstimate& stated, const StoppingRule& rule,
+                                        int fallback) {
+    const int as_run = static_cast<int>(baseline_ms.size());
+    const int contended = static_cast<int>(contended_baseline_ms.size());
+    const PairedEstimate as_run_estimate = EstimatePaired(baseline_ms, candidate_ms);
+    const PairedEstimate contended_estimate =
+            EstimatePaired(contended_baseline_ms, contended_candidate_ms);
+    if (ContendedIntervalBinds(as_run_estimate, contended_estimate)) {
+        if (as_run >= rule.min_pairs &&
+            DecideStopAcrossStates(stated, contended, rule) != StopDecision::kContinue) {
+            return {as_run, contended};
+        }
+        // The stated interval as the contended pairs narrow it: their count in the as-run
+        // pairs' place, and their own spread with no contended share beside them.
+        PairedEstimate by_contended = stated;
+        by_contended.pairs = contended;
+        StoppingRule alone = rule;
+        alone.contended_share = 0;
+        const int guess = PairsExpectedFromPairs(contended_baseline_ms, contended_candidate_ms,
+                                                 by_contended, alone, fallback);
+        return {std::max(as_run, rule.min_pairs), std::max(guess, contended)};
+    }
+    const int guess = PairsExpectedFromPairs(baseline_ms, candidate_ms, stated, rule, fallback);
+    const int guessed_as_run = std::max(guess, as_run);
+    return {guessed_as_run,
+            contended + ContendedPairsBeforeNextLook(guessed_as_run, contended, rule)};
 }
 
 const char* StopDecisionName(StopDecision decision) {

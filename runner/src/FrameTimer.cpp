@@ -204,18 +204,35 @@ ComparisonTiming TimeComparison(
     ComparisonTiming out = std::move(so_far);
     out.decision = base::StopDecision::kContinue;
     for (;;) {
-        const int batch =
-                base::PairsBeforeNextLook(static_cast<int>(out.samples.baseline_ms.size()), rule);
-        for (int k = 0; k < batch; ++k) {
-            TakePair(time_side, out.samples);
+        const int as_run = static_cast<int>(out.samples.baseline_ms.size());
+        const int contended = static_cast<int>(out.contended.baseline_ms.size());
+        // Each look's pairs go where they can narrow the stated interval: to the contended
+        // state alone while its interval holds the as-run one (base::ContendedIntervalBinds),
+        // otherwise to the as-run state with the contended share beside them.
+        int taken = 0;
+        if (as_run >= rule.min_pairs &&
+            base::ContendedIntervalBinds(out.estimate, out.contended_estimate)) {
+            const base::CoreCompetitor competitor;
+            taken = base::ContendedPairsWhileBinding(contended, rule);
+            for (int k = 0; k < taken; ++k) {
+                TakePair(time_side, out.contended);
+            }
+        } else {
+            taken = base::PairsBeforeNextLook(as_run, rule);
+            for (int k = 0; k < taken; ++k) {
+                TakePair(time_side, out.samples);
+            }
+            TakeContendedPairs(time_side, rule, out);
         }
-        TakeContendedPairs(time_side, rule, out);
         out.estimate = base::EstimatePaired(out.samples.baseline_ms, out.samples.candidate_ms);
         out.contended_estimate =
                 base::EstimatePaired(out.contended.baseline_ms, out.contended.candidate_ms);
         out.stated = base::AcrossHostStates(out.estimate, out.contended_estimate);
-        out.decision =
-                batch == 0 ? base::StopDecision::kCapped : base::DecideStop(out.stated, rule);
+        out.decision = taken == 0
+                               ? base::StopDecision::kCapped
+                               : base::DecideStopAcrossStates(
+                                         out.stated,
+                                         static_cast<int>(out.contended.baseline_ms.size()), rule);
         if (after_look) {
             after_look(out);
         }

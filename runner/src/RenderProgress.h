@@ -78,7 +78,7 @@ std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t confi
 
 /// Progress shared by the rendering threads, in frames of two kinds: timed frames of the
 /// comparisons, and the images and coarse frames of the configurations. A comparison's expected
-/// frames follow its pairs and interval (base::PairsExpectedFromPairs). Frames of the two kinds
+/// frames follow its pairs and interval (base::PairsExpectedAcrossStates). Frames of the two kinds
 /// cost very differently (an image frame compiles on first use and encodes a PNG), so the share
 /// done and the ETA weigh each kind by its measured seconds per frame (SecondsPerFrame), and the
 /// comparisons' frames left by their own configurations' cost once known (PriceOf). Both

@@ -191,19 +191,31 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                 warmed;
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
-            const long needed = base::PairsExpectedFromPairs(
-                    so_far.samples.baseline_ms, so_far.samples.candidate_ms, so_far.stated, rule,
-                    kInitialPairGuess);
+            const base::ExpectedPairs expected = base::PairsExpectedAcrossStates(
+                    so_far.samples.baseline_ms, so_far.samples.candidate_ms,
+                    so_far.contended.baseline_ms, so_far.contended.candidate_ms, so_far.stated,
+                    rule, kInitialPairGuess);
+            const long expected_frames =
+                    2L * (expected.as_run + expected.contended) + warmup_frames + per_pass_frames;
             // After the last look, the per-pass frames are still to come.
             const bool finished = so_far.decision != base::StopDecision::kContinue;
             // The resolution's pairs from the interval the comparison states, the one the rule
             // stops on: the as-run pairs' own interval, narrower, put the comparisons still
             // waiting at 0.3 to 0.9 times (median 0.44) the mean pairs the comparisons then
             // took, over 16 main-job halves of 2026-11-27 and 28; the stated one at 0.5 to 1.3
-            // (median 0.72), with kBoundaryAllowance.
-            meter.ComparisonExpects(k, finished ? frames + per_pass_frames : frames_at(needed),
-                                    false,
-                                    pair_frames(base::PairsForResolution(so_far.stated, rule)));
+            // (median 0.72), with kBoundaryAllowance. While the contended interval holds the
+            // as-run one, it narrows with the contended pairs alone (base::ContendedIntervalBinds).
+            long resolution_frames = pair_frames(base::PairsForResolution(so_far.stated, rule));
+            if (base::ContendedIntervalBinds(so_far.estimate, so_far.contended_estimate)) {
+                base::PairedEstimate by_contended = so_far.stated;
+                by_contended.pairs = static_cast<int>(so_far.contended.baseline_ms.size());
+                resolution_frames =
+                        2L * (std::max(static_cast<long>(so_far.samples.baseline_ms.size()),
+                                       static_cast<long>(rule.min_pairs)) +
+                              base::PairsForResolution(by_contended, rule));
+            }
+            meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames, false,
+                                    resolution_frames);
         };
         TimeComparisonUnit(w, options, out, after_look, part);
         if (!out.error.empty()) {
@@ -405,8 +417,9 @@ stagefiles::ResultsSettings ToSettings(const RunResults& results) {
             "every frame timed on `timing.clock` around submission + glFinish (wall clock beside "
             "it); each configuration gets coarse_frames frames on its own; each comparison is "
             "timed in pairs of frames rendered back to back on one thread, the side going first "
-            "alternating, as the machine runs and (timing.contended_share of them) with a "
-            "competing thread on the rendering thread's core, until the interval spanning both "
+            "alternating, as the machine runs and (at least timing.contended_share of them, more "
+            "while their interval holds the as-run one) with a competing thread on the "
+            "rendering thread's core, until the interval spanning both "
             "states' 95% Wilcoxon intervals of the Hodges-Lehmann ratio is as narrow as "
             "timing.resolution_points or timing.max_pairs is reached";
     out.animation_time_s = s.animation_time;

@@ -74,6 +74,14 @@ long ThreadsNow() {
                          std::filesystem::directory_iterator{});
 }
 
+// Frames rendered, and of them those with the core shared (a base::CoreCompetitor running).
+struct FrameCounts {
+    long alone = ThreadsNow();  // this process's threads without a competitor
+    int frames = 0;
+    int as_run = 0;
+    int contended = 0;
+};
+
 TEST(FrameTimerTest, ContendedPairsAreTimedWithTheCoreSharedAndTheIntervalSpansBoth) {
     const long alone = ThreadsNow();
     int contended_frames = 0;
@@ -102,6 +110,35 @@ TEST(FrameTimerTest, ContendedPairsAreTimedWithTheCoreSharedAndTheIntervalSpansB
     EXPECT_EQ(ThreadsNow(), alone);  // the competitor is gone
 }
 
+TEST(FrameTimerTest, WhileTheContendedIntervalHoldsTheAsRunOneALookTakesContendedPairsAlone) {
+    FrameCounts counts;
+    int looks = 0;
+    base::StoppingRule rule;
+    rule.contended_share = 0.5;
+    // As run the candidate is a steady 10% slower; with the core shared it is 10% slower give or
+    // take 6%, so the contended interval holds the as-run one until it has many more pairs.
+    const TimeSide side = [&](bool candidate) {
+        counts.frames += 1;
+        const bool busy = ThreadsNow() > counts.alone;
+        const int k = busy ? ++counts.contended : ++counts.as_run;
+        const double noise = busy ? 0.03 * (((k / 2) % 5) - 2.0) : 0.001 * ((k / 2) % 3);
+        return FrameTime{candidate ? 11.0 * (1.0 + noise) : 10.0, 0.0};
+    };
+    const ComparisonTiming t = TimeComparison(side, rule, [&](const ComparisonTiming& so_far) {
+        ++looks;
+        const base::PairedEstimate& as_run = so_far.estimate;
+        // Only the first look, to min_pairs, takes as-run pairs: after it the contended
+        // interval holds the as-run one at every look until it no longer does.
+        EXPECT_EQ(as_run.pairs, rule.min_pairs);
+    });
+    EXPECT_EQ(t.decision, base::StopDecision::kResolved);
+    EXPECT_GT(looks, 1);
+    EXPECT_EQ(t.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+    EXPECT_GT(t.contended.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+    EXPECT_EQ(counts.contended, 2 * static_cast<int>(t.contended.baseline_ms.size()));
+    EXPECT_LE(t.stated.HalfWidthPoints(), rule.resolution_points);
+}
+
 TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     std::uint64_t state = 12345;
     const TimeSide side = [&](bool) {
@@ -117,15 +154,22 @@ TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
 
 // A side whose n-th frame's time depends only on n: the candidate 5% slower, with +/-8% noise,
 // enough that the rule needs more than its minimum of pairs.
-TimeSide NumberedFrames(int* frames) {
-    return [frames](bool candidate) {
-        *frames += 1;
-        std::uint64_t state = static_cast<std::uint64_t>(*frames);
+// Frames of a pseudo-random time (±8%), the candidate 5% slower; the contended frames twice as
+// noisy. The k-th as-run frame, and the k-th contended one, take the same time whatever came
+// between them, so that a comparison split into a probe and the rest sees the same samples as
+// one call, and looks at the same estimates.
+TimeSide NumberedFrames(FrameCounts* counts) {
+    return [counts](bool candidate) {
+        counts->frames += 1;
+        const bool busy = ThreadsNow() > counts->alone;
+        const int k = busy ? ++counts->contended : ++counts->as_run;
+        std::uint64_t state = static_cast<std::uint64_t>(k) + (busy ? 1000000U : 0U);
         state *= 0x9E3779B97F4A7C15U;
         state ^= state >> 29;
         state *= 0xBF58476D1CE4E5B9U;
         state ^= state >> 32;
-        const double noise = 0.92 + 0.16 * static_cast<double>(state >> 11) * 0x1.0p-53;
+        const double unit = static_cast<double>(state >> 11) * 0x1.0p-53 - 0.5;
+        const double noise = 1.0 + (busy ? 0.32 : 0.16) * unit;
         return FrameTime{(candidate ? 10.5 : 10.0) * noise, 0.0};
     };
 }
@@ -134,13 +178,16 @@ TimeSide NumberedFrames(int* frames) {
 TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
     base::StoppingRule rule;
     rule.contended_share = 0.5;
-    int frames_whole = 0;
+    FrameCounts frames_whole;
     int looks_whole = 0;
     const ComparisonTiming whole = TimeComparison(NumberedFrames(&frames_whole), rule,
                                                   [&](const ComparisonTiming&) { ++looks_whole; });
     ASSERT_GT(whole.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+    // Some looks took contended pairs alone (their interval held the as-run one): more than the
+    // contended share of the as-run pairs.
+    ASSERT_GT(whole.contended.baseline_ms.size(), (whole.samples.baseline_ms.size() + 1) / 2);
 
-    int frames_split = 0;
+    FrameCounts frames_split;
     const ComparisonTiming probe = ProbeComparison(NumberedFrames(&frames_split), 10, rule);
     EXPECT_EQ(probe.samples.baseline_ms.size(), 10U);
     // The contended pairs the first look takes come with the probe, and state its interval.
@@ -158,8 +205,9 @@ TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
             probe);
 
     // The same frames, looks and pairs of each kind as one call; only the order of the first
-    // look's as-run and contended pairs differs, so their times do.
-    EXPECT_EQ(frames_split, frames_whole);
+    // look's as-run and contended pairs differs.
+    EXPECT_EQ(frames_split.frames, frames_whole.frames);
+    EXPECT_EQ(frames_split.contended, frames_whole.contended);
     EXPECT_EQ(looks_split, looks_whole);
     EXPECT_EQ(rest.samples.baseline_ms.size(), whole.samples.baseline_ms.size());
     EXPECT_EQ(rest.contended.baseline_ms.size(), whole.contended.baseline_ms.size());
@@ -168,10 +216,10 @@ TEST(FrameTimerTest, AProbeAndTheRestTakeThePairsAndLooksOfOneCall) {
 
     // Without contended pairs in the rule, a probe takes none.
     rule.contended_share = 0;
-    int frames_plain = 0;
+    FrameCounts frames_plain;
     EXPECT_TRUE(
             ProbeComparison(NumberedFrames(&frames_plain), 10, rule).contended.baseline_ms.empty());
-    EXPECT_EQ(frames_plain, 20);
+    EXPECT_EQ(frames_plain.frames, 20);
 }
 
 TEST(FrameTimerTest, PassFramesAlternateLikeThePairsAndKeepEachSidesMedians) {

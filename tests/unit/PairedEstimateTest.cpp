@@ -510,6 +510,124 @@ TEST(PairedEstimateTest, ContendedPairsFollowTheShareWithAnIntervalsMinimum) {
     EXPECT_EQ(ContendedPairsBeforeNextLook(200, 10, rule), 10);
 }
 
+TEST(PairedEstimateTest, OnlyAContendedIntervalHoldingTheAsRunOneBinds) {
+    const PairedEstimate as_run = EstimateWithInterval(40, -2.6, -2.4);
+    // Row 2 after 363 pairs: both ends of the stated interval are the contended interval's.
+    EXPECT_TRUE(ContendedIntervalBinds(as_run, EstimateWithInterval(182, -3.34, -1.77)));
+    // An end of the as-run interval at or beyond the contended one's: as-run pairs can move it.
+    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -2.5, -1.0)));
+    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -4.0, -2.5)));
+    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -2.6, -1.0)));
+    EXPECT_FALSE(ContendedIntervalBinds(as_run, as_run));
+    // No interval on either side: nothing binds.
+    EXPECT_FALSE(ContendedIntervalBinds(as_run, PairedEstimate{}));
+    EXPECT_FALSE(ContendedIntervalBinds(PairedEstimate{}, EstimateWithInterval(182, -3.3, -1.8)));
+}
+
+TEST(PairedEstimateTest, ALookOfContendedPairsAloneTakesWhatAnAsRunLookWouldUpToTheCap) {
+    const StoppingRule rule;  // batch 10, cap 400
+    EXPECT_EQ(ContendedPairsWhileBinding(10, rule), 10);
+    EXPECT_EQ(ContendedPairsWhileBinding(100, rule), 25);
+    EXPECT_EQ(ContendedPairsWhileBinding(380, rule), 20);
+    EXPECT_EQ(ContendedPairsWhileBinding(400, rule), 0);
+    EXPECT_EQ(ContendedPairsWhileBinding(0, rule), 10);
+}
+
+TEST(PairedEstimateTest, TheRulesPairCountsCountTheLargerStatesPairs) {
+    StoppingRule row;
+    row.boundaries_points = {1.75, 7.0};  // row 4's band
+    // 40 as-run pairs holding the band's edge: it goes on as before with 20 contended pairs, and
+    // stops at the bound once the contended pairs it took alone reach boundary_pairs.
+    const PairedEstimate holding = EstimateWithInterval(40, 6.9, 7.1);
+    EXPECT_EQ(DecideStopAcrossStates(holding, 20, row), StopDecision::kContinue);
+    EXPECT_EQ(DecideStopAcrossStates(holding, 96, row), StopDecision::kResolved);
+    // The cap counts them too, where the as-run pairs alone never reach it.
+    const PairedEstimate wide = EstimateWithInterval(40, -4.0, 1.0);
+    EXPECT_EQ(DecideStopAcrossStates(wide, 399, StoppingRule{}), StopDecision::kContinue);
+    EXPECT_EQ(DecideStopAcrossStates(wide, 400, StoppingRule{}), StopDecision::kCapped);
+    // With fewer contended pairs than as-run ones it is DecideStop.
+    EXPECT_EQ(DecideStopAcrossStates(holding, 20, row), DecideStop(holding, row));
+    EXPECT_EQ(DecideStopAcrossStates(EstimateWithInterval(96, 6.9, 7.1), 48, row),
+              DecideStop(EstimateWithInterval(96, 6.9, 7.1), row));
+}
+
+// `pairs` pairs whose frame-time ratio is `ratio` give or take up to `spread` (a fixed pattern
+// of five steps), the baseline at 10 ms.
+struct Samples {
+    std::vector<double> baseline;
+    std::vector<double> candidate;
+};
+Samples PairsOf(int pairs, double ratio, double spread) {
+    Samples out;
+    for (int i = 0; i < pairs; ++i) {
+        out.baseline.push_back(10.0);
+        out.candidate.push_back(10.0 * ratio * (1.0 + spread * ((i % 5) - 2) / 2.0));
+    }
+    return out;
+}
+
+TEST(PairedEstimateTest, TheProgressGuessCountsTheStatesPairsTheRuleWillTake) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    StoppingRule alone = rule;
+    alone.contended_share = 0;
+    // A steady 3% slower candidate as run, give or take 4% with its core shared: the contended
+    // interval holds the as-run one, and the looks to come take contended pairs alone.
+    const Samples as_run = PairsOf(20, 1.03, 0.004);
+    const Samples contended = PairsOf(10, 1.03, 0.04);
+    const PairedEstimate a = EstimatePaired(as_run.baseline, as_run.candidate);
+    const PairedEstimate c = EstimatePaired(contended.baseline, contended.candidate);
+    ASSERT_TRUE(ContendedIntervalBinds(a, c));
+    const PairedEstimate stated = AcrossHostStates(a, c);
+    ASSERT_EQ(DecideStopAcrossStates(stated, 10, rule), StopDecision::kContinue);
+    const ExpectedPairs binding =
+            PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
+                                      contended.candidate, stated, rule, 60);
+    EXPECT_EQ(binding.as_run, 20);
+    PairedEstimate by_contended = stated;
+    by_contended.pairs = 10;
+    EXPECT_EQ(binding.contended, PairsExpectedFromPairs(contended.baseline, contended.candidate,
+                                                        by_contended, alone, 60));
+    EXPECT_GT(binding.contended, 10);
+    // A probe's 10 as-run pairs count as the 20 its first look will have.
+    const Samples probe = PairsOf(10, 1.03, 0.004);
+    const Samples probe_c = PairsOf(10, 1.03, 0.04);
+    const PairedEstimate p = EstimatePaired(probe.baseline, probe.candidate);
+    const PairedEstimate pc = EstimatePaired(probe_c.baseline, probe_c.candidate);
+    ASSERT_TRUE(ContendedIntervalBinds(p, pc));
+    EXPECT_EQ(PairsExpectedAcrossStates(probe.baseline, probe.candidate, probe_c.baseline,
+                                        probe_c.candidate, AcrossHostStates(p, pc), rule, 60)
+                      .as_run,
+              20);
+
+    // The other way round, the as-run interval sets an end: the as-run guess, with the
+    // contended share beside it.
+    const Samples noisy = PairsOf(20, 1.03, 0.04);
+    const Samples steady = PairsOf(10, 1.03, 0.004);
+    const PairedEstimate n = EstimatePaired(noisy.baseline, noisy.candidate);
+    const PairedEstimate s = EstimatePaired(steady.baseline, steady.candidate);
+    ASSERT_FALSE(ContendedIntervalBinds(n, s));
+    const PairedEstimate stated_n = AcrossHostStates(n, s);
+    const ExpectedPairs as_run_bound = PairsExpectedAcrossStates(
+            noisy.baseline, noisy.candidate, steady.baseline, steady.candidate, stated_n, rule, 60);
+    const int guess = PairsExpectedFromPairs(noisy.baseline, noisy.candidate, stated_n, rule, 60);
+    EXPECT_EQ(as_run_bound.as_run, guess);
+    EXPECT_EQ(as_run_bound.contended, 10 + ContendedPairsBeforeNextLook(guess, 10, rule));
+
+    // When the rule stops now, the pairs so far.
+    const Samples settled = PairsOf(120, 1.03, 0.004);
+    const Samples settled_c = PairsOf(60, 1.03, 0.004);
+    const PairedEstimate done =
+            AcrossHostStates(EstimatePaired(settled.baseline, settled.candidate),
+                             EstimatePaired(settled_c.baseline, settled_c.candidate));
+    ASSERT_NE(DecideStopAcrossStates(done, 60, rule), StopDecision::kContinue);
+    const ExpectedPairs stopped =
+            PairsExpectedAcrossStates(settled.baseline, settled.candidate, settled_c.baseline,
+                                      settled_c.candidate, done, rule, 60);
+    EXPECT_EQ(stopped.as_run, 120);
+    EXPECT_EQ(stopped.contended, 60);
+}
+
 TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
     StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
     // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.

@@ -187,6 +187,32 @@ enum class StopDecision {
 /// max_pairs continues, at max_pairs it is capped.
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule);
 
+/// True when only contended pairs can narrow the interval AcrossHostStates states: both
+/// estimates are valid and the as-run interval lies strictly inside the contended one, so that
+/// both ends of the stated interval are the contended interval's. More as-run pairs would then
+/// narrow an interval that decides nothing.
+/// Why: with a competitor on its core a frame's time varies three to four times as much as
+/// without (per-pair standard deviation 3.5-5% against 1-1.7% in the main job's runs of
+/// 2026-11-28) and the contended pairs are a share of the as-run ones, so the contended interval
+/// is the wider one and sets both ends of the stated interval. A comparison held near a
+/// boundary by it used to take as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run
+/// and -2.6% [-3.34, -1.77] contended after 363 as-run pairs, and `open_sea`'s half-size
+/// reflection stopped at the cap undecided, its upper end -1.42% against the -1.5% margin, so one
+/// run chose it and the next did not. Never fails.
+bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended);
+
+/// How many contended pairs a look takes, with no as-run pairs, while ContendedIntervalBinds:
+/// as PairsBeforeNextLook counts as-run pairs (`rule.batch_pairs`, or a quarter of the pairs so
+/// far), up to `rule.max_pairs` contended pairs in all; 0 there. Never fails.
+int ContendedPairsWhileBinding(int contended_pairs, const StoppingRule& rule);
+
+/// DecideStop for the interval AcrossHostStates states after `contended_pairs` contended pairs:
+/// the rule's pair counts (its boundary clause's `boundary_pairs` and its cap `max_pairs`) count
+/// the larger of the two states' pairs, since a comparison whose contended interval binds takes
+/// contended pairs only (ContendedIntervalBinds). Never fails.
+StopDecision DecideStopAcrossStates(const PairedEstimate& stated, int contended_pairs,
+                                    const StoppingRule& rule);
+
 /// True when stopping now could give a verdict the next run would not: an end of the interval
 /// lies within `rule.boundary_standard_errors` standard errors of the direction margin it is
 /// compared with (the upper end with -kDirectionMarginPoints, the lower end with
@@ -250,6 +276,31 @@ int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
 int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
                            const std::vector<double>& candidate_ms, const PairedEstimate& stated,
                            const StoppingRule& rule, int fallback);
+
+/// The pairs of each state a comparison is expected to have when its rule stops.
+struct ExpectedPairs {
+    int as_run = 0;
+    int contended = 0;
+};
+
+/// The progress line's guess of both states' pairs at the stop, from the pairs so far (as run:
+/// `baseline_ms`, `candidate_ms`; with the core shared: `contended_baseline_ms`,
+/// `contended_candidate_ms`) and their estimates. While the contended interval holds the as-run
+/// one (ContendedIntervalBinds; at a probe, before the as-run pairs reach `rule.min_pairs`, too)
+/// the looks to come take contended pairs alone: the as-run pairs stay at least at
+/// `rule.min_pairs`, and the contended ones are PairsExpectedFromPairs's guess with the contended
+/// pairs in the as-run ones' place (the stated interval then narrows with them, and the rule
+/// counts them, DecideStopAcrossStates). Otherwise the as-run pairs are PairsExpectedFromPairs's
+/// guess and the contended ones their share of them (ContendedPairsBeforeNextLook). Never fewer
+/// than so far. Why: guessing the as-run pairs alone, with their contended share beside them,
+/// counted a contended-bound comparison's pairs one and a half times over; the progress line of
+/// the first main-job run after the change read 75% long 13 s in (2026-11-28). Never fails.
+ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
+                                        const std::vector<double>& candidate_ms,
+                                        const std::vector<double>& contended_baseline_ms,
+                                        const std::vector<double>& contended_candidate_ms,
+                                        const PairedEstimate& stated, const StoppingRule& rule,
+                                        int fallback);
 
 /// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
 /// boundaries aside: the pairs so far scaled by (half-width / resolution)^2, at least

@@ -131,9 +131,12 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
 /// frames of a pair lie milliseconds apart (drift on a shared machine cancels in their ratio).
 /// After each look's PairsBeforeNextLook pairs it takes ContendedPairsBeforeNextLook pairs,
 /// ordered the same way, with a base::CoreCompetitor sharing the calling thread's core, then
-/// looks at the stated interval (AcrossHostStates) and stops as `rule` says. `after_look` (may be
-/// empty) sees the timing so far (samples, estimates, decision) after every look. Never fails: a
-/// side whose frames cannot be timed makes the estimate's error say so.
+/// looks at the stated interval (AcrossHostStates) and stops as `rule` says
+/// (DecideStopAcrossStates). Once it has `rule.min_pairs` as-run pairs, a look whose contended
+/// interval holds the as-run one (ContendedIntervalBinds) takes ContendedPairsWhileBinding
+/// contended pairs instead, and no as-run pair: only they can narrow the stated interval.
+/// `after_look` (may be empty) sees the timing so far (samples, estimates, decision) after every
+/// look. Never fails: a side whose frames cannot be timed makes the estimate's error say so.
 ///
 /// `so_far` is where to go on from: a ProbeComparison's pairs (or nothing). The pairs, looks and
 /// decisions are then those one call from the start would take; only the time between the
