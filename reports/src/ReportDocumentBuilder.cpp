@@ -74,7 +74,8 @@ std::vector<std::pair<std::string, std::string>> MethodFacts(const ReportModel& 
             {"Resolution asked of each comparison (± points)", text(timing.resolution_points)},
             {"Pairs per comparison (min, max)",
              text(timing.min_pairs) + ", " + text(timing.max_pairs)},
-            {"Pairs with the core shared, per as-run pair", text(timing.contended_share)},
+            {"Pairs with the core shared, per as-run pair (at least)",
+             text(timing.contended_share)},
             {"Estimator", text(timing.estimator)},
             {"Timing method", text(settings.timing_method)},
             {"Compared on", ClockName(model.clock) + " time: " + model.inputs->clock_reason},
@@ -120,7 +121,8 @@ std::string TimingMethodText(const ReportModel& model) {
             "interval. Stopping there would give a verdict in one run and another in the next. "
             "An interval that holds an end of the magnitude band goes on past half the "
             "resolution, since an interval on the end decides no magnitude while more pairs may "
-            "still decide it, but only until {} pairs: a change that lies on the end took pairs "
+            "still decide it, but only until {} pairs (of the state, as run or with the core "
+            "shared, that took more): a change that lies on the end took pairs "
             "to the cap and still held it, and the band's edge, its verdict then, contradicts no "
             "other run. From that many pairs on, a comparison stops at the resolution unless an "
             "end of its interval lies near the direction margin or near an end of the band that "
@@ -171,7 +173,11 @@ std::string HostStatesText(const ReportModel& model) {
             "two states: as the machine runs, and, after each look's pairs, {:.2g} pairs per "
             "as-run pair (at least {}) while a thread of tidepool's own shares the rendering "
             "thread's core (both pinned to it), walking a {} MiB buffer without a pause the way "
-            "another job would, and the other cores stay free. The change stated is the as-run "
+            "another job would, and the other cores stay free. Those pairs vary more, so their "
+            "interval is usually the wider one: while it holds the as-run interval, a look takes "
+            "pairs with the core shared alone, since only they can narrow the interval stated "
+            "(the table's two pair counts show where each row's went). The change stated is the "
+            "as-run "
             "estimate; its interval runs from the lower end of the two states' 95% intervals to "
             "the higher, and the stopping rule and the verdicts use that interval, so a run on a "
             "quiet machine states an interval that reaches a busier state too. The table shows "
