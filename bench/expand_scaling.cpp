@@ -10,7 +10,7 @@
 //    - axes: 10 axes G0..G9 of 3 mutually exclusive values (30 defines, 3^10 = 59,049
 //      combinations); adjacent axes may pair value `a` only with `a` (36 `exclude` rules), so
 //      the valid variants are all-`a` plus every string over {b, c}: 1 + 2^10 = 1,025;
-//    - the shipped variants.yaml (157 valid of 24,598), and `tidepool --version`, which does no
+//    - the shipped variants.yaml (163 valid of 24,598), and `tidepool --version`, which does no
 //      expansion at all: what start-up alone costs.
 //  * Each run is the real binary (TIDEPOOL_BINARY, or argv[2]) started with posix_spawn, stdout
 //    read through a pipe, and reaped with wait4, whose rusage gives that child's own peak
