@@ -551,8 +551,8 @@ TEST(PairedEstimateTest, TheRulesPairCountsCountTheLargerStatesPairs) {
               DecideStop(EstimateWithInterval(96, 6.9, 7.1), row));
 }
 
-// `pairs` pairs whose frame-time ratio is `ratio` give or take up to `spread` (a fixed pattern
-// of five steps), the baseline at 10 ms.
+// Pairs whose frame-time ratio is `ratio` give or take up to `spread` (a fixed pattern of five
+// steps), the baseline at 10 ms.
 struct Samples {
     std::vector<double> baseline;
     std::vector<double> candidate;
@@ -566,66 +566,65 @@ Samples PairsOf(int pairs, double ratio, double spread) {
     return out;
 }
 
+// A comparison's pairs in both states, 3% slower, and what the progress guess makes of them.
+struct TwoStates {
+    Samples as_run;
+    Samples contended;
+    PairedEstimate stated;
+    bool binds = false;  // ContendedIntervalBinds
+
+    TwoStates(int as_run_pairs, double as_run_spread, int contended_pairs, double contended_spread)
+        : as_run(PairsOf(as_run_pairs, 1.03, as_run_spread)),
+          contended(PairsOf(contended_pairs, 1.03, contended_spread)) {
+        const PairedEstimate a = EstimatePaired(as_run.baseline, as_run.candidate);
+        const PairedEstimate c = EstimatePaired(contended.baseline, contended.candidate);
+        binds = ContendedIntervalBinds(a, c);
+        stated = AcrossHostStates(a, c);
+    }
+    ExpectedPairs Guess(const StoppingRule& rule) const {
+        return PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
+                                         contended.candidate, stated, rule, 60);
+    }
+};
+
 TEST(PairedEstimateTest, TheProgressGuessCountsTheStatesPairsTheRuleWillTake) {
     StoppingRule rule;
     rule.contended_share = 0.5;
     StoppingRule alone = rule;
     alone.contended_share = 0;
-    // A steady 3% slower candidate as run, give or take 4% with its core shared: the contended
-    // interval holds the as-run one, and the looks to come take contended pairs alone.
-    const Samples as_run = PairsOf(20, 1.03, 0.004);
-    const Samples contended = PairsOf(10, 1.03, 0.04);
-    const PairedEstimate a = EstimatePaired(as_run.baseline, as_run.candidate);
-    const PairedEstimate c = EstimatePaired(contended.baseline, contended.candidate);
-    ASSERT_TRUE(ContendedIntervalBinds(a, c));
-    const PairedEstimate stated = AcrossHostStates(a, c);
-    ASSERT_EQ(DecideStopAcrossStates(stated, 10, rule), StopDecision::kContinue);
-    const ExpectedPairs binding =
-            PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
-                                      contended.candidate, stated, rule, 60);
-    EXPECT_EQ(binding.as_run, 20);
-    PairedEstimate by_contended = stated;
+    // A steady candidate as run, give or take 4% with its core shared: the contended interval
+    // holds the as-run one, and the looks to come take contended pairs alone.
+    const TwoStates binding(20, 0.004, 10, 0.04);
+    ASSERT_TRUE(binding.binds);
+    ASSERT_EQ(DecideStopAcrossStates(binding.stated, 10, rule), StopDecision::kContinue);
+    EXPECT_EQ(binding.Guess(rule).as_run, 20);
+    PairedEstimate by_contended = binding.stated;
     by_contended.pairs = 10;
-    EXPECT_EQ(binding.contended, PairsExpectedFromPairs(contended.baseline, contended.candidate,
-                                                        by_contended, alone, 60));
-    EXPECT_GT(binding.contended, 10);
+    const int contended_guess = PairsExpectedFromPairs(
+            binding.contended.baseline, binding.contended.candidate, by_contended, alone, 60);
+    EXPECT_EQ(binding.Guess(rule).contended, contended_guess);
+    EXPECT_GT(contended_guess, 10);
     // A probe's 10 as-run pairs count as the 20 its first look will have.
-    const Samples probe = PairsOf(10, 1.03, 0.004);
-    const Samples probe_c = PairsOf(10, 1.03, 0.04);
-    const PairedEstimate p = EstimatePaired(probe.baseline, probe.candidate);
-    const PairedEstimate pc = EstimatePaired(probe_c.baseline, probe_c.candidate);
-    ASSERT_TRUE(ContendedIntervalBinds(p, pc));
-    EXPECT_EQ(PairsExpectedAcrossStates(probe.baseline, probe.candidate, probe_c.baseline,
-                                        probe_c.candidate, AcrossHostStates(p, pc), rule, 60)
-                      .as_run,
-              20);
+    const TwoStates probe(10, 0.004, 10, 0.04);
+    ASSERT_TRUE(probe.binds);
+    EXPECT_EQ(probe.Guess(rule).as_run, 20);
 
     // The other way round, the as-run interval sets an end: the as-run guess, with the
     // contended share beside it.
-    const Samples noisy = PairsOf(20, 1.03, 0.04);
-    const Samples steady = PairsOf(10, 1.03, 0.004);
-    const PairedEstimate n = EstimatePaired(noisy.baseline, noisy.candidate);
-    const PairedEstimate s = EstimatePaired(steady.baseline, steady.candidate);
-    ASSERT_FALSE(ContendedIntervalBinds(n, s));
-    const PairedEstimate stated_n = AcrossHostStates(n, s);
-    const ExpectedPairs as_run_bound = PairsExpectedAcrossStates(
-            noisy.baseline, noisy.candidate, steady.baseline, steady.candidate, stated_n, rule, 60);
-    const int guess = PairsExpectedFromPairs(noisy.baseline, noisy.candidate, stated_n, rule, 60);
-    EXPECT_EQ(as_run_bound.as_run, guess);
-    EXPECT_EQ(as_run_bound.contended, 10 + ContendedPairsBeforeNextLook(guess, 10, rule));
+    const TwoStates as_run_bound(20, 0.04, 10, 0.004);
+    ASSERT_FALSE(as_run_bound.binds);
+    const int guess =
+            PairsExpectedFromPairs(as_run_bound.as_run.baseline, as_run_bound.as_run.candidate,
+                                   as_run_bound.stated, rule, 60);
+    EXPECT_EQ(as_run_bound.Guess(rule).as_run, guess);
+    EXPECT_EQ(as_run_bound.Guess(rule).contended,
+              10 + ContendedPairsBeforeNextLook(guess, 10, rule));
 
     // When the rule stops now, the pairs so far.
-    const Samples settled = PairsOf(120, 1.03, 0.004);
-    const Samples settled_c = PairsOf(60, 1.03, 0.004);
-    const PairedEstimate done =
-            AcrossHostStates(EstimatePaired(settled.baseline, settled.candidate),
-                             EstimatePaired(settled_c.baseline, settled_c.candidate));
-    ASSERT_NE(DecideStopAcrossStates(done, 60, rule), StopDecision::kContinue);
-    const ExpectedPairs stopped =
-            PairsExpectedAcrossStates(settled.baseline, settled.candidate, settled_c.baseline,
-                                      settled_c.candidate, done, rule, 60);
-    EXPECT_EQ(stopped.as_run, 120);
-    EXPECT_EQ(stopped.contended, 60);
+    const TwoStates settled(120, 0.004, 60, 0.004);
+    ASSERT_NE(DecideStopAcrossStates(settled.stated, 60, rule), StopDecision::kContinue);
+    EXPECT_EQ(settled.Guess(rule).as_run, 120);
+    EXPECT_EQ(settled.Guess(rule).contended, 60);
 }
 
 TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
