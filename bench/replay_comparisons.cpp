@@ -91,8 +91,8 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
                 stops ? ExpectedPairs{n, m}
                       : PairsExpectedAcrossStates(First(c.baseline_ms, n), First(c.candidate_ms, n),
                                                   First(c.contended_baseline_ms, m),
-                                                  First(c.contended_candidate_ms, m), stated, rule,
-                                                  60);
+                                                  First(c.contended_candidate_ms, m), as_run,
+                                                  contended, stated, rule, 60);
         out.guesses.push_back(2.0 * (expected.as_run + expected.contended) + kOverheadFrames);
         out.stopped_at = n;
         out.contended_at_stop = m;

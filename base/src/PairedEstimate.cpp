@@ -436,32 +436,31 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
                                         const std::vector<double>& candidate_ms,
                                         const std::vector<double>& contended_baseline_ms,
                                         const std::vector<double>& contended_candidate_ms,
+                                        const PairedEstimate& as_run,
+                                        const PairedEstimate& contended,
                                         const PairedEstimate& stated, const StoppingRule& rule,
                                         int fallback) {
-    const int as_run = static_cast<int>(baseline_ms.size());
-    const int contended = static_cast<int>(contended_baseline_ms.size());
-    const PairedEstimate as_run_estimate = EstimatePaired(baseline_ms, candidate_ms);
-    const PairedEstimate contended_estimate =
-            EstimatePaired(contended_baseline_ms, contended_candidate_ms);
-    if (ContendedIntervalBinds(as_run_estimate, contended_estimate)) {
-        if (as_run >= rule.min_pairs &&
-            DecideStopAcrossStates(stated, contended, rule) != StopDecision::kContinue) {
-            return {as_run, contended};
+    const int as_run_pairs = static_cast<int>(baseline_ms.size());
+    const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
+    if (ContendedIntervalBinds(as_run, contended)) {
+        if (as_run_pairs >= rule.min_pairs &&
+            DecideStopAcrossStates(stated, contended_pairs, rule) != StopDecision::kContinue) {
+            return {as_run_pairs, contended_pairs};
         }
         // The stated interval as the contended pairs narrow it: their count in the as-run
         // pairs' place, and their own spread with no contended share beside them.
         PairedEstimate by_contended = stated;
-        by_contended.pairs = contended;
+        by_contended.pairs = contended_pairs;
         StoppingRule alone = rule;
         alone.contended_share = 0;
         const int guess = PairsExpectedFromPairs(contended_baseline_ms, contended_candidate_ms,
                                                  by_contended, alone, fallback);
-        return {std::max(as_run, rule.min_pairs), std::max(guess, contended)};
+        return {std::max(as_run_pairs, rule.min_pairs), std::max(guess, contended_pairs)};
     }
     const int guess = PairsExpectedFromPairs(baseline_ms, candidate_ms, stated, rule, fallback);
-    const int guessed_as_run = std::max(guess, as_run);
+    const int guessed_as_run = std::max(guess, as_run_pairs);
     return {guessed_as_run,
-            contended + ContendedPairsBeforeNextLook(guessed_as_run, contended, rule)};
+            contended_pairs + ContendedPairsBeforeNextLook(guessed_as_run, contended_pairs, rule)};
 }
 
 const char* StopDecisionName(StopDecision decision) {

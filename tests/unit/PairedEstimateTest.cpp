@@ -570,20 +570,22 @@ Samples PairsOf(int pairs, double ratio, double spread) {
 struct TwoStates {
     Samples as_run;
     Samples contended;
+    PairedEstimate as_run_estimate;
+    PairedEstimate contended_estimate;
     PairedEstimate stated;
     bool binds = false;  // ContendedIntervalBinds
 
     TwoStates(int as_run_pairs, double as_run_spread, int contended_pairs, double contended_spread)
         : as_run(PairsOf(as_run_pairs, 1.03, as_run_spread)),
-          contended(PairsOf(contended_pairs, 1.03, contended_spread)) {
-        const PairedEstimate a = EstimatePaired(as_run.baseline, as_run.candidate);
-        const PairedEstimate c = EstimatePaired(contended.baseline, contended.candidate);
-        binds = ContendedIntervalBinds(a, c);
-        stated = AcrossHostStates(a, c);
-    }
+          contended(PairsOf(contended_pairs, 1.03, contended_spread)),
+          as_run_estimate(EstimatePaired(as_run.baseline, as_run.candidate)),
+          contended_estimate(EstimatePaired(contended.baseline, contended.candidate)),
+          stated(AcrossHostStates(as_run_estimate, contended_estimate)),
+          binds(ContendedIntervalBinds(as_run_estimate, contended_estimate)) {}
     ExpectedPairs Guess(const StoppingRule& rule) const {
         return PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
-                                         contended.candidate, stated, rule, 60);
+                                         contended.candidate, as_run_estimate, contended_estimate,
+                                         stated, rule, 60);
     }
 };
 

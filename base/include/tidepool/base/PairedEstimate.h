@@ -195,10 +195,8 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 /// without (per-pair standard deviation 3.5-5% against 1-1.7% in the main job's runs of
 /// 2026-11-28) and the contended pairs are a share of the as-run ones, so the contended interval
 /// is the wider one and sets both ends of the stated interval. A comparison held near a
-/// boundary by it used to take as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run
-/// and -2.6% [-3.34, -1.77] contended after 363 as-run pairs, and `open_sea`'s half-size
-/// reflection stopped at the cap undecided, its upper end -1.42% against the -1.5% margin, so one
-/// run chose it and the next did not. Never fails.
+/// boundary by it took as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run and
+/// -2.6% [-3.34, -1.77] contended after 363 as-run pairs. Never fails.
 bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended);
 
 /// How many contended pairs a look takes, with no as-run pairs, while ContendedIntervalBinds:
@@ -285,7 +283,8 @@ struct ExpectedPairs {
 
 /// The progress line's guess of both states' pairs at the stop, from the pairs so far (as run:
 /// `baseline_ms`, `candidate_ms`; with the core shared: `contended_baseline_ms`,
-/// `contended_candidate_ms`) and their estimates. While the contended interval holds the as-run
+/// `contended_candidate_ms`), their estimates (`as_run`, `contended`) and the interval they
+/// state (`stated`, AcrossHostStates). While the contended interval holds the as-run
 /// one (ContendedIntervalBinds; at a probe, before the as-run pairs reach `rule.min_pairs`, too)
 /// the looks to come take contended pairs alone: the as-run pairs stay at least at
 /// `rule.min_pairs`, and the contended ones are PairsExpectedFromPairs's guess with the contended
@@ -299,6 +298,8 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
                                         const std::vector<double>& candidate_ms,
                                         const std::vector<double>& contended_baseline_ms,
                                         const std::vector<double>& contended_candidate_ms,
+                                        const PairedEstimate& as_run,
+                                        const PairedEstimate& contended,
                                         const PairedEstimate& stated, const StoppingRule& rule,
                                         int fallback);
 
