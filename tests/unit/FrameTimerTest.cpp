@@ -152,12 +152,11 @@ TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     EXPECT_EQ(t.estimate.pairs, 30);
 }
 
-// A side whose n-th frame's time depends only on n: the candidate 5% slower, with +/-8% noise,
-// enough that the rule needs more than its minimum of pairs.
-// Frames of a pseudo-random time (±8%), the candidate 5% slower; the contended frames twice as
-// noisy. The k-th as-run frame, and the k-th contended one, take the same time whatever came
-// between them, so that a comparison split into a probe and the rest sees the same samples as
-// one call, and looks at the same estimates.
+// Frames of a pseudo-random time (±8%, enough that the rule needs more than its minimum of
+// pairs), the candidate 5% slower; the contended frames twice as noisy. The k-th as-run frame,
+// and the k-th contended one, take the same time whatever came between them, so that a
+// comparison split into a probe and the rest sees the same samples as one call, and looks at the
+// same estimates.
 TimeSide NumberedFrames(FrameCounts* counts) {
     return [counts](bool candidate) {
         counts->frames += 1;

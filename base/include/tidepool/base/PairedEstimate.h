@@ -191,10 +191,10 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 /// estimates are valid and the as-run interval lies strictly inside the contended one, so that
 /// both ends of the stated interval are the contended interval's. More as-run pairs would then
 /// narrow an interval that decides nothing.
-/// Why: with a competitor on its core a frame's time varies three to four times as much as
-/// without (per-pair standard deviation 3.5-5% against 1-1.7% in the main job's runs of
-/// 2026-11-28) and the contended pairs are a share of the as-run ones, so the contended interval
-/// is the wider one and sets both ends of the stated interval. A comparison held near a
+/// Why: with a competitor on its core a frame's time varies two to five times as much as
+/// without (per-pair standard deviation 3-5% against 1-1.7% in the longest comparisons of a main
+/// job run of 2026-11-28) and the contended pairs are a share of the as-run ones, so the contended
+/// interval is the wider one and sets both ends of the stated interval. A comparison held near a
 /// boundary by it took as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run and
 /// -2.6% [-3.34, -1.77] contended after 363 as-run pairs. Never fails.
 bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended);
