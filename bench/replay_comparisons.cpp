@@ -92,7 +92,7 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
                       : PairsExpectedAcrossStates(First(c.baseline_ms, n), First(c.candidate_ms, n),
                                                   First(c.contended_baseline_ms, m),
                                                   First(c.contended_candidate_ms, m), as_run,
-                                                  contended, stated, rule, 60);
+                                                  contended, rule, 60);
         out.guesses.push_back(2.0 * (expected.as_run + expected.contended) + kOverheadFrames);
         out.stopped_at = n;
         out.contended_at_stop = m;

@@ -437,9 +437,9 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
                                         const std::vector<double>& contended_baseline_ms,
                                         const std::vector<double>& contended_candidate_ms,
                                         const PairedEstimate& as_run,
-                                        const PairedEstimate& contended,
-                                        const PairedEstimate& stated, const StoppingRule& rule,
+                                        const PairedEstimate& contended, const StoppingRule& rule,
                                         int fallback) {
+    const PairedEstimate stated = AcrossHostStates(as_run, contended);
     const int as_run_pairs = static_cast<int>(baseline_ms.size());
     const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
     if (ContendedIntervalBinds(as_run, contended)) {

@@ -194,7 +194,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             const base::ExpectedPairs expected = base::PairsExpectedAcrossStates(
                     so_far.samples.baseline_ms, so_far.samples.candidate_ms,
                     so_far.contended.baseline_ms, so_far.contended.candidate_ms, so_far.estimate,
-                    so_far.contended_estimate, so_far.stated, rule, kInitialPairGuess);
+                    so_far.contended_estimate, rule, kInitialPairGuess);
             const long expected_frames =
                     2L * (expected.as_run + expected.contended) + warmup_frames + per_pass_frames;
             // After the last look, the per-pass frames are still to come.

@@ -585,7 +585,7 @@ struct TwoStates {
     ExpectedPairs Guess(const StoppingRule& rule) const {
         return PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
                                          contended.candidate, as_run_estimate, contended_estimate,
-                                         stated, rule, 60);
+                                         rule, 60);
     }
 };
 

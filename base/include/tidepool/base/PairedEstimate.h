@@ -283,8 +283,8 @@ struct ExpectedPairs {
 
 /// The progress line's guess of both states' pairs at the stop, from the pairs so far (as run:
 /// `baseline_ms`, `candidate_ms`; with the core shared: `contended_baseline_ms`,
-/// `contended_candidate_ms`), their estimates (`as_run`, `contended`) and the interval they
-/// state (`stated`, AcrossHostStates). While the contended interval holds the as-run
+/// `contended_candidate_ms`) and their estimates (`as_run`, `contended`; the interval they
+/// state is AcrossHostStates's). While the contended interval holds the as-run
 /// one (ContendedIntervalBinds; at a probe, before the as-run pairs reach `rule.min_pairs`, too)
 /// the looks to come take contended pairs alone: the as-run pairs stay at least at
 /// `rule.min_pairs`, and the contended ones are PairsExpectedFromPairs's guess with the contended
@@ -299,8 +299,7 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
                                         const std::vector<double>& contended_baseline_ms,
                                         const std::vector<double>& contended_candidate_ms,
                                         const PairedEstimate& as_run,
-                                        const PairedEstimate& contended,
-                                        const PairedEstimate& stated, const StoppingRule& rule,
+                                        const PairedEstimate& contended, const StoppingRule& rule,
                                         int fallback);
 
 /// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
