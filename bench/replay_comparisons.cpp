@@ -8,9 +8,9 @@
 //  * Each comparison's recorded pairs, as-run and contended, are taken in the order the run took
 //    them: a probe of kProbePairs as-run pairs and the contended pairs its first look takes,
 //    then the looks of base::PairsBeforeNextLook, each followed by its contended pairs
-//    (base::ContendedPairsBeforeNextLook), or, while the contended interval holds the as-run
-//    one (base::ContendedIntervalBinds), of base::ContendedPairsWhileBinding contended pairs
-//    alone; each look decides by base::DecideStopAcrossStates. The rule is the one built now
+//    (base::ContendedPairsBeforeNextLook), or, while contended pairs narrow the stated
+//    interval more (base::ContendedPairsNarrowMore), of base::ContendedPairsForLook contended
+//    pairs alone; each look decides by base::DecideStopAcrossStates. The rule is the one built now
 //    (base::StoppingRule's defaults) with the file's resolution, pair counts, contended share and
 //    boundary clauses (the defaults where an older file has none), and each whitepaper row's
 //    magnitude band (report::ComparedPresetPairs). A comparison whose recording ends before the
@@ -100,8 +100,8 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
             break;
         }
         probe = false;
-        if (n >= rule.min_pairs && ContendedIntervalBinds(as_run, contended)) {
-            const int more = ContendedPairsWhileBinding(m, rule);
+        if (n >= rule.min_pairs && ContendedPairsNarrowMore(as_run, contended)) {
+            const int more = ContendedPairsForLook(m, rule);
             if (more <= 0) {
                 break;
             }

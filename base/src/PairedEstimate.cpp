@@ -155,12 +155,20 @@ int ContendedPairsBeforeNextLook(int as_run_pairs, int contended_pairs, const St
     return static_cast<int>(std::max(0.0, target - contended_pairs));
 }
 
-bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended) {
-    return as_run.Valid() && contended.Valid() && contended.change_low < as_run.change_low &&
-           as_run.change_high < contended.change_high;
+bool ContendedPairsNarrowMore(const PairedEstimate& as_run, const PairedEstimate& contended) {
+    if (!as_run.Valid() || !contended.Valid()) {
+        return false;
+    }
+    const bool sets_low = contended.change_low < as_run.change_low;
+    const bool sets_high = as_run.change_high < contended.change_high;
+    if (sets_low && sets_high) {
+        return true;
+    }
+    return (sets_low || sets_high) &&
+           contended.HalfWidthPoints() / contended.pairs > as_run.HalfWidthPoints() / as_run.pairs;
 }
 
-int ContendedPairsWhileBinding(int contended_pairs, const StoppingRule& rule) {
+int ContendedPairsForLook(int contended_pairs, const StoppingRule& rule) {
     const int so_far = std::max(contended_pairs, 0);
     const int target = so_far + std::max(rule.batch_pairs, so_far / 4);
     return std::max(0, std::min(target, rule.max_pairs) - so_far);
@@ -442,7 +450,7 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
     const PairedEstimate stated = AcrossHostStates(as_run, contended);
     const int as_run_pairs = static_cast<int>(baseline_ms.size());
     const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
-    if (ContendedIntervalBinds(as_run, contended)) {
+    if (ContendedPairsNarrowMore(as_run, contended)) {
         if (as_run_pairs >= rule.min_pairs &&
             DecideStopAcrossStates(stated, contended_pairs, rule) != StopDecision::kContinue) {
             return {as_run_pairs, contended_pairs};

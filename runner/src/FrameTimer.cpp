@@ -206,14 +206,14 @@ ComparisonTiming TimeComparison(
     for (;;) {
         const int as_run = static_cast<int>(out.samples.baseline_ms.size());
         const int contended = static_cast<int>(out.contended.baseline_ms.size());
-        // Each look's pairs go where they can narrow the stated interval: to the contended
-        // state alone while its interval holds the as-run one (base::ContendedIntervalBinds),
-        // otherwise to the as-run state with the contended share beside them.
+        // Each look's pairs go where they narrow the stated interval more: to the contended
+        // state alone while its pairs do (base::ContendedPairsNarrowMore), otherwise to the
+        // as-run state with the contended share beside them.
         int taken = 0;
         if (as_run >= rule.min_pairs &&
-            base::ContendedIntervalBinds(out.estimate, out.contended_estimate)) {
+            base::ContendedPairsNarrowMore(out.estimate, out.contended_estimate)) {
             const base::CoreCompetitor competitor;
-            taken = base::ContendedPairsWhileBinding(contended, rule);
+            taken = base::ContendedPairsForLook(contended, rule);
             for (int k = 0; k < taken; ++k) {
                 TakePair(time_side, out.contended);
             }

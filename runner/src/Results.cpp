@@ -203,10 +203,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // stops on: the as-run pairs' own interval, narrower, put the comparisons still
             // waiting at 0.3 to 0.9 times (median 0.44) the mean pairs the comparisons then
             // took, over 16 main-job halves of 2026-11-27 and 28; the stated one at 0.5 to 1.3
-            // (median 0.72), with kBoundaryAllowance. While the contended interval holds the
-            // as-run one, it narrows with the contended pairs alone (base::ContendedIntervalBinds).
+            // (median 0.72), with kBoundaryAllowance. While contended pairs narrow it more, it
+            // narrows with the contended pairs alone (base::ContendedPairsNarrowMore).
             long resolution_frames = pair_frames(base::PairsForResolution(so_far.stated, rule));
-            if (base::ContendedIntervalBinds(so_far.estimate, so_far.contended_estimate)) {
+            if (base::ContendedPairsNarrowMore(so_far.estimate, so_far.contended_estimate)) {
                 base::PairedEstimate by_contended = so_far.stated;
                 by_contended.pairs = static_cast<int>(so_far.contended.baseline_ms.size());
                 resolution_frames =
@@ -418,7 +418,7 @@ stagefiles::ResultsSettings ToSettings(const RunResults& results) {
             "it); each configuration gets coarse_frames frames on its own; each comparison is "
             "timed in pairs of frames rendered back to back on one thread, the side going first "
             "alternating, as the machine runs and (at least timing.contended_share of them, more "
-            "while their interval holds the as-run one) with a competing thread on the "
+            "while they narrow the stated interval more) with a competing thread on the "
             "rendering thread's core, until the interval spanning both "
             "states' 95% Wilcoxon intervals of the Hodges-Lehmann ratio is as narrow as "
             "timing.resolution_points or timing.max_pairs is reached";

@@ -81,7 +81,7 @@ TEST(ResultsGlTest, ProgressCountsAComparisonsPairsWarmUpAndPerPassFramesAndEnds
     options.coarse_frames = 2;
     options.comparisons = {{"fog", 0, 1}};
     // Out of reach: the comparison takes its probe, then pairs up to the cap of 30 in one state
-    // (as run, or with the core shared where that interval holds the as-run one).
+    // (as run, or with the core shared where those pairs narrow the stated interval more).
     options.rule.resolution_points = 0.001;
     options.rule.min_pairs = 20;
     options.rule.max_pairs = 30;

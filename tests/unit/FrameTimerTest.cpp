@@ -139,6 +139,37 @@ TEST(FrameTimerTest, WhileTheContendedIntervalHoldsTheAsRunOneALookTakesContende
     EXPECT_LE(t.stated.HalfWidthPoints(), rule.resolution_points);
 }
 
+TEST(FrameTimerTest, WhereContentionMovesTheChangeALookTakesContendedPairsWhileTheyNarrowMore) {
+    FrameCounts counts;
+    int looks = 0;
+    base::StoppingRule rule;
+    rule.contended_share = 0.5;
+    // As run the candidate is a steady 10% slower; with the core shared 7% slower give or take
+    // 2%: the contended interval lies below the as-run one and sets the stated interval's lower
+    // end only, and it is the wider per pair, so the looks after the first take contended pairs.
+    const TimeSide side = [&](bool candidate) {
+        counts.frames += 1;
+        const bool busy = ThreadsNow() > counts.alone;
+        const int k = busy ? ++counts.contended : ++counts.as_run;
+        const double ratio = busy ? 1.07 * (1.0 + 0.01 * (((k / 2) % 5) - 2.0))
+                                  : 1.10 * (1.0 + 0.0005 * ((k / 2) % 3));
+        return FrameTime{candidate ? 10.0 * ratio : 10.0, 0.0};
+    };
+    const ComparisonTiming t = TimeComparison(side, rule, [&](const ComparisonTiming& so_far) {
+        ++looks;
+        EXPECT_EQ(so_far.estimate.pairs, rule.min_pairs);
+        // The contended interval sets the upper end only (+ = faster), not the lower one.
+        EXPECT_GT(so_far.contended_estimate.change_high, so_far.estimate.change_high);
+        EXPECT_GT(so_far.contended_estimate.change_low, so_far.estimate.change_low);
+    });
+    EXPECT_EQ(t.decision, base::StopDecision::kResolved);
+    EXPECT_GT(looks, 1);
+    EXPECT_EQ(t.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+    EXPECT_GT(t.contended.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
+    EXPECT_EQ(counts.contended, 2 * static_cast<int>(t.contended.baseline_ms.size()));
+    EXPECT_LE(t.stated.HalfWidthPoints(), rule.resolution_points);
+}
+
 TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
     std::uint64_t state = 12345;
     const TimeSide side = [&](bool) {

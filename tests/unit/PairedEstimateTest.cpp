@@ -510,27 +510,37 @@ TEST(PairedEstimateTest, ContendedPairsFollowTheShareWithAnIntervalsMinimum) {
     EXPECT_EQ(ContendedPairsBeforeNextLook(200, 10, rule), 10);
 }
 
-TEST(PairedEstimateTest, OnlyAContendedIntervalHoldingTheAsRunOneBinds) {
+TEST(PairedEstimateTest, ContendedPairsNarrowMoreWhereTheirIntervalSetsTheEndThatNarrowsFaster) {
     const PairedEstimate as_run = EstimateWithInterval(40, -2.6, -2.4);
     // Row 2 after 363 pairs: both ends of the stated interval are the contended interval's.
-    EXPECT_TRUE(ContendedIntervalBinds(as_run, EstimateWithInterval(182, -3.34, -1.77)));
-    // An end of the as-run interval at or beyond the contended one's: as-run pairs can move it.
-    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -2.5, -1.0)));
-    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -4.0, -2.5)));
-    EXPECT_FALSE(ContendedIntervalBinds(as_run, EstimateWithInterval(20, -2.6, -1.0)));
-    EXPECT_FALSE(ContendedIntervalBinds(as_run, as_run));
-    // No interval on either side: nothing binds.
-    EXPECT_FALSE(ContendedIntervalBinds(as_run, PairedEstimate{}));
-    EXPECT_FALSE(ContendedIntervalBinds(PairedEstimate{}, EstimateWithInterval(182, -3.3, -1.8)));
+    EXPECT_TRUE(ContendedPairsNarrowMore(as_run, EstimateWithInterval(182, -3.34, -1.77)));
+    // One end each, the contended one the wider per pair (0.75 / 20 against 0.1 / 40).
+    EXPECT_TRUE(ContendedPairsNarrowMore(as_run, EstimateWithInterval(20, -2.5, -1.0)));
+    EXPECT_TRUE(ContendedPairsNarrowMore(as_run, EstimateWithInterval(20, -4.0, -2.5)));
+    EXPECT_TRUE(ContendedPairsNarrowMore(as_run, EstimateWithInterval(20, -2.6, -1.0)));
+    // open_sea's half-size reflection beside two `yes` (2026-11-28): the contended interval sets
+    // the upper end, the one the planner's margin decides on, at 0.0038 points per pair against
+    // the as-run lower end's 0.0009.
+    EXPECT_TRUE(ContendedPairsNarrowMore(EstimateWithInterval(400, -3.17, -2.48),
+                                         EstimateWithInterval(200, -2.97, -1.44)));
+    // One end each, the as-run one the wider per pair (1.5 / 20 against 1.1 / 200).
+    EXPECT_FALSE(ContendedPairsNarrowMore(EstimateWithInterval(20, -4.0, -1.0),
+                                          EstimateWithInterval(200, -3.0, -0.8)));
+    // The contended interval inside the as-run one, or equal to it: it sets no end.
+    EXPECT_FALSE(ContendedPairsNarrowMore(as_run, EstimateWithInterval(20, -2.55, -2.45)));
+    EXPECT_FALSE(ContendedPairsNarrowMore(as_run, as_run));
+    // No interval on either side: as-run pairs.
+    EXPECT_FALSE(ContendedPairsNarrowMore(as_run, PairedEstimate{}));
+    EXPECT_FALSE(ContendedPairsNarrowMore(PairedEstimate{}, EstimateWithInterval(182, -3.3, -1.8)));
 }
 
 TEST(PairedEstimateTest, ALookOfContendedPairsAloneTakesWhatAnAsRunLookWouldUpToTheCap) {
     const StoppingRule rule;  // batch 10, cap 400
-    EXPECT_EQ(ContendedPairsWhileBinding(10, rule), 10);
-    EXPECT_EQ(ContendedPairsWhileBinding(100, rule), 25);
-    EXPECT_EQ(ContendedPairsWhileBinding(380, rule), 20);
-    EXPECT_EQ(ContendedPairsWhileBinding(400, rule), 0);
-    EXPECT_EQ(ContendedPairsWhileBinding(0, rule), 10);
+    EXPECT_EQ(ContendedPairsForLook(10, rule), 10);
+    EXPECT_EQ(ContendedPairsForLook(100, rule), 25);
+    EXPECT_EQ(ContendedPairsForLook(380, rule), 20);
+    EXPECT_EQ(ContendedPairsForLook(400, rule), 0);
+    EXPECT_EQ(ContendedPairsForLook(0, rule), 10);
 }
 
 TEST(PairedEstimateTest, TheRulesPairCountsCountTheLargerStatesPairs) {
@@ -573,7 +583,7 @@ struct TwoStates {
     PairedEstimate as_run_estimate;
     PairedEstimate contended_estimate;
     PairedEstimate stated;
-    bool binds = false;  // ContendedIntervalBinds
+    bool binds = false;  // ContendedPairsNarrowMore
 
     TwoStates(int as_run_pairs, double as_run_spread, int contended_pairs, double contended_spread)
         : as_run(PairsOf(as_run_pairs, 1.03, as_run_spread)),
@@ -581,7 +591,7 @@ struct TwoStates {
           as_run_estimate(EstimatePaired(as_run.baseline, as_run.candidate)),
           contended_estimate(EstimatePaired(contended.baseline, contended.candidate)),
           stated(AcrossHostStates(as_run_estimate, contended_estimate)),
-          binds(ContendedIntervalBinds(as_run_estimate, contended_estimate)) {}
+          binds(ContendedPairsNarrowMore(as_run_estimate, contended_estimate)) {}
     ExpectedPairs Guess(const StoppingRule& rule) const {
         return PairsExpectedAcrossStates(as_run.baseline, as_run.candidate, contended.baseline,
                                          contended.candidate, as_run_estimate, contended_estimate,

@@ -187,27 +187,32 @@ enum class StopDecision {
 /// max_pairs continues, at max_pairs it is capped.
 StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule);
 
-/// True when only contended pairs can narrow the interval AcrossHostStates states: both
-/// estimates are valid and the as-run interval lies strictly inside the contended one, so that
-/// both ends of the stated interval are the contended interval's. More as-run pairs would then
-/// narrow an interval that decides nothing.
+/// True when a look's pairs narrow the interval AcrossHostStates states more if taken with the
+/// core shared than as the machine runs. Both estimates must be valid, and the contended interval
+/// must set an end of the stated one: both ends (the as-run interval lies strictly inside it), or
+/// one end while its half-width per pair is the larger of the two states' (by the square-root law
+/// an end moves in by about half-width / (2 pairs) for each pair its state adds).
 /// Why: with a competitor on its core a frame's time varies two to five times as much as
 /// without (per-pair standard deviation 3-5% against 1-1.7% in the longest comparisons of a main
 /// job run of 2026-11-28) and the contended pairs are a share of the as-run ones, so the contended
-/// interval is the wider one and sets both ends of the stated interval. A comparison held near a
-/// boundary by it took as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run and
-/// -2.6% [-3.34, -1.77] contended after 363 as-run pairs. Never fails.
-bool ContendedIntervalBinds(const PairedEstimate& as_run, const PairedEstimate& contended);
+/// interval is the wider one and sets an end of the stated interval, often both. A comparison held
+/// near a boundary by it took as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run and
+/// -2.6% [-3.34, -1.77] contended after 363 as-run pairs. Where contention moves the change, the
+/// contended interval sets one end only, and that was the one deciding: the planner's half-size
+/// reflection for `open_sea`, beside two `yes`, read -2.8% [-3.17, -2.48] after 400 as-run pairs
+/// and -2.2% [-2.97, -1.44] after 200 contended ones, so the plan kept the full reflection where
+/// the quiet runs chose the half size (2026-11-28). Never fails.
+bool ContendedPairsNarrowMore(const PairedEstimate& as_run, const PairedEstimate& contended);
 
-/// How many contended pairs a look takes, with no as-run pairs, while ContendedIntervalBinds:
+/// How many contended pairs a look takes, with no as-run pairs, while ContendedPairsNarrowMore:
 /// as PairsBeforeNextLook counts as-run pairs (`rule.batch_pairs`, or a quarter of the pairs so
 /// far), up to `rule.max_pairs` contended pairs in all; 0 there. Never fails.
-int ContendedPairsWhileBinding(int contended_pairs, const StoppingRule& rule);
+int ContendedPairsForLook(int contended_pairs, const StoppingRule& rule);
 
 /// DecideStop for the interval AcrossHostStates states after `contended_pairs` contended pairs:
 /// the rule's pair counts (its boundary clause's `boundary_pairs` and its cap `max_pairs`) count
-/// the larger of the two states' pairs, since a comparison whose contended interval binds takes
-/// contended pairs only (ContendedIntervalBinds). Never fails.
+/// the larger of the two states' pairs, since a look at which contended pairs narrow the stated
+/// interval more takes contended pairs only (ContendedPairsNarrowMore). Never fails.
 StopDecision DecideStopAcrossStates(const PairedEstimate& stated, int contended_pairs,
                                     const StoppingRule& rule);
 
@@ -284,8 +289,8 @@ struct ExpectedPairs {
 /// The progress line's guess of both states' pairs at the stop, from the pairs so far (as run:
 /// `baseline_ms`, `candidate_ms`; with the core shared: `contended_baseline_ms`,
 /// `contended_candidate_ms`) and their estimates (`as_run`, `contended`; the interval they
-/// state is AcrossHostStates's). While the contended interval holds the as-run
-/// one (ContendedIntervalBinds; at a probe, before the as-run pairs reach `rule.min_pairs`, too)
+/// state is AcrossHostStates's). While contended pairs narrow that interval more
+/// (ContendedPairsNarrowMore; at a probe, before the as-run pairs reach `rule.min_pairs`, too)
 /// the looks to come take contended pairs alone: the as-run pairs stay at least at
 /// `rule.min_pairs`, and the contended ones are PairsExpectedFromPairs's guess with the contended
 /// pairs in the as-run ones' place (the stated interval then narrows with them, and the rule

@@ -132,9 +132,9 @@ void TimePassesInPairs(const TimeSidePasses& time_side, int pairs, ComparisonTim
 /// After each look's PairsBeforeNextLook pairs it takes ContendedPairsBeforeNextLook pairs,
 /// ordered the same way, with a base::CoreCompetitor sharing the calling thread's core, then
 /// looks at the stated interval (AcrossHostStates) and stops as `rule` says
-/// (DecideStopAcrossStates). Once it has `rule.min_pairs` as-run pairs, a look whose contended
-/// interval holds the as-run one (ContendedIntervalBinds) takes ContendedPairsWhileBinding
-/// contended pairs instead, and no as-run pair: only they can narrow the stated interval.
+/// (DecideStopAcrossStates). Once it has `rule.min_pairs` as-run pairs, a look at which
+/// contended pairs narrow the stated interval more (ContendedPairsNarrowMore) takes
+/// ContendedPairsForLook contended pairs instead, and no as-run pair.
 /// `after_look` (may be empty) sees the timing so far (samples, estimates, decision) after every
 /// look. Never fails: a side whose frames cannot be timed makes the estimate's error say so.
 ///
