@@ -71,11 +71,12 @@ int RunPlan(PlanCommandOptions options) {
         !ParseBackendOption(options.backend, &request.backend)) {
         return kExitUsage;
     }
-    if (!(request.resolution > 0 && request.resolution <= 50) || request.threads < 0 ||
+    if (!(request.resolution > 0 && request.resolution <= 50) ||
+        !(request.contended_share >= 0 && request.contended_share <= 4) || request.threads < 0 ||
         request.threads > 64) {
         std::fprintf(stderr,
                      "error: --resolution must be above 0 and at most 50 percent points, "
-                     "--threads between 0 and 64\n");
+                     "--contended-share between 0 and 4, --threads between 0 and 64\n");
         return kExitUsage;
     }
     if (request.all == !request.scenes.empty()) {
@@ -116,6 +117,11 @@ void RegisterPlanCommands(CLI::App& app, int& exit_code) {
     plan->add_option("--resolution", options->request.resolution,
                      "time each candidate against the full effect, pair by pair, until its 95% "
                      "interval is this narrow (half-width, percent points)")
+            ->capture_default_str();
+    plan->add_option("--contended-share", options->request.contended_share,
+                     "pairs of frames timed with a competing thread on the rendering thread's "
+                     "core, per pair timed as the machine runs; each candidate's interval spans "
+                     "both (0: none)")
             ->capture_default_str();
     plan->add_option("--backend", options->backend, "auto (EGL, then OSMesa), egl or osmesa")
             ->capture_default_str();

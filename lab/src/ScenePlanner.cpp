@@ -323,6 +323,7 @@ base::StoppingRule CandidateRule(const base::StoppingRule& rule, bool misses_tar
     base::StoppingRule out = rule;
     if (misses_target) {
         out.max_pairs = std::min(rule.max_pairs, rule.min_pairs);
+        out.contended_share = 0;
     }
     return out;
 }
@@ -782,7 +783,7 @@ stagefiles::PlansFile PlansFileFor(const std::vector<ScenePlan>& plans,
     stagefiles::PlansFile file;
     file.size = {options.settings.width, options.settings.height};
     file.timing = {options.rule.resolution_points, options.rule.min_pairs, options.rule.max_pairs,
-                   CandidateRule(options.rule, true).max_pairs};
+                   CandidateRule(options.rule, true).max_pairs, options.rule.contended_share};
     auto configuration = [&options](const PlanCandidate& c) {
         stagefiles::PlanConfiguration out;
         out.id = c.configuration.id;

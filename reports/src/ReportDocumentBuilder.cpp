@@ -394,11 +394,18 @@ std::string ScenesIntro(const stagefiles::PlansFile& plans) {
                               "pairs)",
                               timing.resolution_points, timing.min_pairs, timing.max_pairs)
                     : std::string("each candidate timed against the full effect pair by pair");
+    if (timing.contended_share > 0) {
+        how += fmt::format(
+                ", as the machine runs and, {:.2g} pairs per as-run pair or more, with a thread "
+                "of tidepool's own on the rendering thread's core, the interval spanning both "
+                "states",
+                timing.contended_share);
+    }
     if (timing.missed_target_pairs > 0) {
         how += fmt::format(
                 "; in a scene with no frame budget, a candidate whose image misses the target, "
-                "which is then never chosen, only for {} pairs, with the wider interval they "
-                "give",
+                "which is then never chosen, only for {} pairs as the machine runs, with the "
+                "wider interval they give",
                 timing.missed_target_pairs);
     }
     return fmt::format(

@@ -167,6 +167,7 @@ void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path
     r.Field(o, path, "min_pairs", &out->min_pairs);
     r.Field(o, path, "max_pairs", &out->max_pairs);
     r.Field(o, path, "missed_target_pairs", &out->missed_target_pairs);
+    r.Field(o, path, "contended_share", &out->contended_share);
 }
 
 void ReadFields(FieldReader& r, const nlohmann::json& o, const std::string& path, PlansFile* out) {
@@ -216,7 +217,8 @@ nlohmann::json ToJson(const PlansFile& file) {
     out["timing"] = {{"resolution_points", file.timing.resolution_points},
                      {"min_pairs", file.timing.min_pairs},
                      {"max_pairs", file.timing.max_pairs},
-                     {"missed_target_pairs", file.timing.missed_target_pairs}};
+                     {"missed_target_pairs", file.timing.missed_target_pairs},
+                     {"contended_share", file.timing.contended_share}};
     out["plans"] = nlohmann::json::array();
     for (const PlannedScene& plan : file.plans) {
         out["plans"].push_back(ToJson(plan));

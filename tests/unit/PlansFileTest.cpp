@@ -34,7 +34,7 @@ PlanConfiguration Configuration(const std::string& id, std::vector<std::string> 
 PlansFile TwoScenes() {
     PlansFile file;
     file.size = {160, 120};
-    file.timing = {3.0, 20, 200, 20};
+    file.timing = {3.0, 20, 400, 20, 0.5};
     PlannedScene pond;
     pond.scene = "murky_pond";
     pond.description = "murky";

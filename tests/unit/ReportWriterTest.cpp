@@ -155,8 +155,8 @@ TEST(ReportWriterTest, StabilityTablesAreRenderedGenerically) {
 
 // A plans.json of two scenes as `tidepool plan --all` writes it (docs/SCENES.md).
 constexpr const char* kPlansJson = R"js({"schema": "tidepool.plans", "version": 1,
-    "size": [160, 120], "timing": {"resolution_points": 3.0, "min_pairs": 20, "max_pairs": 200,
-               "missed_target_pairs": 20},
+    "size": [160, 120], "timing": {"resolution_points": 3.0, "min_pairs": 20, "max_pairs": 400,
+               "missed_target_pairs": 20, "contended_share": 0.5},
     "plans": [
     {"scene": "murky_pond", "description": "murky", "target": {"min_psnr_db": 30},
      "chosen": {"id": "water:ENABLE_FOG,ENABLE_WATER_COLOUR@refl128", "variant": "water:x",
@@ -190,9 +190,12 @@ TEST(ReportWriterTest, PlansBesideTheResultsAreShownPerSceneWithEveryDecisionAnd
     EXPECT_NE(md.find("## 8. Scenes"), std::string::npos);
     // The method as plans.json records it, not placeholders.
     EXPECT_NE(md.find("at 160x120, each candidate timed against the full effect pair by pair "
-                      "until its 95% interval is within +/-3.0 points (20 to 200 pairs); in a "
-                      "scene with no frame budget, a candidate whose image misses the target, "
-                      "which is then never chosen, only for 20 pairs"),
+                      "until its 95% interval is within +/-3.0 points (20 to 400 pairs), as the "
+                      "machine runs and, 0.5 pairs per as-run pair or more, with a thread of "
+                      "tidepool's own on the rendering thread's core, the interval spanning both "
+                      "states; in a scene with no frame budget, a candidate whose image misses "
+                      "the target, which is then never chosen, only for 20 pairs as the machine "
+                      "runs"),
               std::string::npos)
             << md;
     EXPECT_EQ(md.find("paired rounds of"), std::string::npos);

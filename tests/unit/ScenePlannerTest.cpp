@@ -1,5 +1,6 @@
-// The scene planner's parts that need no GL: its choice between measured candidates, on a tie
-// and at the margins (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate).
+// The scene planner's parts that need no GL: the rule each candidate is timed by
+// (CandidateRule), and its choice between measured candidates, on a tie and at the margins
+// (lab/include/tidepool/lab/ScenePlanner.h, ChooseCandidate).
 #include "tidepool/lab/ScenePlanner.h"
 
 #include <gtest/gtest.h>
@@ -16,6 +17,19 @@ constexpr double kTiePoints = 3.0;
 
 CandidateMeasure Candidate(double change, double low, double high, double psnr) {
     return {true, true, 10.0 * (1 + change / 100), low, high, change, psnr};
+}
+
+TEST(ScenePlannerTest, ACandidateMissingTheTargetTakesTheFewestPairsAsTheMachineRunsOnly) {
+    const PlanOptions options;
+    const base::StoppingRule& rule = options.rule;
+    ASSERT_GT(rule.contended_share, 0);  // plans are timed in both states by default
+    const base::StoppingRule missing = CandidateRule(rule, true);
+    EXPECT_EQ(missing.max_pairs, rule.min_pairs);
+    EXPECT_EQ(missing.contended_share, 0);
+    // One that meets the target is timed as the rule says, in both states.
+    const base::StoppingRule meeting = CandidateRule(rule, false);
+    EXPECT_EQ(meeting.max_pairs, rule.max_pairs);
+    EXPECT_EQ(meeting.contended_share, rule.contended_share);
 }
 
 TEST(ScenePlannerTest, ATieInsideTheIntervalsKeepsTheMoreAccurateCandidate) {

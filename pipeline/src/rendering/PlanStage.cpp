@@ -52,6 +52,7 @@ PreparedPlans PreparePlans(const PlanRequest& request) {
     prepared.options.settings.width = request.width;
     prepared.options.settings.height = request.height;
     prepared.options.rule.resolution_points = request.resolution;
+    prepared.options.rule.contended_share = request.contended_share;
     ConfigResult loaded = LoadVariantConfig(request.config);
     outcome.Add(loaded.diagnostics);
     if (!loaded.config) {

@@ -26,7 +26,8 @@ struct PlanRequest {
     bool all = false;                      // every scenes/*.yaml instead
     int width = 320;
     int height = 240;
-    double resolution = 3.0;  // each candidate timed against the full effect to +/- this
+    double resolution = 3.0;       // each candidate timed against the full effect to +/- this
+    double contended_share = 0.5;  // pairs timed with the core shared, per as-run pair
     runner::BackendKind backend = runner::BackendKind::kAuto;
     int threads = 0;  // LP_NUM_THREADS
     std::string out;  // folder for plans.json and the images; "" for none (reports/out/plan

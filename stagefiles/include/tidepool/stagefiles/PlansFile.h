@@ -137,6 +137,10 @@ struct PlansTiming {
     // The pairs a candidate whose image misses the scene's target is stopped at
     // (lab::CandidateRule); 0: timed like the others (a file from before 2026-11-28).
     int missed_target_pairs = 0;
+    // Pairs timed with a competing thread on the rendering thread's core per pair timed as the
+    // machine runs (base::StoppingRule::contended_share); each interval spans both states. 0:
+    // as the machine runs only (and in files before 2026-11-28, whatever `run` did).
+    double contended_share = 0;
 
     bool operator==(const PlansTiming&) const = default;
 };
