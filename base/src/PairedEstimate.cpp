@@ -440,13 +440,45 @@ int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
             std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));
 }
 
-ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
-                                        const std::vector<double>& candidate_ms,
-                                        const std::vector<double>& contended_baseline_ms,
-                                        const std::vector<double>& contended_candidate_ms,
-                                        const PairedEstimate& as_run,
-                                        const PairedEstimate& contended, const StoppingRule& rule,
-                                        int fallback) {
+std::vector<double> WithOuterRatiosPulledIn(const std::vector<double>& baseline_ms,
+                                            const std::vector<double>& candidate_ms) {
+    std::vector<double> out = candidate_ms;
+    if (baseline_ms.size() != candidate_ms.size() || baseline_ms.size() < 3) {
+        return out;
+    }
+    std::vector<double> log_ratios;
+    log_ratios.reserve(baseline_ms.size());
+    for (std::size_t i = 0; i < baseline_ms.size(); ++i) {
+        if (!(baseline_ms[i] > 0) || !(candidate_ms[i] > 0) || !std::isfinite(baseline_ms[i]) ||
+            !std::isfinite(candidate_ms[i])) {
+            return out;
+        }
+        log_ratios.push_back(std::log(candidate_ms[i] / baseline_ms[i]));
+    }
+    std::vector<double> sorted = log_ratios;
+    std::sort(sorted.begin(), sorted.end());
+    // Below the second lowest lies the lowest alone, above the second highest the highest.
+    const double low = sorted[1];
+    const double high = sorted[sorted.size() - 2];
+    for (std::size_t i = 0; i < log_ratios.size(); ++i) {
+        if (log_ratios[i] < low) {
+            out[i] = baseline_ms[i] * std::exp(low);
+        } else if (log_ratios[i] > high) {
+            out[i] = baseline_ms[i] * std::exp(high);
+        }
+    }
+    return out;
+}
+
+namespace {
+
+// PairsExpectedAcrossStates from the pairs as given.
+ExpectedPairs GuessAcrossStates(const std::vector<double>& baseline_ms,
+                                const std::vector<double>& candidate_ms,
+                                const std::vector<double>& contended_baseline_ms,
+                                const std::vector<double>& contended_candidate_ms,
+                                const PairedEstimate& as_run, const PairedEstimate& contended,
+                                const StoppingRule& rule, int fallback) {
     const PairedEstimate stated = AcrossHostStates(as_run, contended);
     const int as_run_pairs = static_cast<int>(baseline_ms.size());
     const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
@@ -469,6 +501,29 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
     const int guessed_as_run = std::max(guess, as_run_pairs);
     return {guessed_as_run,
             contended_pairs + ContendedPairsBeforeNextLook(guessed_as_run, contended_pairs, rule)};
+}
+
+}  // namespace
+
+ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
+                                        const std::vector<double>& candidate_ms,
+                                        const std::vector<double>& contended_baseline_ms,
+                                        const std::vector<double>& contended_candidate_ms,
+                                        const PairedEstimate& as_run,
+                                        const PairedEstimate& contended, const StoppingRule& rule,
+                                        int fallback) {
+    if (static_cast<int>(baseline_ms.size()) >= rule.min_pairs) {
+        return GuessAcrossStates(baseline_ms, candidate_ms, contended_baseline_ms,
+                                 contended_candidate_ms, as_run, contended, rule, fallback);
+    }
+    // A probe: each state's outermost ratios pulled in to the next.
+    const std::vector<double> as_run_candidate = WithOuterRatiosPulledIn(baseline_ms, candidate_ms);
+    const std::vector<double> contended_candidate =
+            WithOuterRatiosPulledIn(contended_baseline_ms, contended_candidate_ms);
+    return GuessAcrossStates(baseline_ms, as_run_candidate, contended_baseline_ms,
+                             contended_candidate, EstimatePaired(baseline_ms, as_run_candidate),
+                             EstimatePaired(contended_baseline_ms, contended_candidate), rule,
+                             fallback);
 }
 
 const char* StopDecisionName(StopDecision decision) {

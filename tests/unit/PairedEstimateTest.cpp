@@ -639,6 +639,52 @@ TEST(PairedEstimateTest, TheProgressGuessCountsTheStatesPairsTheRuleWillTake) {
     EXPECT_EQ(settled.Guess(rule).contended, 60);
 }
 
+TEST(PairedEstimateTest, PullingTheOuterRatiosInMovesTheLowestAndHighestPairToTheNext) {
+    const std::vector<double> baseline = {10, 10, 20, 10, 10};
+    // Log ratios: ln 1.02, ln 1.5 (highest), ln 1.01, ln 0.9 (lowest), ln 1.03.
+    const std::vector<double> candidate = {10.2, 15.0, 20.2, 9.0, 10.3};
+    const std::vector<double> pulled = WithOuterRatiosPulledIn(baseline, candidate);
+    ASSERT_EQ(pulled.size(), candidate.size());
+    EXPECT_DOUBLE_EQ(pulled[0], 10.2);
+    EXPECT_NEAR(pulled[1], 10.3, 1e-9);  // to the next highest ratio, 1.03
+    EXPECT_DOUBLE_EQ(pulled[2], 20.2);
+    EXPECT_NEAR(pulled[3], 10.1, 1e-9);  // to the next lowest ratio, 1.01
+    EXPECT_DOUBLE_EQ(pulled[4], 10.3);
+    // Nothing to pull in, or nothing to read: as given.
+    EXPECT_EQ(WithOuterRatiosPulledIn({10, 10}, {11, 12}), (std::vector<double>{11, 12}));
+    EXPECT_EQ(WithOuterRatiosPulledIn({10, 10, 10}, {11, 12}), (std::vector<double>{11, 12}));
+    EXPECT_EQ(WithOuterRatiosPulledIn({10, 0, 10}, {11, 12, 13}),
+              (std::vector<double>{11, 12, 13}));
+}
+
+TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetItsGuess) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    // A probe: ten pairs each way, 3% slower give or take a little, one as-run pair 25% slower.
+    Samples as_run = PairsOf(10, 1.03, 0.004);
+    const Samples contended = PairsOf(10, 1.03, 0.01);
+    as_run.candidate[3] = 12.5;
+    const PairedEstimate as_run_estimate = EstimatePaired(as_run.baseline, as_run.candidate);
+    const PairedEstimate contended_estimate =
+            EstimatePaired(contended.baseline, contended.candidate);
+    const ExpectedPairs guess = PairsExpectedAcrossStates(
+            as_run.baseline, as_run.candidate, contended.baseline, contended.candidate,
+            as_run_estimate, contended_estimate, rule, 60);
+    // From the interval the ten pairs state as they are, the guess would be over 200 pairs.
+    EXPECT_GT(PairsExpectedAtStop(AcrossHostStates(as_run_estimate, contended_estimate), rule, 60),
+              200);
+    EXPECT_LT(guess.as_run + guess.contended, 100);
+    // It is the guess of the probe whose disturbed pair reads like the next slowest one.
+    Samples steadied = as_run;
+    steadied.candidate = WithOuterRatiosPulledIn(as_run.baseline, as_run.candidate);
+    EXPECT_LT(steadied.candidate[3], 10.5);
+    const ExpectedPairs steady = PairsExpectedAcrossStates(
+            steadied.baseline, steadied.candidate, contended.baseline, contended.candidate,
+            EstimatePaired(steadied.baseline, steadied.candidate), contended_estimate, rule, 60);
+    EXPECT_EQ(guess.as_run, steady.as_run);
+    EXPECT_EQ(guess.contended, steady.contended);
+}
+
 TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
     StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
     // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.
