@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <iterator>
 #include <map>
 #include <string>
@@ -110,26 +111,28 @@ TEST(FrameTimerTest, ContendedPairsAreTimedWithTheCoreSharedAndTheIntervalSpansB
     EXPECT_EQ(ThreadsNow(), alone);  // the competitor is gone
 }
 
-TEST(FrameTimerTest, WhileTheContendedIntervalHoldsTheAsRunOneALookTakesContendedPairsAlone) {
+// Times a comparison with the default contended share whose candidate takes `ratio(busy, k)`
+// times the baseline's 10 ms in its k-th frame of that state (busy: a competitor running), and
+// checks what a comparison whose looks after the first take contended pairs alone shows: at
+// every look the as-run pairs are the first look's `rule.min_pairs` (and `at_look` holds), it
+// resolves after more than one look, and only the contended pairs' frames saw the competitor.
+void ExpectLooksAfterTheFirstTakeContendedPairsAlone(
+        const std::function<double(bool busy, int k)>& ratio,
+        const std::function<void(const ComparisonTiming&)>& at_look) {
     FrameCounts counts;
     int looks = 0;
     base::StoppingRule rule;
     rule.contended_share = 0.5;
-    // As run the candidate is a steady 10% slower; with the core shared it is 10% slower give or
-    // take 6%, so the contended interval holds the as-run one until it has many more pairs.
     const TimeSide side = [&](bool candidate) {
         counts.frames += 1;
         const bool busy = ThreadsNow() > counts.alone;
         const int k = busy ? ++counts.contended : ++counts.as_run;
-        const double noise = busy ? 0.03 * (((k / 2) % 5) - 2.0) : 0.001 * ((k / 2) % 3);
-        return FrameTime{candidate ? 11.0 * (1.0 + noise) : 10.0, 0.0};
+        return FrameTime{candidate ? 10.0 * ratio(busy, k) : 10.0, 0.0};
     };
     const ComparisonTiming t = TimeComparison(side, rule, [&](const ComparisonTiming& so_far) {
         ++looks;
-        const base::PairedEstimate& as_run = so_far.estimate;
-        // Only the first look, to min_pairs, takes as-run pairs: after it the contended
-        // interval holds the as-run one at every look until it no longer does.
-        EXPECT_EQ(as_run.pairs, rule.min_pairs);
+        EXPECT_EQ(so_far.estimate.pairs, rule.min_pairs);
+        at_look(so_far);
     });
     EXPECT_EQ(t.decision, base::StopDecision::kResolved);
     EXPECT_GT(looks, 1);
@@ -139,35 +142,30 @@ TEST(FrameTimerTest, WhileTheContendedIntervalHoldsTheAsRunOneALookTakesContende
     EXPECT_LE(t.stated.HalfWidthPoints(), rule.resolution_points);
 }
 
+TEST(FrameTimerTest, WhileTheContendedIntervalHoldsTheAsRunOneALookTakesContendedPairsAlone) {
+    // As run the candidate is a steady 10% slower; with the core shared it is 10% slower give or
+    // take 6%, so the contended interval holds the as-run one until it has many more pairs.
+    ExpectLooksAfterTheFirstTakeContendedPairsAlone(
+            [](bool busy, int k) {
+                return 1.10 * (1.0 + (busy ? 0.03 * (((k / 2) % 5) - 2.0) : 0.001 * ((k / 2) % 3)));
+            },
+            [](const ComparisonTiming&) {});
+}
+
 TEST(FrameTimerTest, WhereContentionMovesTheChangeALookTakesContendedPairsWhileTheyNarrowMore) {
-    FrameCounts counts;
-    int looks = 0;
-    base::StoppingRule rule;
-    rule.contended_share = 0.5;
     // As run the candidate is a steady 10% slower; with the core shared 7% slower give or take
-    // 2%: the contended interval lies below the as-run one and sets the stated interval's lower
-    // end only, and it is the wider per pair, so the looks after the first take contended pairs.
-    const TimeSide side = [&](bool candidate) {
-        counts.frames += 1;
-        const bool busy = ThreadsNow() > counts.alone;
-        const int k = busy ? ++counts.contended : ++counts.as_run;
-        const double ratio = busy ? 1.07 * (1.0 + 0.01 * (((k / 2) % 5) - 2.0))
-                                  : 1.10 * (1.0 + 0.0005 * ((k / 2) % 3));
-        return FrameTime{candidate ? 10.0 * ratio : 10.0, 0.0};
-    };
-    const ComparisonTiming t = TimeComparison(side, rule, [&](const ComparisonTiming& so_far) {
-        ++looks;
-        EXPECT_EQ(so_far.estimate.pairs, rule.min_pairs);
-        // The contended interval sets the upper end only (+ = faster), not the lower one.
-        EXPECT_GT(so_far.contended_estimate.change_high, so_far.estimate.change_high);
-        EXPECT_GT(so_far.contended_estimate.change_low, so_far.estimate.change_low);
-    });
-    EXPECT_EQ(t.decision, base::StopDecision::kResolved);
-    EXPECT_GT(looks, 1);
-    EXPECT_EQ(t.samples.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
-    EXPECT_GT(t.contended.baseline_ms.size(), static_cast<std::size_t>(rule.min_pairs));
-    EXPECT_EQ(counts.contended, 2 * static_cast<int>(t.contended.baseline_ms.size()));
-    EXPECT_LE(t.stated.HalfWidthPoints(), rule.resolution_points);
+    // 2%: the contended interval lies below the as-run one and sets the stated interval's upper
+    // end only (+ = faster), and it is the wider per pair, so the looks after the first take
+    // contended pairs alone.
+    ExpectLooksAfterTheFirstTakeContendedPairsAlone(
+            [](bool busy, int k) {
+                return busy ? 1.07 * (1.0 + 0.01 * (((k / 2) % 5) - 2.0))
+                            : 1.10 * (1.0 + 0.0005 * ((k / 2) % 3));
+            },
+            [](const ComparisonTiming& so_far) {
+                EXPECT_GT(so_far.contended_estimate.change_high, so_far.estimate.change_high);
+                EXPECT_GT(so_far.contended_estimate.change_low, so_far.estimate.change_low);
+            });
 }
 
 TEST(FrameTimerTest, ACapStopsAComparisonThatCannotResolve) {
