@@ -199,9 +199,10 @@ StopDecision DecideStop(const PairedEstimate& estimate, const StoppingRule& rule
 /// near a boundary by it took as-run pairs to the cap: row 2 read -2.5% [-2.64, -2.36] as run and
 /// -2.6% [-3.34, -1.77] contended after 363 as-run pairs. Where contention moves the change, the
 /// contended interval sets one end only, and that was the one deciding: the planner's half-size
-/// reflection for `open_sea`, beside two `yes`, read -2.8% [-3.17, -2.48] after 400 as-run pairs
-/// and -2.2% [-2.97, -1.44] after 200 contended ones, so the plan kept the full reflection where
-/// the quiet runs chose the half size (2026-11-28). Never fails.
+/// reflection for `open_sea` (`tidepool plan --scene open_sea`), beside two `yes`, read -2.8%
+/// [-3.17, -2.48] after 400 as-run pairs and -2.2% [-2.97, -1.44] after 200 contended ones, so the
+/// plan kept the full reflection where the quiet runs chose the half size (2026-11-28). Never
+/// fails.
 bool ContendedPairsNarrowMore(const PairedEstimate& as_run, const PairedEstimate& contended);
 
 /// How many contended pairs a look takes, with no as-run pairs, while ContendedPairsNarrowMore:
