@@ -77,7 +77,7 @@ if render:
         percent_errors.append(abs(int(m.group(1)) - 100 * elapsed / render_s))
     if eta_errors:
         print(f"  progress after the first 10% of the render ({len(eta_errors)} lines): predicted "
-              f"end off by at most {max(eta_errors):.0f}% (median {sorted(eta_errors)[len(eta_errors) // 2]:.0f}%), "
+              f"end off by at most {max(eta_errors):.1f}% (median {sorted(eta_errors)[len(eta_errors) // 2]:.0f}%), "
               f"percentage off by at most {max(percent_errors):.0f} points (target: within 20%)")
 PY
 }
