@@ -23,6 +23,11 @@
 //    comparisons' work. A frame of a comparison: its pairs' and contended pairs' two frames each,
 //    and 14 for the warm-up and per-pass frames every comparison renders. Contended frames are
 //    weighed as as-run ones.
+//  * The comparisons not yet probed after the first kProbesBeforeTheWaitingGuess probes (about
+//    where a main job's progress line first counts): the guess the progress line gives each,
+//    kBoundaryAllowance times the probes' mean resolution frames
+//    (base::ResolutionPairsAcrossStates) and the 14 overhead frames, over the mean frames
+//    they took.
 //  * The floor: the same miss at the run's start, before any comparison has gone past its
 //    probe, with every comparison's guess at its probe, against a guess that knew each
 //    comparison's mean frames over all the files given (in-sample: no guess made in a run from
@@ -49,6 +54,12 @@ using tidepool::base::StoppingRule;
 
 constexpr int kProbePairs = tidepool::base::kMinimumPairs;
 constexpr int kOverheadFrames = 14;  // 2 warm-up and 5 per-pass frames of each side
+// The progress line's allowance for the boundary clauses over the resolution's pairs
+// (runner/src/RenderProgress.h, ProgressMeter::kBoundaryAllowance).
+constexpr double kBoundaryAllowance = 1.5;
+// After this many probes, the guess of the comparisons not yet probed is compared with what they
+// took: about where a main job's progress line first counts (10% of the render).
+constexpr std::size_t kProbesBeforeTheWaitingGuess = 8;
 
 std::vector<double> First(const std::vector<double>& samples, int n) {
     const std::size_t count = std::min(static_cast<std::size_t>(std::max(n, 0)), samples.size());
@@ -63,6 +74,9 @@ struct Replay {
     int stopped_at = 0;           // as-run pairs
     int contended_at_stop = 0;    // contended pairs
     bool recording_ended = false;
+    // The probe's measure of the noise for the comparisons not yet started, in frames of pairs
+    // (base::ResolutionPairsAcrossStates), as runner/src/Results.cpp takes it.
+    double probe_resolution_frames = 0;
 };
 
 Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
@@ -86,6 +100,13 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
         const PairedEstimate stated = AcrossHostStates(as_run, contended);
         const bool stops =
                 !probe && DecideStopAcrossStates(stated, m, rule) != StopDecision::kContinue;
+        if (probe) {
+            const ExpectedPairs resolution = ResolutionPairsAcrossStates(
+                    First(c.baseline_ms, n), First(c.candidate_ms, n),
+                    First(c.contended_baseline_ms, m), First(c.contended_candidate_ms, m), as_run,
+                    contended, rule);
+            out.probe_resolution_frames = 2.0 * (resolution.as_run + resolution.contended);
+        }
         out.look_pairs.push_back(n);
         const ExpectedPairs expected =
                 stops ? ExpectedPairs{n, m}
@@ -145,6 +166,7 @@ int main(int argc, char** argv) {
             "recorded -> replayed; '>=' where the recording ended first.\n",
             StoppingRule{}.boundary_pairs);
     std::vector<double> misses;
+    std::vector<double> waiting_ratios;  // by file: the waiting comparisons' guess over their take
     // Each file's comparisons: label, replay and a frame's mean time, for the floor.
     struct Replayed {
         std::string label;
@@ -191,6 +213,23 @@ int main(int argc, char** argv) {
                         replays.back().stopped_at);
         }
         rule.boundaries_points.clear();
+        // The comparisons not yet probed after the first few probes: the meter's guess of each
+        // (kBoundaryAllowance times the probes' mean resolution frames, and the overhead)
+        // against the mean frames they took.
+        if (replays.size() > kProbesBeforeTheWaitingGuess) {
+            double resolution = 0;
+            for (std::size_t i = 0; i < kProbesBeforeTheWaitingGuess; ++i) {
+                resolution += replays[i].probe_resolution_frames;
+            }
+            double taken = 0;
+            for (std::size_t i = kProbesBeforeTheWaitingGuess; i < replays.size(); ++i) {
+                taken += Taken(replays[i]);
+            }
+            const auto probes = static_cast<double>(kProbesBeforeTheWaitingGuess);
+            const auto waiting = static_cast<double>(replays.size() - kProbesBeforeTheWaitingGuess);
+            const double guess = kBoundaryAllowance * resolution / probes + kOverheadFrames;
+            waiting_ratios.push_back(guess / (taken / waiting));
+        }
         double all = 0;
         for (std::size_t i = 0; i < replays.size(); ++i) {
             all += Taken(replays[i]) * cost[i];
@@ -212,14 +251,28 @@ int main(int argc, char** argv) {
         misses.push_back(std::fabs(percent));
         std::printf(
                 "\n  pairs %d recorded, %d replayed; guessed comparison work missed by at most "
-                "%+.0f%%\n",
+                "%+.0f%%",
                 recorded_total, replayed_total, percent);
+        if (replays.size() > kProbesBeforeTheWaitingGuess) {
+            std::printf("; after %zu probes, the others guessed at %.2f times what they took",
+                        kProbesBeforeTheWaitingGuess, waiting_ratios.back());
+        }
+        std::printf("\n");
     }
     std::sort(misses.begin(), misses.end());
     std::printf(
             "worst miss of the guessed comparison work over %zu files: median %.0f%%, largest "
             "%.0f%% (the progress line's ETA target: within 20%%)\n",
             misses.size(), misses[misses.size() / 2], misses.back());
+
+    if (!waiting_ratios.empty()) {
+        std::sort(waiting_ratios.begin(), waiting_ratios.end());
+        std::printf(
+                "after %zu probes, the comparisons not yet probed were guessed at %.2f to %.2f "
+                "times the mean frames they took (median %.2f)\n",
+                kProbesBeforeTheWaitingGuess, waiting_ratios.front(), waiting_ratios.back(),
+                waiting_ratios[waiting_ratios.size() / 2]);
+    }
 
     // The floor: at the start, the probes' guesses against each comparison's mean frames.
     std::map<std::string, std::pair<double, int>> frames_by_label;  // sum, count

@@ -503,6 +503,40 @@ ExpectedPairs GuessAcrossStates(const std::vector<double>& baseline_ms,
             contended_pairs + ContendedPairsBeforeNextLook(guessed_as_run, contended_pairs, rule)};
 }
 
+// ResolutionPairsAcrossStates from the estimates as given.
+ExpectedPairs ResolutionPairsOf(int as_run_pairs, int contended_pairs, const PairedEstimate& as_run,
+                                const PairedEstimate& contended, const StoppingRule& rule) {
+    const PairedEstimate stated = AcrossHostStates(as_run, contended);
+    if (ContendedPairsNarrowMore(as_run, contended)) {
+        PairedEstimate by_contended = stated;
+        by_contended.pairs = contended_pairs;
+        return {std::max(as_run_pairs, rule.min_pairs), PairsForResolution(by_contended, rule)};
+    }
+    const int pairs = PairsForResolution(stated, rule);
+    return {pairs, pairs > 0 ? ContendedPairsBeforeNextLook(pairs, 0, rule) : 0};
+}
+
+// A probe's pairs with each state's outermost ratios pulled in to the next, and their estimates.
+struct SteadiedProbe {
+    std::vector<double> as_run_candidate;
+    std::vector<double> contended_candidate;
+    PairedEstimate as_run;
+    PairedEstimate contended;
+};
+
+SteadiedProbe Steadied(const std::vector<double>& baseline_ms,
+                       const std::vector<double>& candidate_ms,
+                       const std::vector<double>& contended_baseline_ms,
+                       const std::vector<double>& contended_candidate_ms) {
+    SteadiedProbe probe;
+    probe.as_run_candidate = WithOuterRatiosPulledIn(baseline_ms, candidate_ms);
+    probe.contended_candidate =
+            WithOuterRatiosPulledIn(contended_baseline_ms, contended_candidate_ms);
+    probe.as_run = EstimatePaired(baseline_ms, probe.as_run_candidate);
+    probe.contended = EstimatePaired(contended_baseline_ms, probe.contended_candidate);
+    return probe;
+}
+
 }  // namespace
 
 ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
@@ -516,14 +550,28 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
         return GuessAcrossStates(baseline_ms, candidate_ms, contended_baseline_ms,
                                  contended_candidate_ms, as_run, contended, rule, fallback);
     }
-    // A probe: each state's outermost ratios pulled in to the next.
-    const std::vector<double> as_run_candidate = WithOuterRatiosPulledIn(baseline_ms, candidate_ms);
-    const std::vector<double> contended_candidate =
-            WithOuterRatiosPulledIn(contended_baseline_ms, contended_candidate_ms);
-    return GuessAcrossStates(baseline_ms, as_run_candidate, contended_baseline_ms,
-                             contended_candidate, EstimatePaired(baseline_ms, as_run_candidate),
-                             EstimatePaired(contended_baseline_ms, contended_candidate), rule,
+    const SteadiedProbe probe =
+            Steadied(baseline_ms, candidate_ms, contended_baseline_ms, contended_candidate_ms);
+    return GuessAcrossStates(baseline_ms, probe.as_run_candidate, contended_baseline_ms,
+                             probe.contended_candidate, probe.as_run, probe.contended, rule,
                              fallback);
+}
+
+ExpectedPairs ResolutionPairsAcrossStates(const std::vector<double>& baseline_ms,
+                                          const std::vector<double>& candidate_ms,
+                                          const std::vector<double>& contended_baseline_ms,
+                                          const std::vector<double>& contended_candidate_ms,
+                                          const PairedEstimate& as_run,
+                                          const PairedEstimate& contended,
+                                          const StoppingRule& rule) {
+    const int as_run_pairs = static_cast<int>(baseline_ms.size());
+    const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
+    if (as_run_pairs >= rule.min_pairs) {
+        return ResolutionPairsOf(as_run_pairs, contended_pairs, as_run, contended, rule);
+    }
+    const SteadiedProbe probe =
+            Steadied(baseline_ms, candidate_ms, contended_baseline_ms, contended_candidate_ms);
+    return ResolutionPairsOf(as_run_pairs, contended_pairs, probe.as_run, probe.contended, rule);
 }
 
 const char* StopDecisionName(StopDecision decision) {

@@ -204,16 +204,12 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // waiting at 0.3 to 0.9 times (median 0.44) the mean pairs the comparisons then
             // took, over 16 main-job halves of 2026-11-27 and 28; the stated one at 0.5 to 1.3
             // (median 0.72), with kBoundaryAllowance. While contended pairs narrow it more, it
-            // narrows with the contended pairs alone (base::ContendedPairsNarrowMore).
-            long resolution_frames = pair_frames(base::PairsForResolution(so_far.stated, rule));
-            if (base::ContendedPairsNarrowMore(so_far.estimate, so_far.contended_estimate)) {
-                base::PairedEstimate by_contended = so_far.stated;
-                by_contended.pairs = static_cast<int>(so_far.contended.baseline_ms.size());
-                resolution_frames =
-                        2L * (std::max(static_cast<long>(so_far.samples.baseline_ms.size()),
-                                       static_cast<long>(rule.min_pairs)) +
-                              base::PairsForResolution(by_contended, rule));
-            }
+            // narrows with the contended pairs alone (base::ResolutionPairsAcrossStates).
+            const base::ExpectedPairs resolution = base::ResolutionPairsAcrossStates(
+                    so_far.samples.baseline_ms, so_far.samples.candidate_ms,
+                    so_far.contended.baseline_ms, so_far.contended.candidate_ms, so_far.estimate,
+                    so_far.contended_estimate, rule);
+            const long resolution_frames = 2L * (resolution.as_run + resolution.contended);
             meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames, false,
                                     resolution_frames);
         };

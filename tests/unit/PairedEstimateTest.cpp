@@ -685,6 +685,64 @@ TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetItsGuess) {
     EXPECT_EQ(guess.contended, steady.contended);
 }
 
+TEST(PairedEstimateTest, TheResolutionsPairsCountTheStateTheLooksWouldTake) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    auto resolution = [&](const TwoStates& s) {
+        return ResolutionPairsAcrossStates(s.as_run.baseline, s.as_run.candidate,
+                                           s.contended.baseline, s.contended.candidate,
+                                           s.as_run_estimate, s.contended_estimate, rule);
+    };
+    // The contended interval narrows the stated one more: the as-run pairs so far, and the
+    // contended pairs the stated interval needs with them in the as-run ones' place.
+    const TwoStates binding(30, 0.004, 10, 0.04);
+    ASSERT_TRUE(binding.binds);
+    PairedEstimate by_contended = binding.stated;
+    by_contended.pairs = 10;
+    EXPECT_EQ(resolution(binding).as_run, 30);
+    EXPECT_EQ(resolution(binding).contended, PairsForResolution(by_contended, rule));
+    EXPECT_GT(resolution(binding).contended, 10);
+    // The as-run interval sets the ends: its pairs, and their contended share beside them.
+    const TwoStates as_run_bound(20, 0.04, 10, 0.004);
+    ASSERT_FALSE(as_run_bound.binds);
+    const int pairs = PairsForResolution(as_run_bound.stated, rule);
+    EXPECT_GT(pairs, 20);
+    EXPECT_EQ(resolution(as_run_bound).as_run, pairs);
+    EXPECT_EQ(resolution(as_run_bound).contended, ContendedPairsBeforeNextLook(pairs, 0, rule));
+    // No interval, no figure.
+    const ExpectedPairs none =
+            ResolutionPairsAcrossStates({}, {}, {}, {}, PairedEstimate{}, PairedEstimate{}, rule);
+    EXPECT_EQ(none.as_run + none.contended, 0);
+}
+
+TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetTheResolutionsPairs) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    // A probe: ten pairs each way, 3% slower give or take a little, one as-run pair 25% slower.
+    Samples as_run = PairsOf(10, 1.03, 0.004);
+    const Samples contended = PairsOf(10, 1.03, 0.01);
+    as_run.candidate[3] = 12.5;
+    const PairedEstimate as_run_estimate = EstimatePaired(as_run.baseline, as_run.candidate);
+    const PairedEstimate contended_estimate =
+            EstimatePaired(contended.baseline, contended.candidate);
+    const ExpectedPairs pairs = ResolutionPairsAcrossStates(
+            as_run.baseline, as_run.candidate, contended.baseline, contended.candidate,
+            as_run_estimate, contended_estimate, rule);
+    // From the interval the ten pairs state as they are, over 90 pairs as run; pulled in, the
+    // fewest the rule takes in each state.
+    EXPECT_GT(PairsForResolution(AcrossHostStates(as_run_estimate, contended_estimate), rule), 90);
+    EXPECT_EQ(pairs.as_run, rule.min_pairs);
+    EXPECT_LE(pairs.contended, rule.min_pairs);
+    // Those of the probe whose disturbed pair reads like the next slowest one.
+    Samples steadied = as_run;
+    steadied.candidate = WithOuterRatiosPulledIn(as_run.baseline, as_run.candidate);
+    const ExpectedPairs steady = ResolutionPairsAcrossStates(
+            steadied.baseline, steadied.candidate, contended.baseline, contended.candidate,
+            EstimatePaired(steadied.baseline, steadied.candidate), contended_estimate, rule);
+    EXPECT_EQ(pairs.as_run, steady.as_run);
+    EXPECT_EQ(pairs.contended, steady.contended);
+}
+
 TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
     StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
     // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.
