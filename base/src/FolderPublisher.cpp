@@ -11,6 +11,7 @@
 #include <system_error>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 namespace tidepool::base {
@@ -91,6 +92,13 @@ fs::path MakeUniqueFolder(const fs::path& parent, const std::string& prefix, int
     std::string name = (parent / (prefix + std::to_string(::getpid()) + ".XXXXXX")).string();
     if (::mkdtemp(name.data()) == nullptr) {
         *error = errno;
+        return {};
+    }
+    // mkdtemp makes it 0700; published, it is read by the user's other tools and web servers, as
+    // a folder the usual umask makes (WriteFileAtomically gives files 0644 for the same reason).
+    if (::chmod(name.c_str(), 0755) != 0) {
+        *error = errno;
+        ::rmdir(name.c_str());
         return {};
     }
     return name;

@@ -13,7 +13,10 @@
 
 #include "FileContents.h"
 #include "TempDir.h"
+#include <fcntl.h>
 #include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -105,6 +108,74 @@ TEST(AtomicFileTest, ConcurrentWritersOfOnePathEachPublishAWholeFile) {
     EXPECT_EQ(content, std::string(content.size(), content[0]));
     EXPECT_EQ(content.size(), 20000u + static_cast<std::size_t>(content[0] - 'a'));
     EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"out.txt"});
+}
+
+// `--output-file` may name a link, a device or a pipe. Before, the rename put a regular file in
+// the node's place: `--output-file /dev/stdout` replaced the system's /dev/stdout link.
+TEST(AtomicFileTest, ALinkKeepsPointingAtTheFileItNamesWhichIsReplaced) {
+    TempDir dir;
+    ASSERT_EQ(WriteFileAtomically(dir.Path() / "real.json", "old"), "");
+    std::filesystem::create_symlink("real.json", dir.Path() / "link.json");
+    ASSERT_EQ(WriteFileAtomically(dir.Path() / "link.json", "new"), "");
+    EXPECT_TRUE(std::filesystem::is_symlink(dir.Path() / "link.json"));
+    EXPECT_EQ(ReadText(dir.Path() / "real.json"), "new");
+    // A dangling link: the file it names is made.
+    std::filesystem::create_symlink("sub/later.json", dir.Path() / "dangling.json");
+    ASSERT_EQ(WriteFileAtomically(dir.Path() / "dangling.json", "made"), "");
+    EXPECT_TRUE(std::filesystem::is_symlink(dir.Path() / "dangling.json"));
+    EXPECT_EQ(ReadText(dir.Path() / "sub/later.json"), "made");
+}
+
+// On a node of its own (null's device numbers), never the system's /dev/null: a regression
+// would replace that for the whole machine.
+TEST(AtomicFileTest, ADeviceIsWrittenToAndStaysADevice) {
+    TempDir dir;
+    const std::filesystem::path device = dir.Path() / "null";
+    if (::mknod(device.c_str(), S_IFCHR | 0666, ::makedev(1, 3)) != 0) {
+        GTEST_SKIP() << "making a device node needs root";
+    }
+    ASSERT_EQ(WriteFileAtomically(device, "discarded"), "");
+    struct stat after {};
+    ASSERT_EQ(::stat(device.c_str(), &after), 0);
+    EXPECT_TRUE(S_ISCHR(after.st_mode));
+    EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"null"});
+}
+
+TEST(AtomicFileTest, ANamedPipeIsWrittenToItsReaderAndOneWithoutAReaderIsRefused) {
+    TempDir dir;
+    const std::filesystem::path pipe = dir.Path() / "pipe";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    // Nobody reads it: refused at once, never a wait.
+    const std::string error = WriteFileAtomically(pipe, "lost");
+    EXPECT_NE(error.find(pipe.string()), std::string::npos) << error;
+    EXPECT_NE(error.find("no process is reading"), std::string::npos) << error;
+    // A reader: it gets the content, and the pipe stays a pipe.
+    const int reader = ::open(pipe.c_str(), O_RDONLY | O_NONBLOCK);
+    ASSERT_GE(reader, 0);
+    ASSERT_EQ(WriteFileAtomically(pipe, "through"), "");
+    char buffer[16] = {};
+    EXPECT_EQ(::read(reader, buffer, sizeof buffer), 7);
+    EXPECT_EQ(std::string(buffer), "through");
+    ::close(reader);
+    struct stat after {};
+    ASSERT_EQ(::stat(pipe.c_str(), &after), 0);
+    EXPECT_TRUE(S_ISFIFO(after.st_mode));
+    EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"pipe"});
+}
+
+TEST(AtomicFileTest, AReplacedFileKeepsItsPermissionsAndANewOneGets0644) {
+    TempDir dir;
+    const std::filesystem::path path = dir.Path() / "private.json";
+    ASSERT_EQ(WriteFileAtomically(path, "old"), "");
+    struct stat made {};
+    ASSERT_EQ(::stat(path.c_str(), &made), 0);
+    EXPECT_EQ(made.st_mode & 07777, 0644u);
+    ASSERT_EQ(::chmod(path.c_str(), 0600), 0);
+    ASSERT_EQ(WriteFileAtomically(path, "new"), "");
+    struct stat replaced {};
+    ASSERT_EQ(::stat(path.c_str(), &replaced), 0);
+    EXPECT_EQ(replaced.st_mode & 07777, 0600u);
+    EXPECT_EQ(ReadText(path), "new");
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 
 #include "FileContents.h"
 #include "TempDir.h"
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -51,6 +52,15 @@ TEST(FolderPublisherTest, PublishesANewFolderMarkedAsTidepoolsOutput) {
     EXPECT_EQ(ReadText(dir.Path() / "out/results.json"), "{}");
     EXPECT_TRUE(tidepool::base::IsTidepoolOutput(dir.Path() / "out"));
     EXPECT_EQ(FolderEntries(dir.Path()), std::vector<std::string>{"out"});
+}
+
+// mkdtemp's 0700 kept other users (a web server showing the report) out of published folders.
+TEST(FolderPublisherTest, APublishedFolderIsReadableByOthersAsTheUsualUmaskMakesIt) {
+    TempDir dir;
+    ASSERT_FALSE(PublishOne(dir.Path() / "out", "results.json", "{}").Failed());
+    struct stat published {};
+    ASSERT_EQ(::stat((dir.Path() / "out").c_str(), &published), 0);
+    EXPECT_EQ(published.st_mode & 07777, 0755u);
 }
 
 TEST(FolderPublisherTest, ReplacesItsOwnEarlierOutputWhole) {
