@@ -33,10 +33,13 @@ bool IsKey(std::string_view key) {
            });
 }
 
-// Reads the whole of `fd`; false on a read error.
-bool ReadAll(int fd, std::string* text) {
+// Reads the whole of `fd`; false on a read error or past `limit` bytes.
+bool ReadAll(int fd, std::uint64_t limit, std::string* text) {
     char buffer[16384];
     for (;;) {
+        if (text->size() > limit) {
+            return false;
+        }
         const ssize_t n = ::read(fd, buffer, sizeof buffer);
         if (n < 0) {
             if (errno == EINTR) {
@@ -105,16 +108,23 @@ std::optional<std::string> ContentCache::Load(std::string_view key) {
     std::optional<std::string> payload;
     bool corrupt = false;
     if (IsKey(key)) {
-        const int fd = ::open(EntryPath(key).c_str(), O_RDONLY | O_CLOEXEC);
+        // An entry is a regular file no larger than the whole cache. Anything else in its place
+        // (a link, a pipe, a device, a file grown past the bound) is corrupt and never read:
+        // a pipe would block the open, /dev/zero or a huge sparse file would fill the memory.
+        const int fd =
+                ::open(EntryPath(key).c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOFOLLOW);
+        corrupt = fd < 0 && errno == ELOOP;  // a symbolic link
         if (fd >= 0) {
-            std::string text;
-            if (ReadAll(fd, &text)) {
-                payload = ParseEntry(text, key);
-                corrupt = !payload;
-            }
             struct stat info {};
-            if (payload && ::fstat(fd, &info) == 0 &&
-                std::time(nullptr) - info.st_mtime > kRefreshSeconds) {
+            std::string text;
+            const bool readable = ::fstat(fd, &info) == 0 && S_ISREG(info.st_mode) &&
+                                  static_cast<std::uint64_t>(info.st_size) <= max_bytes_ &&
+                                  ReadAll(fd, max_bytes_, &text);
+            if (readable) {
+                payload = ParseEntry(text, key);
+            }
+            corrupt = !payload;
+            if (payload && std::time(nullptr) - info.st_mtime > kRefreshSeconds) {
                 ::futimens(fd, nullptr);  // most recently used: the last to be trimmed
             }
             ::close(fd);
@@ -138,7 +148,15 @@ void ContentCache::Store(std::string_view key, std::string_view payload) {
     entry += payload;
     // Unsynced: after a power cut an entry may be lost or truncated, and the checksum turns a
     // truncated one into a miss; fsync would cost milliseconds per entry.
-    const std::string error = WriteFileAtomically(EntryPath(key), entry, Durability::kUnsynced);
+    // What is in an entry's place and no regular file (Load counts it corrupt) goes first: the
+    // write would go through a link or into a device or pipe, and leave it in place.
+    const std::filesystem::path path = EntryPath(key);
+    struct stat existing {};
+    if (::lstat(path.c_str(), &existing) == 0 && !S_ISREG(existing.st_mode)) {
+        std::error_code ignored;
+        std::filesystem::remove_all(path, ignored);
+    }
+    const std::string error = WriteFileAtomically(path, entry, Durability::kUnsynced);
     if (!error.empty()) {
         RecordError(error);
         return;

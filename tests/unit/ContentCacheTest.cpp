@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "TempDir.h"
+#include <sys/stat.h>
 
 namespace tidepool::base {
 namespace {
@@ -123,6 +124,45 @@ TEST(ContentCacheTest, DamagedEntryIsCorruptAndTheNextStoreReplacesIt) {
         EXPECT_EQ(cache.Stats().corrupt, 1U);
         cache.Store(EntryKey("k"), payload);
         EXPECT_EQ(cache.Load(EntryKey("k")), payload);
+    }
+}
+
+// Before, an entry's file was opened and read whole whatever it was: a pipe in its place blocked
+// the open for good, and a link to /dev/zero or a huge sparse file read until memory ran out.
+TEST(ContentCacheTest, WhatIsNoRegularFileOrLargerThanTheCacheIsCorruptUnreadAndReplaced) {
+    const std::string payload = "the payload of a link";
+    struct Node {
+        const char* why;
+        void (*make)(const std::filesystem::path& path);
+    };
+    const Node nodes[] = {
+            {"a named pipe", [](const std::filesystem::path& p) { ::mkfifo(p.c_str(), 0600); }},
+            {"a link to /dev/zero",
+             [](const std::filesystem::path& p) {
+                 std::filesystem::create_symlink("/dev/zero", p);
+             }},
+            {"a folder",
+             [](const std::filesystem::path& p) { std::filesystem::create_directory(p); }},
+            {"a sparse file past the bound",
+             [](const std::filesystem::path& p) {
+                 WriteBytes(p, "x");
+                 std::filesystem::resize_file(p, std::uintmax_t{1} << 20);
+             }},
+    };
+    for (const Node& node : nodes) {
+        SCOPED_TRACE(node.why);
+        TempDir dir;
+        ContentCache cache(dir.Path(), std::uint64_t{64} << 10);
+        cache.Store(EntryKey("k"), payload);
+        const std::filesystem::path path = cache.EntryPath(EntryKey("k"));
+        std::filesystem::remove(path);
+        node.make(path);
+        EXPECT_FALSE(cache.Load(EntryKey("k")));
+        EXPECT_EQ(cache.Stats().corrupt, 1U);
+        cache.Store(EntryKey("k"), payload);
+        EXPECT_EQ(cache.Stats().error, "");
+        EXPECT_EQ(cache.Load(EntryKey("k")), payload);
+        EXPECT_FALSE(std::filesystem::is_symlink(path));
     }
 }
 
