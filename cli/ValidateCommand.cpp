@@ -173,7 +173,8 @@ void RegisterValidateCommand(CLI::App& app, int& exit_code) {
     validate->add_option("-D,--define", options->files.defines,
                          "define for plain files: NAME or NAME=VALUE")
             ->allow_extra_args(false);
-    validate->add_option("-j,--jobs", matrix.jobs, "worker threads (default: cores)");
+    validate->add_option("-j,--jobs", matrix.jobs, "worker processes, 1..256 (default: cores)")
+            ->check(CLI::Range(1, 256));
     CLI::Option* out =
             validate->add_option("--out", matrix.out, "folder to write manifest.json into")
                     ->transform(NormaliseOutPath);

@@ -14,6 +14,7 @@
 #include <malloc.h>
 #include <poll.h>
 #include <signal.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -316,6 +317,7 @@ private:
             ::close(fds[1]);
             return false;
         }
+        const pid_t parent = ::getpid();
         const pid_t pid = ::fork();
         if (pid < 0) {
             for (int fd : {fds[0], fds[1], notes[0], notes[1]}) {
@@ -324,6 +326,14 @@ private:
             return false;
         }
         if (pid == 0) {
+            // A worker dies with the process that forked it. Killed by `timeout`, a cancelled CI
+            // job or a build tool, that process would otherwise leave its workers running with
+            // nobody to enforce their time limit: on a shader glslang never finishes, for good.
+            // (The signal comes when the forking thread ends; it waits for its workers.)
+            ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+            if (::getppid() != parent) {
+                ::_exit(1);  // it died before the line above
+            }
             // Every descriptor but stdio and this worker's two sockets goes: another worker's
             // socket held open here would hide that worker's death from us, and a socket of a
             // pool on another thread (`run` plans scenes on two) would keep that pool's worker

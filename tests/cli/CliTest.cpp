@@ -132,6 +132,21 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
     EXPECT_EQ(empty.err.rfind("--max-variants: 1 required TEXT missing", 0), 0U) << empty.err;
 }
 
+// Before, any number went: -j 0 and -j -1 silently meant one per core, and -j 999999 forked a
+// worker for every item of a large matrix.
+TEST_F(CliTest, JobsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
+    WriteConfig("");
+    for (const char* value : {"0", "-1", "257", "999999", "abc"}) {
+        const CommandResult r = RunTidepool(
+                std::string("validate --no-cache --config v.yaml -j ") + value, dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << value << r.err;
+        EXPECT_EQ(r.err.rfind(std::string("--jobs: Value ") + value + " not in range 1 to 256", 0),
+                  0U)
+                << value << r.err;
+    }
+    EXPECT_EQ(RunTidepool("validate --no-cache --config v.yaml -j 256", dir_.Path()).exit_code, 0);
+}
+
 TEST_F(CliTest, AllowLargeMatrixLiftsTheCeilingButNotBeyondItsOwn) {
     WriteConfig("");
     EXPECT_EQ(RunTidepool("expand --config v.yaml --max-variants 100000 --allow-large-matrix",

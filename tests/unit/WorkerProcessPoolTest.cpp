@@ -4,6 +4,8 @@
 
 #include <chrono>
 #include <csignal>
+#include <cstdio>
+#include <fstream>
 #include <future>
 #include <memory>
 #include <new>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include <sys/resource.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 // GCC says so with __SANITIZE_ADDRESS__, clang (the sanitizer build) with __has_feature.
@@ -250,6 +253,60 @@ TEST(WorkerProcessPoolTest, ItemThatTakesTooLongIsKilledAndReportedAsTimedOut) {
     EXPECT_EQ(results[0].failure, WorkerFailure::kTimedOut);
     EXPECT_EQ(results[0].detail, "took longer than 0.5 s");
     EXPECT_EQ(results[1].payload, "done");
+}
+
+// Whether process `pid` has ended: gone, or a zombie nobody has reaped yet (a container's first
+// process may never reap the orphans it inherits).
+bool Ended(pid_t pid) {
+    std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+    std::string line;
+    if (!std::getline(stat, line)) {
+        return true;
+    }
+    const std::size_t after_name = line.rfind(')');
+    return after_name == std::string::npos || line.compare(after_name, 3, ") Z") == 0;
+}
+
+// Before, a worker outlived a parent killed by `timeout` or a cancelled CI job and went on with
+// its item, past its time limit, which only the parent enforces.
+TEST(WorkerProcessPoolTest, WorkersDieWithTheProcessThatForkedThem) {
+    // The worker names itself in a file: a worker closes every descriptor but its own sockets.
+    char folder[] = "/tmp/tidepool-pdeathsig.XXXXXX";
+    ASSERT_NE(::mkdtemp(folder), nullptr);
+    const std::string pid_file = std::string(folder) + "/worker";
+    const pid_t parent = ::fork();
+    ASSERT_GE(parent, 0);
+    if (parent == 0) {
+        RunInWorkerProcesses(1, 1, WorkerLimits{0, 60}, [&](std::size_t, const ProgressNote&) {
+            std::ofstream(pid_file + ".tmp") << ::getpid() << "\n";
+            std::rename((pid_file + ".tmp").c_str(), pid_file.c_str());
+            std::this_thread::sleep_for(std::chrono::seconds(60));
+            return std::string("never");
+        });
+        ::_exit(0);
+    }
+    pid_t worker = 0;
+    const auto named_by = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+    while (worker == 0 && std::chrono::steady_clock::now() < named_by) {
+        std::ifstream(pid_file) >> worker;
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    std::remove(pid_file.c_str());
+    ::rmdir(folder);
+    ASSERT_GT(worker, 0) << "the worker never named itself";
+    ASSERT_FALSE(Ended(worker));
+    ::kill(parent, SIGKILL);
+    int status = 0;
+    ASSERT_EQ(::waitpid(parent, &status, 0), parent);
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+    while (!Ended(worker) && std::chrono::steady_clock::now() < deadline) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    const bool ended = Ended(worker);
+    if (!ended) {
+        ::kill(worker, SIGKILL);  // not to leave it behind when the test fails
+    }
+    EXPECT_TRUE(ended) << "the worker outlived its parent";
 }
 
 // Runs under AddressSanitizer too, where the worker counts its allocations instead of living
