@@ -182,15 +182,22 @@ std::vector<Diagnostic> CheckWebGl2BlockLayouts(std::string_view preprocessed,
 
 namespace {
 
-// How many levels of structures `type` nests (0 for a type with no structure in it).
-int StructNesting(const glslang::TType& type) {
+// How many levels of structures `type` nests (0 for a type with no structure in it). Each struct
+// is worked out once (`known`): one that holds another twice, that one a third twice and so on
+// took 2^n steps for n levels, and 59 levels ran past the 20 s limit.
+int StructNesting(const glslang::TType& type, std::map<const glslang::TTypeList*, int>& known) {
     if (!type.isStruct()) {
         return 0;
     }
-    int deepest = 0;
-    for (const glslang::TTypeLoc& member : *type.getStruct()) {
-        deepest = std::max(deepest, StructNesting(*member.type));
+    const glslang::TTypeList* members = type.getStruct();
+    if (const auto found = known.find(members); found != known.end()) {
+        return found->second;
     }
+    int deepest = 0;
+    for (const glslang::TTypeLoc& member : *members) {
+        deepest = std::max(deepest, StructNesting(*member.type, known));
+    }
+    known.emplace(members, deepest + 1);
     return deepest + 1;
 }
 
@@ -223,8 +230,9 @@ std::vector<Diagnostic> CheckWebGlStructNesting(const glslang::TIntermediate& st
     StructTypeCollector collector;
     stage.getTreeRoot()->traverse(&collector);
     std::set<std::string> reported;
+    std::map<const glslang::TTypeList*, int> nesting_of;
     for (const glslang::TType* type : collector.types) {
-        const int nesting = StructNesting(*type);
+        const int nesting = StructNesting(*type, nesting_of);
         const std::string name = type->getTypeName().c_str();
         if (nesting <= kMaxWebGlStructNesting || !reported.insert(name).second) {
             continue;
@@ -345,22 +353,32 @@ int PackingOrder(const PackingVariable& v) {
 }
 
 // Appends the packing variables of `type` (structures member by member, each element of an
-// array of structures apart) named `name`.
+// array of structures apart) named `name`, while `out` holds at most `most`: each takes a cell of
+// the grid at least, so past its cells the packing fails whatever comes after (and structures
+// that hold others twice over, level after level, have 2^n members for n levels).
 void AddPackingVariables(const glslang::TType& type, const std::string& name, long long elements,
-                         std::vector<PackingVariable>* out) {
+                         std::size_t most, std::vector<PackingVariable>* out) {
+    constexpr long long kMostElements = 1LL << 40;  // far past any grid; no product overflows
     long long count = elements;
     if (type.isArray()) {
         const glslang::TArraySizes* sizes = type.getArraySizes();
         for (int d = 0; d < sizes->getNumDims(); ++d) {
-            count = std::min(count * std::max(sizes->getDimSize(d), 1), 1LL << 40);
+            const long long size = std::max(sizes->getDimSize(d), 1);
+            count = count > kMostElements / size ? kMostElements : count * size;
         }
     }
     if (type.isStruct()) {
         for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            if (out->size() > most) {
+                return;
+            }
             AddPackingVariables(*member.type,
                                 fmt::format("{}.{}", name, member.type->getFieldName().c_str()),
-                                count, out);
+                                count, most, out);
         }
+        return;
+    }
+    if (out->size() > most) {
         return;
     }
     PackingVariable v;
@@ -485,7 +503,9 @@ std::vector<Diagnostic> CheckPacking(const glslang::TIntermediate& stage,
             type.getBasicType() == glslang::EbtSampler || used.count(name) == 0) {
             continue;
         }
-        AddPackingVariables(type, name, 1, &variables);
+        // One more than the grid's cells: enough for the packing to fail where it must.
+        AddPackingVariables(type, name, 1, 4 * static_cast<std::size_t>(std::max(rows, 0)),
+                            &variables);
     }
     const std::optional<std::string> unpacked = FirstUnpackedVariable(variables, rows);
     if (!unpacked) {

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "NestedStructs.h"
 #include "TempDir.h"
 
 namespace tidepool {
@@ -769,6 +770,29 @@ INSTANTIATE_TEST_SUITE_P(
                               "a.fsh:3:14: error: uniform 'big' needs 17 uniform vectors, more "
                               "than the 16 a fragment shader has (gl_MaxFragmentUniformVectors; "
                               "GLSL ES 1.00 Appendix A §7, GLSL ES 3.00 §4.3.5)"},
+                // Before, the count of vectors overflowed a long long (undefined behaviour),
+                // and this uniform of 4 × 2^62 vectors passed as valid.
+                PlainFileCase{"uniform whose vectors overflow a 64-bit count", nullptr,
+                              "#version 100\nprecision mediump float;\n"
+                              "struct S1 { vec4 a[2147483647]; };\n"
+                              "struct S2 { S1 b[2147483647]; };\nstruct S3 { S2 c[4]; };\n"
+                              "uniform S3 u;\nvoid main() { gl_FragColor = u.c[0].b[0].a[0]; }\n",
+                              "a.fsh:6:12: error: uniform 'u' needs over 1099511627775 uniform "
+                              "vectors, more than the 16 a fragment shader has "
+                              "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, "
+                              "GLSL ES 3.00 §4.3.5)"},
+                // Before, the count walked every member anew, 2^59 of them: past the 20 s limit.
+                // (Unused: glslang's own walks of a member access are as slow, and the worker's
+                // limits stop them.)
+                PlainFileCase{"59 structures, each holding the one before twice", nullptr,
+                              "#version 100\nprecision mediump float;\n" +
+                                      testing::DoublingStructs(59) +
+                                      "uniform S59 u;\n"
+                                      "void main() { gl_FragColor = vec4(1.0); }\n",
+                              "a.fsh:62:13: error: uniform 'u' needs over 1099511627775 uniform "
+                              "vectors, more than the 16 a fragment shader has "
+                              "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, "
+                              "GLSL ES 3.00 §4.3.5)"},
                 PlainFileCase{"1.00 vertex with 3.00 fragment", kVertex,
                               "#version 300 es\nprecision mediump float;\nin vec2 uv;\nout vec4 "
                               "c;\nvoid main() { c = vec4(uv, 0.0, 1.0); }\n",

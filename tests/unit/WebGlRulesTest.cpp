@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "NestedStructs.h"
 #include "ShaderPairValidation.h"
 #include "WebGlRules.h"
 
@@ -297,6 +298,22 @@ INSTANTIATE_TEST_SUITE_P(
                         "a.fsh:9:8: error: struct 'Sea' nests structures 5 levels deep; WebGL "
                         "allows at most "
                         "4 (WebGL 1.0 §6.22 \"Maximum Nesting of Structures\")"}));
+
+// A uniform of 40 structures, each holding the one before twice: 2^40 floats. Its uniform
+// vectors, its nesting and its packing are each worked out once per structure; before, each
+// walk went over every member anew and the stage ran past the 20 s limit. (Unused: glslang's
+// own walks of a member access are as slow, and the worker's limits stop them.)
+INSTANTIATE_TEST_SUITE_P(StructNestingAtScale, WebGlRulesTest,
+                         ::testing::Values(WebGlCase{
+                                 "40 levels, each structure holding the one before twice",
+                                 GlslTarget::kWebGl1, kVertex100,
+                                 Fragment100(tidepool::testing::DoublingStructs(40) +
+                                                     "uniform S40 deep;\n",
+                                             "    gl_FragColor = vec4(uv, 0.0, 1.0);\n"),
+                                 "a.fsh:44:13: error: uniform 'deep' needs over "
+                                 "1099511627775 uniform vectors, more than the 16 a fragment "
+                                 "shader has (gl_MaxFragmentUniformVectors; GLSL ES 1.00 "
+                                 "Appendix A §7, GLSL ES 3.00 §4.3.5)"}));
 
 // WebGL 1.0 §6.33: a WebGL 1 global initializer may use uniforms and non-const globals, not
 // varyings, built-in variables, texture lookups or assignments; plain GLSL ES 1.00 wants constants.
