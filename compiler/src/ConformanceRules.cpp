@@ -1086,21 +1086,43 @@ namespace {
 // indices [begin, end).
 class Es100ConstantFolder {
 public:
-    explicit Es100ConstantFolder(std::string_view text) : text_(text), tokens_(CodeTokens(text)) {}
+    explicit Es100ConstantFolder(std::string_view text)
+        : text_(text), tokens_(CodeTokens(text)), most_(4 * text.size() + 65536) {
+        // Each bracket's partner, found once: looking for it anew at every bracket (and for the
+        // commas of every group) took time quadratic in the nesting, 3 s for 40 KB of `((...`.
+        partner_.assign(tokens_.size(), tokens_.size());
+        std::vector<std::size_t> open;
+        for (std::size_t i = 0; i < tokens_.size(); ++i) {
+            const std::string_view t = tokens_[i].text;
+            if (t == "(" || t == "[" || t == "{") {
+                open.push_back(i);
+            } else if (t == ")" || t == "]" || t == "}") {
+                const std::string_view opener = open.empty() ? "" : tokens_[open.back()].text;
+                if (opener != (t == ")" ? "(" : t == "]" ? "[" : "{")) {
+                    balanced_ = false;
+                    break;
+                }
+                partner_[open.back()] = i;
+                open.pop_back();
+            }
+        }
+        balanced_ = balanced_ && open.empty();
+    }
 
     // The lines where a rewritten expression starts.
     std::set<int> lines;
 
     // The whole text rewritten; empty when nothing was.
     std::string Run() {
-        if (tokens_.empty()) {
+        if (tokens_.empty() || !balanced_) {  // glslang refuses such a text for its own reasons
             return {};
         }
         std::string out(text_.substr(0, Offset(0)));
         out += Rewrite(0, tokens_.size());
         out += text_.substr(End(tokens_.size() - 1));
-        // Each matrixCompMult copies its operands N times: nesting could grow without bound.
-        return changed_ && out.size() <= 4 * text_.size() + 65536 ? out : std::string();
+        // Each matrixCompMult copies its operands N times and each sequence its operands twice:
+        // nesting could grow without bound (Rewrite stops at `most_`).
+        return changed_ && !too_long_ && out.size() <= most_ ? out : std::string();
     }
 
 private:
@@ -1116,21 +1138,19 @@ private:
     std::vector<std::pair<std::size_t, std::size_t>> Split(std::size_t begin,
                                                            std::size_t end) const {
         std::vector<std::pair<std::size_t, std::size_t>> parts;
-        int depth = 0;
         std::size_t start = begin;
-        for (std::size_t i = begin; i <= end; ++i) {
-            if (i == end || (depth == 0 && tokens_[i].text == ",")) {
+        for (std::size_t i = begin; i <= end;) {
+            if (i == end || tokens_[i].text == ",") {
                 if (i == start) {
                     return {};
                 }
                 parts.emplace_back(start, i);
                 start = i + 1;
+                ++i;
                 continue;
             }
-            const std::string_view t = tokens_[i].text;
-            depth += t == "(" || t == "[" || t == "{"   ? 1
-                     : t == ")" || t == "]" || t == "}" ? -1
-                                                        : 0;
+            // A bracketed group holds no comma of this level: past it at once.
+            i = partner_[i] < end ? partner_[i] + 1 : i + 1;
         }
         return parts;
     }
@@ -1144,14 +1164,14 @@ private:
             return first[3] - '0';
         }
         if (first == "matrixCompMult" && call) {
-            const auto args = Split(begin + 2, Closing(tokens_, begin + 1));
+            const auto args = Split(begin + 2, Partner(begin + 1));
             return args.empty() ? 0 : MatrixSize(args[0].first, args[0].second);
         }
-        if (first == "(" && Closing(tokens_, begin) == end - 1 && begin + 2 < end) {
+        if (first == "(" && Partner(begin) == end - 1 && begin + 2 < end) {
             return MatrixSize(begin + 1, end - 1);
         }
-        const bool indexed = begin + 1 < end && tokens_[begin + 1].text == "[" &&
-                             Closing(tokens_, begin + 1) == end - 1;
+        const bool indexed =
+                begin + 1 < end && tokens_[begin + 1].text == "[" && Partner(begin + 1) == end - 1;
         if (!tokens_[begin].identifier || !(begin + 1 == end || indexed)) {
             return 0;
         }
@@ -1182,6 +1202,9 @@ private:
 
     // Rewritten text of a part, on one line.
     std::string Flat(std::size_t begin, std::size_t end) {
+        if (too_long_) {
+            return {};
+        }
         std::string part = Rewrite(begin, end);
         std::replace(part.begin(), part.end(), '\n', ' ');
         return part;
@@ -1195,18 +1218,23 @@ private:
         return replacement;
     }
 
+    // Stops once any text it builds passes `most_` (too_long_): sequences nested 40 deep would
+    // copy their innermost operand 2^40 times, and 22 deep took 363 MB before.
     std::string Rewrite(std::size_t begin, std::size_t end) {
         std::string out;
         for (std::size_t i = begin; i < end; ++i) {
+            if (too_long_ || out.size() > most_) {
+                too_long_ = true;
+                return out;
+            }
             if (i > begin) {
                 out += text_.substr(End(i - 1), Offset(i) - End(i - 1));
             }
             const std::string_view token = tokens_[i].text;
             const bool call = i + 1 < end && tokens_[i + 1].text == "(";
             const std::size_t open = token == "(" ? i : i + 1;
-            const std::size_t close = token == "(" || (token == "matrixCompMult" && call)
-                                              ? Closing(tokens_, open)
-                                              : end;
+            const std::size_t close =
+                    token == "(" || (token == "matrixCompMult" && call) ? Partner(open) : end;
             // A directive inside the expression cannot be joined onto one line.
             if (close >= end || Span(i, close + 1).find('#') != std::string_view::npos) {
                 out += token;
@@ -1219,6 +1247,9 @@ private:
                 if (n != 0) {
                     const std::string x = Flat(parts[0].first, parts[0].second);
                     const std::string y = Flat(parts[1].first, parts[1].second);
+                    if (too_long_) {
+                        return out;
+                    }
                     std::string folded = fmt::format("mat{}(", n);
                     for (int column = 0; column < n; ++column) {
                         folded +=
@@ -1239,6 +1270,9 @@ private:
                     folded += fmt::format("{}({}) == ({})", p == 0 ? "" : " && ", operand, operand);
                 }
                 const std::string value = Flat(parts.back().first, parts.back().second);
+                if (too_long_) {
+                    return out;
+                }
                 folded += fmt::format(" ? ({}) : ({}))", value, value);
                 out += KeepLines(folded, i, close);
                 changed_ = true;
@@ -1248,12 +1282,20 @@ private:
             }
             out += token;
         }
+        too_long_ = too_long_ || out.size() > most_;
         return out;
     }
 
+    // The bracket that closes the one at `open`; tokens_.size() when it closes none.
+    std::size_t Partner(std::size_t open) const { return partner_[open]; }
+
     std::string_view text_;
     std::vector<SourceToken> tokens_;
+    std::vector<std::size_t> partner_;  // Partner of each token: tokens_.size() but for openers
+    bool balanced_ = true;
+    std::size_t most_;  // the longest text the rewrite may make
     bool changed_ = false;
+    bool too_long_ = false;
 };
 
 }  // namespace

@@ -5,6 +5,10 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+
+#include "ConformanceRules.h"
 #include "ShaderPairValidation.h"
 
 namespace tidepool {
@@ -741,6 +745,27 @@ INSTANTIATE_TEST_SUITE_P(
                          "void main() { colour = vec4(offset); }\n",
                          "a.fsh:4:20: error: '=' : global const initializers must be constant ' "
                          "const mediump float'"}));
+
+// `(...((1.0, 1.0), 1.0)..., 1.0)`, `depth` sequences deep: the rewrite copies each left operand
+// twice, so 2^depth copies of the innermost.
+std::string NestedSequences(int depth) {
+    std::string text = "const float c = ";
+    text.append(static_cast<std::size_t>(depth), '(');
+    text += "1.0";
+    for (int level = 0; level < depth; ++level) {
+        text += ", 1.0)";
+    }
+    return text + ";\n";
+}
+
+// Before, the rewrite built every copy and the worker ran out of its 1 GiB at 40 KB of source.
+TEST(ConformanceRulesFoldingTest, NestedSequencesFoldUntilTheTextWouldGrowPastItsBound) {
+    std::set<int> lines;
+    const std::string shallow = FoldEs100ConstantExpressions(NestedSequences(4), &lines);
+    EXPECT_NE(shallow.find("((1.0) == (1.0) ? (1.0) : (1.0))"), std::string::npos) << shallow;
+    EXPECT_EQ(lines, std::set<int>{1});
+    EXPECT_EQ(FoldEs100ConstantExpressions(NestedSequences(40), &lines), "");
+}
 
 // GLSL ES 1.00 §3.4, 3.00 §3.4: `#version` names 100 or `300 es`; desktop versions are refused.
 INSTANTIATE_TEST_SUITE_P(
