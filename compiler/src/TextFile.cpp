@@ -4,6 +4,7 @@
 #include <cstring>
 
 #include <fcntl.h>
+#include <fmt/format.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -28,7 +29,7 @@ std::string KindProblem(mode_t mode) {
 
 }  // namespace
 
-TextFileRead ReadTextFile(const std::filesystem::path& path) {
+TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_bytes) {
     TextFileRead read;
     // O_NONBLOCK: should the path turn into a FIFO between any check and the open, the open
     // still returns at once; fstat on the open descriptor then refuses it.
@@ -43,12 +44,24 @@ TextFileRead ReadTextFile(const std::filesystem::path& path) {
     } else {
         read.error = KindProblem(info.st_mode);
     }
+    auto too_large = [&](std::uint64_t bytes) {
+        return fmt::format("is {} bytes, more than the {} tidepool reads of such a file", bytes,
+                           max_bytes);
+    };
+    if (read.error.empty() && max_bytes > 0 &&
+        static_cast<std::uint64_t>(info.st_size) > max_bytes) {
+        read.error = too_large(static_cast<std::uint64_t>(info.st_size));
+    }
     if (read.error.empty()) {
         char buffer[65536];
         for (;;) {
             const ssize_t got = ::read(fd, buffer, sizeof buffer);
             if (got > 0) {
                 read.text.append(buffer, static_cast<std::size_t>(got));
+                if (max_bytes > 0 && read.text.size() > max_bytes) {  // it grew while read
+                    read.error = too_large(read.text.size());
+                    break;
+                }
             } else if (got == 0) {
                 read.ok = true;
                 break;
@@ -66,7 +79,7 @@ TextFileRead ReadTextFile(const std::filesystem::path& path) {
 }
 
 TextFileRead ReadShaderFile(const std::filesystem::path& path) {
-    TextFileRead read = ReadTextFile(path);
+    TextFileRead read = ReadTextFile(path, kMaxShaderFileBytes);
     if (read.text.rfind("\xEF\xBB\xBF", 0) == 0) {
         read.text.erase(0, 3);
     }

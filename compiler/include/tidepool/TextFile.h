@@ -1,6 +1,7 @@
 // Reading an input file the user named, refusing what is not a regular file before opening it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 
@@ -15,10 +16,17 @@ struct TextFileRead {
 
 /// Reads a regular file. A missing path, a folder, a FIFO, a socket or a device is refused with a
 /// message saying which, without blocking: a FIFO with no writer would block an open() forever.
-TextFileRead ReadTextFile(const std::filesystem::path& path);
+/// So is a file of more than `max_bytes` (0: no bound), unread.
+TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_bytes = 0);
 
-/// ReadTextFile for a shader: a UTF-8 byte-order mark at the start is dropped, as GL drivers and
-/// glslangValidator accept it; it sits on line 1 before any newline, so line numbers stay right.
+/// The largest shader file read: 4 MiB, hundreds of times a large real shader. Checking one costs
+/// about 70 bytes of memory per byte in the process that reads it before glslang's token limit
+/// can refuse it (a 50 MB file took 3.35 GB).
+inline constexpr std::uint64_t kMaxShaderFileBytes = std::uint64_t{4} << 20;
+
+/// ReadTextFile for a shader, at most kMaxShaderFileBytes: a UTF-8 byte-order mark at the start is
+/// dropped, as GL drivers and glslangValidator accept it; it sits on line 1 before any newline,
+/// so line numbers stay right.
 TextFileRead ReadShaderFile(const std::filesystem::path& path);
 
 }  // namespace tidepool
