@@ -103,6 +103,17 @@ DeviceLimitsRead ParseDeviceLimits(std::string_view text, const std::string& pat
         const std::string name(words[0].text);
         const std::vector<std::string>& known = ResourceLimitNames();
         if (std::find(known.begin(), known.end(), name) == known.end()) {
+            // A word far longer than any name is no misspelling of one: it gets no suggestion
+            // (the distance to every name costs its length times theirs) and is shown cut.
+            constexpr std::size_t kLongestShown = 64;
+            if (name.size() > kLongestShown) {
+                error(words[0],
+                      fmt::format("unknown limit '{}...' ({} characters, longer than any limit "
+                                  "name; the names are glslang's: `glslangValidator -c` prints "
+                                  "them all)",
+                                  name.substr(0, kLongestShown), name.size()));
+                continue;
+            }
             error(words[0], fmt::format("unknown limit '{}'; did you mean '{}'? (the names are "
                                         "glslang's: `glslangValidator -c` prints them all)",
                                         name, ClosestName(name)));

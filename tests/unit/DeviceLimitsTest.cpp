@@ -33,6 +33,18 @@ TEST(DeviceLimitsTest, ReadsNamesAndValuesWithCommentsAndBlankLines) {
               "MaxFragmentUniformVectors 224\nMinProgramTexelOffset -8\nwhileLoops 0\n");
 }
 
+// Before, the suggestion measured the distance from every name to all of the word, and echoed
+// it whole: a word of 1 MB took 5 s (10 MB, 47 s) and filled the terminal.
+TEST(DeviceLimitsTest, AWordLongerThanAnyNameIsShownCutWithNoSuggestion) {
+    const std::string word(1 << 20, 'M');
+    const DeviceLimitsRead read = ParseDeviceLimits(word + " 4\n", "phone.conf");
+    EXPECT_FALSE(read.ok);
+    EXPECT_EQ(Errors(read), "phone.conf:1:1: error: unknown limit '" + std::string(64, 'M') +
+                                    "...' (1048576 characters, longer than any limit name; the "
+                                    "names are glslang's: `glslangValidator -c` prints them "
+                                    "all)\n");
+}
+
 struct BadLimitsCase {
     const char* name;
     const char* text;
