@@ -657,30 +657,43 @@ TEST(PairedEstimateTest, PullingTheOuterRatiosInMovesTheLowestAndHighestPairToTh
               (std::vector<double>{11, 12, 13}));
 }
 
-TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetItsGuess) {
+// A probe: ten pairs each way, 3% slower give or take a little, one as-run pair 25% slower; and
+// its steadied twin, whose disturbed pair reads like the next slowest one.
+struct DisturbedProbe {
     StoppingRule rule;
-    rule.contended_share = 0.5;
-    // A probe: ten pairs each way, 3% slower give or take a little, one as-run pair 25% slower.
     Samples as_run = PairsOf(10, 1.03, 0.004);
-    const Samples contended = PairsOf(10, 1.03, 0.01);
-    as_run.candidate[3] = 12.5;
-    const PairedEstimate as_run_estimate = EstimatePaired(as_run.baseline, as_run.candidate);
-    const PairedEstimate contended_estimate =
-            EstimatePaired(contended.baseline, contended.candidate);
+    Samples contended = PairsOf(10, 1.03, 0.01);
+    PairedEstimate as_run_estimate;
+    PairedEstimate contended_estimate;
+    Samples steadied;
+    PairedEstimate steadied_estimate;
+
+    DisturbedProbe() {
+        rule.contended_share = 0.5;
+        as_run.candidate[3] = 12.5;
+        as_run_estimate = EstimatePaired(as_run.baseline, as_run.candidate);
+        contended_estimate = EstimatePaired(contended.baseline, contended.candidate);
+        steadied = as_run;
+        steadied.candidate = WithOuterRatiosPulledIn(as_run.baseline, as_run.candidate);
+        steadied_estimate = EstimatePaired(steadied.baseline, steadied.candidate);
+    }
+};
+
+TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetItsGuess) {
+    const DisturbedProbe p;
     const ExpectedPairs guess = PairsExpectedAcrossStates(
-            as_run.baseline, as_run.candidate, contended.baseline, contended.candidate,
-            as_run_estimate, contended_estimate, rule, 60);
+            p.as_run.baseline, p.as_run.candidate, p.contended.baseline, p.contended.candidate,
+            p.as_run_estimate, p.contended_estimate, p.rule, 60);
     // From the interval the ten pairs state as they are, the guess would be over 200 pairs.
-    EXPECT_GT(PairsExpectedAtStop(AcrossHostStates(as_run_estimate, contended_estimate), rule, 60),
+    EXPECT_GT(PairsExpectedAtStop(AcrossHostStates(p.as_run_estimate, p.contended_estimate), p.rule,
+                                  60),
               200);
     EXPECT_LT(guess.as_run + guess.contended, 100);
     // It is the guess of the probe whose disturbed pair reads like the next slowest one.
-    Samples steadied = as_run;
-    steadied.candidate = WithOuterRatiosPulledIn(as_run.baseline, as_run.candidate);
-    EXPECT_LT(steadied.candidate[3], 10.5);
+    EXPECT_LT(p.steadied.candidate[3], 10.5);
     const ExpectedPairs steady = PairsExpectedAcrossStates(
-            steadied.baseline, steadied.candidate, contended.baseline, contended.candidate,
-            EstimatePaired(steadied.baseline, steadied.candidate), contended_estimate, rule, 60);
+            p.steadied.baseline, p.steadied.candidate, p.contended.baseline, p.contended.candidate,
+            p.steadied_estimate, p.contended_estimate, p.rule, 60);
     EXPECT_EQ(guess.as_run, steady.as_run);
     EXPECT_EQ(guess.contended, steady.contended);
 }
@@ -716,29 +729,20 @@ TEST(PairedEstimateTest, TheResolutionsPairsCountTheStateTheLooksWouldTake) {
 }
 
 TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetTheResolutionsPairs) {
-    StoppingRule rule;
-    rule.contended_share = 0.5;
-    // A probe: ten pairs each way, 3% slower give or take a little, one as-run pair 25% slower.
-    Samples as_run = PairsOf(10, 1.03, 0.004);
-    const Samples contended = PairsOf(10, 1.03, 0.01);
-    as_run.candidate[3] = 12.5;
-    const PairedEstimate as_run_estimate = EstimatePaired(as_run.baseline, as_run.candidate);
-    const PairedEstimate contended_estimate =
-            EstimatePaired(contended.baseline, contended.candidate);
+    const DisturbedProbe p;
     const ExpectedPairs pairs = ResolutionPairsAcrossStates(
-            as_run.baseline, as_run.candidate, contended.baseline, contended.candidate,
-            as_run_estimate, contended_estimate, rule);
+            p.as_run.baseline, p.as_run.candidate, p.contended.baseline, p.contended.candidate,
+            p.as_run_estimate, p.contended_estimate, p.rule);
     // From the interval the ten pairs state as they are, over 90 pairs as run; pulled in, the
     // fewest the rule takes in each state.
-    EXPECT_GT(PairsForResolution(AcrossHostStates(as_run_estimate, contended_estimate), rule), 90);
-    EXPECT_EQ(pairs.as_run, rule.min_pairs);
-    EXPECT_LE(pairs.contended, rule.min_pairs);
+    EXPECT_GT(PairsForResolution(AcrossHostStates(p.as_run_estimate, p.contended_estimate), p.rule),
+              90);
+    EXPECT_EQ(pairs.as_run, p.rule.min_pairs);
+    EXPECT_LE(pairs.contended, p.rule.min_pairs);
     // Those of the probe whose disturbed pair reads like the next slowest one.
-    Samples steadied = as_run;
-    steadied.candidate = WithOuterRatiosPulledIn(as_run.baseline, as_run.candidate);
     const ExpectedPairs steady = ResolutionPairsAcrossStates(
-            steadied.baseline, steadied.candidate, contended.baseline, contended.candidate,
-            EstimatePaired(steadied.baseline, steadied.candidate), contended_estimate, rule);
+            p.steadied.baseline, p.steadied.candidate, p.contended.baseline, p.contended.candidate,
+            p.steadied_estimate, p.contended_estimate, p.rule);
     EXPECT_EQ(pairs.as_run, steady.as_run);
     EXPECT_EQ(pairs.contended, steady.contended);
 }
