@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "FileContents.h"
+#include "NestedStructs.h"
 #include "TempDir.h"
 #include "TidepoolProcess.h"
 #include <nlohmann/json.hpp>
@@ -465,14 +466,13 @@ TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
 // to 2^40 tokens (the macro-size check measures code, not `#if` lines; the time limit is the
 // guard for what that check misses). TIDEPOOL_TEST_GLSLANG_SECONDS lowers the 20 s limit to 1 s.
 TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
-    std::string fragment = "#version 100\nprecision mediump float;\n";
-    for (int level = 0; level < 40; ++level) {
-        fragment += "#define M" + std::to_string(level) + " M" + std::to_string(level + 1) +
-                    " + M" + std::to_string(level + 1) + "\n";
-    }
-    fragment +=
-            "#define M40 1\n#ifdef HANG\n#if M0\n#endif\n#endif\n"
-            "void main() { gl_FragColor = vec4(1.0); }\n";
+    // A local of a structure that holds another twice over, 40 levels deep: glslang walks its
+    // members anew (TType::contains) for 2^40 steps. (A macro bomb in an #if did this until
+    // tidepool's own token guard took #if lines in too.)
+    const std::string fragment = "#version 100\nprecision mediump float;\n#ifdef HANG\n" +
+                                 tidepool::testing::DoublingStructs(40) +
+                                 "#endif\nvoid main() {\n#ifdef HANG\n    S40 deep;\n#endif\n"
+                                 "    gl_FragColor = vec4(1.0);\n}\n";
     dir_.Write("s.fsh", fragment);
     WriteConfig("", "    features: [HANG]\n");
     const auto start = std::chrono::steady_clock::now();

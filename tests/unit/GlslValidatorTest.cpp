@@ -693,6 +693,29 @@ std::string MacroBomb() {
     return bomb + "void main() {\n  M0;\n}\n";
 }
 
+// `#define M0 (M1+M1)` ... `#define M40 1`: 2^40 tokens once expanded, then `condition` on line
+// 44 (an #if's expression, M0 at column 5 in `#if M0`).
+std::string MacroBombInACondition(const std::string& condition) {
+    std::string bomb = "#version 100\nprecision mediump float;\n";
+    for (int level = 0; level < 40; ++level) {
+        const std::string next = std::to_string(level + 1);
+        bomb.append("#define M").append(std::to_string(level)).append(" (M").append(next);
+        bomb.append("+M").append(next).append(")\n");
+    }
+    return bomb + "#define M40 1\n" + condition +
+           "\n#endif\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+}
+
+// Only what the preprocessor expands counts: the name `defined` asks about is not expanded.
+TEST(GlslValidatorTest, AMacroBombNamedAfterDefinedIsNotExpanded) {
+    TempDir dir;
+    const std::string path =
+            dir.Write("a.fsh", MacroBombInACondition("#if defined(M0) && defined M1")).string();
+    const ValidationReport report = ValidateShaderFiles({{path, Stage::kFragment}}, {});
+    ASSERT_EQ(report.verdicts.size(), 1U);
+    EXPECT_TRUE(report.verdicts[0].valid);
+}
+
 std::string Repeated(const std::string& text, int times) {
     std::string all;
     for (int i = 0; i < times; ++i) {
@@ -809,6 +832,14 @@ INSTANTIATE_TEST_SUITE_P(
                 PlainFileCase{
                         "macro bomb, refused before glslang runs", nullptr, MacroBomb(),
                         "a.fsh:43:3: error: macro 'M0' expands to more than 131072 tokens "
+                        "(a macro bomb); tidepool refuses shaders that large: write repeated code "
+                        "as functions and loops rather than macros, or split the shader"},
+                // Before, only code lines were measured: 40 levels in an #if ran glslang's
+                // preprocessor past the 20 s limit.
+                PlainFileCase{
+                        "macro bomb in an #if, refused before glslang runs", nullptr,
+                        MacroBombInACondition("#if M0"),
+                        "a.fsh:44:5: error: macro 'M0' expands to more than 131072 tokens "
                         "(a macro bomb); tidepool refuses shaders that large: write repeated code "
                         "as functions and loops rather than macros, or split the shader"},
                 PlainFileCase{
