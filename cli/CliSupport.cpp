@@ -4,6 +4,8 @@
 
 #include <cstdio>
 #include <memory>
+#include <set>
+#include <string>
 #include <utility>
 
 #include "Commands.h"
@@ -108,9 +110,36 @@ std::string NormaliseOutPath(std::string path) {
 }
 
 bool CheckDefineOptions(const std::vector<std::string>& defines) {
+    std::set<std::string> names;
     for (const std::string& define : defines) {
         const std::size_t equals = define.find('=');
         const std::string name = define.substr(0, equals);
+        // glslang's own words for these came as a compile error (exit code 1) at line -1.
+        constexpr std::size_t kLongestName = 1024;  // glslang's longest token
+        if (name.size() > kLongestName) {
+            std::fprintf(stderr,
+                         "error: -D '%.64s...': the name has %zu characters, more than the %zu "
+                         "of glslang's longest token\n",
+                         name.c_str(), name.size(), kLongestName);
+            return false;
+        }
+        if (name == "defined") {
+            std::fprintf(stderr,
+                         "error: -D 'defined': 'defined' is the preprocessor's operator and "
+                         "cannot be a macro name (GLSL ES §3.4)\n");
+            return false;
+        }
+        if (!names.insert(name).second) {
+            std::fprintf(stderr, "error: -D '%s' is given twice; keep one\n", name.c_str());
+            return false;
+        }
+        if (equals != std::string::npos && define.find("/*", equals) != std::string::npos) {
+            std::fprintf(stderr,
+                         "error: -D '%s': the value may not hold '/*' (a comment it opens would "
+                         "run on past the define)\n",
+                         name.c_str());
+            return false;
+        }
         if (!IsValidDefineName(name)) {
             std::fprintf(stderr,
                          "error: -D '%s': '%s' is not a valid define name: use letters, digits "

@@ -513,6 +513,15 @@ TEST_F(CliTest, FunctionLikeMacroBombIsRefusedQuicklyWithItsPosition) {
     EXPECT_LT(seconds, 5.0);
 }
 
+TEST_F(CliTest, ADefineNameLongerThanGlslangsLongestTokenIsAUsageError) {
+    const CommandResult r =
+            RunTidepool("validate -D " + std::string(2000, 'N') + "=1 s.vsh", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "error: -D '" + std::string(64, 'N') +
+                             "...': the name has 2000 characters, more than the 1024 of "
+                             "glslang's longest token\n");
+}
+
 TEST_F(CliTest, DefineTakesOneValueSoTheFileAfterItIsValidated) {
     const CommandResult r = RunTidepool("validate -D B s.fsh", dir_.Path());
     EXPECT_EQ(r.exit_code, 1) << r.err;  // B selects the branch with the error
@@ -542,6 +551,14 @@ TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
                  Case{"-D A",
                       "error: -D applies to the shader FILEs given, and none was given; "
                       "the variants of a configuration get their defines from it\n"},
+                 // Before, these came from glslang at line -1 with exit code 1.
+                 Case{"-D A=1 -D A=2 s.vsh", "error: -D 'A' is given twice; keep one\n"},
+                 Case{"-D 'A=/*' s.vsh",
+                      "error: -D 'A': the value may not hold '/*' (a comment it opens would run "
+                      "on past the define)\n"},
+                 Case{"-D defined s.vsh",
+                      "error: -D 'defined': 'defined' is the preprocessor's operator and cannot "
+                      "be a macro name (GLSL ES §3.4)\n"},
          }) {
         const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
         EXPECT_EQ(r.exit_code, 2) << c.args;
