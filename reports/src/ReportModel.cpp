@@ -1055,8 +1055,19 @@ ReportModelResult BuildReportModelUnchecked(const ReportInputs& inputs,
                 if (!image) {
                     return out;
                 }
+                // Images of one view have one size; another size is a corrupt input, and a heat
+                // map of two sizes would be empty (the report then failed writing it, exit 3).
+                const RgbaImage& reference = ref->second.image;
+                if (image->width != reference.width || image->height != reference.height) {
+                    out.error = fmt::format(
+                            "{}: {}x{} image, but the reference configuration's at view '{}' is "
+                            "{}x{}; render the run again",
+                            path.string(), image->width, image->height, view, reference.width,
+                            reference.height);
+                    return out;
+                }
                 panel.image = std::move(*image);
-                panel.reference = ref->second.image;
+                panel.reference = reference;
                 panel.heat_map = DifferenceHeatMap(panel.image, panel.reference, kHeatMapFullScale);
                 panel.psnr_db = Psnr(panel.image, panel.reference);
                 panel.ssim = Ssim(panel.image, panel.reference);

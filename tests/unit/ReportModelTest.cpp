@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -276,6 +277,39 @@ TEST(ReportModelTest, MeasuredWhyCitesTheComparisonsOwnPassTimes) {
               std::string::npos)
             << why;
     EXPECT_EQ(why.find("35.6"), std::string::npos) << why;
+}
+
+// Before, an image of another size than the reference's gave an empty heat map, and the report
+// failed writing it ("a 0x0 image needs 0 bytes", exit code 3) without naming the input.
+TEST(ReportModelTest, AnImageOfAnotherSizeThanTheReferencesIsAnErrorNamingIt) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, {{"water:REF", {"reference"}, 50, 0},
+                                           {"water:FULL", {"full"}, 10, 0},
+                                           {"water:NOFOG", {"full_no_fog"}, 9, 0}});
+    tidepool::base::RgbaImage odd;
+    odd.width = 17;
+    odd.height = 33;
+    odd.pixels.assign(static_cast<std::size_t>(17 * 33 * 4), 255);
+    const std::filesystem::path image = dir.Path() / "render/images/1.png";
+    ASSERT_EQ(tidepool::base::WritePngAtomically(image, odd), "");
+    // The render recorded the image's accuracy while it was in memory, so the accuracy table
+    // takes that and never reads the file: only the whitepaper panels do.
+    nlohmann::json results = nlohmann::json::parse(std::ifstream(run.results));
+    for (nlohmann::json& c : results["configurations"]) {
+        for (nlohmann::json& v : c["views"]) {
+            v["accuracy"] = {{"psnr_db", 40.0}, {"ssim", 0.99}, {"share_visible", 0.0}};
+        }
+    }
+    std::ofstream(run.results) << results.dump();
+    const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+    ASSERT_TRUE(loaded.inputs) << loaded.error;
+    const ReportModelResult built = BuildReportModel(*loaded.inputs, ReportOptions{});
+    EXPECT_FALSE(built.model);
+    EXPECT_NE(built.error.find(image.string() + ": 17x33 image, but "), std::string::npos)
+            << built.error;
+    EXPECT_NE(built.error.find("the reference configuration's at view 'three_quarter' is 32x24"),
+              std::string::npos)
+            << built.error;
 }
 
 TEST(ReportModelTest, AccuracyAndParetoFrontierOnKnownImages) {
