@@ -467,10 +467,11 @@ TEST_F(CliTest, MacroBombIsRefusedQuicklyWithItsPosition) {
 // guard for what that check misses). TIDEPOOL_TEST_GLSLANG_SECONDS lowers the 20 s limit to 1 s.
 TEST_F(CliTest, GlslangHangFailsItsStageAndTheOtherVariantsAreStillValidated) {
     // A local of a structure that holds another twice over, 40 levels deep: glslang walks its
-    // members anew (TType::contains) for 2^40 steps. (A macro bomb in an #if did this until
-    // tidepool's own token guard took #if lines in too.)
+    // members anew (TType::contains) for 2^40 steps. Declared through a macro, out of the sight
+    // of tidepool's source guard on structures. (A macro bomb in an #if did this until the token
+    // guard took #if lines in too.)
     const std::string fragment = "#version 100\nprecision mediump float;\n#ifdef HANG\n" +
-                                 tidepool::testing::DoublingStructs(40) +
+                                 tidepool::testing::DoublingStructsByMacro(40) +
                                  "#endif\nvoid main() {\n#ifdef HANG\n    S40 deep;\n#endif\n"
                                  "    gl_FragColor = vec4(1.0);\n}\n";
     dir_.Write("s.fsh", fragment);

@@ -20,4 +20,18 @@ inline std::string DoublingStructs(int levels) {
     return text;
 }
 
+/// DoublingStructs(levels) with each structure after S1 declared through a macro,
+/// `DOUBLE(S1, S2)` for `struct S2 { S1 a; S1 b; };`: one line for the macro, then one per
+/// level. tidepool's source-level guard on structures (which reads code, not macro expansions)
+/// does not see them, so glslang and the rules over its parsed types do.
+inline std::string DoublingStructsByMacro(int levels) {
+    std::string text =
+            "#define DOUBLE(A, B) struct B { A a; A b; };\nstruct S1 { float a; float b; };\n";
+    for (int level = 2; level <= levels; ++level) {
+        text.append("DOUBLE(S").append(std::to_string(level - 1)).append(", S");
+        text.append(std::to_string(level)).append(")\n");
+    }
+    return text;
+}
+
 }  // namespace tidepool::testing

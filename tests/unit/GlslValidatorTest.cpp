@@ -805,17 +805,31 @@ INSTANTIATE_TEST_SUITE_P(
                               "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, "
                               "GLSL ES 3.00 §4.3.5)"},
                 // Before, the count walked every member anew, 2^59 of them: past the 20 s limit.
-                // (Unused: glslang's own walks of a member access are as slow, and the worker's
-                // limits stop them.)
+                // Declared through a macro, out of the source guard's sight (below); unused, since
+                // glslang's own walks of a member access are as slow.
                 PlainFileCase{"59 structures, each holding the one before twice", nullptr,
                               "#version 100\nprecision mediump float;\n" +
-                                      testing::DoublingStructs(59) +
+                                      testing::DoublingStructsByMacro(59) +
                                       "uniform S59 u;\n"
                                       "void main() { gl_FragColor = vec4(1.0); }\n",
-                              "a.fsh:62:13: error: uniform 'u' needs over 1099511627775 uniform "
+                              "a.fsh:63:13: error: uniform 'u' needs over 1099511627775 uniform "
                               "vectors, more than the 16 a fragment shader has "
                               "(gl_MaxFragmentUniformVectors; GLSL ES 1.00 Appendix A §7, "
                               "GLSL ES 3.00 §4.3.5)"},
+                // Before, glslang walked it for 2^17 steps at every question about its type,
+                // 2^40 for 40 levels: past the 20 s limit.
+                PlainFileCase{"structures holding 2^17 members once expanded, refused before "
+                              "glslang runs",
+                              nullptr,
+                              "#version 100\nprecision mediump float;\n" +
+                                      testing::DoublingStructs(40) +
+                                      "void main() {\n    S40 deep;\n"
+                                      "    gl_FragColor = vec4(1.0);\n}\n",
+                              "a.fsh:19:8: error: struct 'S17' holds more than 65536 members once "
+                              "the structures in it are expanded, the most tidepool lets glslang "
+                              "walk (glslang walks a structure's members anew for every question "
+                              "it asks of a type); hold fewer structures in one another, or use "
+                              "arrays"},
                 PlainFileCase{"1.00 vertex with 3.00 fragment", kVertex,
                               "#version 300 es\nprecision mediump float;\nin vec2 uv;\nout vec4 "
                               "c;\nvoid main() { c = vec4(uv, 0.0, 1.0); }\n",
