@@ -1,6 +1,7 @@
 #include "tidepool/report/ReportModel.h"
 
 #include "tidepool/VariantConfig.h"
+#include "tidepool/base/FileKind.h"
 #include "tidepool/base/ImageMetrics.h"
 #include "tidepool/base/ParallelFor.h"
 #include "tidepool/base/SampleStatistics.h"
@@ -95,9 +96,8 @@ ViewErrors CompareWithReference(const MeasuredConfiguration& c, const ImageCache
         ViewError view;
         if (recorded && v.accuracy) {
             // The figures come from the results; the file they describe must still be there.
-            std::error_code ec;
-            if (!std::filesystem::is_regular_file(v.image, ec)) {
-                errors.error = fmt::format("{}: cannot read image: no such file", v.image.string());
+            if (const std::string why = base::WhyNotARegularFile(v.image); !why.empty()) {
+                errors.error = fmt::format("{}: cannot read image: {}", v.image.string(), why);
                 return errors;
             }
             view = {v.view, v.accuracy->psnr_db, v.accuracy->ssim, v.accuracy->share_visible};

@@ -1,5 +1,7 @@
 #include "tidepool/stagefiles/StageFile.h"
 
+#include "tidepool/base/FileKind.h"
+
 #include <fstream>
 #include <sstream>
 
@@ -16,9 +18,8 @@ std::string JsonText(const nlohmann::json& json, int indent) {
 namespace tidepool::stagefiles {
 
 std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error) {
-    std::error_code ec;
-    if (!std::filesystem::is_regular_file(path, ec)) {
-        *error = fmt::format("{}: no such file", path.string());
+    if (const std::string why = base::WhyNotARegularFile(path); !why.empty()) {
+        *error = fmt::format("{}: {}", path.string(), why);
         return std::nullopt;
     }
     std::ifstream in(path, std::ios::binary);

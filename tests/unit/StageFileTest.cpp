@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
 #include "FieldReader.h"
 #include "TempDir.h"
+#include <sys/stat.h>
 
 namespace tidepool::stagefiles {
 namespace {
@@ -33,6 +35,24 @@ TEST(StageFileTest, ReadJsonFileNamesAMissingOrCorruptFile) {
     const std::optional<json> read = ReadJsonFile(good, &error);
     ASSERT_TRUE(read);
     EXPECT_EQ((*read)["a"][0], 1);
+}
+
+// Before, every one of these was "no such file", though the path was there.
+TEST(StageFileTest, ReadJsonFileSaysWhatStandsWhereAFileShouldBe) {
+    TempDir dir;
+    std::string error;
+    EXPECT_FALSE(ReadJsonFile(dir.Path(), &error));
+    EXPECT_EQ(error, dir.Path().string() + ": is a folder, not a file");
+    EXPECT_FALSE(ReadJsonFile("/dev/zero", &error));
+    EXPECT_EQ(error, "/dev/zero: is a device, a named pipe or a socket, not a regular file");
+    const std::filesystem::path pipe = dir.Path() / "pipe.json";
+    ASSERT_EQ(::mkfifo(pipe.c_str(), 0600), 0);
+    EXPECT_FALSE(ReadJsonFile(pipe, &error));  // without blocking
+    EXPECT_EQ(error, pipe.string() + ": is a device, a named pipe or a socket, not a regular file");
+    std::filesystem::create_symlink("b.json", dir.Path() / "a.json");
+    std::filesystem::create_symlink("a.json", dir.Path() / "b.json");
+    EXPECT_FALSE(ReadJsonFile(dir.Path() / "a.json", &error));
+    EXPECT_EQ(error, (dir.Path() / "a.json").string() + ": Too many levels of symbolic links");
 }
 
 TEST(StageFileTest, JsonTextReplacesBytesThatAreNotUtf8) {
