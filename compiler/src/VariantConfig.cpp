@@ -294,6 +294,10 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
             Error(path, fmt::format("{} shader file '{}' is not a regular file ({}); a FIFO or "
                                     "device cannot be validated",
                                     stage, value, resolved.string()));
+        } else if (ec && ec != std::errc::no_such_file_or_directory) {
+            // A loop of links, a folder on the way that cannot be searched: not "not found".
+            Error(path, fmt::format("{} shader file '{}' cannot be read ({}): {}", stage, value,
+                                    resolved.string(), ec.message()));
         } else if (!std::filesystem::is_regular_file(status)) {
             Error(path, fmt::format("{} shader file '{}' not found (looked for {}); paths are "
                                     "relative to the folder of {}",

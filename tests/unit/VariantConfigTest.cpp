@@ -461,6 +461,15 @@ TEST_F(VariantConfigTest, ShaderPathThatIsAFifoSaysSoWithoutOpeningIt) {
                       "); a FIFO or device cannot be validated\n");
 }
 
+// Before, a loop of links was reported as "not found".
+TEST_F(VariantConfigTest, ShaderPathThatIsALoopOfLinksSaysSo) {
+    std::filesystem::create_symlink("b.fsh", dir_.Path() / "a.fsh");
+    std::filesystem::create_symlink("a.fsh", dir_.Path() / "b.fsh");
+    EXPECT_EQ(Errors("programs:\n  p:\n    vertex: s.vsh\n    fragment: a.fsh\n"),
+              "v.yaml:4:15: error: fragment shader file 'a.fsh' cannot be read (" +
+                      (dir_.Path() / "a.fsh").string() + "): Too many levels of symbolic links\n");
+}
+
 TEST_F(VariantConfigTest, UnreadableFileIsAnErrorNamingIt) {
     const ConfigResult result = LoadVariantConfig(dir_.Path() / "missing.yaml");
     ASSERT_EQ(result.diagnostics.size(), 1U);
