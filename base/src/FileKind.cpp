@@ -1,25 +1,34 @@
 #include "tidepool/base/FileKind.h"
 
-#include <system_error>
+#include <cerrno>
+#include <cstring>
+
+#include <sys/stat.h>
 
 namespace tidepool::base {
 
+std::string KindProblem(mode_t mode) {
+    if (S_ISDIR(mode)) {
+        return "is a folder, not a file";
+    }
+    if (S_ISFIFO(mode)) {
+        return "is a FIFO (named pipe), not a regular file";
+    }
+    if (S_ISSOCK(mode)) {
+        return "is a socket, not a regular file";
+    }
+    if (S_ISCHR(mode) || S_ISBLK(mode)) {
+        return "is a device, not a regular file";
+    }
+    return S_ISREG(mode) ? "" : "is not a regular file";
+}
+
 std::string WhyNotARegularFile(const std::filesystem::path& path) {
-    std::error_code ec;
-    const std::filesystem::file_status status = std::filesystem::status(path, ec);
-    if (ec && ec != std::errc::no_such_file_or_directory) {
-        return ec.message();
+    struct stat info {};
+    if (::stat(path.c_str(), &info) != 0) {
+        return errno == ENOENT ? "no such file" : std::strerror(errno);
     }
-    switch (status.type()) {
-        case std::filesystem::file_type::regular:
-            return "";
-        case std::filesystem::file_type::not_found:
-            return "no such file";
-        case std::filesystem::file_type::directory:
-            return "is a folder, not a file";
-        default:
-            return "is a device, a named pipe or a socket, not a regular file";
-    }
+    return KindProblem(info.st_mode);
 }
 
 }  // namespace tidepool::base

@@ -1,5 +1,7 @@
 #include "tidepool/TextFile.h"
 
+#include "tidepool/base/FileKind.h"
+
 #include <cerrno>
 #include <cstring>
 
@@ -9,25 +11,6 @@
 #include <unistd.h>
 
 namespace tidepool {
-namespace {
-
-std::string KindProblem(mode_t mode) {
-    if (S_ISDIR(mode)) {
-        return "is a folder, not a file";
-    }
-    if (S_ISFIFO(mode)) {
-        return "is a FIFO (named pipe), not a regular file";
-    }
-    if (S_ISSOCK(mode)) {
-        return "is a socket, not a regular file";
-    }
-    if (S_ISCHR(mode) || S_ISBLK(mode)) {
-        return "is a device, not a regular file";
-    }
-    return S_ISREG(mode) ? "" : "is not a regular file";
-}
-
-}  // namespace
 
 TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_bytes) {
     TextFileRead read;
@@ -42,7 +25,7 @@ TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_b
     if (::fstat(fd, &info) != 0) {
         read.error = std::strerror(errno);
     } else {
-        read.error = KindProblem(info.st_mode);
+        read.error = base::KindProblem(info.st_mode);
     }
     auto too_large = [&](std::uint64_t bytes) {
         return fmt::format("is {} bytes, more than the {} tidepool reads of such a file", bytes,

@@ -4,12 +4,18 @@
 #include <filesystem>
 #include <string>
 
+#include <sys/types.h>
+
 namespace tidepool::base {
 
-/// "" when `path` names a regular file (through links); otherwise why it is none, as an error
-/// reads after the path: "no such file", "is a folder, not a file", "is a device, a named pipe or
-/// a socket, not a regular file", or the system's words (a loop of symbolic links: "Too many
-/// levels of symbolic links"). Never blocks: nothing is opened.
+/// "" for a regular file's mode (st_mode); otherwise what the node is, as an error reads after
+/// the path: "is a folder, not a file", "is a FIFO (named pipe), not a regular file", "is a
+/// socket, not a regular file", "is a device, not a regular file".
+std::string KindProblem(mode_t mode);
+
+/// "" when `path` names a regular file (through links); otherwise why it is none: "no such
+/// file", KindProblem's words, or the system's (a loop of symbolic links: "Too many levels of
+/// symbolic links"). Never blocks: nothing is opened.
 std::string WhyNotARegularFile(const std::filesystem::path& path);
 
 }  // namespace tidepool::base
