@@ -283,13 +283,16 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
     try {
         if (owned.find('&') == std::string::npos) {
             // No anchor, so no alias: one parse, checked on its tree (TreeChecker).
-            YAML::Node root = YAML::Load(owned);
+            std::vector<YAML::Node> documents = YAML::LoadAll(owned);
+            if (!OneDocument(documents)) {
+                return std::nullopt;
+            }
             TreeChecker checker(*this, file_);
-            checker.Check(root);
+            checker.Check(documents.front());
             if (checker.Failed()) {
                 return std::nullopt;
             }
-            return root;
+            return documents.front();
         }
         std::istringstream events(owned);
         YAML::Parser parser(events);
@@ -298,11 +301,32 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
         if (checker.Failed()) {
             return std::nullopt;
         }
-        return YAML::Load(owned);
+        // The later documents' nodes are built but never walked, so their aliases cost nothing.
+        std::vector<YAML::Node> documents = YAML::LoadAll(owned);
+        if (!OneDocument(documents)) {
+            return std::nullopt;
+        }
+        return documents.front();
     } catch (const YAML::Exception& e) {
         Error(LocationOf(file_, e.mark), fmt::format("malformed YAML: {}", e.msg));
         return std::nullopt;
     }
+}
+
+bool YamlReader::OneDocument(std::vector<YAML::Node>& documents) {
+    if (documents.empty()) {
+        documents.emplace_back();  // an empty file: one empty document, as YAML::Load gives
+    }
+    // An empty document after the first (a stray `---` at the end) holds nothing to lose.
+    for (std::size_t i = 1; i < documents.size(); ++i) {
+        if (!documents[i].IsNull()) {
+            Error(documents[i],
+                  "a second YAML document starts here, after a '---' line, and tidepool reads "
+                  "only the first: move its keys into the first document and remove the '---'");
+            return false;
+        }
+    }
+    return true;
 }
 
 SourceLocation YamlReader::At(const YAML::Node& node) const {

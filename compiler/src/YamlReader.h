@@ -28,10 +28,11 @@ class YamlReader {
 public:
     explicit YamlReader(std::string file_name) : file_(std::move(file_name)) {}
 
-    /// Parses the first document of `text` after checking that it is UTF-8, that no alias names
-    /// a node containing it, and that its alias expansion stays within kMaxYamlExpandedNodes;
-    /// reports every repeated mapping key. Returns no node when the text cannot be used (the
-    /// reason is in Diagnostics()); a repeated key is reported but the node is still returned.
+    /// Parses the document of `text` after checking that it is UTF-8, that no alias names a node
+    /// containing it, and that its alias expansion stays within kMaxYamlExpandedNodes; reports
+    /// every repeated mapping key. Returns no node when the text cannot be used (the reason is in
+    /// Diagnostics()), among them a text of two documents, whose second one would otherwise be
+    /// dropped unread; a repeated key is reported but the node is still returned.
     std::optional<YAML::Node> Load(std::string_view text);
 
     std::vector<Diagnostic>& Diagnostics() { return diagnostics_; }
@@ -52,6 +53,10 @@ protected:
     std::vector<Diagnostic> diagnostics_;
 
 private:
+    /// False, with an error at the second document, when `documents` holds more than one that
+    /// is not empty; makes an empty list one empty document.
+    bool OneDocument(std::vector<YAML::Node>& documents);
+
     std::string file_;
 };
 

@@ -66,6 +66,14 @@ TEST_F(VariantConfigTest, ValidConfigurationLoadsFeaturesAxesRulesAndPresets) {
     EXPECT_EQ(config.targets, std::vector<GlslTarget>{GlslTarget::kEs100});
 }
 
+TEST_F(VariantConfigTest, AnEmptyDocumentAfterTheFirstIsNoSecondDocument) {
+    for (const char* ending : {"---\n", "...\n", "---\n...\n"}) {
+        const ConfigResult result = Parse(std::string(kProgramHead) + ending);
+        EXPECT_TRUE(result.config.has_value())
+                << ending << Errors(std::string(kProgramHead) + ending);
+    }
+}
+
 TEST_F(VariantConfigTest, AxisValueBecomesUpperCaseDefine) {
     Axis axis{"REFLECTION", {"planar", "cubeMap"}, {}};
     EXPECT_EQ(axis.DefineFor("planar"), "REFLECTION_PLANAR");
@@ -233,6 +241,16 @@ INSTANTIATE_TEST_SUITE_P(
                 BadInputCase{"DuplicateMapKey", std::string(kProgramHead) + "    vertex: s.vsh\n",
                              "v.yaml:5:5: error: duplicate key 'vertex' (first written at line "
                              "3); remove one of them\n"},
+                // yaml-cpp reads the first document alone: the second was dropped unread.
+                BadInputCase{"SecondDocument", std::string(kProgramHead) + "---\nmax_variants: 4\n",
+                             "v.yaml:6:1: error: a second YAML document starts here, after a "
+                             "'---' line, and tidepool reads only the first: move its keys into "
+                             "the first document and remove the '---'\n"},
+                BadInputCase{"SecondDocumentAfterAnchors",
+                             "x: &a 1\n" + std::string(kProgramHead) + "---\ny: &b 2\n",
+                             "v.yaml:7:1: error: a second YAML document starts here, after a "
+                             "'---' line, and tidepool reads only the first: move its keys into "
+                             "the first document and remove the '---'\n"},
                 BadInputCase{"InvalidDefineName",
                              std::string(kProgramHead) + "    features: [ENABLE-FOG]\n",
                              "v.yaml:5:16: error: 'ENABLE-FOG' is not a valid GLSL define name: "
