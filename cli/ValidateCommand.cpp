@@ -133,6 +133,27 @@ int RunValidate(ValidateCommandOptions options) {
     if (!CheckDefineOptions(options.files.defines)) {
         return kExitUsage;
     }
+    // Silently ignored, such a flag would leave the user believing it had been applied.
+    if (!options.files.files.empty() && !options.configuration_flags.empty()) {
+        const std::string& flag = options.configuration_flags.front();
+        if (flag == "--config") {
+            std::fprintf(stderr,
+                         "error: --config and shader FILEs were both given; validate checks a "
+                         "configuration or plain files, not both: drop one\n");
+        } else {
+            std::fprintf(stderr,
+                         "error: %s applies to a configuration, not to the shader FILEs given; "
+                         "drop %s, or drop the FILEs to validate the configuration\n",
+                         flag.c_str(), flag.c_str());
+        }
+        return kExitUsage;
+    }
+    if (options.files.files.empty() && options.stage_given) {
+        std::fprintf(stderr,
+                     "error: --stage applies to the shader FILEs given, and none was given; "
+                     "a configuration's programs name their own vertex and fragment files\n");
+        return kExitUsage;
+    }
     GlslTarget target = GlslTarget::kEs100;
     if (!options.target.empty() && TargetFromName(options.target, &target)) {
         options.matrix.target = options.files.target = target;
@@ -204,7 +225,16 @@ void RegisterValidateCommand(CLI::App& app, int& exit_code) {
                          "and 1.00 files as they are); with a configuration, instead of its "
                          "targets")
             ->check(CLI::IsMember({"webgl1", "webgl2"}));
-    validate->callback([options, &exit_code] { exit_code = RunValidate(*options); });
+    validate->callback([options, validate, &exit_code] {
+        for (const char* flag : {"--config", "--program", "--out", "--sources", "--depfile",
+                                 "--max-variants", "--allow-large-matrix"}) {
+            if (validate->count(flag) > 0) {
+                options->configuration_flags.emplace_back(flag);
+            }
+        }
+        options->stage_given = validate->count("--stage") > 0;
+        exit_code = RunValidate(*options);
+    });
 }
 
 }  // namespace tidepool::cli

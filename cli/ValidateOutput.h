@@ -6,6 +6,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace tidepool::cli {
 
@@ -17,6 +18,10 @@ struct ValidateCommandOptions {
     std::string format = "text";  // text, json (as --json) or sarif
     std::string output_file;      // where json or sarif goes instead of stdout
     std::string target;           // --target webgl1|webgl2
+    // The flags given that only a configuration takes (--config, --out, ...), and whether
+    // --stage, which only plain files take, was given: each is refused with the other mode.
+    std::vector<std::string> configuration_flags;
+    bool stage_given = false;
 
     // The report format asked for: --json is --format json.
     std::string Format() const { return json ? "json" : format; }

@@ -567,6 +567,44 @@ TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
     }
 }
 
+// Each of these flags used to be dropped without a word in the other mode: `validate --config
+// v.yaml s.vsh` validated s.vsh alone and exited 0, whatever v.yaml held.
+TEST_F(CliTest, AFlagOfTheOtherModeIsAUsageErrorNotIgnored) {
+    WriteConfig("");
+    struct Case {
+        const char* args;
+        const char* error;
+    };
+    for (const Case& c : {
+                 Case{"--config v.yaml s.vsh",
+                      "error: --config and shader FILEs were both given; validate checks a "
+                      "configuration or plain files, not both: drop one\n"},
+                 Case{"--out o s.vsh s.fsh",
+                      "error: --out applies to a configuration, not to the shader FILEs given; "
+                      "drop --out, or drop the FILEs to validate the configuration\n"},
+                 Case{"s.vsh --program p",
+                      "error: --program applies to a configuration, not to the shader FILEs "
+                      "given; drop --program, or drop the FILEs to validate the "
+                      "configuration\n"},
+                 Case{"--max-variants 8 s.vsh",
+                      "error: --max-variants applies to a configuration, not to the shader "
+                      "FILEs given; drop --max-variants, or drop the FILEs to validate the "
+                      "configuration\n"},
+                 Case{"--config v.yaml --stage frag",
+                      "error: --stage applies to the shader FILEs given, and none was given; a "
+                      "configuration's programs name their own vertex and fragment files\n"},
+         }) {
+        const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << c.args;
+        EXPECT_EQ(r.err, c.error) << c.args;
+        EXPECT_EQ(r.out, "") << c.args;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "o"));
+    // Each mode on its own still runs.
+    EXPECT_EQ(RunTidepool("validate --config v.yaml --no-cache", dir_.Path()).exit_code, 0);
+    EXPECT_EQ(RunTidepool("validate --stage vert s.vsh --no-cache", dir_.Path()).exit_code, 0);
+}
+
 // A plain-file validation that must fail with exit code 1 and exactly this stderr.
 struct RejectedShaders {
     const char* why;
