@@ -1,12 +1,16 @@
 #include "CliSupport.h"
 
+#include "tidepool/base/EditDistance.h"
 #include "tidepool/pipeline/OutputFiles.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <memory>
 #include <set>
 #include <string>
+#include <string_view>
 #include <utility>
+#include <vector>
 
 #include "Commands.h"
 #include <CLI/CLI.hpp>
@@ -19,7 +23,51 @@ int PrintOutcome(const pipeline::Outcome& outcome) {
     return pipeline::ExitCode(outcome.status);
 }
 
+namespace {
+
+// The subcommand is the first argument that is not an option (the top level has only flags).
+// False, with the error printed, when that argument names no command of `app`: CLI11 would say
+// only "A subcommand is required", without the word it did not take.
+bool NamesACommand(CLI::App& app, int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view word = argv[i];
+        if (!word.empty() && word[0] == '-') {
+            continue;
+        }
+        std::vector<std::string> names;
+        for (const CLI::App* command : app.get_subcommands([](CLI::App*) { return true; })) {
+            names.push_back(command->get_name());
+        }
+        if (std::find(names.begin(), names.end(), word) != names.end()) {
+            return true;
+        }
+        std::string list;
+        for (const std::string& name : names) {
+            list += (list.empty() ? "" : ", ") + name;
+        }
+        // A word far longer than any command is no misspelling of one, and is shown cut.
+        constexpr std::size_t kLongestShown = 64;
+        const std::size_t limit = word.size() / 3 + 1;
+        const std::string closest = base::ClosestName(word.substr(0, kLongestShown), names);
+        const bool near =
+                word.size() <= kLongestShown && base::EditDistance(word, closest) <= limit;
+        std::fprintf(stderr,
+                     "error: '%.*s%s' is not a tidepool command; %sthe commands are %s "
+                     "(tidepool --help says what each does)\n",
+                     static_cast<int>(std::min(word.size(), kLongestShown)), word.data(),
+                     word.size() > kLongestShown ? "..." : "",
+                     near ? fmt::format("did you mean '{}'? ", closest).c_str() : "", list.c_str());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
 int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
+    if (!NamesACommand(app, argc, argv)) {
+        return kExitUsage;
+    }
     app.require_subcommand(1);
     app.set_version_flag("--version", kVersionText);
     try {

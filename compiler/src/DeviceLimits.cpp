@@ -1,6 +1,7 @@
 #include "tidepool/DeviceLimits.h"
 
 #include "tidepool/TextFile.h"
+#include "tidepool/base/EditDistance.h"
 
 #include <algorithm>
 #include <charconv>
@@ -12,32 +13,6 @@
 
 namespace tidepool {
 namespace {
-
-// Levenshtein distance, for "did you mean" on a misspelt limit name.
-std::size_t EditDistance(std::string_view a, std::string_view b) {
-    std::vector<std::size_t> row(b.size() + 1);
-    for (std::size_t j = 0; j <= b.size(); ++j) {
-        row[j] = j;
-    }
-    for (std::size_t i = 1; i <= a.size(); ++i) {
-        std::size_t diagonal = row[0];
-        row[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j) {
-            const std::size_t above = row[j];
-            const std::size_t substitute = diagonal + (a[i - 1] == b[j - 1] ? 0 : 1);
-            row[j] = std::min({above + 1, row[j - 1] + 1, substitute});
-            diagonal = above;
-        }
-    }
-    return row[b.size()];
-}
-
-std::string ClosestName(std::string_view name) {
-    const std::vector<std::string>& names = ResourceLimitNames();
-    return *std::min_element(names.begin(), names.end(), [&](const auto& a, const auto& b) {
-        return EditDistance(name, a) < EditDistance(name, b);
-    });
-}
 
 struct Word {
     std::string_view text;
@@ -116,7 +91,7 @@ DeviceLimitsRead ParseDeviceLimits(std::string_view text, const std::string& pat
             }
             error(words[0], fmt::format("unknown limit '{}'; did you mean '{}'? (the names are "
                                         "glslang's: `glslangValidator -c` prints them all)",
-                                        name, ClosestName(name)));
+                                        name, base::ClosestName(name, ResourceLimitNames())));
             continue;
         }
         if (!seen.insert(name).second) {

@@ -55,6 +55,33 @@ TEST(FrontEndCliTest, HelpListsEveryCommandTheGlOnesIncluded) {
     }
 }
 
+// CLI11 alone said "A subcommand is required", naming neither the word nor the commands.
+TEST(FrontEndCliTest, AnUnknownCommandIsNamedWithTheCommandsAndTheNearestOne) {
+    constexpr const char* kCommands =
+            "the commands are expand, validate, stats, render, bench, report, run, stability, "
+            "plan (tidepool --help says what each does)\n";
+    struct Case {
+        std::string args;
+        std::string error;
+    };
+    for (const Case& c : {
+                 Case{"validat --config v.yaml",
+                      std::string("error: 'validat' is not a tidepool command; did you mean "
+                                  "'validate'? ") +
+                              kCommands},
+                 Case{"--version bogus",
+                      std::string("error: 'bogus' is not a tidepool command; ") + kCommands},
+                 Case{std::string(100, 'x'), "error: '" + std::string(64, 'x') +
+                                                     "...' is not a tidepool command; " +
+                                                     kCommands},
+         }) {
+        const CommandResult r = RunTidepool(c.args);
+        EXPECT_EQ(r.exit_code, 2) << c.args;
+        EXPECT_EQ(r.err, c.error) << c.args;
+        EXPECT_EQ(r.out, "") << c.args;
+    }
+}
+
 TEST(FrontEndCliTest, GlCommandFlagsAndErrorsComeFromTidepoolGl) {
     const CommandResult help = RunTidepool("render --help");
     EXPECT_EQ(help.exit_code, 0) << help.err;
