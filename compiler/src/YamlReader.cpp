@@ -1,5 +1,6 @@
 #include "YamlReader.h"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/eventhandler.h>
 
 #include <algorithm>
@@ -66,6 +67,20 @@ std::optional<std::pair<int, int>> FindInvalidUtf8(std::string_view text) {
 
 namespace {
 
+// The error for a document past kMaxYamlExpandedNodes: through aliases, or written out (a
+// document without an alias, which is no bomb but the wrong file or a generated one).
+std::string TooManyNodes(bool through_aliases) {
+    return through_aliases ? fmt::format(
+                                     "the document expands through its aliases to more than {} "
+                                     "nodes; write the repeated parts out or use fewer nested "
+                                     "aliases",
+                                     kMaxYamlExpandedNodes)
+                           : fmt::format(
+                                     "the document holds more than {} nodes, where a configuration "
+                                     "has a few hundred; check that this is the file meant",
+                                     kMaxYamlExpandedNodes);
+}
+
 // Walks yaml-cpp's event stream, in which every node of the file appears exactly once and an
 // alias is one event: cycles, the expanded size and repeated keys are all decided in one pass,
 // before yaml-cpp builds a tree that a recursive walk could follow forever or exponentially.
@@ -83,6 +98,7 @@ public:
         Leaf(mark, anchor, value);
     }
     void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
+        saw_alias_ = true;
         const std::string name = names_.count(anchor) != 0 ? names_[anchor] : "?";
         if (open_anchors_.count(anchor) != 0) {
             Fail(mark, fmt::format("alias '*{}' refers to the node that contains it, a cycle; "
@@ -156,10 +172,7 @@ private:
         }
         total_ = std::min(total_ + size, kMaxYamlExpandedNodes + 1);
         if (total_ > kMaxYamlExpandedNodes) {
-            Fail(mark, fmt::format("the document expands through its aliases to more than {} "
-                                   "nodes; write the repeated parts out or use fewer nested "
-                                   "aliases",
-                                   kMaxYamlExpandedNodes));
+            Fail(mark, TooManyNodes(saw_alias_));
         }
     }
     void Leaf(const YAML::Mark& mark, YAML::anchor_t anchor, const std::string& value) {
@@ -206,6 +219,7 @@ private:
     std::unordered_map<YAML::anchor_t, std::string> names_;
     std::string pending_name_;
     std::uint64_t total_ = 0;
+    bool saw_alias_ = false;
     bool failed_ = false;
 };
 
@@ -250,11 +264,8 @@ private:
             }
         } else if (total_ > kMaxYamlExpandedNodes && !failed_) {
             const YAML::Mark mark = node.Mark();
-            reader_.Diagnostics().push_back(MakeError(
-                    file_, mark.line + 1, mark.column + 1,
-                    fmt::format("the document expands through its aliases to more than {} "
-                                "nodes; write the repeated parts out or use fewer nested aliases",
-                                kMaxYamlExpandedNodes)));
+            reader_.Diagnostics().push_back(MakeError(file_, mark.line + 1, mark.column + 1,
+                                                      TooManyNodes(/*through_aliases=*/false)));
             failed_ = true;
         }
     }
@@ -277,6 +288,20 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
     if (const auto bad = FindInvalidUtf8(text)) {
         Error(SourceLocation{file_, bad->first, bad->second},
               "this byte is not UTF-8; YAML files are Unicode text: save the file as UTF-8");
+        return std::nullopt;
+    }
+    if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
+        const std::string_view before = text.substr(0, nul);
+        const std::size_t line_start = before.rfind('\n') + 1;  // npos + 1 is 0
+        // Columns count characters, as FindInvalidUtf8's do: UTF-8 continuation bytes are none.
+        const auto column = std::count_if(
+                before.begin() + static_cast<long>(line_start), before.end(),
+                [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; });
+        Error(SourceLocation{file_,
+                             1 + static_cast<int>(std::count(before.begin(), before.end(), '\n')),
+                             1 + static_cast<int>(column)},
+              "a NUL byte, which YAML text may not hold: remove it (a file saved as UTF-16 has "
+              "one in every other byte; save it as UTF-8)");
         return std::nullopt;
     }
     const std::string owned(text);
@@ -307,6 +332,14 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
             return std::nullopt;
         }
         return documents.front();
+    } catch (const YAML::DeepRecursion& e) {
+        // yaml-cpp's own words for it are "bad file".
+        Error(LocationOf(file_, e.mark),
+              fmt::format("the YAML nests {} levels deep here, past what yaml-cpp reads, where a "
+                          "configuration needs a few: look for an unclosed '[' or '{{', or "
+                          "indentation that keeps growing",
+                          e.depth()));
+        return std::nullopt;
     } catch (const YAML::Exception& e) {
         Error(LocationOf(file_, e.mark), fmt::format("malformed YAML: {}", e.msg));
         return std::nullopt;

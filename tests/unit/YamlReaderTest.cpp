@@ -142,6 +142,38 @@ TEST(YamlReaderTest, DocumentWithoutAnchorsGetsTheSameFindingsAsTheEventCheck) {
     }
 }
 
+// yaml-cpp's own words were "unknown escape character" for a NUL byte and "bad file" for deep
+// nesting; a long list without an alias was said to expand "through its aliases".
+TEST(YamlReaderTest, NulByteDeepNestingAndAWrittenOutHugeListSayWhatTheyAre) {
+    std::string nul = "description: \"\xC3\xA9t\xC3\xA9\"\nwater: 1";
+    nul += '\0';
+    nul += "\n";
+    EXPECT_EQ(SceneErrors(nul),
+              "s.yaml:2:9: error: a NUL byte, which YAML text may not hold: remove it (a file "
+              "saved as UTF-16 has one in every other byte; save it as UTF-8)\n");
+    const std::string flow = "programs: " + std::string(3000, '[') + std::string(3000, ']');
+    EXPECT_EQ(ConfigErrors(flow).substr(0, 29), "v.yaml:1:6011: error: the YAM");
+    std::string block = "programs:\n";
+    for (int i = 1; i <= 1000; ++i) {
+        block += std::string(2 * static_cast<std::size_t>(i), ' ') + "a:\n";
+    }
+    for (const std::string& yaml : {flow, block, "x: &x 1\n" + block}) {
+        const std::string errors = ConfigErrors(yaml);
+        EXPECT_NE(errors.find(" levels deep here, past what yaml-cpp reads, where a "
+                              "configuration needs a few: look for an unclosed '[' or '{', or "
+                              "indentation that keeps growing\n"),
+                  std::string::npos)
+                << errors;
+    }
+    std::string list = "programs: {}\nx:\n";
+    for (std::uint64_t i = 0; i <= kMaxYamlExpandedNodes; ++i) {
+        list += "  - 1\n";
+    }
+    EXPECT_EQ(ConfigErrors(list),
+              "v.yaml:99998:5: error: the document holds more than 100000 nodes, where a "
+              "configuration has a few hundred; check that this is the file meant\n");
+}
+
 TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {
     TempDir dir;
     const ConfigResult result = LoadVariantConfig(dir.Path());
