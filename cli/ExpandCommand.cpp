@@ -70,7 +70,9 @@ int RunExpand(ExpandCommandOptions options) {
     }
     const pipeline::ExpandResult result = pipeline::Expand(options.expand);
     const int code = PrintOutcome(result.matrix.outcome);
-    if (!result.matrix.config) {
+    // A run that stopped (an --out folder it may not replace, a failed write) lists nothing: a
+    // listing on stdout above the error would read as done, and a script would take it.
+    if (!result.matrix.config || result.matrix.outcome.Stopped()) {
         return code;
     }
     PrintExpansion(options, result);
