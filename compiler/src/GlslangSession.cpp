@@ -920,16 +920,25 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
                     second_colon == std::string_view::npos
                             ? std::string_view()
                             : rest.substr(first_colon + 1, second_colon - first_colon - 1);
+            // A `#line` past 2^31 - 1 wraps glslang's count to a negative line.
+            const bool wrapped = line_part.size() > 1 && line_part[0] == '-';
+            const std::string_view digits = wrapped ? line_part.substr(1) : line_part;
             const bool numeric =
-                    !string_part.empty() && !line_part.empty() &&
+                    !string_part.empty() && !digits.empty() && digits.size() <= 10 &&
                     string_part.find_first_not_of("0123456789") == std::string_view::npos &&
-                    line_part.find_first_not_of("0123456789") == std::string_view::npos;
+                    digits.find_first_not_of("0123456789") == std::string_view::npos;
             if (numeric) {
-                d.line = std::stoi(std::string(line_part));
+                d.line = wrapped ? 0 : static_cast<int>(std::stoll(std::string(digits)));
                 rest = TrimView(rest.substr(second_colon + 1));
             }
+            if (numeric && wrapped) {
+                d.message = fmt::format(
+                        "at an unknown line (a '#line' directive set the count past "
+                        "2147483647 and glslang wrapped it to {}; use smaller line numbers): ",
+                        line_part);
+            }
         }
-        d.message = std::string(rest);
+        d.message += std::string(rest);
         if (!source_lines) {
             source_lines = SplitLines(source);
         }

@@ -31,6 +31,16 @@ TEST(GlslangSessionTest, LogLinesBecomeDiagnosticsAtTheQuotedTokensColumn) {
               "a.fsh:1:6: warning: 'main' : something to note\n");
 }
 
+// It used to come out as "a.fsh: error: 0:-6: 'oops' ...", glslang's location as message text.
+TEST(GlslangSessionTest, ALineWrappedNegativeByAHugeLineDirectiveIsSaidToBeUnknown) {
+    const std::string source = "#version 100\n#line 4294967290\nvoid main() { oops; }\n";
+    EXPECT_EQ(Formatted(ParseGlslangLog("ERROR: 0:-6: 'oops' : undeclared identifier\n", "a.fsh",
+                                        source)),
+              "a.fsh: error: at an unknown line (a '#line' directive set the count past "
+              "2147483647 and glslang wrapped it to -6; use smaller line numbers): 'oops' : "
+              "undeclared identifier\n");
+}
+
 TEST(GlslangSessionTest, ContinuationLinesJoinTheirMessageAndUnplacedMessagesKeepLineZero) {
     const std::string log =
             "ERROR: Linking fragment stage: Types must match:\n"
