@@ -664,12 +664,21 @@ std::vector<Diagnostic> CheckLinkRules(const glslang::TIntermediate& vertex,
             outputs.insert(symbol->getName().c_str());
         }
     }
-    const std::map<std::string, glslang::TSourceLoc> used = StaticallyUsed(fragment);
+    std::vector<std::string> undeclared;  // fragment inputs the vertex stage does not write
     for (glslang::TIntermSymbol* symbol : LinkerObjects(fragment)) {
         const std::string name = symbol->getName().c_str();
+        if (symbol->getType().getQualifier().storage == glslang::EvqVaryingIn &&
+            !IsBuiltIn(*symbol) && outputs.count(name) == 0) {
+            undeclared.push_back(name);
+        }
+    }
+    if (undeclared.empty()) {
+        return errors;  // the usual case: no walk of the fragment tree for its uses
+    }
+    const std::map<std::string, glslang::TSourceLoc> used = StaticallyUsed(fragment);
+    for (const std::string& name : undeclared) {
         const auto use = used.find(name);
-        if (symbol->getType().getQualifier().storage != glslang::EvqVaryingIn ||
-            IsBuiltIn(*symbol) || use == used.end() || outputs.count(name) != 0) {
+        if (use == used.end()) {
             continue;
         }
         // Reported where the fragment stage first reads it: that is the use the rule forbids.

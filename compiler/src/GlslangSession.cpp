@@ -219,7 +219,10 @@ bool IsWebGlEs100(const GlslangStageInput& input, int version) {
 
 // What glslang is given for one stage: the text (with the version line possibly rewritten in
 // place, which keeps the line count), the preamble and the default version.
+struct TextScan;
+
 struct PreparedStage {
+    std::shared_ptr<const TextScan> scan;  // of the input's text (ScanOf): looked up once
     std::string text;
     std::string preamble;
     // The preamble and the declarations only a parse gets: the preprocessed text, which checks
@@ -318,7 +321,8 @@ std::pair<std::string, int> VersionAfterComments(std::string_view text) {
 
 PreparedStage Prepare(const GlslangStageInput& input) {
     PreparedStage prepared;
-    prepared.text = ScanOf(input.text)->without_line_comments;
+    prepared.scan = ScanOf(input.text);
+    prepared.text = prepared.scan->without_line_comments;
     // The version and whether it is GLSL ES, from a `#version` line.
     auto read_version = [](const std::string& line) {
         std::istringstream words(line.substr(std::string("#version").size()));
@@ -494,7 +498,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
     // destroyed after the parse would leave the parsed tree's thread pointing at freed memory.
     std::vector<Diagnostic> late_extensions;
     // WebGL 1.0 §6.35: in a WebGL shader of GLSL ES 1.00, #extension may follow other tokens.
-    if (!IsWebGlEs100(input, version) && ScanOf(input.text)->may_have_late_extension) {
+    if (!IsWebGlEs100(input, version) && prepared.scan->may_have_late_extension) {
         // Only the user's defines go with the text: Es300Preamble declares an output, which
         // would count as a token before the user's own #extension lines.
         const std::string defines = DefinePreamble(input.defines);
@@ -514,7 +518,7 @@ StageParse ParseStage(const GlslangStageInput& input) {
     std::string blanked;
     const char* parse_chars = text;
     if (input.skipped_lines != nullptr && !input.skipped_lines->empty()) {
-        const std::shared_ptr<const TextScan> scan = ScanOf(input.text);
+        const std::shared_ptr<const TextScan>& scan = prepared.scan;
         std::call_once(scan->quiet_once, [&] {
             scan->quiet_when_skipped = QuietWhenSkippedLines(scan->without_line_comments);
         });
