@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -43,6 +44,20 @@ protected:
     void WriteConfig(const std::string& top, const std::string& program_keys = "") {
         dir_.Write("v.yaml", top + "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n" +
                                      program_keys);
+    }
+    // Runs `validate ARGS` in the test folder for each case, expecting exit code 2, exactly
+    // that error on stderr and nothing on stdout.
+    struct UsageCase {
+        const char* args;
+        const char* error;
+    };
+    void ExpectUsageErrors(std::initializer_list<UsageCase> cases) {
+        for (const UsageCase& c : cases) {
+            const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
+            EXPECT_EQ(r.exit_code, 2) << c.args;
+            EXPECT_EQ(r.err, c.error) << c.args;
+            EXPECT_EQ(r.out, "") << c.args;
+        }
     }
     TempDir dir_;
 };
@@ -534,72 +549,55 @@ TEST_F(CliTest, DefineTakesOneValueSoTheFileAfterItIsValidated) {
 }
 
 TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
-    struct Case {
-        const char* args;
-        const char* error;
-    };
-    for (const Case& c : {
-                 Case{"-D GL_X s.vsh",
+    ExpectUsageErrors({
+            UsageCase{"-D GL_X s.vsh",
                       "error: -D 'GL_X': 'GL_X' is not a valid define name: use "
                       "letters, digits and _, start with a letter, no 'GL_' "
                       "prefix and no '__'\n"},
-                 Case{"-D 'FOO BAR' s.vsh",
+            UsageCase{"-D 'FOO BAR' s.vsh",
                       "error: -D 'FOO BAR': 'FOO BAR' is not a valid "
                       "define name: use letters, digits and _, start with "
                       "a letter, no 'GL_' prefix and no '__'\n"},
-                 Case{"-D \"$(printf 'A=1\\n#error injected')\" s.vsh",
+            UsageCase{"-D \"$(printf 'A=1\\n#error injected')\" s.vsh",
                       "error: -D 'A': the value must be a single line (a newline would add "
                       "preprocessor lines)\n"},
-                 Case{"-D A",
+            UsageCase{"-D A",
                       "error: -D applies to the shader FILEs given, and none was given; "
                       "the variants of a configuration get their defines from it\n"},
-                 // Before, these came from glslang at line -1 with exit code 1.
-                 Case{"-D A=1 -D A=2 s.vsh", "error: -D 'A' is given twice; keep one\n"},
-                 Case{"-D 'A=/*' s.vsh",
+            // Before, these came from glslang at line -1 with exit code 1.
+            UsageCase{"-D A=1 -D A=2 s.vsh", "error: -D 'A' is given twice; keep one\n"},
+            UsageCase{"-D 'A=/*' s.vsh",
                       "error: -D 'A': the value may not hold '/*' (a comment it opens would run "
                       "on past the define)\n"},
-                 Case{"-D defined s.vsh",
+            UsageCase{"-D defined s.vsh",
                       "error: -D 'defined': 'defined' is the preprocessor's operator and cannot "
                       "be a macro name (GLSL ES §3.4)\n"},
-         }) {
-        const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
-        EXPECT_EQ(r.exit_code, 2) << c.args;
-        EXPECT_EQ(r.err, c.error) << c.args;
-    }
+    });
 }
 
 // Each of these flags used to be dropped without a word in the other mode: `validate --config
 // v.yaml s.vsh` validated s.vsh alone and exited 0, whatever v.yaml held.
 TEST_F(CliTest, AFlagOfTheOtherModeIsAUsageErrorNotIgnored) {
     WriteConfig("");
-    struct Case {
-        const char* args;
-        const char* error;
-    };
-    for (const Case& c : {
-                 Case{"--config v.yaml s.vsh",
+    ExpectUsageErrors({
+            UsageCase{"--config v.yaml s.vsh",
                       "error: --config and shader FILEs were both given; validate checks a "
                       "configuration or plain files, not both: drop one\n"},
-                 Case{"--out o s.vsh s.fsh",
+            UsageCase{"--out o s.vsh s.fsh",
                       "error: --out applies to a configuration, not to the shader FILEs given; "
                       "drop --out, or drop the FILEs to validate the configuration\n"},
-                 Case{"s.vsh --program p",
+            UsageCase{"s.vsh --program p",
                       "error: --program applies to a configuration, not to the shader FILEs "
                       "given; drop --program, or drop the FILEs to validate the "
                       "configuration\n"},
-                 Case{"--max-variants 8 s.vsh",
+            UsageCase{"--max-variants 8 s.vsh",
                       "error: --max-variants applies to a configuration, not to the shader "
                       "FILEs given; drop --max-variants, or drop the FILEs to validate the "
                       "configuration\n"},
-                 Case{"--config v.yaml --stage frag",
+            UsageCase{"--config v.yaml --stage frag",
                       "error: --stage applies to the shader FILEs given, and none was given; a "
                       "configuration's programs name their own vertex and fragment files\n"},
-         }) {
-        const CommandResult r = RunTidepool(std::string("validate ") + c.args, dir_.Path());
-        EXPECT_EQ(r.exit_code, 2) << c.args;
-        EXPECT_EQ(r.err, c.error) << c.args;
-        EXPECT_EQ(r.out, "") << c.args;
-    }
+    });
     EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "o"));
     // Each mode on its own still runs.
     EXPECT_EQ(RunTidepool("validate --config v.yaml --no-cache", dir_.Path()).exit_code, 0);
