@@ -276,6 +276,59 @@ private:
     bool failed_ = false;
 };
 
+// Where a document's first node that is not null starts; none for an empty document.
+class FirstNodeRecorder : public YAML::EventHandler {
+public:
+    void OnDocumentStart(const YAML::Mark&) override {}
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark& at, YAML::anchor_t) override { Record(at); }
+    void OnScalar(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                  const std::string&) override {
+        Record(at);
+    }
+    void OnSequenceStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                         YAML::EmitterStyle::value) override {
+        Record(at);
+    }
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark& at, const std::string&, YAML::anchor_t,
+                    YAML::EmitterStyle::value) override {
+        Record(at);
+    }
+    void OnMapEnd() override {}
+
+    std::optional<YAML::Mark> mark;
+
+private:
+    void Record(const YAML::Mark& at) {
+        if (!mark) {
+            mark = at;
+        }
+    }
+};
+
+// Whether a line after the first one with content starts with a document marker (`---` or
+// `...` at column 0, alone or before a blank): without one the text holds one document, and
+// the event pass that would look for a second one is skipped.
+bool MayHoldASecondDocument(std::string_view text) {
+    bool content = false;
+    for (std::size_t at = 0; at < text.size();) {
+        const std::size_t end = std::min(text.find('\n', at), text.size());
+        const std::string_view line = text.substr(at, end - at);
+        const bool marker =
+                (line.rfind("---", 0) == 0 || line.rfind("...", 0) == 0) &&
+                (line.size() == 3 || line[3] == ' ' || line[3] == '\t' || line[3] == '\r');
+        if (marker && content) {
+            return true;
+        }
+        const std::size_t first = line.find_first_not_of(" \t\r");
+        content = content || (!marker && first != std::string_view::npos && line[first] != '#');
+        at = end + 1;
+    }
+    return false;
+}
+
 SourceLocation LocationOf(const std::string& file, const YAML::Mark& mark) {
     // yaml-cpp marks are 0-based; a null mark (-1) means the position is unknown.
     return SourceLocation{file, mark.line >= 0 ? mark.line + 1 : 0,
@@ -308,30 +361,31 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
     try {
         if (owned.find('&') == std::string::npos) {
             // No anchor, so no alias: one parse, checked on its tree (TreeChecker).
-            std::vector<YAML::Node> documents = YAML::LoadAll(owned);
-            if (!OneDocument(documents)) {
-                return std::nullopt;
-            }
+            YAML::Node root = YAML::Load(owned);
             TreeChecker checker(*this, file_);
-            checker.Check(documents.front());
+            checker.Check(root);
             if (checker.Failed()) {
                 return std::nullopt;
             }
-            return documents.front();
+            if (MayHoldASecondDocument(owned)) {
+                std::istringstream events(owned);
+                YAML::Parser parser(events);
+                FirstNodeRecorder first;
+                parser.HandleNextDocument(first);
+                if (!OnlyOneDocument(parser)) {
+                    return std::nullopt;
+                }
+            }
+            return root;
         }
         std::istringstream events(owned);
         YAML::Parser parser(events);
         AliasChecker checker(*this, file_);
         parser.HandleNextDocument(checker);
-        if (checker.Failed()) {
+        if (checker.Failed() || !OnlyOneDocument(parser)) {
             return std::nullopt;
         }
-        // The later documents' nodes are built but never walked, so their aliases cost nothing.
-        std::vector<YAML::Node> documents = YAML::LoadAll(owned);
-        if (!OneDocument(documents)) {
-            return std::nullopt;
-        }
-        return documents.front();
+        return YAML::Load(owned);
     } catch (const YAML::DeepRecursion& e) {
         // yaml-cpp's own words for it are "bad file".
         Error(LocationOf(file_, e.mark),
@@ -346,20 +400,17 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
     }
 }
 
-bool YamlReader::OneDocument(std::vector<YAML::Node>& documents) {
-    if (documents.empty()) {
-        documents.emplace_back();  // an empty file: one empty document, as YAML::Load gives
+bool YamlReader::OnlyOneDocument(YAML::Parser& parser) {
+    // One more document, not every one: yaml-cpp's own loop over them (YAML::LoadAll) never ends
+    // on some malformed texts, whose every further document reads as an empty one.
+    FirstNodeRecorder second;
+    if (!parser.HandleNextDocument(second) || !second.mark) {
+        return true;  // none, or an empty one (a stray `---` at the end): nothing to lose
     }
-    // An empty document after the first (a stray `---` at the end) holds nothing to lose.
-    for (std::size_t i = 1; i < documents.size(); ++i) {
-        if (!documents[i].IsNull()) {
-            Error(documents[i],
-                  "a second YAML document starts here, after a '---' line, and tidepool reads "
-                  "only the first: move its keys into the first document and remove the '---'");
-            return false;
-        }
-    }
-    return true;
+    Error(At(*second.mark),
+          "a second YAML document starts here, after a '---' line, and tidepool reads only the "
+          "first: move its keys into the first document and remove the '---'");
+    return false;
 }
 
 SourceLocation YamlReader::At(const YAML::Node& node) const {

@@ -53,9 +53,9 @@ protected:
     std::vector<Diagnostic> diagnostics_;
 
 private:
-    /// False, with an error at the second document, when `documents` holds more than one that
-    /// is not empty; makes an empty list one empty document.
-    bool OneDocument(std::vector<YAML::Node>& documents);
+    /// False, with an error at its first node, when the document after the one `parser` has
+    /// just handled is not empty.
+    bool OnlyOneDocument(YAML::Parser& parser);
 
     std::string file_;
 };

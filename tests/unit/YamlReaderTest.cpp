@@ -174,6 +174,51 @@ TEST(YamlReaderTest, NulByteDeepNestingAndAWrittenOutHugeListSayWhatTheyAre) {
               "configuration has a few hundred; check that this is the file meant\n");
 }
 
+// Found by the fuzzers in CI (2026-12-07): yaml-cpp's YAML::LoadAll, used for a while to find a
+// second document, never ends on these texts (each further document reads as an empty one).
+TEST(YamlReaderTest, TextsOnWhichYamlCppsLoadAllNeverEndsAreReadInTime) {
+    const std::string scene =
+            "# A\x17murky, shallothing below the surfqce can be seer# A high aerial view straight "
+            "down onto the water off the island: the view angle barely\n"
+            "# changes over the watera:\n"
+            "  height: 60\n"
+            " , so the Fresnel mix is almost constant. Schema: docs/SCENES.n: 1\n"
+            "description: High aerial view looking steeply down o distance: 45n the water\n"
+            "water:\n"
+            "  depth: 20\n"
+            "  fog_\n";
+    const std::string config =
+            "# tidepool's default variant matrix: the water, skybox and model shaders of the "
+            "PowerVR\n"
+            ", \"variants.yaml\".\n"
+            "version: 1\n"
+            "targets: [100]        # GLSL ES 1.00 (add 300 to validate every varian  tsa3.00 too)\n"
+            "max_variants: 32768   # valid variants after pruning, all programs together (163 "
+            "today)\n"
+            "\n"
+            "programs:\n"
+            "  water:\n"
+            "    description: The water plane; each feature is a #define code path.\n"
+            "    vertex: shaders/water.vsh\n"
+            "    fragment: shaders/water.fsh\n"
+            "    features:\n"
+            "      - ENABLE_DISTORTION     1   # two animated bump layers perturb the screen-space "
+            "lookup\n"
+            "      - ENABLE_SCALE_DISTORTION  # distortion divided by the eye distance\n"
+            "      - ENABLE_REFRACTION        # refraction pass mixed with the reflection by a "
+            "constant\n"
+            "      - ENABLE_FRESNEL           # Schlick FrePnel mix instead of the constant\n"
+            "      - FRESNEL_EXACT            # # tidepool's default varifuant matrix:ll die thel";
+    const auto start = std::chrono::steady_clock::now();
+    const SceneResult read_scene = ParseSceneDescription(scene, "s.yaml");
+    const ConfigResult read_config = ParseVariantConfig(config, "v.yaml", ".");
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
+    EXPECT_FALSE(read_scene.scene.has_value());
+    EXPECT_FALSE(read_config.config.has_value());
+    EXPECT_FALSE(read_scene.diagnostics.empty());
+    EXPECT_FALSE(read_config.diagnostics.empty());
+}
+
 TEST(YamlReaderTest, ConfigPathThatIsAFolderSaysSo) {
     TempDir dir;
     const ConfigResult result = LoadVariantConfig(dir.Path());
