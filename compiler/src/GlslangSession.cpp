@@ -217,10 +217,10 @@ bool IsWebGlEs100(const GlslangStageInput& input, int version) {
     return input.target.has_value() && IsWebGlTarget(*input.target) && version == 100;
 }
 
-// What glslang is given for one stage: the text (with the version line possibly rewritten in
-// place, which keeps the line count), the preamble and the default version.
 struct TextScan;
 
+// What glslang is given for one stage: the text (with the version line possibly rewritten in
+// place, which keeps the line count), the preamble and the default version.
 struct PreparedStage {
     std::shared_ptr<const TextScan> scan;  // of the input's text (ScanOf): looked up once
     std::string text;
