@@ -23,8 +23,9 @@
 //    comparisons' work. A frame of a comparison: its pairs' and contended pairs' two frames each,
 //    and 14 for the warm-up and per-pass frames every comparison renders. Contended frames are
 //    weighed as as-run ones.
-//  * The comparisons not yet probed after the first kProbesBeforeTheWaitingGuess probes (about
-//    where a main job's progress line first counts): the guess the progress line gives each,
+//  * The comparisons not yet probed after the first kProbesBeforeTheWaitingGuess probes, in the
+//    order a run probes them (base::ProbeOrder; about where a main job's progress line first
+//    counts): the guess the progress line gives each,
 //    kBoundaryAllowance times the probes' mean resolution frames
 //    (base::ResolutionPairsAcrossStates) and the 14 overhead frames, over the mean frames
 //    they took.
@@ -217,13 +218,14 @@ int main(int argc, char** argv) {
         // (kBoundaryAllowance times the probes' mean resolution frames, and the overhead)
         // against the mean frames they took.
         if (replays.size() > kProbesBeforeTheWaitingGuess) {
+            const std::vector<std::size_t> order = tidepool::base::ProbeOrder(replays.size());
             double resolution = 0;
             for (std::size_t i = 0; i < kProbesBeforeTheWaitingGuess; ++i) {
-                resolution += replays[i].probe_resolution_frames;
+                resolution += replays[order[i]].probe_resolution_frames;
             }
             double taken = 0;
             for (std::size_t i = kProbesBeforeTheWaitingGuess; i < replays.size(); ++i) {
-                taken += Taken(replays[i]);
+                taken += Taken(replays[order[i]]);
             }
             const auto probes = static_cast<double>(kProbesBeforeTheWaitingGuess);
             const auto waiting = static_cast<double>(replays.size() - kProbesBeforeTheWaitingGuess);

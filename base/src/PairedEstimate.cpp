@@ -293,6 +293,18 @@ int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule)
                        static_cast<double>(std::max(rule.min_pairs, rule.max_pairs))));
 }
 
+std::vector<std::size_t> ProbeOrder(std::size_t comparisons) {
+    std::vector<std::size_t> order;
+    order.reserve(comparisons);
+    for (std::size_t front = 0, back = comparisons; front < back; ++front) {
+        order.push_back(front);
+        if (front + 1 < back) {
+            order.push_back(--back);
+        }
+    }
+    return order;
+}
+
 namespace {
 
 // The first look after `pairs` at which the rule stops a comparison whose true change is
@@ -428,13 +440,15 @@ int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
                            const std::vector<double>& candidate_ms, const PairedEstimate& stated,
                            const StoppingRule& rule, int fallback) {
     const int from_interval = PairsExpectedAtStop(stated, rule, fallback);
-    if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue ||
-        baseline_ms.size() < static_cast<std::size_t>(rule.min_pairs)) {
+    if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue) {
         return from_interval;
     }
     const int from_spread = PairsExpectedFromSpread(baseline_ms, candidate_ms, rule);
     if (from_spread <= 0) {
         return from_interval;
+    }
+    if (baseline_ms.size() < static_cast<std::size_t>(rule.min_pairs)) {
+        return from_spread;  // a probe's
     }
     return static_cast<int>(
             std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));

@@ -66,9 +66,9 @@ inline constexpr int kProbePairs = base::kMinimumPairs;
 bool ProbesComparisons(const RunOptions& options);
 
 /// The order a run's units are taken in (RenderWorkOrder): the reference configuration, then
-/// every comparison's probe (ProbesComparisons), then the configurations the comparisons time,
-/// in the comparisons' order, then every comparison, then the other configurations. The render
-/// process takes units from the front, a second process from the end.
+/// every comparison's probe (ProbesComparisons; in base::ProbeOrder), then the configurations
+/// the comparisons time, in the comparisons' order, then every comparison, then the other
+/// configurations. The render process takes units from the front, a second process from the end.
 std::vector<WorkUnit> RunWorkOrder(const RunOptions& options);
 
 /// Compiles configuration `i` in `w`'s context once; with `warm`, renders warm-up frames too

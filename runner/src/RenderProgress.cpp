@@ -1,6 +1,7 @@
 // The render's order of work and its progress line (RenderProgress.h).
 #include "RenderProgress.h"
 
+#include "tidepool/base/PairedEstimate.h"
 #include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
@@ -66,8 +67,10 @@ std::vector<WorkUnit> RenderWorkOrder(std::size_t comparisons, std::size_t confi
     if (first) {
         take(*first);
     }
-    for (std::size_t k = 0; probes && k < comparisons; ++k) {
-        units.push_back({true, k, true});
+    if (probes) {
+        for (std::size_t k : base::ProbeOrder(comparisons)) {
+            units.push_back({true, k, true});
+        }
     }
     for (std::size_t i : early) {
         take(i);

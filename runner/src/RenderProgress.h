@@ -56,7 +56,8 @@ inline constexpr double kDefaultCoreShare = 0.75;
 double ContendedFramesCost(double contended_share, double core_share = kDefaultCoreShare);
 
 /// The order the rendering threads take units in: `first` (the reference configuration, whose
-/// images the others are compared with), then with `probes` every comparison's probe, then
+/// images the others are compared with), then with `probes` every comparison's probe (in
+/// base::ProbeOrder, from both ends of the list in turn), then
 /// `early` (the configurations the comparisons time), then every comparison (the rest of it,
 /// after a probe), then the other configurations in a fixed shuffled order (the matrix runs from
 /// heavy variants to light ones).

@@ -72,8 +72,9 @@ TEST(ConfigurationImagesGlTest, TheRunsOrderProbesEveryComparisonBeforeTheirConf
             EXPECT_EQ(units[u].probe, expected[u].probe) << u;
         }
     };
-    const std::vector<Unit> probed = {{false, 1, false}, {true, 0, true},   {true, 1, true},
-                                      {true, 2, true},   {true, 3, true},   {false, 3, false},
+    // The probes from both ends of the comparisons' list in turn (base::ProbeOrder).
+    const std::vector<Unit> probed = {{false, 1, false}, {true, 0, true},   {true, 3, true},
+                                      {true, 1, true},   {true, 2, true},   {false, 3, false},
                                       {false, 4, false}, {false, 2, false}, {false, 0, false},
                                       {true, 0, false},  {true, 1, false},  {true, 2, false},
                                       {true, 3, false}};

@@ -56,12 +56,15 @@ TEST(RenderProgressTest, ProbesComeFirstAndTheQueueEndsOnConfigurations) {
     EXPECT_EQ(p.probed.size(), 16U);
     EXPECT_EQ(p.compared.size(), 16U);
     EXPECT_EQ(p.configured.size(), 147U);
-    // The reference, then the probes in order, then the early configurations, then the rest.
+    // The reference, then the probes from both ends of the list in turn, then the early
+    // configurations, then the rest of every comparison in order.
     ASSERT_FALSE(units[0].comparison);
     EXPECT_EQ(units[0].index, 42U);
+    const std::array<std::size_t, 16> probe_order = {0, 15, 1, 14, 2, 13, 3, 12,
+                                                     4, 11, 5, 10, 6, 9,  7, 8};
     for (std::size_t k = 0; k < 16; ++k) {
         EXPECT_EQ(p.probes[k], 1 + k);
-        EXPECT_EQ(units[p.probes[k]].index, k);
+        EXPECT_EQ(units[p.probes[k]].index, probe_order[k]);
         EXPECT_EQ(units[p.comparisons[k]].index, k);
     }
     for (std::size_t e = 0; e < early.size(); ++e) {

@@ -14,6 +14,7 @@
 // (1 / ratio - 1) * 100. Failures are values: never throws, never prints.
 #pragma once
 
+#include <cstddef>
 #include <limits>
 #include <optional>
 #include <string>
@@ -261,13 +262,20 @@ int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
 /// The progress line's guess of the pairs a comparison will have stopped at, from its as-run
 /// pairs so far and the interval it states (`stated`): the pairs so far when the rule stops
 /// now; otherwise the geometric mean of PairsExpectedAtStop (from `stated`) and
-/// PairsExpectedFromSpread (from the pairs), or PairsExpectedAtStop alone when the spread gives
-/// none or there are fewer pairs than `rule.min_pairs` (a probe's). Why the interval alone
-/// then: a probe's interval spans its contended pairs too, which are noisier and set how long a
-/// comparison runs, while ten as-run pairs leave them out of the spread; replayed over 11
-/// main-job halves of 2026-11-27, the guessed work missed the comparisons' by 10 to 43% at its
-/// worst moment (median 21%) that way, against 28 to 60% (median 46%) with both guesses at the
-/// probe. Why two guesses: they err in opposite directions. An interval from 10 to 20 pairs is
+/// PairsExpectedFromSpread (from the pairs), PairsExpectedAtStop alone when the spread gives
+/// none, and the spread's guess alone when there are fewer pairs than `rule.min_pairs` (a
+/// probe's). Why the spread alone then: a rank interval from ten pairs reaches into the tails of
+/// the noise, where from more pairs it reaches into its core only, so the square-root law from it
+/// guesses long when the noise has heavy tails. On the 2-core host of 2026-12-07 the pairs'
+/// standard deviation was 1.5 to 4 times their normal-equivalent median absolute deviation, and,
+/// replayed over eight main-job halves (`bench/replay_comparisons`), the guessed comparison work
+/// missed at its worst moment by a median 27% (at most 38%) this way, against 64% (109%) with
+/// the interval alone and 43% (53%) with both guesses' geometric mean.
+/// (On the earlier host the interval alone had done better than both, a median 21% against 46%
+/// over 11 halves of 2026-11-27, when a probe's contended pairs were not yet pulled in; those
+/// recordings are gone, so the spread alone was never replayed there.)
+/// AProbesGuessFollowsTheRulesStopsOnHeavyTailedNoise simulates it. Why two guesses after the
+/// probe: they err in opposite directions. An interval from 10 to 20 pairs is
 /// often far wider than the square-root law makes it later (one disturbed pair of ten contended
 /// ones read [-1.5, +14.7] where twenty read [-1.8, -0.3]), so the interval's guess is long. The
 /// spread ignores a contended state that reads differently and the tails that widen a rank
@@ -355,6 +363,17 @@ ExpectedPairs ResolutionPairsAcrossStates(const std::vector<double>& baseline_ms
 /// `rule.min_pairs` and at most `rule.max_pairs`; 0 when the estimate gives no interval. It
 /// measures the machine's noise now, for a guess at comparisons not yet started.
 int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule);
+
+/// The order a run probes its `comparisons` in: from both ends of their list in turn (0, n-1, 1,
+/// n-2, ...). Why: until every probe is in, the progress line guesses the comparisons not yet
+/// probed from those that are (ResolutionPairsAcrossStates), so the probes that come first must
+/// be a fair sample. In list order they were not: the default matrix lists the whitepaper rows
+/// near a verdict's boundary first and the reflection techniques, which stop at the minimum,
+/// last. Replayed over eight main-job halves of 2026-12-07 (`bench/replay_comparisons`), the
+/// guess of the comparisons not yet probed after eight probes was 0.61 to 2.62 times the frames
+/// they took (median 1.44) in this order, against 1.27 to 3.81 (median 2.82) in list order; the
+/// progress line of the quietest of those runs read 103% long 13 s in.
+std::vector<std::size_t> ProbeOrder(std::size_t comparisons);
 
 /// How many pairs to take before the next look, given `pairs` so far: up to min_pairs first,
 /// then max(batch_pairs, pairs / 4), never past max_pairs. Never fails (0 at max_pairs).
