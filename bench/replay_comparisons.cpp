@@ -16,7 +16,8 @@
 //    magnitude band (report::ComparedPresetPairs). A comparison whose recording ends before the
 //    rule stops (a run on another rule stopped it sooner) is marked "≥".
 //  * The guesses are those of runner/src/Results.cpp: base::PairsExpectedAcrossStates at every
-//    look, the probe's included (from its few pairs, the interval's guess alone).
+//    look, the probe's included (from its few pairs, the spread's guess alone, with the pairs as
+//    base::UndisturbedProbe gives them over the run's probes in base::ProbeOrder).
 //  * The guessed work's miss at a look of comparison k: its guessed frames less the frames it
 //    took, plus the same for every later comparison at its probe's guess, each frame weighed by
 //    its comparison's mean frame time; the worst over all looks, in percent of all the
@@ -80,8 +81,9 @@ struct Replay {
     double probe_resolution_frames = 0;
 };
 
-Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
-                        const StoppingRule& rule) {
+// `probe`: the probe's candidate times as its guesses take them (base::UndisturbedProbe).
+Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c, const StoppingRule& rule,
+                        const tidepool::base::ProbeCandidates& probe_candidates) {
     using namespace tidepool::base;
     Replay out;
     const int recorded = static_cast<int>(c.baseline_ms.size());
@@ -101,20 +103,22 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c,
         const PairedEstimate stated = AcrossHostStates(as_run, contended);
         const bool stops =
                 !probe && DecideStopAcrossStates(stated, m, rule) != StopDecision::kContinue;
+        const std::vector<double> candidate =
+                probe ? probe_candidates.as_run : First(c.candidate_ms, n);
+        const std::vector<double> contended_candidate =
+                probe ? probe_candidates.contended : First(c.contended_candidate_ms, m);
         if (probe) {
             const ExpectedPairs resolution = ResolutionPairsAcrossStates(
-                    First(c.baseline_ms, n), First(c.candidate_ms, n),
-                    First(c.contended_baseline_ms, m), First(c.contended_candidate_ms, m), as_run,
-                    contended, rule);
+                    First(c.baseline_ms, n), candidate, First(c.contended_baseline_ms, m),
+                    contended_candidate, as_run, contended, rule);
             out.probe_resolution_frames = 2.0 * (resolution.as_run + resolution.contended);
         }
         out.look_pairs.push_back(n);
         const ExpectedPairs expected =
                 stops ? ExpectedPairs{n, m}
-                      : PairsExpectedAcrossStates(First(c.baseline_ms, n), First(c.candidate_ms, n),
+                      : PairsExpectedAcrossStates(First(c.baseline_ms, n), candidate,
                                                   First(c.contended_baseline_ms, m),
-                                                  First(c.contended_candidate_ms, m), as_run,
-                                                  contended, rule, 60);
+                                                  contended_candidate, as_run, contended, rule, 60);
         out.guesses.push_back(2.0 * (expected.as_run + expected.contended) + kOverheadFrames);
         out.stopped_at = n;
         out.contended_at_stop = m;
@@ -192,15 +196,28 @@ int main(int argc, char** argv) {
         rule.boundary_pairs = results.timing.boundary_pairs.value_or(rule.boundary_pairs);
         rule.boundary_standard_errors =
                 results.timing.boundary_standard_errors.value_or(rule.boundary_standard_errors);
+        // Each probe's candidate times as its guesses take them, in the order the run probes.
+        const std::size_t count = results.comparisons.size();
+        std::vector<tidepool::base::ProbeCandidates> probe_candidates(count);
+        tidepool::base::ProbeSpreads spreads;
+        for (std::size_t k : tidepool::base::ProbeOrder(count)) {
+            const auto& c = results.comparisons[k];
+            const int n = std::min(kProbePairs, static_cast<int>(c.baseline_ms.size()));
+            const int m = ContendedPairsBeforeNextLook(n, 0, rule);
+            probe_candidates[k] = tidepool::base::UndisturbedProbe(
+                    First(c.baseline_ms, n), First(c.candidate_ms, n),
+                    First(c.contended_baseline_ms, m), First(c.contended_candidate_ms, m), spreads);
+        }
         std::vector<Replay> replays;
         std::vector<double> cost;  // a frame's mean time, ms
         std::printf("%s\n ", argv[f]);
         int recorded_total = 0;
         int replayed_total = 0;
-        for (const auto& c : results.comparisons) {
+        for (std::size_t i = 0; i < count; ++i) {
+            const auto& c = results.comparisons[i];
             rule.boundaries_points =
                     boundaries.count(c.label) ? boundaries[c.label] : std::vector<double>{};
-            replays.push_back(ReplayComparison(c, rule));
+            replays.push_back(ReplayComparison(c, rule, probe_candidates[i]));
             const std::vector<double>& b = c.baseline_ms;
             const std::vector<double>& k = c.candidate_ms;
             cost.push_back(b.empty() ? 0.0

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -395,33 +396,101 @@ int PairsExpectedAtStop(const PairedEstimate& estimate, const StoppingRule& rule
     });
 }
 
-int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
-                            const std::vector<double>& candidate_ms, const StoppingRule& rule) {
+namespace {
+
+// The pairs' log ratios, their median and their normal-equivalent spread; `valid` false when
+// LogRatioSpread would be NaN.
+struct LogRatios {
+    bool valid = false;
+    std::vector<double> ratios;
+    double centre = 0;
+    double spread = 0;
+};
+
+LogRatios LogRatiosOf(const std::vector<double>& baseline_ms,
+                      const std::vector<double>& candidate_ms) {
+    LogRatios out;
     if (baseline_ms.size() != candidate_ms.size() ||
         baseline_ms.size() < static_cast<std::size_t>(kMinimumPairs)) {
-        return 0;
+        return out;
     }
-    std::vector<double> log_ratios;
-    log_ratios.reserve(baseline_ms.size());
+    out.ratios.reserve(baseline_ms.size());
     for (std::size_t i = 0; i < baseline_ms.size(); ++i) {
         if (!(baseline_ms[i] > 0) || !(candidate_ms[i] > 0) || !std::isfinite(baseline_ms[i]) ||
             !std::isfinite(candidate_ms[i])) {
-            return 0;
+            return out;
         }
-        log_ratios.push_back(std::log(candidate_ms[i] / baseline_ms[i]));
+        out.ratios.push_back(std::log(candidate_ms[i] / baseline_ms[i]));
     }
-    const int pairs = static_cast<int>(log_ratios.size());
-    const double centre = Median(log_ratios);
+    out.centre = Median(out.ratios);
     std::vector<double> deviations;
-    deviations.reserve(log_ratios.size());
-    for (double r : log_ratios) {
-        deviations.push_back(std::abs(r - centre));
+    deviations.reserve(out.ratios.size());
+    for (double r : out.ratios) {
+        deviations.push_back(std::abs(r - out.centre));
     }
-    // The normal-equivalent spread of one pair's log ratio, and both in percent of frame rate
-    // (a change of d in the log ratio moves the change by about 100 exp(-centre) d).
     constexpr double kMadToSigma = 1.4826;
+    out.spread = kMadToSigma * Median(deviations);
+    out.valid = true;
+    return out;
+}
+
+}  // namespace
+
+double LogRatioSpread(const std::vector<double>& baseline_ms,
+                      const std::vector<double>& candidate_ms) {
+    const LogRatios r = LogRatiosOf(baseline_ms, candidate_ms);
+    return r.valid ? r.spread : std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> WithSpreadAtMost(const std::vector<double>& baseline_ms,
+                                     const std::vector<double>& candidate_ms, double spread) {
+    const LogRatios r = LogRatiosOf(baseline_ms, candidate_ms);
+    if (!r.valid || !std::isfinite(spread) || spread < 0 || !(r.spread > spread)) {
+        return candidate_ms;
+    }
+    const double factor = spread / r.spread;
+    std::vector<double> out(candidate_ms.size());
+    for (std::size_t i = 0; i < out.size(); ++i) {
+        out[i] = baseline_ms[i] * std::exp(r.centre + factor * (r.ratios[i] - r.centre));
+    }
+    return out;
+}
+
+ProbeCandidates UndisturbedProbe(const std::vector<double>& baseline_ms,
+                                 const std::vector<double>& candidate_ms,
+                                 const std::vector<double>& contended_baseline_ms,
+                                 const std::vector<double>& contended_candidate_ms,
+                                 ProbeSpreads& spreads) {
+    // The largest spread a state's probe may have: kDisturbedProbeSpread times the median of the
+    // run's probes' spreads so far, with this one among them, once there are three.
+    auto bound = [](std::vector<double>& run, double spread) {
+        if (std::isfinite(spread)) {
+            run.push_back(spread);
+        }
+        constexpr std::size_t kProbesForAMedian = 3;
+        const double median = run.size() >= kProbesForAMedian ? Median(run) : 0.0;
+        return median > 0 ? kDisturbedProbeSpread * median
+                          : std::numeric_limits<double>::infinity();
+    };
+    const double as_run = bound(spreads.as_run, LogRatioSpread(baseline_ms, candidate_ms));
+    const double contended =
+            bound(spreads.contended, LogRatioSpread(contended_baseline_ms, contended_candidate_ms));
+    return {WithSpreadAtMost(baseline_ms, candidate_ms, as_run),
+            WithSpreadAtMost(contended_baseline_ms, contended_candidate_ms, contended)};
+}
+
+int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
+                            const std::vector<double>& candidate_ms, const StoppingRule& rule) {
+    const LogRatios r = LogRatiosOf(baseline_ms, candidate_ms);
+    if (!r.valid) {
+        return 0;
+    }
+    const int pairs = static_cast<int>(r.ratios.size());
+    const double centre = r.centre;
+    // One pair's spread and the change in percent of frame rate (a change of d in the log ratio
+    // moves the change by about 100 exp(-centre) d).
     const double points_per_log = 100.0 * std::exp(-centre);
-    const double sigma = kMadToSigma * Median(deviations) * points_per_log;
+    const double sigma = r.spread * points_per_log;
     const double change = PerformanceChangePercent(std::exp(centre));
     const double z = NormalQuantile(0.5 + kConfidenceLevel / 2.0);
     // At a later look of n pairs the stated interval spans the as-run and the contended

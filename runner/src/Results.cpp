@@ -175,6 +175,10 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     // Times a part of comparison k (ComparisonPart), counting its frames in the meter as they
     // are taken; `stepped[k]` holds how many it has counted so far.
     std::vector<long> stepped(results.comparisons.size(), 0);
+    // The spreads of the probes so far, by which a disturbed probe is known
+    // (base::UndisturbedProbe).
+    base::ProbeSpreads probe_spreads;
+    std::mutex probe_spreads_mutex;
     auto time_comparison = [&](RenderWorker& w, std::size_t k, ComparisonPart part) {
         ComparisonResult& out = results.comparisons[k];
         const TimedComparison& c = out.comparison;
@@ -191,10 +195,19 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                 warmed;
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
+            // A probe's guesses take its pairs with a disturbed state's pulled in.
+            base::ProbeCandidates candidates{so_far.samples.candidate_ms,
+                                             so_far.contended.candidate_ms};
+            if (part == ComparisonPart::kProbe) {
+                std::lock_guard<std::mutex> lock(probe_spreads_mutex);
+                candidates = base::UndisturbedProbe(
+                        so_far.samples.baseline_ms, so_far.samples.candidate_ms,
+                        so_far.contended.baseline_ms, so_far.contended.candidate_ms, probe_spreads);
+            }
             const base::ExpectedPairs expected = base::PairsExpectedAcrossStates(
-                    so_far.samples.baseline_ms, so_far.samples.candidate_ms,
-                    so_far.contended.baseline_ms, so_far.contended.candidate_ms, so_far.estimate,
-                    so_far.contended_estimate, rule, kInitialPairGuess);
+                    so_far.samples.baseline_ms, candidates.as_run, so_far.contended.baseline_ms,
+                    candidates.contended, so_far.estimate, so_far.contended_estimate, rule,
+                    kInitialPairGuess);
             const long expected_frames =
                     2L * (expected.as_run + expected.contended) + warmup_frames + per_pass_frames;
             // After the last look, the per-pass frames are still to come.
@@ -206,9 +219,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // (median 0.72), with kBoundaryAllowance. While contended pairs narrow it more, it
             // narrows with the contended pairs alone (base::ResolutionPairsAcrossStates).
             const base::ExpectedPairs resolution = base::ResolutionPairsAcrossStates(
-                    so_far.samples.baseline_ms, so_far.samples.candidate_ms,
-                    so_far.contended.baseline_ms, so_far.contended.candidate_ms, so_far.estimate,
-                    so_far.contended_estimate, rule);
+                    so_far.samples.baseline_ms, candidates.as_run, so_far.contended.baseline_ms,
+                    candidates.contended, so_far.estimate, so_far.contended_estimate, rule);
             const long resolution_frames = 2L * (resolution.as_run + resolution.contended);
             meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames, false,
                                     resolution_frames);

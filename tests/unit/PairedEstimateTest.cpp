@@ -1,10 +1,12 @@
 // The paired estimate, its interval's coverage and the sequential stopping rule
 // (base/include/tidepool/base/PairedEstimate.h).
 #include "tidepool/base/PairedEstimate.h"
+#include "tidepool/base/SampleStatistics.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -994,6 +996,89 @@ TEST(PairedEstimateTest, AProbesGuessFollowsTheRulesStopsOnHeavyTailedNoise) {
     EXPECT_GT(stopped / kRuns, 2.0 * rule.min_pairs) << "the noise should cost pairs here";
     EXPECT_NEAR(guessed / stopped, 1.0, 0.2);
     EXPECT_GT(from_interval / stopped, 1.2) << "the noise should have tails that mislead a probe";
+}
+
+// Ten pairs whose log ratios are `centre` plus `offsets` (in log units), baselines 20 ms.
+std::pair<std::vector<double>, std::vector<double>> PairsWithOffsets(
+        double centre, const std::vector<double>& offsets) {
+    std::vector<double> baseline(offsets.size(), 20.0);
+    std::vector<double> candidate;
+    for (double o : offsets) {
+        candidate.push_back(20.0 * std::exp(centre + o));
+    }
+    return {baseline, candidate};
+}
+
+TEST(PairedEstimateTest, ASpreadIsPulledInAboutItsMedian) {
+    const std::vector<double> offsets = {-0.03, -0.02, -0.01, -0.005, 0.0,
+                                         0.0,   0.005, 0.01,  0.02,   0.04};
+    const auto [baseline, candidate] = PairsWithOffsets(0.1, offsets);
+    const double spread = LogRatioSpread(baseline, candidate);
+    EXPECT_NEAR(spread, 1.4826 * 0.01, 1e-9);  // deviations' median: 0.01
+    const std::vector<double> pulled = WithSpreadAtMost(baseline, candidate, spread / 4);
+    EXPECT_NEAR(LogRatioSpread(baseline, pulled), spread / 4, 1e-9);
+    EXPECT_NEAR(EstimatePaired(baseline, pulled).ratio, std::exp(0.1), 1e-6);
+    for (std::size_t i = 0; i < pulled.size(); ++i) {
+        EXPECT_NEAR(std::log(pulled[i] / baseline[i]), 0.1 + offsets[i] / 4, 1e-9) << i;
+    }
+    // At most what it is already, or no bound: as given.
+    EXPECT_EQ(WithSpreadAtMost(baseline, candidate, spread * 2), candidate);
+    EXPECT_EQ(WithSpreadAtMost(baseline, candidate, std::nan("")), candidate);
+    // Too few pairs for a spread.
+    EXPECT_TRUE(std::isnan(LogRatioSpread({20, 20}, {21, 22})));
+    EXPECT_EQ(WithSpreadAtMost({20, 20}, {21, 22}, 0.0), (std::vector<double>{21, 22}));
+}
+
+// A probe whose ten pairs are disturbed, among calm ones, is guessed from pairs pulled in to
+// three times the calm ones' spread: row 11's probe in a traced main job of 2026-12-07 had log
+// ratios from -33% to +40%, where the median probe's spread was 1.3%, and guessed 1,214 frames for
+// a comparison that took 174.
+TEST(PairedEstimateTest, ADisturbedProbesGuessIsPulledInTowardsTheCalmOnes) {
+    StoppingRule rule;
+    rule.contended_share = 0.5;
+    const std::vector<double> calm = {-0.015, -0.01, -0.006, -0.003, 0.0,
+                                      0.0,    0.003, 0.006,  0.01,   0.015};
+    const std::vector<double> disturbed = {-0.33, -0.21, -0.17, -0.06, -0.04,
+                                           0.04,  0.06,  0.11,  0.26,  0.40};
+    ProbeSpreads spreads;
+    auto probe = [&](const std::vector<double>& as_run, const std::vector<double>& contended) {
+        const auto [b, c] = PairsWithOffsets(-0.04, as_run);
+        const auto [cb, cc] = PairsWithOffsets(-0.04, contended);
+        return std::make_pair(UndisturbedProbe(b, c, cb, cc, spreads), std::array{b, c, cb, cc});
+    };
+    // The first probes set no bound, however they read.
+    const auto first = probe(disturbed, calm);
+    EXPECT_EQ(first.first.as_run, first.second[1]);
+    spreads = ProbeSpreads{};
+    probe(calm, calm);
+    probe(calm, calm);
+    // The third, calm, is its own.
+    const auto third = probe(calm, calm);
+    EXPECT_EQ(third.first.as_run, third.second[1]);
+    EXPECT_EQ(third.first.contended, third.second[3]);
+    // Now a disturbed as-run state is pulled in to three times the median spread, and its guess
+    // falls from the cap towards a calm probe's; its contended state, calm, stays.
+    const auto pulled = probe(disturbed, calm);
+    const ProbeCandidates& candidates = pulled.first;
+    const auto& pairs = pulled.second;
+    const double median = Median(spreads.as_run);
+    EXPECT_NEAR(LogRatioSpread(pairs[0], candidates.as_run), kDisturbedProbeSpread * median, 1e-9);
+    EXPECT_EQ(candidates.contended, pairs[3]);
+    auto guess = [&](const std::vector<double>& as_run_candidate) {
+        const ExpectedPairs e =
+                PairsExpectedAcrossStates(pairs[0], as_run_candidate, pairs[2], pairs[3],
+                                          EstimatePaired(pairs[0], as_run_candidate),
+                                          EstimatePaired(pairs[2], pairs[3]), rule, 60);
+        return e.as_run + e.contended;
+    };
+    const int raw = guess(pairs[1]);
+    const int undisturbed = guess(candidates.as_run);
+    const int calm_guess = guess(third.second[1]);
+    std::printf("disturbed probe guessed %d pairs as it read, %d pulled in; a calm one %d\n", raw,
+                undisturbed, calm_guess);
+    EXPECT_EQ(raw, rule.max_pairs + ContendedPairsBeforeNextLook(rule.max_pairs, 0, rule));
+    EXPECT_GT(raw, 4 * undisturbed);
+    EXPECT_GE(undisturbed, calm_guess);
 }
 
 TEST(PairedEstimateTest, ProbesGoFromBothEndsOfTheListInTurn) {

@@ -302,6 +302,55 @@ struct ExpectedPairs {
 std::vector<double> WithOuterRatiosPulledIn(const std::vector<double>& baseline_ms,
                                             const std::vector<double>& candidate_ms);
 
+/// The normal-equivalent spread of the pairs' log ratios (candidate over baseline): 1.4826 times
+/// their median absolute deviation. NaN with fewer than kMinimumPairs pairs, sides of different
+/// lengths, or a time that is not finite and positive.
+double LogRatioSpread(const std::vector<double>& baseline_ms,
+                      const std::vector<double>& candidate_ms);
+
+/// `candidate_ms` with every pair's log ratio moved towards their median by one factor, so that
+/// their LogRatioSpread is `spread`; as given when it is already at most `spread`, or either is
+/// not finite. Never fails.
+std::vector<double> WithSpreadAtMost(const std::vector<double>& baseline_ms,
+                                     const std::vector<double>& candidate_ms, double spread);
+
+/// The spreads (LogRatioSpread) of a run's probes so far, by state.
+struct ProbeSpreads {
+    std::vector<double> as_run;
+    std::vector<double> contended;
+};
+
+/// A probe's candidate times as its guesses take them, by state.
+struct ProbeCandidates {
+    std::vector<double> as_run;
+    std::vector<double> contended;
+};
+
+/// How many times the median of the run's probes' spreads (of its state, this probe's included,
+/// once there are three and it is above 0) a probe's spread may be before its pairs count as
+/// disturbed.
+inline constexpr double kDisturbedProbeSpread = 3.0;
+
+/// Adds a probe's spreads to `spreads` and returns its candidate times for its guesses: each
+/// state's as given, or, when its spread is more than kDisturbedProbeSpread times the median of
+/// the run's probes' spreads, pulled in to that (WithSpreadAtMost). Why: a few probes' ten pairs
+/// are disturbed, and one such probe set the progress line's guess: in a traced quiet main job
+/// of 2026-12-07, row 11's ten as-run log ratios ran from -33% to +40% (spread 17%, its next ten
+/// pairs' under 2%, the median probe's 1.3%); its probe guessed 1,214 frames, it took 174, and
+/// with three more such probes the line read up to 49% long for a minute. Replayed over 15
+/// main-job halves of that day (`bench/replay_comparisons`), the guessed comparison work missed
+/// at its worst moment by at most 47% (median 26%) this way, against 95% (26%), and at the start,
+/// every comparison at its probe's guess, by at most 32% (median 16%) against 76% (22%). Three
+/// times: a spread from ten pairs is itself uncertain by about a third, and the comparisons of
+/// one run differ in their noise by up to about twice, so less would pull in honest probes
+/// (twice did about as well on these runs, at most 43% and 35%; four times less well, 61% and
+/// 34%).
+ProbeCandidates UndisturbedProbe(const std::vector<double>& baseline_ms,
+                                 const std::vector<double>& candidate_ms,
+                                 const std::vector<double>& contended_baseline_ms,
+                                 const std::vector<double>& contended_candidate_ms,
+                                 ProbeSpreads& spreads);
+
 /// The progress line's guess of both states' pairs at the stop, from the pairs so far (as run:
 /// `baseline_ms`, `candidate_ms`; with the core shared: `contended_baseline_ms`,
 /// `contended_candidate_ms`) and their estimates (`as_run`, `contended`; the interval they
