@@ -81,7 +81,8 @@ struct Replay {
     double probe_resolution_frames = 0;
 };
 
-// `probe`: the probe's candidate times as its guesses take them (base::UndisturbedProbe).
+// `probe_candidates`: the probe's candidate times as its guesses take them
+// (base::UndisturbedProbe).
 Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c, const StoppingRule& rule,
                         const tidepool::base::ProbeCandidates& probe_candidates) {
     using namespace tidepool::base;
