@@ -508,16 +508,16 @@ int PairsExpectedFromSpread(const std::vector<double>& baseline_ms,
 int PairsExpectedFromPairs(const std::vector<double>& baseline_ms,
                            const std::vector<double>& candidate_ms, const PairedEstimate& stated,
                            const StoppingRule& rule, int fallback) {
-    const int from_interval = PairsExpectedAtStop(stated, rule, fallback);
     if (!stated.Valid() || DecideStop(stated, rule) != StopDecision::kContinue) {
-        return from_interval;
+        return PairsExpectedAtStop(stated, rule, fallback);
     }
     const int from_spread = PairsExpectedFromSpread(baseline_ms, candidate_ms, rule);
+    if (from_spread > 0 && baseline_ms.size() < static_cast<std::size_t>(rule.min_pairs)) {
+        return from_spread;  // a probe's
+    }
+    const int from_interval = PairsExpectedAtStop(stated, rule, fallback);
     if (from_spread <= 0) {
         return from_interval;
-    }
-    if (baseline_ms.size() < static_cast<std::size_t>(rule.min_pairs)) {
-        return from_spread;  // a probe's
     }
     return static_cast<int>(
             std::lround(std::sqrt(static_cast<double>(from_interval) * from_spread)));

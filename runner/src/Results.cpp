@@ -195,18 +195,23 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                                 warmed;
             meter.StepComparison(k, c.label, frames - stepped[k]);
             stepped[k] = frames;
-            // A probe's guesses take its pairs with a disturbed state's pulled in.
-            base::ProbeCandidates candidates{so_far.samples.candidate_ms,
-                                             so_far.contended.candidate_ms};
+            // A probe's guesses take its pairs with a disturbed state's pulled in; a later look's
+            // take them as they are.
+            base::ProbeCandidates probe;
             if (part == ComparisonPart::kProbe) {
                 std::lock_guard<std::mutex> lock(probe_spreads_mutex);
-                candidates = base::UndisturbedProbe(
+                probe = base::UndisturbedProbe(
                         so_far.samples.baseline_ms, so_far.samples.candidate_ms,
                         so_far.contended.baseline_ms, so_far.contended.candidate_ms, probe_spreads);
             }
+            const bool probed = part == ComparisonPart::kProbe;
+            const std::vector<double>& candidate_ms =
+                    probed ? probe.as_run : so_far.samples.candidate_ms;
+            const std::vector<double>& contended_candidate_ms =
+                    probed ? probe.contended : so_far.contended.candidate_ms;
             const base::ExpectedPairs expected = base::PairsExpectedAcrossStates(
-                    so_far.samples.baseline_ms, candidates.as_run, so_far.contended.baseline_ms,
-                    candidates.contended, so_far.estimate, so_far.contended_estimate, rule,
+                    so_far.samples.baseline_ms, candidate_ms, so_far.contended.baseline_ms,
+                    contended_candidate_ms, so_far.estimate, so_far.contended_estimate, rule,
                     kInitialPairGuess);
             const long expected_frames =
                     2L * (expected.as_run + expected.contended) + warmup_frames + per_pass_frames;
@@ -219,8 +224,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
             // (median 0.72), with kBoundaryAllowance. While contended pairs narrow it more, it
             // narrows with the contended pairs alone (base::ResolutionPairsAcrossStates).
             const base::ExpectedPairs resolution = base::ResolutionPairsAcrossStates(
-                    so_far.samples.baseline_ms, candidates.as_run, so_far.contended.baseline_ms,
-                    candidates.contended, so_far.estimate, so_far.contended_estimate, rule);
+                    so_far.samples.baseline_ms, candidate_ms, so_far.contended.baseline_ms,
+                    contended_candidate_ms, so_far.estimate, so_far.contended_estimate, rule);
             const long resolution_frames = 2L * (resolution.as_run + resolution.contended);
             meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames, false,
                                     resolution_frames);
