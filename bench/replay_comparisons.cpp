@@ -26,10 +26,8 @@
 //    weighed as as-run ones.
 //  * The comparisons not yet probed after the first kProbesBeforeTheWaitingGuess probes, in the
 //    order a run probes them (base::ProbeOrder; about where a main job's progress line first
-//    counts): the guess the progress line gives each,
-//    kBoundaryAllowance times the probes' mean resolution frames
-//    (base::ResolutionPairsAcrossStates) and the 14 overhead frames, over the mean frames
-//    they took.
+//    counts): the guess the progress line gives each, the mean of those probes' guesses, over
+//    the mean frames they took.
 //  * The floor: the same miss at the run's start, before any comparison has gone past its
 //    probe, with every comparison's guess at its probe, against a guess that knew each
 //    comparison's mean frames over all the files given (in-sample: no guess made in a run from
@@ -56,9 +54,6 @@ using tidepool::base::StoppingRule;
 
 constexpr int kProbePairs = tidepool::base::kMinimumPairs;
 constexpr int kOverheadFrames = 14;  // 2 warm-up and 5 per-pass frames of each side
-// The progress line's allowance for the boundary clauses over the resolution's pairs
-// (runner/src/RenderProgress.h, ProgressMeter::kBoundaryAllowance).
-constexpr double kBoundaryAllowance = 1.5;
 // After this many probes, the guess of the comparisons not yet probed is compared with what they
 // took: about where a main job's progress line first counts (10% of the render).
 constexpr std::size_t kProbesBeforeTheWaitingGuess = 8;
@@ -76,9 +71,6 @@ struct Replay {
     int stopped_at = 0;           // as-run pairs
     int contended_at_stop = 0;    // contended pairs
     bool recording_ended = false;
-    // The probe's measure of the noise for the comparisons not yet started, in frames of pairs
-    // (base::ResolutionPairsAcrossStates), as runner/src/Results.cpp takes it.
-    double probe_resolution_frames = 0;
 };
 
 // `probe_candidates`: the probe's candidate times as its guesses take them
@@ -108,12 +100,6 @@ Replay ReplayComparison(const tidepool::stagefiles::ResultsComparison& c, const 
                 probe ? probe_candidates.as_run : First(c.candidate_ms, n);
         const std::vector<double> contended_candidate =
                 probe ? probe_candidates.contended : First(c.contended_candidate_ms, m);
-        if (probe) {
-            const ExpectedPairs resolution = ResolutionPairsAcrossStates(
-                    First(c.baseline_ms, n), candidate, First(c.contended_baseline_ms, m),
-                    contended_candidate, as_run, contended, rule);
-            out.probe_resolution_frames = 2.0 * (resolution.as_run + resolution.contended);
-        }
         out.look_pairs.push_back(n);
         const ExpectedPairs expected =
                 stops ? ExpectedPairs{n, m}
@@ -233,21 +219,24 @@ int main(int argc, char** argv) {
         }
         rule.boundaries_points.clear();
         // The comparisons not yet probed after the first few probes: the meter's guess of each
-        // (kBoundaryAllowance times the probes' mean resolution frames, and the overhead)
-        // against the mean frames they took.
+        // (the mean of the probes' guesses) against the mean frames they took.
         if (replays.size() > kProbesBeforeTheWaitingGuess) {
             const std::vector<std::size_t> order = tidepool::base::ProbeOrder(replays.size());
-            double resolution = 0;
+            double probed = 0;
+            double probes = 0;
             for (std::size_t i = 0; i < kProbesBeforeTheWaitingGuess; ++i) {
-                resolution += replays[order[i]].probe_resolution_frames;
+                const Replay& r = replays[order[i]];
+                if (!r.guesses.empty()) {
+                    probed += r.guesses.front();
+                    probes += 1;
+                }
             }
             double taken = 0;
             for (std::size_t i = kProbesBeforeTheWaitingGuess; i < replays.size(); ++i) {
                 taken += Taken(replays[order[i]]);
             }
-            const auto probes = static_cast<double>(kProbesBeforeTheWaitingGuess);
             const auto waiting = static_cast<double>(replays.size() - kProbesBeforeTheWaitingGuess);
-            const double guess = kBoundaryAllowance * resolution / probes + kOverheadFrames;
+            const double guess = probes > 0 ? probed / probes : 0.0;
             waiting_ratios.push_back(guess / (taken / waiting));
         }
         double all = 0;

@@ -272,28 +272,6 @@ int PairsBeforeNextLook(int pairs, const StoppingRule& rule) {
     return std::max(0, std::min(target, rule.max_pairs) - pairs);
 }
 
-namespace {
-
-// The pairs at which an interval of `half_width` after `pairs` narrows to `wanted`, by the
-// square-root law of an interval's width (at most a million times the pairs so far).
-double PairsAtHalfWidth(int pairs, double half_width, double wanted) {
-    const double ratio = half_width / wanted;
-    return std::ceil(pairs * std::min(ratio * ratio, 1e6));
-}
-
-}  // namespace
-
-int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule) {
-    const double half_width = estimate.HalfWidthPoints();
-    if (!estimate.Valid() || !(half_width > 0) || !(rule.resolution_points > 0)) {
-        return 0;
-    }
-    const double pairs = PairsAtHalfWidth(estimate.pairs, half_width, rule.resolution_points);
-    return static_cast<int>(
-            std::clamp(pairs, static_cast<double>(rule.min_pairs),
-                       static_cast<double>(std::max(rule.min_pairs, rule.max_pairs))));
-}
-
 std::vector<std::size_t> ProbeOrder(std::size_t comparisons) {
     std::vector<std::size_t> order;
     order.reserve(comparisons);
@@ -586,19 +564,6 @@ ExpectedPairs GuessAcrossStates(const std::vector<double>& baseline_ms,
             contended_pairs + ContendedPairsBeforeNextLook(guessed_as_run, contended_pairs, rule)};
 }
 
-// ResolutionPairsAcrossStates from the estimates as given.
-ExpectedPairs ResolutionPairsOf(int as_run_pairs, int contended_pairs, const PairedEstimate& as_run,
-                                const PairedEstimate& contended, const StoppingRule& rule) {
-    const PairedEstimate stated = AcrossHostStates(as_run, contended);
-    if (ContendedPairsNarrowMore(as_run, contended)) {
-        PairedEstimate by_contended = stated;
-        by_contended.pairs = contended_pairs;
-        return {std::max(as_run_pairs, rule.min_pairs), PairsForResolution(by_contended, rule)};
-    }
-    const int pairs = PairsForResolution(stated, rule);
-    return {pairs, pairs > 0 ? ContendedPairsBeforeNextLook(pairs, 0, rule) : 0};
-}
-
 // A probe's pairs with each state's outermost ratios pulled in to the next, and their estimates.
 struct SteadiedProbe {
     std::vector<double> as_run_candidate;
@@ -638,23 +603,6 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
     return GuessAcrossStates(baseline_ms, probe.as_run_candidate, contended_baseline_ms,
                              probe.contended_candidate, probe.as_run, probe.contended, rule,
                              fallback);
-}
-
-ExpectedPairs ResolutionPairsAcrossStates(const std::vector<double>& baseline_ms,
-                                          const std::vector<double>& candidate_ms,
-                                          const std::vector<double>& contended_baseline_ms,
-                                          const std::vector<double>& contended_candidate_ms,
-                                          const PairedEstimate& as_run,
-                                          const PairedEstimate& contended,
-                                          const StoppingRule& rule) {
-    const int as_run_pairs = static_cast<int>(baseline_ms.size());
-    const int contended_pairs = static_cast<int>(contended_baseline_ms.size());
-    if (as_run_pairs >= rule.min_pairs) {
-        return ResolutionPairsOf(as_run_pairs, contended_pairs, as_run, contended, rule);
-    }
-    const SteadiedProbe probe =
-            Steadied(baseline_ms, candidate_ms, contended_baseline_ms, contended_candidate_ms);
-    return ResolutionPairsOf(as_run_pairs, contended_pairs, probe.as_run, probe.contended, rule);
 }
 
 const char* StopDecisionName(StopDecision decision) {

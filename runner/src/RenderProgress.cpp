@@ -89,12 +89,11 @@ void ProgressMeter::AddExpected(Kind kind, long frames) {
     kinds_[kind].total += frames;
 }
 
-void ProgressMeter::AddComparisons(std::size_t count, long guess, long overhead) {
+void ProgressMeter::AddComparisons(std::size_t count, long guess) {
     std::lock_guard<std::mutex> lock(mutex_);
     comparison_guess_ = guess;
-    comparison_overhead_ = std::max(0L, overhead);
     comparison_frames_.assign(count, guess);
-    resolution_frames_.assign(count, 0);
+    first_guess_frames_.assign(count, 0);
     comparison_state_.assign(count, ComparisonState::kWaiting);
     comparison_done_.assign(count, 0);
     SumComparisons();
@@ -134,34 +133,32 @@ void ProgressMeter::StepComparison(std::size_t k, const std::string& what, long 
     StepLocked(kComparison, what, frames, now, k);
 }
 
-void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished,
-                                      long resolution_frames) {
+void ProgressMeter::ComparisonExpects(std::size_t k, long frames, bool finished) {
     std::lock_guard<std::mutex> lock(mutex_);
     comparison_frames_[k] = frames;
     comparison_state_[k] = finished ? ComparisonState::kFinished : ComparisonState::kRunning;
-    if (resolution_frames > 0) {
-        resolution_frames_[k] = resolution_frames;
+    if (!finished && first_guess_frames_[k] == 0) {
+        first_guess_frames_[k] = frames;
     }
     ExpectWaiting();
 }
 
 void ProgressMeter::ExpectWaiting() {
-    // The guess: what the noise measured so far needs, with the boundary clauses' allowance,
-    // and the overhead frames; before any comparison has looked, the first guess. (A fixed guess of
-    // 60 pairs was short under load on one host, where comparisons took 52 to 88 pairs on average,
-    // and nearly three times too long on a faster one, where most stopped at the minimum 20.)
+    // The guess: the mean of the first guesses of the comparisons that have looked; before any
+    // has, the first guess. (A fixed guess of 60 pairs was short under load on one host, where
+    // comparisons took 52 to 88 pairs on average, and nearly three times too long on a faster
+    // one, where most stopped at the minimum 20.)
     double guess = static_cast<double>(comparison_guess_);
-    double noise_sum = 0;
-    double noise_count = 0;
-    for (long r : resolution_frames_) {
-        if (r > 0) {
-            noise_sum += static_cast<double>(r);
-            noise_count += 1;
+    double first_sum = 0;
+    double first_count = 0;
+    for (long f : first_guess_frames_) {
+        if (f > 0) {
+            first_sum += static_cast<double>(f);
+            first_count += 1;
         }
     }
-    if (noise_count > 0) {
-        guess = kBoundaryAllowance * noise_sum / noise_count +
-                static_cast<double>(comparison_overhead_);
+    if (first_count > 0) {
+        guess = first_sum / first_count;
     }
     // The mean, shrunk towards the guess: the ETA needs the sum of what the waiting
     // comparisons will take, and the mean is what a sum grows by. (The median, used before,

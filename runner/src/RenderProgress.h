@@ -99,38 +99,36 @@ public:
 
     void AddExpected(Kind kind, long frames);
 
-    /// `count` comparisons, each expected to take `guess` frames until it says otherwise, of
-    /// which `overhead` (warm-up and per-pass frames) every comparison renders besides its pairs.
-    void AddComparisons(std::size_t count, long guess, long overhead = 0);
+    /// `count` comparisons, each expected to take `guess` frames until it says otherwise.
+    void AddComparisons(std::size_t count, long guess);
 
     /// Comparison `k` now expects `frames` in all (a running comparison's guess, from its
     /// interval), or took `frames` when `finished` (0: it failed before timing). The comparisons
     /// still waiting then expect the mean of what the finished ones took, with a guess counting
-    /// as kPriorComparisons of them. `resolution_frames`, when
-    /// given (> 0), is what `k`'s noise at this look needs for the resolution alone
-    /// (base::PairsForResolution of the interval it states, in frames of pairs); once any
-    /// comparison has said it, the guess is kBoundaryAllowance times their mean, plus the overhead,
-    /// instead of the first guess.
-    void ComparisonExpects(std::size_t k, long frames, bool finished, long resolution_frames = 0);
+    /// as kPriorComparisons of them. The guess is the mean of the first guesses the comparisons
+    /// that have looked gave (a probe's, where the run probes), or AddComparisons' guess before
+    /// any has looked. Why their own guesses, not the pairs the noise they measured needs for the
+    /// resolution with an allowance for the boundary clauses, as before: replayed over the
+    /// main-job halves of 2026-12-07 (`bench/replay_comparisons`), the comparisons not yet probed
+    /// after eight probes were guessed at 0.41 to 1.73 times the frames they took (median 0.98)
+    /// this way, against 0.55 to 2.62 (median 1.29) with the fixed allowance of 1.5 (over seven
+    /// halves recorded after the choice, 0.63 to 1.68, median 0.86): where the boundary clauses
+    /// take pairs depends on each comparison's effect, which its own guess weighs and a fixed
+    /// allowance cannot.
+    void ComparisonExpects(std::size_t k, long frames, bool finished);
 
-    /// How many comparisons the guess (from the noise, below) counts for in the expectation of the
-    /// comparisons still waiting, against the mean of the finished ones. A whole default matrix's
-    /// worth: the extra pairs a comparison takes near a verdict's boundary are its own (its effect
-    /// lies near the edge of its own band), so the finished ones say little about the rest.
-    /// Replayed over the comparisons' frames in 15 main-job runs with contended pairs (2026-11-26;
-    /// rows 2 to 4 and 8, near their bands' edges, took up to 874 frames where most took the
-    /// minimum 60), the predicted frames of the waiting comparisons missed by at most 19% of the
-    /// run's work (the comparisons taken as half of it) in the worst run and 14% in the median one
-    /// with this weight, against 42% and 20% with the weight of 3 used before: the heavy rows come
-    /// first in the default order, and a mean over few finished ones then charges every later row
-    /// for them.
+    /// How many comparisons the guess (the first guesses' mean, above) counts for in the
+    /// expectation of the comparisons still waiting, against the mean of the finished ones. A whole
+    /// default matrix's worth: the extra pairs a comparison takes near a verdict's boundary are its
+    /// own (its effect lies near the edge of its own band), so the finished ones say little about
+    /// the rest. Replayed over the comparisons' frames in 15 main-job runs with contended pairs
+    /// (2026-11-26; rows 2 to 4 and 8, near their bands' edges, took up to 874 frames where most
+    /// took the minimum 60), the predicted frames of the waiting comparisons missed by at most 19%
+    /// of the run's work (the comparisons taken as half of it) in the worst run and 14% in the
+    /// median one with this weight, against 42% and 20% with the weight of 3 used before: the heavy
+    /// rows come first in the default order, and a mean over few finished ones then charges every
+    /// later row for them.
     static constexpr double kPriorComparisons = 16.0;
-
-    /// What the boundary clauses of the stopping rule add to the pairs a comparison needs for
-    /// the resolution alone, on average: main-job runs took 1.4 to 2.8 times the median such
-    /// pairs on the 2-core host of 2026-11-25 (32 to 88 pairs a comparison) and about 1.1 on the
-    /// faster one of 2026-11-26, where nearly every comparison stopped at the minimum 20.
-    static constexpr double kBoundaryAllowance = 1.5;
 
     /// `frames` of `kind` finished on the calling thread since its last step, at `now`.
     void Step(Kind kind, const std::string& what, long frames, Clock::time_point now);
@@ -237,9 +235,8 @@ private:
     mutable std::mutex mutex_;
     std::array<KindState, 2> kinds_;
     long comparison_guess_ = 0;
-    long comparison_overhead_ = 0;  // AddComparisons' overhead
     std::vector<long> comparison_frames_;
-    std::vector<long> resolution_frames_;  // per comparison, its latest look's; 0: none yet
+    std::vector<long> first_guess_frames_;  // per comparison, its first look's; 0: none yet
     std::vector<ComparisonState> comparison_state_;
     std::vector<long> comparison_done_;  // frames stepped through StepComparison
     std::vector<std::array<std::size_t, 2>> comparison_configurations_;  // empty: not priced

@@ -134,8 +134,7 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
     auto frames_at = [&](long pairs) -> long {
         return pairs <= 0 ? 0 : pair_frames(pairs) + warmup_frames + per_pass_frames;
     };
-    meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess),
-                         warmup_frames + per_pass_frames);
+    meter.AddComparisons(results.comparisons.size(), frames_at(kInitialPairGuess));
     meter.ComparisonCostPrior(ContendedFramesCost(options.rule.contended_share));
     for (std::size_t k = 0; k < results.comparisons.size(); ++k) {
         const TimedComparison& c = results.comparisons[k].comparison;
@@ -217,18 +216,8 @@ RunResults RunRender(GlContext& context, const VariantConfig& config, const RunO
                     2L * (expected.as_run + expected.contended) + warmup_frames + per_pass_frames;
             // After the last look, the per-pass frames are still to come.
             const bool finished = so_far.decision != base::StopDecision::kContinue;
-            // The resolution's pairs from the interval the comparison states, the one the rule
-            // stops on: the as-run pairs' own interval, narrower, put the comparisons still
-            // waiting at 0.3 to 0.9 times (median 0.44) the mean pairs the comparisons then
-            // took, over 16 main-job halves of 2026-11-27 and 28; the stated one at 0.5 to 1.3
-            // (median 0.72), with kBoundaryAllowance. While contended pairs narrow it more, it
-            // narrows with the contended pairs alone (base::ResolutionPairsAcrossStates).
-            const base::ExpectedPairs resolution = base::ResolutionPairsAcrossStates(
-                    so_far.samples.baseline_ms, candidate_ms, so_far.contended.baseline_ms,
-                    contended_candidate_ms, so_far.estimate, so_far.contended_estimate, rule);
-            const long resolution_frames = 2L * (resolution.as_run + resolution.contended);
-            meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames, false,
-                                    resolution_frames);
+            meter.ComparisonExpects(k, finished ? frames + per_pass_frames : expected_frames,
+                                    false);
         };
         TimeComparisonUnit(w, options, out, after_look, part);
         if (!out.error.empty()) {

@@ -702,67 +702,6 @@ TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetItsGuess) {
     EXPECT_EQ(guess.contended, steady.contended);
 }
 
-TEST(PairedEstimateTest, TheResolutionsPairsCountTheStateTheLooksWouldTake) {
-    StoppingRule rule;
-    rule.contended_share = 0.5;
-    auto resolution = [&](const TwoStates& s) {
-        return ResolutionPairsAcrossStates(s.as_run.baseline, s.as_run.candidate,
-                                           s.contended.baseline, s.contended.candidate,
-                                           s.as_run_estimate, s.contended_estimate, rule);
-    };
-    // The contended interval narrows the stated one more: the as-run pairs so far, and the
-    // contended pairs the stated interval needs with them in the as-run ones' place.
-    const TwoStates binding(30, 0.004, 10, 0.04);
-    ASSERT_TRUE(binding.binds);
-    PairedEstimate by_contended = binding.stated;
-    by_contended.pairs = 10;
-    EXPECT_EQ(resolution(binding).as_run, 30);
-    EXPECT_EQ(resolution(binding).contended, PairsForResolution(by_contended, rule));
-    EXPECT_GT(resolution(binding).contended, 10);
-    // The as-run interval sets the ends: its pairs, and their contended share beside them.
-    const TwoStates as_run_bound(20, 0.04, 10, 0.004);
-    ASSERT_FALSE(as_run_bound.binds);
-    const int pairs = PairsForResolution(as_run_bound.stated, rule);
-    EXPECT_GT(pairs, 20);
-    EXPECT_EQ(resolution(as_run_bound).as_run, pairs);
-    EXPECT_EQ(resolution(as_run_bound).contended, ContendedPairsBeforeNextLook(pairs, 0, rule));
-    // No interval, no figure.
-    const ExpectedPairs none =
-            ResolutionPairsAcrossStates({}, {}, {}, {}, PairedEstimate{}, PairedEstimate{}, rule);
-    EXPECT_EQ(none.as_run + none.contended, 0);
-}
-
-TEST(PairedEstimateTest, OneDisturbedPairInAProbeDoesNotSetTheResolutionsPairs) {
-    const DisturbedProbe p;
-    const ExpectedPairs pairs = ResolutionPairsAcrossStates(
-            p.as_run.baseline, p.as_run.candidate, p.contended.baseline, p.contended.candidate,
-            p.as_run_estimate, p.contended_estimate, p.rule);
-    // From the interval the ten pairs state as they are, over 90 pairs as run; pulled in, the
-    // fewest the rule takes in each state.
-    EXPECT_GT(PairsForResolution(AcrossHostStates(p.as_run_estimate, p.contended_estimate), p.rule),
-              90);
-    EXPECT_EQ(pairs.as_run, p.rule.min_pairs);
-    EXPECT_LE(pairs.contended, p.rule.min_pairs);
-    // Those of the probe whose disturbed pair reads like the next slowest one.
-    const ExpectedPairs steady = ResolutionPairsAcrossStates(
-            p.steadied.baseline, p.steadied.candidate, p.contended.baseline, p.contended.candidate,
-            p.steadied_estimate, p.contended_estimate, p.rule);
-    EXPECT_EQ(pairs.as_run, steady.as_run);
-    EXPECT_EQ(pairs.contended, steady.contended);
-}
-
-TEST(PairedEstimateTest, PairsForTheResolutionFollowTheSquareRootLawWithinTheRuleBounds) {
-    StoppingRule rule;  // resolution 1.5, 20 to 400 pairs
-    // Half-width 3.0 at 20 pairs: (3.0 / 1.5)^2 x 20 = 80, boundaries or not.
-    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, 5.0, 11.0), rule), 80);
-    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, -4.5, 1.5), rule), 80);
-    // Already finer than the resolution: the minimum; far coarser: the cap.
-    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, 7.0, 7.8), rule), 20);
-    EXPECT_EQ(PairsForResolution(EstimateWithInterval(20, -30.0, 10.0), rule), 400);
-    // No interval: no figure.
-    EXPECT_EQ(PairsForResolution(PairedEstimate{}, rule), 0);
-}
-
 TEST(PairedEstimateTest, ExpectedPairsFollowTheSquareRootLawAndTheLooks) {
     StoppingRule rule;  // resolution 1.5, looks at 20, then every quarter
     // Half-width 3.0 at 20 pairs, centre 8, clear of the margins wherever the change lies within

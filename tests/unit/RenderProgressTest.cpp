@@ -190,49 +190,52 @@ TEST(RenderProgressTest, WaitingComparisonsExpectTheShrunkMeanOfTheFinishedOnes)
     EXPECT_GT(first, 120);
     EXPECT_LT(first, 227);
     EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 3 * first);
-    // A running comparison's own guess is its own: it does not move the waiting ones.
+    // A first guess (comparison 3's, 400 frames) is the guess the waiting ones shrink towards.
     meter.ComparisonExpects(3, 400, false);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(35));
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 400 + 2 * first);
+    const long second = std::lround((kPrior * 400 + 680) / (kPrior + 3));
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 400 + 2 * second);
+    // It finishes at 40: one more finished comparison in the mean.
     meter.ComparisonExpects(3, 40, true);
     meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(36));
-    const long second = std::lround((kPrior * 120 + 720) / (kPrior + 4));
-    EXPECT_LT(second, first);
-    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * second);
+    const long third = std::lround((kPrior * 400 + 720) / (kPrior + 4));
+    EXPECT_LT(third, second);
+    EXPECT_EQ(meter.Last().total, 40 + 600 + 40 + 40 + 2 * third);
 }
 
-// Once a comparison has looked, the waiting ones start from what the noise so far needs for the
-// resolution, with the boundary clauses' allowance, not from the first guess: a host where 20
-// pairs suffice is not charged 60.
-TEST(RenderProgressTest, WaitingComparisonsStartFromWhatTheNoiseSoFarNeeds) {
+// Once comparisons have looked, the waiting ones start from the mean of their first guesses, not
+// from AddComparisons' guess: a host where 20 pairs suffice is not charged 60.
+TEST(RenderProgressTest, WaitingComparisonsStartFromTheMeanOfTheFirstGuesses) {
     const ProgressCallback none;
     const Clock::time_point start = Clock::now();
     ProgressMeter meter(none, start);
     meter.AddComparisons(4, 120);  // 60 pairs each until a look says otherwise
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(1));
     EXPECT_EQ(meter.Last().total, 4 * 120);
-    // Comparison 0's first look: it expects 40 frames, and its noise needs 40 (the minimum).
-    meter.ComparisonExpects(0, 40, false, 40);
-    meter.Step(ProgressMeter::kComparison, "row", 40, start + std::chrono::seconds(2));
-    const long guess = std::lround(ProgressMeter::kBoundaryAllowance * 40);
-    EXPECT_EQ(meter.Last().total, 40 + 3 * guess);
-    // It finishes at 40; the waiting ones shrink towards 40 from the guess, not from 120.
-    meter.ComparisonExpects(0, 40, true, 40);
+    // Comparison 0's probe guesses 54 frames.
+    meter.ComparisonExpects(0, 54, false);
+    meter.Step(ProgressMeter::kComparison, "row", 20, start + std::chrono::seconds(2));
+    EXPECT_EQ(meter.Last().total, 54 + 3 * 54);
+    // Comparison 1's probe guesses 300 (an effect near a verdict's boundary): the waiting ones
+    // expect the mean of the two.
+    meter.ComparisonExpects(1, 300, false);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(3));
-    constexpr double kPrior = ProgressMeter::kPriorComparisons;
-    const long expected =
-            std::lround((kPrior * ProgressMeter::kBoundaryAllowance * 40 + 40) / (kPrior + 1));
-    EXPECT_EQ(meter.Last().total, 40 + 3 * expected);
-    // A noisier look (a loaded machine) raises the guess by its share of the mean.
-    meter.ComparisonExpects(1, 300, false, 200);
+    EXPECT_EQ(meter.Last().total, 54 + 300 + 2 * 177);
+    // A later look's guess is that comparison's own: the waiting ones keep the first guesses'
+    // mean.
+    meter.ComparisonExpects(1, 600, false);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(4));
-    const long louder = std::lround(
-            (kPrior * ProgressMeter::kBoundaryAllowance * (40 + 200) / 2 + 40) / (kPrior + 1));
-    EXPECT_EQ(meter.Last().total, 40 + 300 + 2 * louder);
-    // A look with no interval says nothing about the noise.
-    meter.ComparisonExpects(2, 120, false, 0);
+    EXPECT_EQ(meter.Last().total, 54 + 600 + 2 * 177);
+    // Comparison 0 finishes at 60: the waiting ones shrink towards it from the guess.
+    meter.ComparisonExpects(0, 60, true);
     meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(5));
-    EXPECT_EQ(meter.Last().total, 40 + 300 + 120 + louder);
+    constexpr double kPrior = ProgressMeter::kPriorComparisons;
+    const long expected = std::lround((kPrior * 177 + 60) / (kPrior + 1));
+    EXPECT_EQ(meter.Last().total, 60 + 600 + 2 * expected);
+    // A comparison that failed before it timed says nothing about the others.
+    meter.ComparisonExpects(2, 0, true);
+    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(6));
+    EXPECT_EQ(meter.Last().total, 60 + 600 + 0 + expected);
 }
 
 // Gives `meter` one comparison per pair of configurations, 100 frames each until they say
@@ -353,19 +356,6 @@ TEST(RenderProgressTest, AComparisonPastItsLastLookStillExpectsItsPerPassFrames)
     EXPECT_EQ(meter.Last().done, 70);
     EXPECT_EQ(meter.Last().total, 70);
     EXPECT_DOUBLE_EQ(meter.Last().eta_seconds, 0.0);
-}
-
-// The noise-based guess for a comparison not started yet scales the frames of its pairs by
-// the boundary clauses' allowance and adds the frames every comparison renders besides them
-// once, not scaled.
-TEST(RenderProgressTest, TheNoiseGuessAddsTheOverheadFramesOnce) {
-    const ProgressCallback none;
-    const Clock::time_point start = Clock::now();
-    ProgressMeter meter(none, start);
-    meter.AddComparisons(2, 200, 14);
-    meter.ComparisonExpects(0, 90, false, 60);
-    meter.Step(ProgressMeter::kComparison, "row", 0, start + std::chrono::seconds(1));
-    EXPECT_EQ(meter.Last().total, 90 + std::lround(ProgressMeter::kBoundaryAllowance * 60 + 14));
 }
 
 // A contended frame adds a process to its core: with the render thread getting all of its core

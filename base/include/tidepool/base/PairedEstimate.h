@@ -384,38 +384,9 @@ ExpectedPairs PairsExpectedAcrossStates(const std::vector<double>& baseline_ms,
                                         const PairedEstimate& contended, const StoppingRule& rule,
                                         int fallback);
 
-/// The pairs of each state a comparison with this noise would take for `rule.resolution_points`
-/// alone, boundaries aside: the progress line's measure of the machine's noise now, for its guess
-/// at the comparisons not yet started (runner/src/Results.cpp). From the pairs so far and their
-/// estimates, as PairsExpectedAcrossStates takes them. While contended pairs narrow the stated
-/// interval more (ContendedPairsNarrowMore) the as-run pairs so far, at least `rule.min_pairs`,
-/// and PairsForResolution of the stated interval with the contended pairs in the as-run ones'
-/// place; otherwise PairsForResolution of the stated interval and its contended share
-/// (ContendedPairsBeforeNextLook); {0, 0} when there is no interval. At a probe (fewer as-run
-/// pairs than `rule.min_pairs`) each state's pairs are taken WithOuterRatiosPulledIn first, as
-/// PairsExpectedAcrossStates takes them, and for the same reason. Replayed over the sixteen
-/// main-job halves of 2026-11-28 (`bench/replay_comparisons`), the progress line's guess of the
-/// comparisons not yet probed after eight probes was 1.20 to 1.96 times the frames they took
-/// (median 1.41) this way, against 1.30 to 3.34 (median 1.66) from the pairs as they are: in the
-/// run at 3.34 one probe's disturbed pair set it, and the line read 41% long 12 s in. Over 60
-/// earlier halves, 1.36 to 2.50 (median 1.69) against 1.41 to 4.54 (2.02). Never fails.
-ExpectedPairs ResolutionPairsAcrossStates(const std::vector<double>& baseline_ms,
-                                          const std::vector<double>& candidate_ms,
-                                          const std::vector<double>& contended_baseline_ms,
-                                          const std::vector<double>& contended_candidate_ms,
-                                          const PairedEstimate& as_run,
-                                          const PairedEstimate& contended,
-                                          const StoppingRule& rule);
-
-/// The pairs a comparison with this estimate's noise needs for `rule.resolution_points` alone,
-/// boundaries aside: the pairs so far scaled by (half-width / resolution)^2, at least
-/// `rule.min_pairs` and at most `rule.max_pairs`; 0 when the estimate gives no interval. It
-/// measures the machine's noise now, for a guess at comparisons not yet started.
-int PairsForResolution(const PairedEstimate& estimate, const StoppingRule& rule);
-
 /// The order a run probes its `comparisons` in: from both ends of their list in turn (0, n-1, 1,
 /// n-2, ...). Why: until every probe is in, the progress line guesses the comparisons not yet
-/// probed from those that are (ResolutionPairsAcrossStates), so the probes that come first must
+/// probed from those that are (the mean of their guesses), so the probes that come first must
 /// be a fair sample. In list order they were not: the default matrix lists the whitepaper rows
 /// near a verdict's boundary first and the reflection techniques, which stop at the minimum,
 /// last. Replayed over eight main-job halves of 2026-12-07 (`bench/replay_comparisons`), the
