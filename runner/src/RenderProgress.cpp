@@ -225,6 +225,17 @@ void ProgressMeter::Waiting(const std::string& what, Clock::time_point now) {
     PublishLocked("waiting for", what, now);
 }
 
+std::optional<double> ProgressMeter::MeanConfigurationCost() const {
+    if (configuration_cost_.empty()) {
+        return std::nullopt;
+    }
+    double sum = 0;
+    for (const auto& [configuration, seconds] : configuration_cost_) {
+        sum += seconds;
+    }
+    return sum / static_cast<double>(configuration_cost_.size());
+}
+
 void ProgressMeter::PublishLocked(const char* stage, const std::string& what,
                                   Clock::time_point now) {
     // The units a second process has claimed are its work, not this meter's.
@@ -355,19 +366,25 @@ RunProgress ProgressMeter::Last() const {
     return state_;
 }
 
-// A kind's seconds per frame over its recent frames, shrunk towards the other kind's recent rate
-// as if that prior were some frames already measured (with PNGs encoded fast, an image frame
-// costs about a timed frame on the default matrix). The first frames of a kind are few and
-// uneven (a Fourier variant costs several light ones), so alone they would throw the ETA about;
-// the prior's weight fades as the kind's own frames are measured.
+// A kind's seconds per frame over its recent frames, shrunk towards a prior as if the prior were
+// some frames already measured. The first frames of a kind are few and uneven (a Fourier variant
+// costs several light ones; the reference configuration, whose images come first, is the
+// heaviest), so alone they would throw the ETA about; the prior's weight fades as the kind's own
+// frames are measured. The prior for image frames is kImageFrameCost times the mean cost of a
+// timed frame of the configurations measured so far (ConfigurationCost), or, before any, the
+// comparisons' recent rate; for comparison frames, the images' recent rate.
 double ProgressMeter::SecondsPerFrame(std::size_t kind) const {
     const KindState& k = kinds_[kind];
     const KindState& other = kinds_[1 - kind];
     const double own = k.recent_frames > 0 ? k.recent_seconds / k.recent_frames : 0.0;
-    if (other.recent_frames <= 0) {
+    double prior = 0;
+    if (const std::optional<double> cost = MeanConfigurationCost(); kind == kImage && cost) {
+        prior = kImageFrameCost * *cost;
+    } else if (other.recent_frames > 0) {
+        prior = other.recent_seconds / other.recent_frames;
+    } else {
         return own;
     }
-    const double prior = other.recent_seconds / other.recent_frames;
     const double weight =
             kPriorFrames * kPriorFrames / (kPriorFrames + static_cast<double>(k.done));
     return (k.recent_seconds + prior * weight) / (k.recent_frames + weight);

@@ -130,6 +130,16 @@ public:
     /// later row for them.
     static constexpr double kPriorComparisons = 16.0;
 
+    /// What an image frame costs over a timed frame of the same configurations, for the image
+    /// rate's prior until images have been measured (an image frame renders one of the
+    /// configuration's views and reads it back; the images come from every configuration, the
+    /// timed frames from the compared ones). Four traced main jobs of 2026-12-07 (not committed:
+    /// the meter's state at every line) measured images at 1.32 to 1.40 times the mean cost of
+    /// the configurations the probes had timed quiet and 1.28 to 1.40 beside two `yes`. The prior
+    /// before, the comparisons' recent rate (contended frames included), was 53 to 54 ms a frame
+    /// early in a quiet run whose images then took 44 to 46 ms.
+    static constexpr double kImageFrameCost = 1.3;
+
     /// `frames` of `kind` finished on the calling thread since its last step, at `now`.
     void Step(Kind kind, const std::string& what, long frames, Clock::time_point now);
     void Step(Kind kind, const std::string& what, long frames) {
@@ -216,6 +226,8 @@ private:
     double PriceOf(std::size_t k) const;
     std::optional<double> CostOf(std::size_t k) const;
     double Calibration() const;
+    // The mean of the configurations' costs so far (ConfigurationCost); none before any.
+    std::optional<double> MeanConfigurationCost() const;
     void SumComparisons();
     // Sets what every waiting comparison expects: the shrunk mean of the finished ones.
     void ExpectWaiting();

@@ -171,6 +171,34 @@ TEST(RenderProgressTest, ImagesBorrowTheComparisonRateUntilTheirOwnIsMeasured) {
     EXPECT_NEAR(meter.Last().eta_seconds, truth, 0.1 * truth);
 }
 
+// Once configurations have a cost, images not yet measured are priced at kImageFrameCost times
+// their mean, not at the comparisons' rate (whose contended frames cost more than a frame); the
+// images' own frames then take over.
+TEST(RenderProgressTest, ImagesArePricedFromTheConfigurationsCostsUntilTheirOwnIsMeasured) {
+    const ProgressCallback none;
+    const Clock::time_point start = Clock::now();
+    ProgressMeter meter(none, start);
+    meter.AddExpected(ProgressMeter::kImage, 1000);
+    meter.AddComparisons(1, 100);
+    meter.ConfigurationCost(0, 0.030);
+    meter.ConfigurationCost(1, 0.050);
+    Clock::time_point now = start;
+    for (int i = 0; i < 100; ++i) {
+        now += std::chrono::milliseconds(60);  // comparison frames at 60 ms, contended ones too
+        meter.Step(ProgressMeter::kComparison, "row", 1, now);
+    }
+    // 1000 image frames at 1.3 x 40 ms (the mean cost), no comparison frames left.
+    const double priced = ProgressMeter::kImageFrameCost * 0.040 * 1000;
+    EXPECT_NEAR(meter.Last().eta_seconds, priced, 0.01 * priced);
+    for (int i = 0; i < 400; ++i) {
+        now += std::chrono::milliseconds(120);
+        meter.Step(ProgressMeter::kImage, "image", 1, now);
+    }
+    // 600 image frames left at about 120 ms (shrunk a little towards the prior).
+    const double truth = 0.120 * 600;
+    EXPECT_NEAR(meter.Last().eta_seconds, truth, 0.1 * truth);
+}
+
 // Comparisons not started expect the mean of what the finished ones took, the first guess
 // counting as kPriorComparisons of them: one that needed 300 pairs near a verdict's boundary
 // moves every later one by its share only.
@@ -551,15 +579,18 @@ TEST(RenderProgressTest, ComparisonsThisProcessClaimedAreNotSharedInTheEta) {
             ShareWithSecondProcess(meter, kConfigurations, 10);
     ASSERT_TRUE(claims);
     claims->SetHelperTaking(true);  // the second process takes units from now
+    // Image frames at what the configurations' cost prices them (kImageFrameCost x 100 ms).
+    const double image_seconds = ProgressMeter::kImageFrameCost * 0.1;
     Clock::time_point now = start;
     for (int f = 0; f < 10; ++f) {
-        now += std::chrono::milliseconds(100);
+        now += std::chrono::duration_cast<Clock::duration>(
+                std::chrono::duration<double>(image_seconds));
         meter.Step(ProgressMeter::kImage, "images", 1, now);
     }
-    // 3 configurations' images (3 s) and 20 s of comparisons left, nothing claimed: shared.
-    EXPECT_NEAR(meter.Last().eta_seconds, (3.0 + 20.0) / 2, 1e-6);
+    // 3 configurations' images and 20 s of comparisons left, nothing claimed: shared.
+    EXPECT_NEAR(meter.Last().eta_seconds, (30 * image_seconds + 20.0) / 2, 1e-6);
     // This process claims both comparisons: their 20 s are its own, and the second process has
-    // only the images' 3 s to take.
+    // only the images to take.
     ASSERT_TRUE(claims->ClaimForOwner(kConfigurations));
     ASSERT_TRUE(claims->ClaimForOwner(kConfigurations + 1));
     meter.Step(ProgressMeter::kImage, "images", 0, now);
