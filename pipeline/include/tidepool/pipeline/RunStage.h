@@ -63,13 +63,14 @@ struct RunResult {
 RunResult Run(const RunRequest& request, ProgressSink& progress);
 
 /// The share of the second process's own stages that the stability catalogue takes when the scene
-/// plans follow it. Since the planner times a candidate that misses its scene's target for the
-/// fewest pairs only (lab::CandidateRule), the catalogue took 12 of 48 s quiet and 28 of 103 s
-/// beside two `yes` on the default matrix (2026-11-28): a quarter. (Before, the plans took 67
-/// to 216 s and the catalogue 10 to 19% of the two; and before that a third, from a catalogue
-/// that took 25 of 73 s, put the join after the catalogue at 39 s in runs that joined after 79
-/// to 132 s, and the render's ETA leaned on it.)
-inline constexpr double kStabilityShareOfStages = 0.25;
+/// plans follow it: the median of seven main jobs on the default matrix of 2026-12-07, where the
+/// catalogue took 17 to 19 of 40 to 56 s quiet and 39 to 40 of 82 to 87 s beside two `yes`
+/// (0.34 to 0.48). At 0.25 (2026-11-28: 12 of 48 s quiet, 28 of 103 s loaded, before the plans
+/// got faster), the forecast put the join up to 1.7 times too late while the catalogue ran, and
+/// the render's ETA leaned on it. (Before that, the plans took 67 to 216 s and the catalogue 10 to
+/// 19% of the two; and before that a third, from a catalogue that took 25 of 73 s, put the join
+/// after the catalogue at 39 s in runs that joined after 79 to 132 s.)
+inline constexpr double kStabilityShareOfStages = 0.43;
 
 /// The second process's forecast of when it will start taking the render's units
 /// (base::SharedClaims::ExpectHelperAt), from the share of its own stages done so far: the time
