@@ -111,8 +111,8 @@ public:
     /// resolution with an allowance for the boundary clauses, as before: replayed over the
     /// main-job halves of 2026-12-07 (`bench/replay_comparisons`), the comparisons not yet probed
     /// after eight probes were guessed at 0.41 to 1.73 times the frames they took (median 0.98)
-    /// this way, against 0.55 to 2.62 (median 1.29) with the fixed allowance of 1.5 (over seven
-    /// halves recorded after the choice, 0.63 to 1.68, median 0.86): where the boundary clauses
+    /// this way, against 0.55 to 2.62 (median 1.29) with the fixed allowance of 1.5 (over twelve
+    /// halves recorded after the choice, 0.63 to 1.68, median 0.94): where the boundary clauses
     /// take pairs depends on each comparison's effect, which its own guess weighs and a fixed
     /// allowance cannot.
     void ComparisonExpects(std::size_t k, long frames, bool finished);
