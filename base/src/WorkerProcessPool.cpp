@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 #include <malloc.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
@@ -147,22 +148,12 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
     ::_exit(kOutOfMemoryExit);
 }
 
-[[noreturn]] void WorkerMain(
-        int fd, int notes_fd, const WorkerLimits& limits,
+// Receives items from `fd` and runs each through `work` until the parent has no more; ends the
+// process.
+[[noreturn]] void ServeItems(
+        int fd, int notes_fd,
         const std::function<std::string(std::size_t, const ProgressNote&)>& work,
         const CpuPlacement& placement) {
-    const rlimit no_core{0, 0};
-    ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
-    if (limits.memory_bytes > 0) {
-        LimitMemory(limits.memory_bytes);
-    }
-    std::set_new_handler(ExitOutOfMemory);
-    if (limits.keep_freed_memory) {
-        // (3,500 of the 6,100 page faults of a cold `validate` of the default matrix.) The peak
-        // is unchanged.
-        constexpr int kKeepFreedBytes = 1 << 30;
-        ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
-    }
     for (bool first = true;; first = false) {
         std::uint64_t index = 0;
         if (!ReceiveAll(fd, &index, sizeof index)) {
@@ -196,6 +187,51 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
             ::_exit(0);
         }
     }
+}
+
+// Runs `serve` (which never returns: it ends the process) on a thread of its own with a stack of
+// `bytes`; returns when no such thread could be made, for the caller to serve on its own stack.
+template <typename Serve>
+void ServeOnStack(std::size_t bytes, Serve serve) {
+    pthread_attr_t attributes;
+    if (::pthread_attr_init(&attributes) != 0) {
+        return;
+    }
+    pthread_t thread;
+    const bool started = ::pthread_attr_setstacksize(&attributes, bytes) == 0 &&
+                         ::pthread_create(
+                                 &thread, &attributes,
+                                 [](void* argument) -> void* {
+                                     (*static_cast<Serve*>(argument))();
+                                     return nullptr;
+                                 },
+                                 &serve) == 0;
+    ::pthread_attr_destroy(&attributes);
+    if (started) {
+        ::pthread_join(thread, nullptr);  // never returns: the thread ends the process
+    }
+}
+
+[[noreturn]] void WorkerMain(
+        int fd, int notes_fd, const WorkerLimits& limits,
+        const std::function<std::string(std::size_t, const ProgressNote&)>& work,
+        const CpuPlacement& placement) {
+    const rlimit no_core{0, 0};
+    ::setrlimit(RLIMIT_CORE, &no_core);  // a crashing worker is expected; no core files
+    if (limits.memory_bytes > 0) {
+        LimitMemory(limits.memory_bytes);
+    }
+    std::set_new_handler(ExitOutOfMemory);
+    if (limits.keep_freed_memory) {
+        // (3,500 of the 6,100 page faults of a cold `validate` of the default matrix.) The peak
+        // is unchanged.
+        constexpr int kKeepFreedBytes = 1 << 30;
+        ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
+    }
+    if (limits.stack_bytes > 0) {
+        ServeOnStack(limits.stack_bytes, [&] { ServeItems(fd, notes_fd, work, placement); });
+    }
+    ServeItems(fd, notes_fd, work, placement);
 }
 
 struct Worker {

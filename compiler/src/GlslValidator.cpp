@@ -76,8 +76,13 @@ namespace {
 // the sanitizers on a loaded two-core machine. Items take a millisecond or less, so each worker
 // holds the next one while it runs one, each parse allocates and frees a few hundred KiB, so
 // a worker keeps freed memory mapped, and a worker's items are next to each other, so that it
-// parses a stage that several links share once.
-constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1, true, true};
+// parses a stage that several links share once. Each worker runs glslang on a 128 MiB stack:
+// glslang's preprocessor recurses once for each parenthesis and unary operator of an `#if`
+// expression, a shader's expansion is capped at kMaxExpandedTokens (131,072) tokens, and on the
+// usual 8 MiB an `#if` of 60,000 nested parentheses crashed it (about 24 MiB at the cap, at
+// glslang's 180 bytes or so a level; more under the sanitizers).
+constexpr WorkerLimits kGlslangLimits{std::uint64_t{1} << 30, 20.0, 1, true, true,
+                                      std::size_t{128} << 20};
 
 // The limits in force. TIDEPOOL_TEST_GLSLANG_SECONDS (a number of seconds) lowers the time
 // limit so that tests can see a hang of glslang handled end to end in a second instead of 20;

@@ -878,6 +878,37 @@ INSTANTIATE_TEST_SUITE_P(
                               "a.fsh: error: Linking vertex and fragment stages: Types must "
                               "match:"}));
 
+// glslang's preprocessor evaluates an `#if` one call deeper for each parenthesis and unary
+// operator: 60,000 of them crashed it on the usual 8 MiB stack ("internal compiler error: glslang
+// crashed", no line). Its workers now have the stack for the most the token cap allows, so the
+// condition is evaluated and the `#error` under it reported at its line.
+TEST(GlslValidatorTest, ADeeplyNestedConditionIsEvaluatedNotCrashed) {
+    struct Condition {
+        const char* why;
+        std::string text;
+    };
+    const std::vector<Condition> conditions = {
+            {"60,000 nested parentheses", Repeated("(", 60000) + "1" + Repeated(")", 60000)},
+            {"100,000 unary minuses", Repeated("- ", 100000) + "1"},
+    };
+    for (const Condition& condition : conditions) {
+        TempDir dir;
+        const std::string text = "#version 300 es\nprecision mediump float;\nout vec4 c;\n#if " +
+                                 condition.text +
+                                 "\n#error the condition was evaluated\n#endif\n"
+                                 "void main() { c = vec4(1.0); }\n";
+        const ValidationReport report =
+                ValidateShaderFiles({{dir.Write("a.fsh", text).string(), Stage::kFragment}}, {});
+        ASSERT_EQ(report.verdicts.size(), 1U) << condition.why;
+        EXPECT_FALSE(report.verdicts[0].valid) << condition.why;
+        ASSERT_FALSE(report.verdicts[0].diagnostics.empty()) << condition.why;
+        const std::string message = FormatDiagnostic(report.verdicts[0].diagnostics[0]);
+        EXPECT_NE(message.find("a.fsh:5"), std::string::npos) << condition.why << ": " << message;
+        EXPECT_NE(message.find("the condition was evaluated"), std::string::npos)
+                << condition.why << ": " << message;
+    }
+}
+
 // Every kind of array declaration has the one bound, kMaxArrayElements (65536) elements.
 std::string ArrayError(const std::string& place, const std::string& name, long long elements) {
     return place + ": error: '" + name + "' holds " + std::to_string(elements) +

@@ -14,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include <pthread.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -85,6 +86,28 @@ TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
     EXPECT_FALSE(results[1].detail.empty());
     EXPECT_EQ(results[2].payload, "ok");  // a fresh worker took over
     EXPECT_EQ(results[3].payload, "ok");
+}
+
+// A pool asked for a stack size runs its items on a stack that large: glslang's preprocessor
+// recurses once for each parenthesis of an `#if`, and on the usual 8 MiB 60,000 crashed it.
+TEST(WorkerProcessPoolTest, ItemsRunOnAStackOfTheSizeAsked) {
+    WorkerLimits limits;
+    limits.stack_bytes = std::size_t{64} << 20;
+    const std::vector<WorkerItemResult> results =
+            RunInWorkerProcesses(3, 2, limits, [](std::size_t, const ProgressNote&) {
+                std::size_t size = 0;
+                pthread_attr_t attributes;
+                if (::pthread_getattr_np(::pthread_self(), &attributes) == 0) {
+                    ::pthread_attr_getstacksize(&attributes, &size);
+                    ::pthread_attr_destroy(&attributes);
+                }
+                return std::to_string(size);
+            });
+    ASSERT_EQ(results.size(), 3U);
+    for (const WorkerItemResult& r : results) {
+        ASSERT_EQ(r.failure, WorkerFailure::kNone) << r.detail;
+        EXPECT_GE(std::stoull(r.payload), limits.stack_bytes);
+    }
 }
 
 TEST(WorkerProcessPoolTest, NotesKeepTheirOrderWhateverWayTheyTravel) {
