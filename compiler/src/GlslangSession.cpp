@@ -943,6 +943,15 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
             }
         }
         d.message += std::string(rest);
+        // glslang's parser (bison) says only this when an expression nests deeper than its
+        // stack of 10,000 states: 9,000 parentheses pass, 10,000 do not.
+        if (d.message.find("memory exhausted") != std::string::npos) {
+            d.message =
+                    "an expression nests deeper than glslang's parser can follow (its stack "
+                    "holds 10000 states, about one for each open parenthesis; glslang says only "
+                    "'memory exhausted'): write it with fewer nested parentheses, or split it "
+                    "into several statements";
+        }
         if (!source_lines) {
             source_lines = SplitLines(source);
         }

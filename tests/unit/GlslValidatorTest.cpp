@@ -864,6 +864,17 @@ INSTANTIATE_TEST_SUITE_P(
                         "tokens (a macro bomb); tidepool refuses shaders that large: write "
                         "repeated code as functions and loops rather than macros, or split the "
                         "shader"},
+                // Before, glslang's "'' :  memory exhausted" alone.
+                PlainFileCase{"20,000 nested parentheses in an expression", nullptr,
+                              "#version 300 es\nprecision mediump float;\nout vec4 c;\n"
+                              "void main() {\n    float x = " +
+                                      Repeated("(", 20000) + "1.0" + Repeated(")", 20000) +
+                                      ";\n    c = vec4(x);\n}\n",
+                              "a.fsh:5: error: an expression nests deeper than glslang's parser "
+                              "can follow (its stack holds 10000 states, about one for each "
+                              "open parenthesis; glslang says only 'memory exhausted'): write "
+                              "it with fewer nested parentheses, or split it into several "
+                              "statements"},
                 PlainFileCase{"function-like macro bomb, refused before glslang runs", nullptr,
                               FunctionLikeMacroBomb(),
                               "a.fsh:32:25: error: macro 'F29' expands to more than 131072 "
