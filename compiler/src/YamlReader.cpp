@@ -67,6 +67,31 @@ std::optional<std::pair<int, int>> FindInvalidUtf8(std::string_view text) {
 
 namespace {
 
+// The tag a node was written with, as written (`!!str` for yaml-cpp's
+// "tag:yaml.org,2002:str"); none for a node written without one. yaml-cpp gives "?" to a plain
+// node, "!" to a quoted scalar (and to one written with the non-specific `!`, which means the
+// same: text), and "" to a null.
+std::optional<std::string> ExplicitTag(const std::string& tag) {
+    if (tag.empty() || tag == "?" || tag == "!") {
+        return std::nullopt;
+    }
+    constexpr std::string_view kCore = "tag:yaml.org,2002:";
+    if (tag.rfind(kCore, 0) == 0) {
+        return "!!" + tag.substr(kCore.size());
+    }
+    return tag;
+}
+
+// The error for a node written with a tag. tidepool reads every value by its key's type, so a
+// tag would be ignored: `max_variants: !!str 16` would still be read as 16, and
+// `!include other.yaml` as the text "other.yaml".
+std::string TagError(const std::string& tag) {
+    return fmt::format(
+            "the YAML tag '{}' would be ignored: tidepool reads each value by its key's type, "
+            "and its files use no tags; remove it (to keep a value as text, quote it)",
+            tag);
+}
+
 // The error for a document past kMaxYamlExpandedNodes: through aliases, or written out (a
 // document without an alias, which is no bomb but the wrong file or a generated one).
 std::string TooManyNodes(bool through_aliases) {
@@ -93,8 +118,9 @@ public:
     void OnDocumentEnd() override {}
     void OnAnchor(const YAML::Mark&, const std::string& name) override { pending_name_ = name; }
     void OnNull(const YAML::Mark& mark, YAML::anchor_t anchor) override { Leaf(mark, anchor, "~"); }
-    void OnScalar(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+    void OnScalar(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                   const std::string& value) override {
+        Tagged(mark, tag);
         Leaf(mark, anchor, value);
     }
     void OnAlias(const YAML::Mark& mark, YAML::anchor_t anchor) override {
@@ -110,18 +136,20 @@ public:
         Key(mark, scalar != scalars_.end() ? &scalar->second : nullptr);
         Count(mark, sizes_.count(anchor) != 0 ? sizes_[anchor] : 1);
     }
-    void OnSequenceStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+    void OnSequenceStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                          YAML::EmitterStyle::value) override {
+        Tagged(mark, tag);
         Open(mark, anchor, false);
     }
     void OnSequenceEnd() override { Close(); }
-    void OnMapStart(const YAML::Mark& mark, const std::string&, YAML::anchor_t anchor,
+    void OnMapStart(const YAML::Mark& mark, const std::string& tag, YAML::anchor_t anchor,
                     YAML::EmitterStyle::value) override {
+        Tagged(mark, tag);
         Open(mark, anchor, true);
     }
     void OnMapEnd() override { Close(); }
 
-    bool Failed() const { return failed_; }
+    bool Failed() const { return failed_ || tagged_; }
 
 private:
     struct Frame {
@@ -138,6 +166,14 @@ private:
                     MakeError(file_, mark.line + 1, mark.column + 1, std::move(message)));
         }
         failed_ = true;
+    }
+    // The first tagged node is reported, and the document refused.
+    void Tagged(const YAML::Mark& mark, const std::string& tag) {
+        if (const std::optional<std::string> written = ExplicitTag(tag); written && !tagged_) {
+            reader_.Diagnostics().push_back(
+                    MakeError(file_, mark.line + 1, mark.column + 1, TagError(*written)));
+            tagged_ = true;
+        }
     }
     void Name(YAML::anchor_t anchor) {
         if (anchor != YAML::NullAnchor) {
@@ -221,6 +257,7 @@ private:
     std::uint64_t total_ = 0;
     bool saw_alias_ = false;
     bool failed_ = false;
+    bool tagged_ = false;
 };
 
 // AliasChecker's findings for a document that has no anchors, from the tree yaml-cpp built:
@@ -233,16 +270,30 @@ public:
     TreeChecker(YamlReader& reader, const std::string& file) : reader_(reader), file_(file) {}
 
     void Check(const YAML::Node& root) { Visit(root); }
-    bool Failed() const { return failed_; }
+    bool Failed() const { return failed_ || tagged_; }
 
 private:
-    void Visit(const YAML::Node& node) {
+    void CheckTag(const YAML::Node& node) {
+        if (const std::optional<std::string> written = ExplicitTag(node.Tag());
+            written && !tagged_) {
+            const YAML::Mark mark = node.Mark();
+            reader_.Diagnostics().push_back(
+                    MakeError(file_, mark.line + 1, mark.column + 1, TagError(*written)));
+            tagged_ = true;
+        }
+    }
+    // A key's tag is checked before its repetition, as AliasChecker's events check them.
+    void Visit(const YAML::Node& node, bool tag_checked = false) {
         // Counted as AliasChecker counts: every node once, the bound checked at leaves.
         total_ = std::min(total_ + 1, kMaxYamlExpandedNodes + 1);
+        if (!tag_checked) {
+            CheckTag(node);
+        }
         if (node.IsMap()) {
             std::map<std::string, int> keys;  // key → line it was first written at
             for (const auto& pair : node) {
                 const YAML::Node& key = pair.first;
+                CheckTag(key);
                 if (key.IsScalar() || key.IsNull()) {
                     const std::string text = key.IsNull() ? "~" : key.Scalar();
                     const YAML::Mark mark = key.Mark();
@@ -255,7 +306,7 @@ private:
                                                       text, it->second)));
                     }
                 }
-                Visit(key);
+                Visit(key, /*tag_checked=*/true);
                 Visit(pair.second);
             }
         } else if (node.IsSequence()) {
@@ -274,6 +325,7 @@ private:
     const std::string& file_;
     std::uint64_t total_ = 0;
     bool failed_ = false;
+    bool tagged_ = false;
 };
 
 // Where a document's first node that is not null starts; none for an empty document.

@@ -129,6 +129,7 @@ TEST(YamlReaderTest, DocumentWithoutAnchorsGetsTheSameFindingsAsTheEventCheck) {
             "programs:\n  p:\n    vertex: a.vsh\n    vertex: b.vsh\n",
             "- 1\n- {k: v, k: w}\n",
             long_list,
+            "a: 1\n!!str a: 2\nb: !x [1]\n",
     };
     for (const std::string& yaml : documents) {
         SCOPED_TRACE(yaml.substr(0, 80));
@@ -140,6 +141,25 @@ TEST(YamlReaderTest, DocumentWithoutAnchorsGetsTheSameFindingsAsTheEventCheck) {
                   std::string::npos)
                 << one_parse;
     }
+}
+
+// yaml-cpp keeps a node's tag and ignores it when the node is read as a value: before tags were
+// refused, `max_variants: !!str 16` was read as 16 and `!include` took the file name as text.
+TEST(YamlReaderTest, ATaggedNodeIsRefusedAtItsTagWhileQuotingStillWorks) {
+    const std::string program = "programs:\n  p:\n    vertex: a.vsh\n    fragment: a.fsh\n";
+    EXPECT_EQ(ConfigErrors("max_variants: !!str 16\n" + program),
+              "v.yaml:1:15: error: the YAML tag '!!str' would be ignored: tidepool reads each "
+              "value by its key's type, and its files use no tags; remove it (to keep a value as "
+              "text, quote it)\n");
+    EXPECT_EQ(SceneErrors("water: !include other.yaml\n").substr(0, 40),
+              "s.yaml:1:8: error: the YAML tag '!includ");
+    // On a mapping, in an anchored document (the event pass), only the first is reported.
+    const std::string anchored = "a: &x 1\nb: !<tag:example.com,2026:m> {c: 1}\nd: !!seq []\n";
+    EXPECT_EQ(LoadFindings(anchored).substr(0, 64),
+              "refused\nd.yaml:2:4: error: the YAML tag 'tag:example.com,2026:m'");
+    EXPECT_EQ(LoadFindings(anchored).find("!!seq"), std::string::npos);
+    // Quoted text and the non-specific `!` (which means text, as quotes do) are no tags.
+    EXPECT_EQ(LoadFindings("a: \"16\"\nb: ! 16\nc: 'x'\nd: ~\ne: plain\n"), "loaded\n");
 }
 
 // yaml-cpp's own words were "unknown escape character" for a NUL byte and "bad file" for deep
