@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <new>
 
 #include <fmt/format.h>
@@ -189,27 +190,42 @@ bool SendQuietNote(int notes_fd, std::uint64_t index, const std::string& text) {
     }
 }
 
-// Runs `serve` (which never returns: it ends the process) on a thread of its own with a stack of
-// `bytes`; returns when no such thread could be made, for the caller to serve on its own stack.
-template <typename Serve>
-void ServeOnStack(std::size_t bytes, Serve serve) {
+// Runs `task` on a thread of its own with a stack of `bytes` and waits for it, passing on what
+// it throws; false, with `task` not run, when no such thread could be made (the caller then runs
+// it on its own stack). A task that ends the process never returns here.
+template <typename Task>
+bool RunOnStack(std::size_t bytes, Task& task) {
+    struct Run {
+        Task& task;
+        std::exception_ptr thrown;
+    } run{task, nullptr};
     pthread_attr_t attributes;
     if (::pthread_attr_init(&attributes) != 0) {
-        return;
+        return false;
     }
     pthread_t thread;
     const bool started = ::pthread_attr_setstacksize(&attributes, bytes) == 0 &&
                          ::pthread_create(
                                  &thread, &attributes,
                                  [](void* argument) -> void* {
-                                     (*static_cast<Serve*>(argument))();
+                                     Run& r = *static_cast<Run*>(argument);
+                                     try {
+                                         r.task();
+                                     } catch (...) {
+                                         r.thrown = std::current_exception();
+                                     }
                                      return nullptr;
                                  },
-                                 &serve) == 0;
+                                 &run) == 0;
     ::pthread_attr_destroy(&attributes);
-    if (started) {
-        ::pthread_join(thread, nullptr);  // never returns: the thread ends the process
+    if (!started) {
+        return false;
     }
+    ::pthread_join(thread, nullptr);
+    if (run.thrown) {
+        std::rethrow_exception(run.thrown);
+    }
+    return true;
 }
 
 [[noreturn]] void WorkerMain(
@@ -229,7 +245,8 @@ void ServeOnStack(std::size_t bytes, Serve serve) {
         ::mallopt(M_TRIM_THRESHOLD, kKeepFreedBytes);
     }
     if (limits.stack_bytes > 0) {
-        ServeOnStack(limits.stack_bytes, [&] { ServeItems(fd, notes_fd, work, placement); });
+        auto serve = [&] { ServeItems(fd, notes_fd, work, placement); };  // ends the process
+        RunOnStack(limits.stack_bytes, serve);
     }
     ServeItems(fd, notes_fd, work, placement);
 }
@@ -405,8 +422,12 @@ private:
             }
             const auto i = static_cast<std::size_t>(item);
             if (worker.pid < 0 && !Start(worker)) {
-                // No process to isolate it in: run it here rather than not at all.
-                results_[i].payload = work_(i, [](const std::string&) {});
+                // No process to isolate it in: run it here rather than not at all, on the stack
+                // a worker would have given it.
+                auto run = [&] { results_[i].payload = work_(i, [](const std::string&) {}); };
+                if (limits_.stack_bytes == 0 || !RunOnStack(limits_.stack_bytes, run)) {
+                    run();
+                }
                 results_[i].detail = "run without isolation: no worker process could be started";
                 Ended(i);
                 continue;

@@ -88,26 +88,64 @@ TEST(WorkerProcessPoolTest, CrashFailsOnlyItsItemAndKeepsItsNotes) {
     EXPECT_EQ(results[3].payload, "ok");
 }
 
+// The stack size of the calling thread, as text (an item's payload); "0" when unknown.
+std::string OwnStackSize() {
+    std::size_t size = 0;
+    pthread_attr_t attributes;
+    if (::pthread_getattr_np(::pthread_self(), &attributes) == 0) {
+        ::pthread_attr_getstacksize(&attributes, &size);
+        ::pthread_attr_destroy(&attributes);
+    }
+    return std::to_string(size);
+}
+
 // A pool asked for a stack size runs its items on a stack that large: glslang's preprocessor
 // recurses once for each parenthesis of an `#if`, and on the usual 8 MiB 60,000 crashed it.
 TEST(WorkerProcessPoolTest, ItemsRunOnAStackOfTheSizeAsked) {
     WorkerLimits limits;
     limits.stack_bytes = std::size_t{64} << 20;
-    const std::vector<WorkerItemResult> results =
-            RunInWorkerProcesses(3, 2, limits, [](std::size_t, const ProgressNote&) {
-                std::size_t size = 0;
-                pthread_attr_t attributes;
-                if (::pthread_getattr_np(::pthread_self(), &attributes) == 0) {
-                    ::pthread_attr_getstacksize(&attributes, &size);
-                    ::pthread_attr_destroy(&attributes);
-                }
-                return std::to_string(size);
-            });
+    const std::vector<WorkerItemResult> results = RunInWorkerProcesses(
+            3, 2, limits, [](std::size_t, const ProgressNote&) { return OwnStackSize(); });
     ASSERT_EQ(results.size(), 3U);
     for (const WorkerItemResult& r : results) {
         ASSERT_EQ(r.failure, WorkerFailure::kNone) << r.detail;
         EXPECT_GE(std::stoull(r.payload), limits.stack_bytes);
     }
+}
+
+// With no descriptor left for a worker's sockets, the items run in the calling process: on the
+// stack asked for too (before, on the caller's own, where a deep `#if` crashed the process).
+TEST(WorkerProcessPoolTest, ItemsRunWithoutIsolationStillGetTheStackAsked) {
+    WorkerLimits limits;
+    limits.stack_bytes = std::size_t{64} << 20;
+    const pid_t child = ::fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+        // Exit 0 only when every item ran here, on a stack of the size asked.
+        const rlimit no_more_files{3, 3};  // stdin, stdout, stderr
+        if (::setrlimit(RLIMIT_NOFILE, &no_more_files) != 0) {
+            ::_exit(2);
+        }
+        std::vector<WorkerItemResult> results;
+        try {
+            results = RunInWorkerProcesses(
+                    2, 2, limits, [](std::size_t, const ProgressNote&) { return OwnStackSize(); });
+        } catch (...) {
+            ::_exit(3);
+        }
+        bool right = results.size() == 2;
+        for (const WorkerItemResult& r : results) {
+            right = right && r.failure == WorkerFailure::kNone &&
+                    r.detail.find("without isolation") != std::string::npos &&
+                    std::stoull(r.payload) >= limits.stack_bytes;
+        }
+        ::_exit(right ? 0 : 1);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFEXITED(status)) << status;
+    EXPECT_EQ(WEXITSTATUS(status), 0)
+            << "1: an item ran on another stack or failed; 2: setrlimit; 3: an exception";
 }
 
 TEST(WorkerProcessPoolTest, NotesKeepTheirOrderWhateverWayTheyTravel) {

@@ -35,9 +35,11 @@ struct WorkerLimits {
     /// should_run asked, in another order than [0, count).
     bool contiguous_shares = false;
     /// The stack each worker runs its items on, in bytes (a thread of its own with a stack that
-    /// size); 0: the stack of the thread that forked it. For work whose recursion the input
-    /// sets: glslang's preprocessor evaluates an `#if` expression one call deeper for each
-    /// parenthesis and unary operator, and on the usual 8 MiB stack 60,000 of them crashed it.
+    /// size), and an item run without isolation (no worker process could be started) too; 0:
+    /// the stack of the thread that forked the worker, or that runs the item. For work whose
+    /// recursion the input sets: glslang's preprocessor evaluates an `#if` expression one call
+    /// deeper for each parenthesis and unary operator, and on the usual 8 MiB stack 60,000 of them
+    /// crashed it.
     std::size_t stack_bytes = 0;
 };
 
