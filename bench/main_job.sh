@@ -22,8 +22,8 @@ cd "$root"
 run_once() {  # LABEL
   local start end
   start=$(date +%s%N)
-  "$tidepool" run --config variants.yaml --out "$out/$1" "${extra[@]}" \
-      > "$out/$1.stdout" 2> "$out/$1.log" || true
+  "$tidepool" run --config variants.yaml --out "$out/$1" --progress-log "$out/$1.progress.jsonl" \
+      "${extra[@]}" > "$out/$1.stdout" 2> "$out/$1.log" || true
   end=$(date +%s%N)
   echo "$(( (end - start) / 1000000 ))" > "$out/$1.ms"
 }
@@ -124,4 +124,5 @@ for pa, pb in zip(a, b):
 print(f"same plan for {same} of {len(a)} scenes (target: all)")
 PY
 echo
-echo "outputs in $out/{quiet,loaded}/"
+echo "outputs in $out/{quiet,loaded}/; every progress state, with the figures behind its ETA, in"
+echo "$out/{quiet,loaded}.progress.jsonl"

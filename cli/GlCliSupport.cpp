@@ -140,6 +140,12 @@ runner::ProgressCallback MakeProgressPrinter(std::FILE* out, bool terminal) {
     };
 }
 
+void AddProgressLogFlag(CLI::App* command, std::string* path) {
+    command->add_option("--progress-log", *path,
+                        "write every progress state, with the figures its ETA is worked out "
+                        "from, to this file as JSON lines");
+}
+
 void FinishProgress() {
     if (isatty(fileno(stderr)) != 0) {
         std::fprintf(stderr, "\n");

@@ -51,6 +51,9 @@ runner::ProgressCallback MakeProgressPrinter();
 /// second process's last units is told so every half second and must not repeat the line.
 runner::ProgressCallback MakeProgressPrinter(std::FILE* out, bool terminal);
 
+/// Adds --progress-log FILE to `command`, writing into `path` (StderrProgressSink::OpenLog).
+void AddProgressLogFlag(CLI::App* command, std::string* path);
+
 /// Ends the line a terminal progress printer left open. Never fails.
 void FinishProgress();
 

@@ -25,6 +25,7 @@ struct RenderCommandOptions {
     std::string out = "reports/out/render";
     bool json = false;
     bool no_images = false;
+    std::string progress_log;
 };
 
 // What the render found: a line per configuration and per comparison, then the summary.
@@ -92,6 +93,9 @@ int RunRenderCommand(RenderCommandOptions options) {
     prepared.run.host = pipeline::DescribeHost(options.command, selection.config);
     pipeline::ApplyTiming(options.timing, backend, &prepared.run);
     StderrProgressSink progress;
+    if (!options.progress_log.empty() && !progress.OpenLog(options.progress_log)) {
+        return kExitUsage;
+    }
     const pipeline::RenderResult result = pipeline::Render(prepared, backend, options.out,
                                                            "tidepool " + options.command, progress);
     const int code = PrintOutcome(result.outcome);
@@ -127,6 +131,7 @@ void AddRenderFlags(CLI::App* command, RenderCommandOptions* options) {
     command->add_flag("--json", options->json, "print the results JSON to stdout");
     command->add_flag("--no-images", options->no_images, "do not write PNG files");
     AddFourierOptions(command, &selection.fourier);
+    AddProgressLogFlag(command, &options->progress_log);
 }
 
 }  // namespace

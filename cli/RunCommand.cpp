@@ -34,6 +34,7 @@ struct RunCommandOptions {
     double plan_resolution = 3.0;
     tidepool::runner::FourierSettings fourier;
     CacheFlags cache;
+    std::string progress_log;
 };
 
 // The flags as a request, or false after printing why they cannot be used.
@@ -85,6 +86,9 @@ int RunAll(const RunCommandOptions& options) {
         return kExitUsage;
     }
     StderrProgressSink progress;
+    if (!options.progress_log.empty() && !progress.OpenLog(options.progress_log)) {
+        return kExitUsage;
+    }
     const pipeline::RunResult run = pipeline::Run(request, progress);
     if (!run.rendered) {
         return pipeline::ExitCode(run.outcome.status);
@@ -136,6 +140,7 @@ void RegisterRunCommand(CLI::App& app, int& exit_code) {
                     "(percent points)")
             ->capture_default_str();
     AddCacheFlags(run, &run_options->cache);
+    AddProgressLogFlag(run, &run_options->progress_log);
     run->callback([run_options, &exit_code] { exit_code = RunAll(*run_options); });
 }
 

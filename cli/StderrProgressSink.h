@@ -1,20 +1,36 @@
-// The CLI's one progress sink: what a long pipeline stage is doing, on stderr. Built into
-// `tidepool-gl` only (the stages that report progress render).
+// The CLI's one progress sink: what a long pipeline stage is doing, on stderr, and on request
+// every progress state in a log other tools can read. Built into `tidepool-gl` only (the stages
+// that report progress render).
 #pragma once
 
 #include "tidepool/pipeline/ProgressSink.h"
 #include "tidepool/runner/Results.h"
 
+#include <chrono>
+#include <cstdio>
 #include <string>
 
 namespace tidepool::cli {
 
 /// Prints a stage's first line as it is, and its progress as MakeProgressPrinter does: on a
 /// terminal one line rewritten in place, in a log a plain line on every change of stage and at
-/// most every 10 seconds. Never fails.
+/// most every 10 seconds. With a progress log open, also writes every line and every progress
+/// state, with the figures its ETA was worked out from, to the log. Never fails.
 class StderrProgressSink : public pipeline::ProgressSink {
 public:
     StderrProgressSink();
+    ~StderrProgressSink() override;
+    StderrProgressSink(const StderrProgressSink&) = delete;
+    StderrProgressSink& operator=(const StderrProgressSink&) = delete;
+
+    /// Starts the progress log at `path` (replacing a file there): one JSON object a line, each
+    /// written whole and flushed as it happens, so a log read while the stage runs, or left by a
+    /// stage that was killed, holds whole lines. Every object has "t", the seconds since this
+    /// sink was made; a line the stage told has "line"; a progress state has "stage", "item",
+    /// "done", "total", "elapsed_seconds", "eta_seconds", "percent" and "parts" (an object of
+    /// the figures behind the ETA, runner::RunProgress::parts). False, with the reason printed,
+    /// when the file cannot be written.
+    bool OpenLog(const std::string& path);
 
     void Begin(const std::string& line) override;
     void Progress(const pipeline::StageProgress& progress) override;
@@ -23,7 +39,11 @@ public:
     void Tell(const std::vector<Diagnostic>& diagnostics) override;
 
 private:
+    void LogLine(const std::string& line);
+
     runner::ProgressCallback printer_;
+    std::FILE* log_ = nullptr;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 }  // namespace tidepool::cli

@@ -280,6 +280,27 @@ void ProgressMeter::PublishLocked(const char* stage, const std::string& what,
     state_.percent = done_seconds + left_here > 0
                              ? 100.0 * done_seconds / (done_seconds + left_here)
                              : 100.0;
+    state_.parts = {
+            {"comparison_frames_done", static_cast<double>(kinds_[kComparison].done)},
+            {"comparison_frames_left",
+             static_cast<double>(totals[kComparison] - kinds_[kComparison].done)},
+            {"comparison_seconds_per_frame", SecondsPerFrame(kComparison)},
+            {"image_frames_done", static_cast<double>(kinds_[kImage].done)},
+            {"image_frames_left", static_cast<double>(totals[kImage] - kinds_[kImage].done)},
+            {"image_seconds_per_frame", SecondsPerFrame(kImage)},
+            {"seconds_left", left_seconds},
+            {"owned_seconds_left", own_seconds},
+            {"threads", threads},
+            {"calibration", Calibration()},
+            {"second_process_busy_seconds", helper_busy},
+            {"own_end_seconds", own_end},
+    };
+    if (const std::optional<double> cost = MeanConfigurationCost()) {
+        state_.parts.emplace_back("mean_configuration_seconds", *cost);
+    }
+    if (joins) {
+        state_.parts.emplace_back("second_process_joins_in_seconds", *joins);
+    }
     if (callback_) {
         callback_(state_);
     }

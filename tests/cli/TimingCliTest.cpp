@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "TempDir.h"
 #include "TidepoolProcess.h"
@@ -57,6 +59,52 @@ TEST(TimingCliTest, RenderTimesEveryComparedPresetPairOnTheThreadClock) {
     EXPECT_EQ(results["comparisons"][1]["label"], "row 5");
     // The progress and summary go to stderr, the JSON alone to stdout.
     EXPECT_NE(r.err.find("2 comparisons to +/-1.5 points"), std::string::npos) << r.err;
+}
+
+// `--progress-log` writes the render's first line and then every progress state, each a JSON
+// object on a line of its own with the figures behind its ETA, up to the state that ends it.
+TEST(TimingCliTest, AProgressLogHoldsEveryStateWithTheFiguresBehindItsEta) {
+    TempDir dir;
+    const std::filesystem::path log = dir.Path() / "progress.jsonl";
+    const CommandResult r = RunTidepool(
+            "render --preset full --preset full_no_fog --view three_quarter --size 64x48 "
+            "--min-pairs 10 --max-pairs 10 --coarse-frames 2 --no-images --out " +
+            (dir.Path() / "render").string() + " --progress-log " + log.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    std::ifstream in(log);
+    std::string text;
+    std::vector<nlohmann::json> records;
+    while (std::getline(in, text)) {
+        records.push_back(nlohmann::json::parse(text));  // throws, failing the test, if not JSON
+    }
+    ASSERT_GE(records.size(), 3U);
+    EXPECT_NE(records[0]["line"].get<std::string>().find("render: 2 configurations"),
+              std::string::npos)
+            << records[0];
+    double t = 0;
+    for (std::size_t i = 1; i < records.size(); ++i) {
+        const nlohmann::json& state = records[i];
+        EXPECT_GE(state["t"].get<double>(), t);
+        t = state["t"].get<double>();
+        EXPECT_LE(state["done"].get<long>(), state["total"].get<long>()) << state;
+        EXPECT_TRUE(state["parts"].contains("image_frames_left")) << state;
+        EXPECT_TRUE(state["parts"].contains("own_end_seconds")) << state;
+    }
+    EXPECT_EQ(records.back()["percent"], 100.0);
+    EXPECT_EQ(records.back()["parts"]["seconds_left"], 0.0);
+}
+
+TEST(TimingCliTest, AProgressLogThatCannotBeWrittenIsAUsageErrorBeforeTheRender) {
+    TempDir dir;
+    const CommandResult r =
+            RunTidepool("render --out " + (dir.Path() / "render").string() + " --progress-log " +
+                        (dir.Path() / "no" / "such" / "p.jsonl").string());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("p.jsonl: cannot write it (No such file or directory); give a file in a "
+                         "folder that exists"),
+              std::string::npos)
+            << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "render"));
 }
 
 }  // namespace

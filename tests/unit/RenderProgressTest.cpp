@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <set>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -509,6 +510,44 @@ TEST(RenderProgressTest, UnitsASecondProcessTakesLeaveTheTotalsAndShortenTheEta)
     claims->SetHelperTaking(false);  // it stopped taking: the rest is this process's
     meter.Step(ProgressMeter::kImage, "0", 0, now);
     EXPECT_NEAR(meter.Last().eta_seconds, 5.6 + 7, 1e-6);
+}
+
+// The figure of a line's parts named `name`; NaN when the line has none of that name.
+double PartOf(const RunProgress& line, const std::string& name) {
+    for (const auto& [part, value] : line.parts) {
+        if (part == name) {
+            return value;
+        }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+// A progress log (`--progress-log`) has, beside each line, the figures its ETA was worked out
+// from: what is left of each kind and at what price, the threads, and the second process's
+// forecast, which join to the line's ETA.
+TEST(RenderProgressTest, ALinesPartsAreTheFiguresItsEtaIsWorkedOutFrom) {
+    TenConfigurationsAndTwoComparisons run;
+    ASSERT_TRUE(run.claims);
+    ProgressMeter& meter = run.meter;
+    EXPECT_TRUE(std::isnan(PartOf(meter.Last(), "second_process_joins_in_seconds")));
+    run.claims->ExpectHelperAt(run.now + std::chrono::milliseconds(4300));
+    meter.Step(ProgressMeter::kImage, "0", 0, run.now);
+    const RunProgress line = meter.Last();
+    // 9 units of 7 frames and 2 comparisons of 70 frames left, at 100 ms a frame.
+    EXPECT_EQ(PartOf(line, "image_frames_done"), 7);
+    EXPECT_EQ(PartOf(line, "image_frames_left"), 63);
+    EXPECT_EQ(PartOf(line, "comparison_frames_left"), 140);
+    EXPECT_NEAR(PartOf(line, "image_seconds_per_frame"), 0.1, 1e-9);
+    EXPECT_NEAR(PartOf(line, "seconds_left"), 6.3 + 14, 1e-6);
+    EXPECT_EQ(PartOf(line, "threads"), 1);
+    EXPECT_NEAR(PartOf(line, "second_process_joins_in_seconds"), 4.3, 1e-3);
+    // 4.3 s alone, then the 16 s left halved: the ETA.
+    EXPECT_NEAR(PartOf(line, "own_end_seconds"), line.eta_seconds, 1e-9);
+    EXPECT_NEAR(line.eta_seconds,
+                SecondsToFinish(PartOf(line, "seconds_left"), PartOf(line, "threads"),
+                                PartOf(line, "second_process_joins_in_seconds"),
+                                PartOf(line, "owned_seconds_left")),
+                1e-9);
 }
 
 // A unit the second process is working on keeps it from the rest until the unit's expected

@@ -40,7 +40,7 @@ std::vector<runner::CameraView> ChooseViews(const std::vector<std::string>& name
 runner::ProgressCallback ProgressCallbackFor(ProgressSink& sink) {
     return [&sink](const runner::RunProgress& p) {
         sink.Progress({p.stage, p.configuration, p.done, p.total, p.elapsed_seconds, p.eta_seconds,
-                       p.percent});
+                       p.percent, p.parts});
     };
 }
 

@@ -6,6 +6,7 @@
 #include "tidepool/Diagnostic.h"
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace tidepool::pipeline {
@@ -19,6 +20,8 @@ struct StageProgress {
     double elapsed_seconds = 0;
     double eta_seconds = 0;  // 0 until something is done
     double percent = 0;      // share of the work done
+    // The figures behind the ETA, by name (runner::RunProgress::parts), for a progress log.
+    std::vector<std::pair<std::string, double>> parts;
 };
 
 /// Receives a long stage's progress; the stage calls it from one thread at a time.

@@ -193,6 +193,11 @@ struct RunProgress {
     // collects their results at its end); 0 until something is done.
     double eta_seconds = 0;
     double percent = 0;  // this process's share of its work done, by the seconds it takes
+    // The figures the ETA was worked out from, by name, for a progress log (`--progress-log`,
+    // README "Progress"): each kind's frames done and left with its price, the comparisons'
+    // seconds left, the threads and the second process's forecast. A figure with no value yet
+    // is left out.
+    std::vector<std::pair<std::string, double>> parts;
 };
 
 /// Called after every unit of work, and every half second while the render waits for a second
