@@ -6,6 +6,7 @@
 #include "CliSupport.h"
 #include "GlCliSupport.h"
 #include <nlohmann/json.hpp>
+#include <unistd.h>
 
 namespace tidepool::cli {
 namespace {
@@ -21,7 +22,7 @@ std::string LogText(const nlohmann::json& record) {
 StderrProgressSink::StderrProgressSink() : printer_(MakeProgressPrinter()) {}
 
 StderrProgressSink::~StderrProgressSink() {
-    if (log_ != nullptr) {
+    if (log_ != nullptr && log_pid_ == ::getpid()) {
         std::fclose(log_);
     }
 }
@@ -35,28 +36,37 @@ bool StderrProgressSink::OpenLog(const std::string& path) {
                      path.c_str(), std::strerror(errno));
         return false;
     }
-    if (log_ != nullptr) {
+    if (log_ != nullptr && log_pid_ == ::getpid()) {
         std::fclose(log_);
     }
     log_ = log;
+    log_path_ = path;
+    log_pid_ = ::getpid();
     return true;
 }
 
-void StderrProgressSink::LogLine(const std::string& line) {
-    if (log_ == nullptr) {
-        return;
+double StderrProgressSink::Seconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void StderrProgressSink::Log(const std::string& text) {
+    if (log_ != nullptr && log_pid_ != ::getpid()) {
+        // Forked: the descriptor is closed here and its number may now be another file's, so the
+        // stream is left as it is, not closed.
+        log_ = std::fopen(log_path_.c_str(), "a");
+        log_pid_ = ::getpid();
     }
-    const std::string text = LogText(
-            {{"t",
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count()},
-             {"line", line}});
-    std::fwrite(text.data(), 1, text.size(), log_);
-    std::fflush(log_);
+    if (log_ != nullptr) {
+        std::fwrite(text.data(), 1, text.size(), log_);
+        std::fflush(log_);
+    }
 }
 
 void StderrProgressSink::Begin(const std::string& line) {
     std::fprintf(stderr, "%s\n", line.c_str());
-    LogLine(line);
+    if (log_ != nullptr) {
+        Log(LogText({{"t", Seconds()}, {"line", line}}));
+    }
 }
 
 void StderrProgressSink::Progress(const pipeline::StageProgress& p) {
@@ -68,19 +78,15 @@ void StderrProgressSink::Progress(const pipeline::StageProgress& p) {
     for (const auto& [name, value] : p.parts) {
         parts[name] = value;
     }
-    const std::string text = LogText(
-            {{"t",
-              std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count()},
-             {"stage", p.stage},
-             {"item", p.item},
-             {"done", p.done},
-             {"total", p.total},
-             {"elapsed_seconds", p.elapsed_seconds},
-             {"eta_seconds", p.eta_seconds},
-             {"percent", p.percent},
-             {"parts", std::move(parts)}});
-    std::fwrite(text.data(), 1, text.size(), log_);
-    std::fflush(log_);
+    Log(LogText({{"t", Seconds()},
+                 {"stage", p.stage},
+                 {"item", p.item},
+                 {"done", p.done},
+                 {"total", p.total},
+                 {"elapsed_seconds", p.elapsed_seconds},
+                 {"eta_seconds", p.eta_seconds},
+                 {"percent", p.percent},
+                 {"parts", std::move(parts)}}));
 }
 
 void StderrProgressSink::Finish() {
@@ -89,7 +95,9 @@ void StderrProgressSink::Finish() {
 
 void StderrProgressSink::Line(const std::string& line) {
     std::fprintf(stderr, "%s\n", line.c_str());
-    LogLine(line);
+    if (log_ != nullptr) {
+        Log(LogText({{"t", Seconds()}, {"line", line}}));
+    }
 }
 
 void StderrProgressSink::Tell(const std::vector<Diagnostic>& diagnostics) {

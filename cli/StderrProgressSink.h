@@ -10,6 +10,8 @@
 #include <cstdio>
 #include <string>
 
+#include <sys/types.h>
+
 namespace tidepool::cli {
 
 /// Prints a stage's first line as it is, and its progress as MakeProgressPrinter does: on a
@@ -28,8 +30,10 @@ public:
     /// stage that was killed, holds whole lines. Every object has "t", the seconds since this
     /// sink was made; a line the stage told has "line"; a progress state has "stage", "item",
     /// "done", "total", "elapsed_seconds", "eta_seconds", "percent" and "parts" (an object of
-    /// the figures behind the ETA, runner::RunProgress::parts). False, with the reason printed,
-    /// when the file cannot be written.
+    /// the figures behind the ETA, runner::RunProgress::parts). A process forked from this one
+    /// (`run` renders in one, with the stability catalogue and the plans in another) opens the
+    /// file again to append: its workers close every descriptor they did not make. False, with
+    /// the reason printed, when the file cannot be written.
     bool OpenLog(const std::string& path);
 
     void Begin(const std::string& line) override;
@@ -39,10 +43,15 @@ public:
     void Tell(const std::vector<Diagnostic>& diagnostics) override;
 
 private:
-    void LogLine(const std::string& line);
+    // Seconds since this sink was made.
+    double Seconds() const;
+    // Appends `text` (whole lines) to the open log.
+    void Log(const std::string& text);
 
     runner::ProgressCallback printer_;
+    std::string log_path_;
     std::FILE* log_ = nullptr;
+    pid_t log_pid_ = 0;  // the process that opened log_
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 

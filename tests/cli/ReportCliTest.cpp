@@ -3,10 +3,12 @@
 // report rebuilt from saved files, and bad inputs rejected with exit 2 and the file named.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <regex>
 #include <string>
@@ -50,9 +52,10 @@ protected:
             return;
         }
         dir_ = new TempDir();
-        out_ = new std::filesystem::path(dir_->Path());
+        out_ = new std::filesystem::path(dir_->Path() / "run");
         *run_ = RunTidepoolInSourceRoot(std::string(TIDEPOOL_REPORT_RUN_ARGS) + " --out '" +
-                                        out_->string() + "'");
+                                        out_->string() + "' --progress-log '" +
+                                        ProgressLog().string() + "'");
     }
     static void TearDownTestSuite() {
         delete run_;
@@ -63,6 +66,8 @@ protected:
         dir_ = nullptr;
     }
     static std::filesystem::path Out() { return *out_; }
+    // The run's --progress-log, beside its output folder (which must hold tidepool's files only).
+    static std::filesystem::path ProgressLog() { return out_->string() + ".progress.jsonl"; }
 
     static TempDir* dir_;
     static std::filesystem::path* out_;
@@ -100,6 +105,34 @@ TEST_F(ReportCliTest, RunWritesManifestResultsAndAllThreeReportFormats) {
     EXPECT_NE(run_->err.find("run: "), std::string::npos) << run_->err;
     // Well under the ~10 MB a page should weigh.
     EXPECT_LT(std::filesystem::file_size(Out() / "default/index.html"), 10u * 1000u * 1000u);
+}
+
+// `run` renders in a worker process and runs the stability catalogue and the plans in another,
+// and each closes the descriptors it did not make: both append to the progress log all the same.
+TEST_F(ReportCliTest, RunsProgressLogHoldsTheRendersStatesAndEveryProcesssLines) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
+    std::ifstream in(ProgressLog());
+    std::string text;
+    std::vector<std::string> lines;
+    std::vector<nlohmann::json> states;
+    while (std::getline(in, text)) {
+        const nlohmann::json record = nlohmann::json::parse(text);  // each line whole
+        if (record.contains("line")) {
+            lines.push_back(record["line"]);
+        } else {
+            states.push_back(record);
+        }
+    }
+    auto told = [&](const std::string& start) {
+        return std::any_of(lines.begin(), lines.end(),
+                           [&](const std::string& l) { return l.rfind(start, 0) == 0; });
+    };
+    EXPECT_TRUE(told("validate: ")) << "the parent's";
+    EXPECT_TRUE(told("render: ")) << "the render process's";
+    EXPECT_TRUE(told("stability and plans: ")) << "the second process's";
+    ASSERT_FALSE(states.empty());
+    EXPECT_TRUE(states.front()["parts"].contains("comparison_frames_left")) << states.front();
+    EXPECT_EQ(states.back()["percent"], 100.0) << states.back();
 }
 
 // One rendering thread by default (llvmpipe's contexts in one process share one rasteriser
