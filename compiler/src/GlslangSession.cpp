@@ -871,6 +871,29 @@ int ColumnOfToken(const std::string& message, const std::vector<std::string>& so
     return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
 }
 
+// glslang reports every byte past ASCII outside a comment as the one token '\x80' ("unexpected
+// token"), which is on no line and is no UTF-8 either. The first such byte of the line is the one
+// meant: `d` gets its column and a message that says what is wrong.
+void PlaceNonAsciiToken(const std::vector<std::string>& source_lines, Diagnostic& d) {
+    constexpr std::string_view kToken = "'\x80' : unexpected token";
+    if (d.message.rfind(kToken, 0) != 0 || d.line <= 0 ||
+        static_cast<std::size_t>(d.line) > source_lines.size()) {
+        return;
+    }
+    const std::string& text = source_lines[static_cast<std::size_t>(d.line) - 1];
+    const auto at = std::find_if(text.begin(), text.end(),
+                                 [](char c) { return static_cast<unsigned char>(c) >= 0x80; });
+    if (at == text.end()) {
+        return;
+    }
+    d.column = static_cast<int>(at - text.begin()) + 1;
+    d.message = fmt::format(
+            "a character outside GLSL ES's character set (byte 0x{:02X}, not ASCII): outside "
+            "comments a shader may hold ASCII only (GLSL ES 1.00 and 3.00 section 3.1); remove "
+            "it, or move it into a comment",
+            static_cast<unsigned char>(*at));
+}
+
 }  // namespace
 
 std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::string& file,
@@ -956,6 +979,7 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
             source_lines = SplitLines(source);
         }
         d.column = ColumnOfToken(d.message, *source_lines, d.line);
+        PlaceNonAsciiToken(*source_lines, d);
         diagnostics.push_back(std::move(d));
     }
     return diagnostics;

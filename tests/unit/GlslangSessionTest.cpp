@@ -31,6 +31,20 @@ TEST(GlslangSessionTest, LogLinesBecomeDiagnosticsAtTheQuotedTokensColumn) {
               "a.fsh:1:6: warning: 'main' : something to note\n");
 }
 
+// glslang reports any byte past ASCII in code as the token '\x80', which is on no line: the
+// message had no column and wrote that byte, no UTF-8, out as the token.
+TEST(GlslangSessionTest, ACharacterPastAsciiInCodeIsPlacedAndNamed) {
+    const std::string source =
+            "#version 300 es\nprecision mediump float;\n// caf\xC3\xA9 is fine here\n"
+            "out vec4 c;\nvoid main() { float caf\xC3\xA9 = 1.0; c = vec4(1.0); }\n";
+    const StageParse parse = ParseStage(Input("a.frag", source, Stage::kFragment));
+    EXPECT_FALSE(parse.ok);
+    EXPECT_EQ(Formatted(parse.diagnostics),
+              "a.frag:5:24: error: a character outside GLSL ES's character set (byte 0xC3, not "
+              "ASCII): outside comments a shader may hold ASCII only (GLSL ES 1.00 and 3.00 "
+              "section 3.1); remove it, or move it into a comment\n");
+}
+
 // It used to come out as "a.fsh: error: 0:-6: 'oops' ...", glslang's location as message text.
 TEST(GlslangSessionTest, ALineWrappedNegativeByAHugeLineDirectiveIsSaidToBeUnknown) {
     const std::string source = "#version 100\n#line 4294967290\nvoid main() { oops; }\n";
