@@ -5,6 +5,7 @@
 
 #include "CliSupport.h"
 #include "GlCliSupport.h"
+#include <fcntl.h>
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
@@ -28,8 +29,16 @@ StderrProgressSink::~StderrProgressSink() {
 }
 
 bool StderrProgressSink::OpenLog(const std::string& path) {
-    std::FILE* log = std::fopen(path.c_str(), "w");
+    // Emptied, and written at its end by every process: a process forked from this one appends
+    // its own lines, and a write at this one's own offset would then land over them.
+    const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_APPEND | O_CLOEXEC, 0644);
+    std::FILE* log = fd >= 0 ? ::fdopen(fd, "a") : nullptr;
     if (log == nullptr) {
+        const int error = errno;
+        if (fd >= 0) {
+            ::close(fd);
+        }
+        errno = error;
         std::fprintf(stderr,
                      "error: --progress-log %s: cannot write it (%s); give a file in a folder "
                      "that exists and that you may write to\n",
