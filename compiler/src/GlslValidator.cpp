@@ -1162,6 +1162,44 @@ ValidationReport ValidateVariants(const VariantConfig& config, const std::vector
     return report;
 }
 
+namespace {
+
+// Which of `files` are linked together, as indices: a file whose stage no other file has is
+// linked with each file of the other stage (one vertex stage shared by several fragment stages),
+// so that an interface the two disagree on is found; with several files of both stages, a vertex
+// and a fragment file of the same path but for the extension (water.vert, water.frag). A file in
+// no pair is linked alone, since some errors (recursion, a missing main) appear only then.
+// Before, only exactly one file of each stage was linked: `a.vert b.frag c.frag` validated each
+// alone and called a b.frag that `a.vert` cannot feed valid.
+std::vector<std::vector<std::size_t>> LinkGroups(const std::vector<ShaderFile>& files) {
+    std::vector<std::size_t> vertex;
+    std::vector<std::size_t> fragment;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        (files[i].stage == Stage::kVertex ? vertex : fragment).push_back(i);
+    }
+    auto stem = [&](std::size_t i) {
+        return std::filesystem::path(files[i].path).replace_extension().string();
+    };
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<bool> linked(files.size(), false);
+    for (std::size_t v : vertex) {
+        for (std::size_t f : fragment) {
+            if (vertex.size() == 1 || fragment.size() == 1 || stem(v) == stem(f)) {
+                groups.push_back({v, f});
+                linked[v] = linked[f] = true;
+            }
+        }
+    }
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        if (!linked[i]) {
+            groups.push_back({i});
+        }
+    }
+    return groups;
+}
+
+}  // namespace
+
 ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
                                      const std::vector<std::string>& defines,
                                      const ShaderFileOptions& options) {
@@ -1186,21 +1224,7 @@ ValidationReport ValidateShaderFiles(const std::vector<ShaderFile>& files,
     }
     report.stage_slots = static_cast<int>(files.size());
 
-    // Link each vertex file with each fragment file given (usually one of each); a lone stage is
-    // linked alone, since some errors (recursion, missing main) appear only at link time.
-    std::vector<std::size_t> vertex;
-    std::vector<std::size_t> fragment;
-    for (std::size_t i = 0; i < files.size(); ++i) {
-        (files[i].stage == Stage::kVertex ? vertex : fragment).push_back(i);
-    }
-    std::vector<std::vector<std::size_t>> groups;
-    if (vertex.size() == 1 && fragment.size() == 1) {
-        groups.push_back({vertex[0], fragment[0]});
-    } else {
-        for (std::size_t i = 0; i < files.size(); ++i) {
-            groups.push_back({i});
-        }
-    }
+    const std::vector<std::vector<std::size_t>> groups = LinkGroups(files);
     auto usable = [&](std::size_t i) { return texts[i].ok && texts[i].text_errors.empty(); };
     auto group_usable = [&](std::size_t g) {
         return std::all_of(groups[g].begin(), groups[g].end(), usable);

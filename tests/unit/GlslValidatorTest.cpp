@@ -414,6 +414,52 @@ TEST(GlslValidatorTest, InterfaceMismatchIsCaughtOnlyAtLinkTime) {
               std::string::npos);
 }
 
+// The verdicts' names ("a.vert+b.frag") and validity, in order, with the folder left out.
+std::string LinkedAs(const ValidationReport& report, const std::string& folder) {
+    std::string out;
+    for (const VariantVerdict& v : report.verdicts) {
+        std::string name = v.variant.program;
+        for (std::size_t at; (at = name.find(folder)) != std::string::npos;) {
+            name.erase(at, folder.size());
+        }
+        out += name + (v.valid ? " valid\n" : " INVALID\n");
+    }
+    return out;
+}
+
+// A vertex file given with several fragment files is linked with each (before, each file was
+// checked alone, and a fragment stage the vertex stage cannot feed was called valid); with several
+// of both, the files of the same name pair up, and the rest are linked alone.
+TEST(GlslValidatorTest, FilesAreLinkedWithTheFilesOfTheOtherStageTheyGoWith) {
+    TempDir dir;
+    auto vertex = [](const char* type) {
+        return std::string("#version 100\nattribute vec4 p;\nvarying ") + type +
+               " uv;\nvoid main() { uv = " + type + "(0.5); gl_Position = p; }\n";
+    };
+    auto fragment = [](const char* type) {
+        return std::string("#version 100\nprecision mediump float;\nvarying ") + type +
+               " uv;\nvoid main() { gl_FragColor = vec4(uv.x); }\n";
+    };
+    dir.Write("a.vert", vertex("vec2"));
+    dir.Write("b.frag", fragment("vec2"));
+    dir.Write("c.frag", fragment("vec3"));
+    dir.Write("c.vert", vertex("vec3"));
+    const std::string folder = dir.Path().string() + "/";
+    auto file = [&](const char* name, Stage stage) { return ShaderFile{folder + name, stage}; };
+    EXPECT_EQ(LinkedAs(ValidateShaderFiles(
+                               {file("a.vert", Stage::kVertex), file("b.frag", Stage::kFragment),
+                                file("c.frag", Stage::kFragment)},
+                               {}),
+                       folder),
+              "a.vert+b.frag valid\na.vert+c.frag INVALID\n");
+    EXPECT_EQ(LinkedAs(ValidateShaderFiles(
+                               {file("a.vert", Stage::kVertex), file("c.vert", Stage::kVertex),
+                                file("b.frag", Stage::kFragment), file("c.frag", Stage::kFragment)},
+                               {}),
+                       folder),
+              "c.vert+c.frag valid\na.vert valid\nb.frag valid\n");
+}
+
 TEST(GlslValidatorTest, RecursionInOneStageIsACompileErrorOfThatStage) {
     TempDir dir;
     dir.Write("r.frag",
