@@ -183,7 +183,10 @@ public:
     ConfigResult Parse(std::string_view text);
 
 private:
-    std::vector<std::string> NameList(const YAML::Node& node, std::string_view what);
+    // The names of a name or a list of names; a name listed twice is an error unless
+    // `repeats_checked` (the caller says so in its own words).
+    std::vector<std::string> NameList(const YAML::Node& node, std::string_view what,
+                                      bool repeats_checked = false);
     bool ReadBool(const YAML::Node& node, std::string_view what, bool fallback);
     int ReadInt(const YAML::Node& node, std::string_view what, int fallback);
 
@@ -200,7 +203,8 @@ private:
     std::filesystem::path base_dir_;
 };
 
-std::vector<std::string> ConfigParser::NameList(const YAML::Node& node, std::string_view what) {
+std::vector<std::string> ConfigParser::NameList(const YAML::Node& node, std::string_view what,
+                                                bool repeats_checked) {
     std::vector<std::string> names;
     if (!node || node.IsNull()) {
         return names;
@@ -214,9 +218,16 @@ std::vector<std::string> ConfigParser::NameList(const YAML::Node& node, std::str
         return names;
     }
     for (const YAML::Node& item : node) {
-        if (ExpectScalar(item, what)) {
-            names.push_back(item.Scalar());
+        if (!ExpectScalar(item, what)) {
+            continue;
         }
+        // A name twice says nothing more, and is often a typo for another name.
+        if (!repeats_checked &&
+            std::find(names.begin(), names.end(), item.Scalar()) != names.end()) {
+            Error(item, fmt::format("'{}' is named twice in {}; remove one", item.Scalar(), what));
+            continue;
+        }
+        names.push_back(item.Scalar());
     }
     return names;
 }
@@ -372,7 +383,7 @@ Axis ConfigParser::ParseAxis(const YAML::Node& key, const YAML::Node& node) {
     axis.where = At(key);
     const std::string what = fmt::format("axis '{}'", axis.name);
     if (!node.IsMap()) {
-        axis.values = NameList(node, what);
+        axis.values = NameList(node, what, /*repeats_checked=*/true);
     } else {
         CheckKeys(node, what, {"values", "default"});
         if (!node["values"]) {
@@ -381,7 +392,7 @@ Axis ConfigParser::ParseAxis(const YAML::Node& key, const YAML::Node& node) {
                                    what, axis.name));
             return axis;
         }
-        axis.values = NameList(node["values"], what);
+        axis.values = NameList(node["values"], what, /*repeats_checked=*/true);
         if (const YAML::Node default_node = node["default"]) {
             if (ExpectScalar(default_node, fmt::format("the default of {}", what))) {
                 const std::string value = default_node.Scalar();
@@ -504,6 +515,11 @@ Preset ConfigParser::ParsePreset(const std::string& name, const YAML::Node& key,
     Preset preset;
     preset.name = name;
     preset.where = At(key);
+    // `--preset NAME` and the configurations' ids name it.
+    if (!IsValidDefineName(name)) {
+        Error(key,
+              fmt::format("preset name '{}' must be an identifier (letters, digits, _)", name));
+    }
     const std::string what = fmt::format("preset '{}'", name);
     if (!ExpectMap(node, what)) {
         return preset;
@@ -532,6 +548,23 @@ Preset ConfigParser::ParsePreset(const std::string& name, const YAML::Node& key,
 }
 
 void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config) {
+    // A runtime feature switches on, by a uniform bool, the effect another program compiles in by
+    // its define (water_uniform's bools, water's defines); the renderer drops a name it does not
+    // know without a word.
+    std::set<std::string> declared;
+    for (const ProgramConfig& any : config.programs) {
+        for (const std::string& define : any.AllDefines()) {
+            declared.insert(define);
+        }
+    }
+    for (const std::string& feature : preset.runtime_features) {
+        if (IsValidDefineName(feature) && declared.count(feature) == 0) {
+            Error(preset.where,
+                  fmt::format("preset '{}' switches on '{}' in runtime_features, which no program "
+                              "declares; runtime features are the defines of the programs: {}",
+                              preset.name, feature, fmt::join(declared, ", ")));
+        }
+    }
     const ProgramConfig* program = config.FindProgram(preset.program);
     if (program == nullptr) {
         if (!preset.program.empty()) {

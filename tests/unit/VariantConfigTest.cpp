@@ -394,6 +394,26 @@ INSTANTIATE_TEST_SUITE_P(
                                 "    features: [A]\npresets:\n  x: { program: p, defines: [B] }\n",
                         "v.yaml:7:3: error: preset 'x' uses unknown define 'B' of program "
                         "'p'; known: A\n"},
+                // The renderer dropped a runtime feature it did not know without a word, and a
+                // name listed twice or a preset named "" or "bad name!" went through.
+                BadInputCase{"PresetSwitchesOnAnUndeclaredRuntimeFeature",
+                             std::string(kProgramHead) +
+                                     "    features: [A]\npresets:\n  x: { program: p, "
+                                     "runtime_features: [A, NOPE] }\n",
+                             "v.yaml:7:3: error: preset 'x' switches on 'NOPE' in "
+                             "runtime_features, which no program declares; runtime features are "
+                             "the defines of the programs: A\n"},
+                BadInputCase{"NameListedTwice",
+                             std::string(kProgramHead) +
+                                     "    features: [A, B]\npresets:\n  x: { program: p, "
+                                     "defines: [B, A, B] }\n",
+                             "v.yaml:7:36: error: 'B' is named twice in defines; remove one\n"},
+                BadInputCase{"PresetNameIsNoIdentifier",
+                             std::string(kProgramHead) +
+                                     "    features: [A]\npresets:\n  \"bad name\": { program: p "
+                                     "}\n",
+                             "v.yaml:7:3: error: preset name 'bad name' must be an identifier "
+                             "(letters, digits, _)\n"},
                 BadInputCase{"PresetDefinesAreNotNames",
                              std::string(kProgramHead) + "    features: [A]\npresets:\n  x: { "
                                                          "program: p, defines: { A: 1 } }\n",
