@@ -107,9 +107,14 @@ struct CompiledRule {
 // exactly which rule is the first each of them breaks, without visiting them one by one.
 class ProgramExpansion {
 public:
+    // With `keep_variants` false the walk only counts the valid variants (up to the budget) and
+    // the pruned ones, and lists none.
     ProgramExpansion(const ProgramConfig& program, std::uint64_t valid_budget,
-                     std::uint64_t list_budget)
-        : program_(program), valid_budget_(valid_budget), list_budget_(list_budget) {
+                     std::uint64_t list_budget, bool keep_variants = true)
+        : program_(program),
+          valid_budget_(valid_budget),
+          list_budget_(keep_variants ? list_budget : 0),
+          keep_variants_(keep_variants) {
         Compile();
         counts_.assign(program.rules.size(), 0);
     }
@@ -251,8 +256,11 @@ private:
 
     void Walk(std::size_t depth) {
         if (depth == order_.size()) {
-            variants_.push_back(CurrentVariant());
-            over_budget_ = variants_.size() > valid_budget_;
+            if (keep_variants_) {
+                variants_.push_back(CurrentVariant());
+            }
+            ++found_;
+            over_budget_ = found_ > valid_budget_;
             return;
         }
         const std::size_t d = order_[depth];
@@ -369,6 +377,8 @@ private:
     const ProgramConfig& program_;
     std::uint64_t valid_budget_;
     std::uint64_t list_budget_;
+    bool keep_variants_;
+    std::uint64_t found_ = 0;          // valid variants walked
     std::vector<Decision> decisions_;  // features, then axes, as declared
     std::vector<CompiledRule> rules_;  // as declared
     std::vector<std::size_t> order_;   // the order decisions are made in
@@ -408,12 +418,12 @@ ExpansionResult ExpandVariants(const VariantConfig& config, const ExpansionOptio
     }
     for (const ProgramConfig& program : config.programs) {
         const std::uint64_t valid_budget = options.max_variants - result.variants.size();
-        ProgramExpansion expansion(
-                program, valid_budget,
-                options.pruned_limit -
-                        std::min<std::uint64_t>(options.pruned_limit, result.pruned.size()));
-        expansion.Run();
-        if (expansion.OverBudget()) {
+        // A program over the limit is found by counting first: a variant kept costs about 500
+        // bytes, and a refusal at the ceiling of --allow-large-matrix kept 16 million of them
+        // (5 GB, over 20 s) before it could say no. Counting is cheap beside keeping them.
+        ProgramExpansion counted(program, valid_budget, 0, /*keep_variants=*/false);
+        counted.Run();
+        if (counted.OverBudget()) {
             // Stop at once: the rest of the matrix would only make the refusal more expensive.
             const SourceLocation& where = limit_where.file.empty() ? program.where : limit_where;
             result.diagnostics.push_back(MakeError(
@@ -423,6 +433,11 @@ ExpansionResult ExpandVariants(const VariantConfig& config, const ExpansionOptio
                                 program.name, options.max_variants, options.limit_origin)));
             break;
         }
+        ProgramExpansion expansion(
+                program, valid_budget,
+                options.pruned_limit -
+                        std::min<std::uint64_t>(options.pruned_limit, result.pruned.size()));
+        expansion.Run();
         if (expansion.Variants().empty()) {
             result.diagnostics.push_back(MakeError(
                     program.where.file, program.where.line, program.where.column,
