@@ -62,10 +62,32 @@ bool NamesACommand(CLI::App& app, int argc, char** argv) {
     return true;
 }
 
+// False, after saying which, when an argument is empty ('' or `--out=`): no option of tidepool
+// takes an empty value, and a script's unset variable (`--out "$OUTDIR"`) would otherwise be
+// taken as no value at all: `expand --out ''` wrote nothing and exited 0.
+bool NoEmptyArgument(int argc, char** argv) {
+    for (int i = 1; i < argc; ++i) {
+        const std::string_view word = argv[i];
+        const bool empty_value = word.rfind("--", 0) == 0 && word.size() > 2 && word.back() == '=';
+        if (!word.empty() && !empty_value) {
+            continue;
+        }
+        const std::string what = empty_value ? fmt::format("'{}' gives an empty value", word)
+                                 : i > 1 ? fmt::format("an empty argument after '{}'", argv[i - 1])
+                                         : std::string("an empty first argument");
+        std::fprintf(stderr,
+                     "error: %s; no option takes one: give a value, or leave the option out (an "
+                     "unset variable in a script?)\n",
+                     what.c_str());
+        return false;
+    }
+    return true;
+}
+
 }  // namespace
 
 int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
-    if (!NamesACommand(app, argc, argv)) {
+    if (!NoEmptyArgument(argc, argv) || !NamesACommand(app, argc, argv)) {
         return kExitUsage;
     }
     app.require_subcommand(1);
@@ -202,6 +224,27 @@ bool CheckDefineOptions(const std::vector<std::string>& defines) {
                          "preprocessor lines)\n",
                          name.c_str());
             return false;
+        }
+        if (equals != std::string::npos && define.find('\\', equals) != std::string::npos) {
+            std::fprintf(stderr,
+                         "error: -D '%s': the value may not hold '\\', which GLSL ES has only "
+                         "to continue a line (§3.1)\n",
+                         name.c_str());
+            return false;
+        }
+        const std::string_view value = equals == std::string::npos
+                                               ? std::string_view()
+                                               : std::string_view(define).substr(equals + 1);
+        std::size_t run = 0;
+        for (char c : value) {
+            run = (c == ' ' || c == '\t') ? 0 : run + 1;
+            if (run > kLongestName) {
+                std::fprintf(stderr,
+                             "error: -D '%s': the value holds a token of more than the %zu "
+                             "characters of glslang's longest token\n",
+                             name.c_str(), kLongestName);
+                return false;
+            }
         }
     }
     return true;

@@ -82,6 +82,27 @@ TEST(FrontEndCliTest, AnUnknownCommandIsNamedWithTheCommandsAndTheNearestOne) {
     }
 }
 
+// An unset variable in a build script (`--out "$OUTDIR"`) used to be taken as no value at all:
+// `expand --out ''` wrote nothing and exited 0, and `--program ''` validated every program.
+TEST(FrontEndCliTest, AnEmptyArgumentIsAUsageErrorNamingTheOptionBeforeIt) {
+    for (const char* args :
+         {"expand --out '' --config variants.yaml", "validate --program '' --json",
+          "validate --output-file= --config variants.yaml", "expand --config variants.yaml ''"}) {
+        const CommandResult r = RunTidepool(args);
+        EXPECT_EQ(r.exit_code, 2) << args;
+        EXPECT_NE(r.err.find("no option takes one: give a value, or leave the option out (an "
+                             "unset variable in a script?)"),
+                  std::string::npos)
+                << args << "\n"
+                << r.err;
+        EXPECT_EQ(r.out, "") << args;
+    }
+    EXPECT_EQ(RunTidepool("expand --out '' --config variants.yaml").err.substr(0, 44),
+              "error: an empty argument after '--out'; no o");
+    EXPECT_EQ(RunTidepool("validate --output-file= --config variants.yaml").err.substr(0, 49),
+              "error: '--output-file=' gives an empty value; no ");
+}
+
 TEST(FrontEndCliTest, GlCommandFlagsAndErrorsComeFromTidepoolGl) {
     const CommandResult help = RunTidepool("render --help");
     EXPECT_EQ(help.exit_code, 0) << help.err;
