@@ -871,6 +871,31 @@ int ColumnOfToken(const std::string& message, const std::vector<std::string>& so
     return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
 }
 
+// Whether `source` has a `#line` directive whose line number is past 2^31 - 1, which glslang's
+// count wraps to a negative one.
+bool SetsALineCountPast32Bits(std::string_view source) {
+    for (std::size_t at = 0; at < source.size();) {
+        const std::size_t end = std::min(source.find('\n', at), source.size());
+        std::string_view line = TrimView(source.substr(at, end - at));
+        at = end + 1;
+        if (line.empty() || line.front() != '#') {
+            continue;
+        }
+        line = TrimView(line.substr(1));
+        if (line.rfind("line", 0) != 0) {
+            continue;
+        }
+        line = TrimView(line.substr(4));
+        const std::size_t digits = std::min(line.find_first_not_of("0123456789"), line.size());
+        constexpr std::string_view kLargest = "2147483647";
+        if (digits > kLargest.size() ||
+            (digits == kLargest.size() && line.substr(0, digits) > kLargest)) {
+            return true;
+        }
+    }
+    return false;
+}
+
 // glslang reports every byte past ASCII outside a comment as the one token '\x80' ("unexpected
 // token"), which is on no line and is no UTF-8 either. The first such byte of the line is the one
 // meant: `d` gets its column and a message that says what is wrong.
@@ -958,10 +983,16 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
                 d.line = wrapped ? 0 : static_cast<int>(std::stoll(std::string(digits)));
                 rest = TrimView(rest.substr(second_colon + 1));
             }
-            if (numeric && wrapped) {
+            // Negative because the count wrapped, or because a `#line` set it so.
+            if (numeric && wrapped && SetsALineCountPast32Bits(source)) {
                 d.message = fmt::format(
                         "at an unknown line (a '#line' directive set the count past "
                         "2147483647 and glslang wrapped it to {}; use smaller line numbers): ",
+                        line_part);
+            } else if (numeric && wrapped) {
+                d.message = fmt::format(
+                        "at an unknown line (a '#line' directive set the count to {}; use line "
+                        "numbers from 1 to 2147483647): ",
                         line_part);
             }
         }

@@ -55,6 +55,15 @@ TEST(GlslangSessionTest, ALineWrappedNegativeByAHugeLineDirectiveIsSaidToBeUnkno
               "undeclared identifier\n");
 }
 
+// A negative count a `#line` wrote itself was said to have wrapped past 2147483647.
+TEST(GlslangSessionTest, ANegativeLineSetByALineDirectiveIsNotSaidToHaveWrapped) {
+    const std::string source = "#version 100\n#line -5\nvoid main() { zz; }\n";
+    EXPECT_EQ(Formatted(ParseGlslangLog("ERROR: 0:-5: 'zz' : undeclared identifier\n", "a.fsh",
+                                        source)),
+              "a.fsh: error: at an unknown line (a '#line' directive set the count to -5; use "
+              "line numbers from 1 to 2147483647): 'zz' : undeclared identifier\n");
+}
+
 TEST(GlslangSessionTest, ContinuationLinesJoinTheirMessageAndUnplacedMessagesKeepLineZero) {
     const std::string log =
             "ERROR: Linking fragment stage: Types must match:\n"
