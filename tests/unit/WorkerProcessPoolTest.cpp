@@ -14,19 +14,11 @@
 #include <thread>
 #include <vector>
 
+#include "AddressSanitizer.h"
 #include <pthread.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-// GCC says so with __SANITIZE_ADDRESS__, clang (the sanitizer build) with __has_feature.
-#if defined(__SANITIZE_ADDRESS__)
-#define TIDEPOOL_TEST_ADDRESS_SANITIZER 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define TIDEPOOL_TEST_ADDRESS_SANITIZER 1
-#endif
-#endif
 
 namespace tidepool::base {
 namespace {
