@@ -896,9 +896,31 @@ bool SetsALineCountPast32Bits(std::string_view source) {
     return false;
 }
 
+// Where in `line` the first byte past ASCII outside the comments that start on it lies; npos
+// when there is none.
+std::size_t FirstNonAsciiInCode(std::string_view line) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        if (line.compare(i, 2, "//") == 0) {
+            return std::string_view::npos;
+        }
+        if (line.compare(i, 2, "/*") == 0) {
+            const std::size_t end = line.find("*/", i + 2);
+            if (end == std::string_view::npos) {
+                return std::string_view::npos;
+            }
+            i = end + 1;
+            continue;
+        }
+        if (static_cast<unsigned char>(line[i]) >= 0x80) {
+            return i;
+        }
+    }
+    return std::string_view::npos;
+}
+
 // glslang reports every byte past ASCII outside a comment as the one token '\x80' ("unexpected
-// token"), which is on no line and is no UTF-8 either. The first such byte of the line is the one
-// meant: `d` gets its column and a message that says what is wrong.
+// token"), which is on no line and is no UTF-8 either. The first such byte in code on the line
+// is the one meant: `d` gets its column and a message that says what is wrong.
 void PlaceNonAsciiToken(const std::vector<std::string>& source_lines, Diagnostic& d) {
     constexpr std::string_view kToken = "'\x80' : unexpected token";
     if (d.message.rfind(kToken, 0) != 0 || d.line <= 0 ||
@@ -906,17 +928,16 @@ void PlaceNonAsciiToken(const std::vector<std::string>& source_lines, Diagnostic
         return;
     }
     const std::string& text = source_lines[static_cast<std::size_t>(d.line) - 1];
-    const auto at = std::find_if(text.begin(), text.end(),
-                                 [](char c) { return static_cast<unsigned char>(c) >= 0x80; });
-    if (at == text.end()) {
+    const std::size_t at = FirstNonAsciiInCode(text);
+    if (at == std::string_view::npos) {
         return;
     }
-    d.column = static_cast<int>(at - text.begin()) + 1;
+    d.column = static_cast<int>(at) + 1;
     d.message = fmt::format(
             "a character outside GLSL ES's character set (byte 0x{:02X}, not ASCII): outside "
             "comments a shader may hold ASCII only (GLSL ES 1.00 and 3.00 section 3.1); remove "
             "it, or move it into a comment",
-            static_cast<unsigned char>(*at));
+            static_cast<unsigned char>(text[at]));
 }
 
 }  // namespace

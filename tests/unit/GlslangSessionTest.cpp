@@ -36,11 +36,12 @@ TEST(GlslangSessionTest, LogLinesBecomeDiagnosticsAtTheQuotedTokensColumn) {
 TEST(GlslangSessionTest, ACharacterPastAsciiInCodeIsPlacedAndNamed) {
     const std::string source =
             "#version 300 es\nprecision mediump float;\n// caf\xC3\xA9 is fine here\n"
-            "out vec4 c;\nvoid main() { float caf\xC3\xA9 = 1.0; c = vec4(1.0); }\n";
+            "out vec4 c;\nvoid main() { /* \xC3\xA9 */ float caf\xC3\xA9 = 1.0; c = vec4(1.0); }"
+            " // \xE2\x82\xAC\n";
     const StageParse parse = ParseStage(Input("a.frag", source, Stage::kFragment));
     EXPECT_FALSE(parse.ok);
     EXPECT_EQ(Formatted(parse.diagnostics),
-              "a.frag:5:24: error: a character outside GLSL ES's character set (byte 0xC3, not "
+              "a.frag:5:33: error: a character outside GLSL ES's character set (byte 0xC3, not "
               "ASCII): outside comments a shader may hold ASCII only (GLSL ES 1.00 and 3.00 "
               "section 3.1); remove it, or move it into a comment\n");
 }
