@@ -90,7 +90,7 @@ TEST(TimingCliTest, AProgressLogHoldsEveryStateWithTheFiguresBehindItsEta) {
         EXPECT_TRUE(state["parts"].contains("image_frames_left")) << state;
         EXPECT_TRUE(state["parts"].contains("own_end_seconds")) << state;
     }
-    EXPECT_EQ(records.back()["percent"], 100.0);
+    EXPECT_NEAR(records.back()["percent"].get<double>(), 100.0, 1e-9);
     EXPECT_EQ(records.back()["parts"]["seconds_left"], 0.0);
 }
 
