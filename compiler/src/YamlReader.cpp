@@ -82,14 +82,22 @@ std::optional<std::string> ExplicitTag(const std::string& tag) {
     return tag;
 }
 
-// The error for a node written with a tag. tidepool reads every value by its key's type, so a
-// tag would be ignored: `max_variants: !!str 16` would still be read as 16, and
-// `!include other.yaml` as the text "other.yaml".
-std::string TagError(const std::string& tag) {
-    return fmt::format(
-            "the YAML tag '{}' would be ignored: tidepool reads each value by its key's type, "
-            "and its files use no tags; remove it (to keep a value as text, quote it)",
-            tag);
+// Reports a node written with a tag at `mark`, once a document (`*reported`): tidepool reads
+// every value by its key's type, so a tag would be ignored: `max_variants: !!str 16` would still
+// be read as 16, and `!include other.yaml` as the text "other.yaml".
+void ReportTag(YamlReader& reader, const std::string& file, const YAML::Mark& mark,
+               const std::string& tag, bool* reported) {
+    const std::optional<std::string> written = ExplicitTag(tag);
+    if (!written || *reported) {
+        return;
+    }
+    reader.Diagnostics().push_back(MakeError(
+            file, mark.line + 1, mark.column + 1,
+            fmt::format("the YAML tag '{}' would be ignored: tidepool reads each value by its "
+                        "key's type, and its files use no tags; remove it (to keep a value as "
+                        "text, quote it)",
+                        *written)));
+    *reported = true;
 }
 
 // The error for a document past kMaxYamlExpandedNodes: through aliases, or written out (a
@@ -169,11 +177,7 @@ private:
     }
     // The first tagged node is reported, and the document refused.
     void Tagged(const YAML::Mark& mark, const std::string& tag) {
-        if (const std::optional<std::string> written = ExplicitTag(tag); written && !tagged_) {
-            reader_.Diagnostics().push_back(
-                    MakeError(file_, mark.line + 1, mark.column + 1, TagError(*written)));
-            tagged_ = true;
-        }
+        ReportTag(reader_, file_, mark, tag, &tagged_);
     }
     void Name(YAML::anchor_t anchor) {
         if (anchor != YAML::NullAnchor) {
@@ -274,13 +278,7 @@ public:
 
 private:
     void CheckTag(const YAML::Node& node) {
-        if (const std::optional<std::string> written = ExplicitTag(node.Tag());
-            written && !tagged_) {
-            const YAML::Mark mark = node.Mark();
-            reader_.Diagnostics().push_back(
-                    MakeError(file_, mark.line + 1, mark.column + 1, TagError(*written)));
-            tagged_ = true;
-        }
+        ReportTag(reader_, file_, node.Mark(), node.Tag(), &tagged_);
     }
     // A key's tag is checked before its repetition, as AliasChecker's events check them.
     void Visit(const YAML::Node& node, bool tag_checked = false) {
