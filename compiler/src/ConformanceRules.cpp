@@ -222,6 +222,78 @@ std::optional<PrecisionClash> MemberPrecisionClash(const glslang::TType& vertex,
     return std::nullopt;
 }
 
+// A type as a shader spells it: "vec3", "int[4]", "sampler2D", "struct Fog {float density, vec3
+// colour}" (members by type and name, so that two structs of one name can be told apart).
+std::string TypeText(const glslang::TType& type) {
+    std::string text;
+    if (type.isStruct()) {
+        text = fmt::format("{} {} {{",
+                           type.getBasicType() == glslang::EbtBlock ? "block" : "struct",
+                           type.getTypeName().c_str());
+        const char* separator = "";
+        for (const glslang::TTypeLoc& member : *type.getStruct()) {
+            text += fmt::format("{}{} {}", separator, TypeText(*member.type),
+                                member.type->getFieldName().c_str());
+            separator = ", ";
+        }
+        text += "}";
+    } else if (type.isMatrix()) {
+        text = type.getMatrixCols() == type.getMatrixRows()
+                       ? fmt::format("mat{}", type.getMatrixCols())
+                       : fmt::format("mat{}x{}", type.getMatrixCols(), type.getMatrixRows());
+    } else if (type.isVector()) {
+        const glslang::TBasicType basic = type.getBasicType();
+        const char* prefix = basic == glslang::EbtInt    ? "i"
+                             : basic == glslang::EbtUint ? "u"
+                             : basic == glslang::EbtBool ? "b"
+                                                         : "";
+        text = fmt::format("{}vec{}", prefix, type.getVectorSize());
+    } else {
+        text = type.getBasicTypeString().c_str();  // float, int, uint, bool, or the sampler's name
+    }
+    if (type.isArray()) {
+        for (int i = 0; i < type.getArraySizes()->getNumDims(); ++i) {
+            text += fmt::format("[{}]", type.getArraySizes()->getDimSize(i));
+        }
+    }
+    return text;
+}
+
+// Where two declarations of one interface variable first differ in type: `what` names the
+// variable or member ("fog.colour"), `here` is the fragment stage's type, `there` the vertex's.
+struct TypeClash {
+    std::string what;
+    std::string here;
+    std::string there;
+};
+
+std::optional<TypeClash> FirstTypeClash(const glslang::TType& vertex,
+                                        const glslang::TType& fragment, const std::string& what) {
+    if (vertex == fragment || vertex.isUnsizedArray() || fragment.isUnsizedArray()) {
+        return std::nullopt;  // an unsized array takes its size at link time: glslang decides
+    }
+    // Structs of one name, arrayness and member names: the clash is in a member.
+    if (vertex.isStruct() && fragment.isStruct() && vertex.sameArrayness(fragment) &&
+        vertex.getTypeName() == fragment.getTypeName() &&
+        vertex.getStruct()->size() == fragment.getStruct()->size()) {
+        const glslang::TTypeList& vertex_members = *vertex.getStruct();
+        const glslang::TTypeList& fragment_members = *fragment.getStruct();
+        bool same_names = true;
+        for (std::size_t i = 0; i < vertex_members.size(); ++i) {
+            same_names = same_names && vertex_members[i].type->getFieldName() ==
+                                               fragment_members[i].type->getFieldName();
+        }
+        for (std::size_t i = 0; same_names && i < vertex_members.size(); ++i) {
+            const glslang::TType& v = *vertex_members[i].type;
+            if (auto clash = FirstTypeClash(v, *fragment_members[i].type,
+                                            what + "." + v.getFieldName().c_str())) {
+                return clash;
+            }
+        }
+    }
+    return TypeClash{what, TypeText(fragment), TypeText(vertex)};
+}
+
 // How an interface variable is matched across stages: a block by its block name (GLSL ES 3.00
 // §4.3.7), anything else by its own name.
 std::string InterfaceKey(const glslang::TIntermSymbol& symbol) {
@@ -290,6 +362,9 @@ std::vector<Diagnostic> CheckStageConformance(const glslang::TIntermediate& stag
 
 std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex_stage,
                                              const LinkedStage& fragment_stage) {
+    constexpr std::string_view kUniformRule =
+            "a uniform declared in both stages must match in type and precision, members "
+            "included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 §4.3.5)";
     const glslang::TIntermediate& vertex = vertex_stage.intermediate;
     const glslang::TIntermediate& fragment = fragment_stage.intermediate;
     const std::string& vertex_file = vertex_stage.file;
@@ -316,55 +391,77 @@ std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex_stage,
         const std::string name = symbol->getName().c_str();
         if (type.getQualifier().storage == glslang::EvqUniform) {
             const auto other = vertex_uniforms.find(InterfaceKey(*symbol));
-            if (other == vertex_uniforms.end() || !(other->second->getType() == type)) {
-                continue;  // declared once, or a type clash glslang's own link reports
+            if (other == vertex_uniforms.end()) {
+                continue;  // declared once
             }
+            const glslang::TType& there = other->second->getType();
             const bool block = type.getBasicType() == glslang::EbtBlock;
             const std::string shown = block ? type.getTypeName().c_str() : name;
-            const auto clash = MemberPrecisionClash(other->second->getType(), type, shown);
+            if (const auto clash = FirstTypeClash(there, type, shown)) {
+                report(shown, fmt::format("uniform {}'{}' is {} here but {} in the vertex shader "
+                                          "{}; {}",
+                                          clash->what == shown ? "" : "member ", clash->what,
+                                          clash->here, clash->there, vertex_file, kUniformRule));
+                continue;
+            }
+            if (!type.isStruct() &&
+                there.getQualifier().precision != type.getQualifier().precision) {
+                report(shown, fmt::format("uniform '{}' is {} here but {} in the vertex shader {}; "
+                                          "{}",
+                                          shown, PrecisionName(type.getQualifier().precision),
+                                          PrecisionName(there.getQualifier().precision),
+                                          vertex_file, kUniformRule));
+                continue;
+            }
+            const auto clash = MemberPrecisionClash(there, type, shown);
             if (!clash) {
                 continue;
             }
             report(shown,
-                   fmt::format("uniform member '{}' is {} here but {} in the vertex shader {}; a "
-                               "uniform declared in both stages must match in type and "
-                               "precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 "
-                               "§4.3.5)",
+                   fmt::format("uniform member '{}' is {} here but {} in the vertex shader {}; {}",
                                clash->member, PrecisionName(clash->fragment),
-                               PrecisionName(clash->vertex), vertex_file));
-        } else if (type.getQualifier().storage == glslang::EvqVaryingIn &&
-                   fragment.getVersion() >= 300) {
-            const auto output = vertex_outputs.find(name);
-            if (output == vertex_outputs.end() ||
-                output->second->getType().getQualifier().flat == type.getQualifier().flat) {
-                continue;
-            }
-            report(name,
-                   fmt::format("input '{}' is {} here but {} in the vertex shader {}; the "
-                               "interpolation qualifiers of an output and its input must match "
-                               "(GLSL ES 3.00 §4.3.9)",
-                               name, InterpolationName(type.getQualifier()),
-                               InterpolationName(output->second->getType().getQualifier()),
-                               vertex_file));
-        } else if (type.getQualifier().storage == glslang::EvqVaryingIn &&
-                   fragment.getVersion() == 100) {
-            // GLSL ES 1.00 §4.6.4: "The invariance of varyings that are declared in both the
-            // vertex and fragment shaders must match." `#pragma STDGL invariant(all)` makes "all
-            // output variables" invariant (§4.6.1): the vertex shader's varyings, not the
-            // fragment shader's.
+                               PrecisionName(clash->vertex), vertex_file, kUniformRule));
+        } else if (type.getQualifier().storage == glslang::EvqVaryingIn) {
             const auto output = vertex_outputs.find(name);
             if (output == vertex_outputs.end()) {
-                continue;
+                continue;  // reported by CheckLinkRules when the fragment stage reads it
             }
-            const bool here = type.getQualifier().invariant;
-            const bool there = output->second->getType().getQualifier().invariant ||
-                               vertex_stage.invariance.all;
-            if (here != there) {
-                report(name, fmt::format("varying '{}' is {} here but {} in the vertex shader {}; "
-                                         "the invariance of a varying declared in both stages "
-                                         "must match (GLSL ES 1.00 §4.6.4)",
-                                         name, here ? "invariant" : "not invariant",
-                                         there ? "invariant" : "not invariant", vertex_file));
+            const glslang::TType& there = output->second->getType();
+            const bool es100 = fragment.getVersion() == 100;
+            if (const auto clash = FirstTypeClash(there, type, name)) {
+                report(name, fmt::format("{} {}'{}' is {} here but {} in the vertex shader {}; {}",
+                                         es100 ? "varying" : "input",
+                                         clash->what == name ? "" : "member ", clash->what,
+                                         clash->here, clash->there, vertex_file,
+                                         es100 ? "a varying declared in both stages must have "
+                                                 "the same type in both (GLSL ES 1.00 §4.3.5)"
+                                               : "an output and the input of the same name "
+                                                 "must have the same type (GLSL ES 3.00 "
+                                                 "§4.3.4)"));
+            } else if (!es100 && there.getQualifier().flat != type.getQualifier().flat) {
+                report(name,
+                       fmt::format("input '{}' is {} here but {} in the vertex shader {}; the "
+                                   "interpolation qualifiers of an output and its input must "
+                                   "match (GLSL ES 3.00 §4.3.9)",
+                                   name, InterpolationName(type.getQualifier()),
+                                   InterpolationName(there.getQualifier()), vertex_file));
+            } else if (es100) {
+                // GLSL ES 1.00 §4.6.4: "The invariance of varyings that are declared in both the
+                // vertex and fragment shaders must match." `#pragma STDGL invariant(all)` makes
+                // "all output variables" invariant (§4.6.1): the vertex shader's varyings, not
+                // the fragment shader's.
+                const bool here = type.getQualifier().invariant;
+                const bool invariant_there =
+                        there.getQualifier().invariant || vertex_stage.invariance.all;
+                if (here != invariant_there) {
+                    report(name,
+                           fmt::format("varying '{}' is {} here but {} in the vertex shader {}; "
+                                       "the invariance of a varying declared in both stages "
+                                       "must match (GLSL ES 1.00 §4.6.4)",
+                                       name, here ? "invariant" : "not invariant",
+                                       invariant_there ? "invariant" : "not invariant",
+                                       vertex_file));
+                }
             }
         }
     }

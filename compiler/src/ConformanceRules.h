@@ -67,14 +67,17 @@ struct LinkedStage {
     const InvarianceDeclarations& invariance;
 };
 
-/// Checks a linked vertex and fragment stage for mismatches glslang 12 lets through: a uniform
-/// declared in both stages whose struct or block members differ in precision (GLSL ES 1.00
-/// §4.5.3, 3.00 §4.3.5; glslang compares the precision of the top-level declaration only), and
-/// an output and input of the same name with different interpolation qualifiers (3.00 §4.3.9),
-/// and, in `#version 100`, a varying declared in both stages that is `invariant` in one only (the
-/// vertex shader's `#pragma STDGL invariant(all)` makes all its varyings invariant), or
-/// gl_FragCoord (gl_PointCoord) redeclared `invariant` while gl_Position (gl_PointSize) is not
-/// (1.00 §4.6.4). Errors are reported at the fragment stage's declaration.
+/// Checks a linked vertex and fragment stage for mismatches, each at the fragment stage's
+/// declaration. glslang 12's own link reports some of them too, but with no line and in pieces
+/// ("Types must match:"): a uniform declared in both stages whose type (members included) or
+/// top-level precision differs (GLSL ES 1.00 §4.5.3, 3.00 §4.3.5), and an output and input of the
+/// same name whose types differ (1.00 §4.3.5, 3.00 §4.3.4). The rest glslang 12 lets through: a
+/// uniform declared in both stages whose struct or block members differ in precision (glslang
+/// compares the precision of the top-level declaration only), an output and input of the same name
+/// with different interpolation qualifiers (3.00 §4.3.9), and, in `#version 100`, a varying
+/// declared in both stages that is `invariant` in one only (the vertex shader's `#pragma STDGL
+/// invariant(all)` makes all its varyings invariant), or gl_FragCoord (gl_PointCoord) redeclared
+/// `invariant` while gl_Position (gl_PointSize) is not (1.00 §4.6.4).
 std::vector<Diagnostic> CheckLinkConformance(const LinkedStage& vertex,
                                              const LinkedStage& fragment);
 

@@ -1,6 +1,7 @@
 #include "GlslangSession.h"
 
 #include <algorithm>
+#include <cctype>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -731,6 +732,29 @@ private:
 // Links the parsed stages `parses[i]` of `inputs[i]`. glslang keeps the uncalled functions
 // (EShMsgKeepUncalled; it reports the same errors either way), so a tree no link found an error
 // in is still the tree ParseStage made and may serve another link (ReusableForLink).
+// The variable or block a glslang link message is about, from the fragment side of its detail
+// (`fragment stage: " vec2 uv[2]"`, `fragment stage: k ""`, `fragment stage: Block: B, ...`);
+// "" when it names none.
+std::string NameInLinkMessage(std::string_view message) {
+    constexpr std::string_view kSide = "fragment stage: ";
+    const std::size_t at = message.rfind(kSide);
+    if (at == std::string_view::npos) {
+        return {};
+    }
+    std::string_view detail = message.substr(at + kSide.size());
+    if (detail.rfind("Block: ", 0) == 0) {
+        detail.remove_prefix(std::string_view("Block: ").size());
+    } else if (!detail.empty() && detail.front() == '"') {
+        // The declaration, quoted: the name is its last word, before any array size.
+        detail = detail.substr(1, detail.find('"', 1) - 1);
+        detail = detail.substr(0, detail.find('['));
+        detail = detail.substr(detail.find_last_of(' ') + 1);
+    }
+    auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+    const auto end = std::find_if_not(detail.begin(), detail.end(), is_word);
+    return std::string(detail.begin(), end);
+}
+
 LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
                 const std::vector<StageParse*>& parses) {
     LinkResult result;
@@ -800,6 +824,12 @@ LinkResult Link(const std::vector<const GlslangStageInput*>& inputs,
             d.message.find("vertex stage") != std::string::npos &&
             d.message.find("fragment") == std::string::npos) {
             d.file = inputs.front()->file;
+        }
+        // The rest, where the fragment stage declares what the message names.
+        if (d.line == 0 && inputs.size() == 2 && d.file == inputs.back()->file) {
+            if (const std::string name = NameInLinkMessage(d.message); !name.empty()) {
+                std::tie(d.line, d.column) = FirstMention(parses.back()->text, name);
+            }
         }
         result.diagnostics.push_back(std::move(d));
     }

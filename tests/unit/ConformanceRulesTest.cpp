@@ -143,6 +143,144 @@ INSTANTIATE_TEST_SUITE_P(
                          "void main() { gl_FragColor = vec4(fog.colour * fog.density, 1.0); }\n",
                          ""}));
 
+// GLSL ES 1.00 §4.5.3, 3.00 §4.3.5: a uniform in both stages has one type and one precision.
+// glslang 12's own link reports these with no line, in pieces ("Types must match:").
+INSTANTIATE_TEST_SUITE_P(
+        UniformTypes, ConformanceRulesTest,
+        ::testing::Values(
+                RuleCase{"a float in one stage, a vec3 in the other",
+                         "#version 100\n"
+                         "uniform vec3 tide;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position + tide.x; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform float tide;\n"
+                         "void main() { gl_FragColor = vec4(tide); }\n",
+                         "a.fsh:3:15: error: uniform 'tide' is float here but vec3 in the vertex "
+                         "shader a.vsh; a uniform declared in both stages must match in type and "
+                         "precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 "
+                         "§4.3.5)"},
+                RuleCase{"an int without a qualifier: highp in the vertex stage, mediump here",
+                         "#version 100\n"
+                         "uniform int steps;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * float(steps); }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform int steps;\n"
+                         "void main() { gl_FragColor = vec4(float(steps)); }\n",
+                         "a.fsh:3:13: error: uniform 'steps' is mediump here but highp in the "
+                         "vertex shader a.vsh; a uniform declared in both stages must match in "
+                         "type and precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES "
+                         "3.00 §4.3.5)"},
+                RuleCase{"a block member int in one stage, float in the other",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "uniform Sea { vec4 colour; float depth; } sea;\n"
+                         "void main() { gl_Position = position * sea.depth; }\n",
+                         "#version 300 es\n"
+                         "precision highp float;\n"
+                         "uniform Sea { vec4 colour; int depth; } sea;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = sea.colour * float(sea.depth); }\n",
+                         "a.fsh:3:9: error: uniform member 'Sea.depth' is int here but float in "
+                         "the vertex shader a.vsh; a uniform declared in both stages must match "
+                         "in type and precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES "
+                         "3.00 §4.3.5)"},
+                RuleCase{"two structs of one name with other members",
+                         "#version 100\n"
+                         "struct Fog { highp float density; };\n"
+                         "uniform Fog fog;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * fog.density; }\n",
+                         "#version 100\n"
+                         "precision highp float;\n"
+                         "struct Fog { float start; float end; };\n"
+                         "uniform Fog fog;\n"
+                         "void main() { gl_FragColor = vec4(fog.start + fog.end); }\n",
+                         "a.fsh:4:13: error: uniform 'fog' is struct Fog {float start, float end} "
+                         "here but struct Fog {float density} in the vertex shader a.vsh; a "
+                         "uniform declared in both stages must match in type and precision, "
+                         "members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 §4.3.5)"},
+                RuleCase{"the same uniforms, precisions written out, in both stages",
+                         "#version 100\n"
+                         "uniform mediump int steps;\n"
+                         "uniform highp vec3 tide;\n"
+                         "attribute vec4 position;\n"
+                         "void main() { gl_Position = position * float(steps) + tide.x; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "uniform int steps;\n"
+                         "uniform highp vec3 tide;\n"
+                         "void main() { gl_FragColor = vec4(tide, float(steps)); }\n",
+                         ""}));
+
+// GLSL ES 1.00 §4.3.5, 3.00 §4.3.4: an output and the input it feeds have one type.
+INSTANTIATE_TEST_SUITE_P(
+        VaryingTypes, ConformanceRulesTest,
+        ::testing::Values(
+                RuleCase{"a 1.00 varying vec3 written, vec2 read",
+                         "#version 100\n"
+                         "attribute vec4 position;\n"
+                         "varying vec3 uv;\n"
+                         "void main() { uv = position.xyz; gl_Position = position; }\n",
+                         "#version 100\n"
+                         "precision mediump float;\n"
+                         "varying vec2 uv;\n"
+                         "void main() { gl_FragColor = vec4(uv, 0.0, 1.0); }\n",
+                         "a.fsh:3:14: error: varying 'uv' is vec2 here but vec3 in the vertex "
+                         "shader a.vsh; a varying declared in both stages must have the same "
+                         "type in both (GLSL ES 1.00 §4.3.5)"},
+                RuleCase{
+                        "a 3.00 array of three written, of two read",
+                        "#version 300 es\n"
+                        "in vec4 position;\n"
+                        "out vec2 taps[3];\n"
+                        "void main() {\n"
+                        "    taps[0] = position.xy; taps[1] = position.yz; taps[2] = position.zw;\n"
+                        "    gl_Position = position;\n"
+                        "}\n",
+                        "#version 300 es\n"
+                        "precision mediump float;\n"
+                        "in vec2 taps[2];\n"
+                        "out vec4 colour;\n"
+                        "void main() { colour = vec4(taps[0], taps[1]); }\n",
+                        "a.fsh:3:9: error: input 'taps' is vec2[2] here but vec2[3] in the "
+                        "vertex shader a.vsh; an output and the input of the same name must "
+                        "have the same type (GLSL ES 3.00 §4.3.4)"},
+                RuleCase{"precision may differ: a highp output read as mediump",
+                         "#version 300 es\n"
+                         "in vec4 position;\n"
+                         "out highp vec2 uv;\n"
+                         "void main() { uv = position.xy; gl_Position = position; }\n",
+                         "#version 300 es\n"
+                         "precision mediump float;\n"
+                         "in vec2 uv;\n"
+                         "out vec4 colour;\n"
+                         "void main() { colour = vec4(uv, 0.0, 1.0); }\n",
+                         ""}));
+
+// What glslang 12's link finds and no rule above words is placed at the fragment stage's
+// declaration of the variable or block its message names.
+INSTANTIATE_TEST_SUITE_P(
+        GlslangLinkMessages, ConformanceRulesTest,
+        ::testing::Values(RuleCase{
+                "a block std140 in one stage, shared in the other",
+                "#version 300 es\n"
+                "in vec4 position;\n"
+                "layout(std140) uniform Sea { vec4 colour; } sea;\n"
+                "void main() { gl_Position = position + sea.colour; }\n",
+                "#version 300 es\n"
+                "precision highp float;\n"
+                "out vec4 colour;\n"
+                "layout(shared) uniform Sea { vec4 colour; } sea;\n"
+                "void main() { colour = sea.colour; }\n",
+                "a.fsh:4:24: error: Linking vertex and fragment stages: Layout packing qualifier "
+                "must match:; vertex stage: Block: Sea Instance: sea: \"layout( column_major "
+                "std140) uniform\"; fragment stage: Block: Sea Instance: sea: \"layout( "
+                "column_major shared) uniform\""}));
+
 // GLSL ES 3.00 §4.3.9: an output and the input of the same name interpolate the same way.
 INSTANTIATE_TEST_SUITE_P(
         Interpolation, ConformanceRulesTest,
@@ -396,8 +534,9 @@ INSTANTIATE_TEST_SUITE_P(
                          "precision mediump float;\n"
                          "varying float filter;\n"
                          "void main() { gl_FragColor = vec4(filter); }\n",
-                         "a.fsh: error: Linking vertex and fragment stages: Types must match:; "
-                         "vertex stage: \" vec2 filter\"; fragment stage: \" float filter\""}));
+                         "a.fsh:3:15: error: varying 'filter' is float here but vec2 in the "
+                         "vertex shader a.vsh; a varying declared in both stages must have the "
+                         "same type in both (GLSL ES 1.00 §4.3.5)"}));
 
 // GLSL ES 1.00 §4.6.4: the invariance of a varying declared in both stages matches; gl_FragCoord
 // and gl_PointCoord may be invariant only with gl_Position and gl_PointSize; never gl_FrontFacing.
@@ -834,8 +973,10 @@ INSTANTIATE_TEST_SUITE_P(
                          "uniform float scale;\n"
                          "out vec4 colour;\n"
                          "void main() { colour = vec4(1.0); }\n",
-                         "a.fsh: error: Linking vertex and fragment stages: Precision qualifiers "
-                         "must match:; vertex stage: scale \"\"; fragment stage: scale \"\""}));
+                         "a.fsh:3:15: error: uniform 'scale' is mediump here but highp in the "
+                         "vertex shader a.vsh; a uniform declared in both stages must match in "
+                         "type and precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES "
+                         "3.00 §4.3.5)"}));
 
 }  // namespace
 }  // namespace tidepool

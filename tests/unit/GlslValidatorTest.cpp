@@ -410,8 +410,14 @@ TEST(GlslValidatorTest, InterfaceMismatchIsCaughtOnlyAtLinkTime) {
     EXPECT_TRUE(report.stage_programs[1].valid);
     EXPECT_FALSE(report.verdicts[0].valid);
     ASSERT_FALSE(report.verdicts[0].diagnostics.empty());
-    EXPECT_NE(report.verdicts[0].diagnostics[0].message.find("Precision qualifiers must match"),
-              std::string::npos);
+    // At the fragment stage's declaration, in one message.
+    const Diagnostic& first = report.verdicts[0].diagnostics[0];
+    EXPECT_EQ(std::filesystem::path(first.file).filename(), "u.fsh");
+    EXPECT_EQ(first.line, 3);
+    EXPECT_EQ(first.column, 23);
+    EXPECT_EQ(first.message.rfind("uniform 'k' is mediump here but highp in the vertex shader", 0),
+              0U)
+            << first.message;
 }
 
 // The verdicts' names ("a.vert+b.frag") and validity, in order, with the folder left out.
@@ -927,13 +933,15 @@ INSTANTIATE_TEST_SUITE_P(
                               "tokens (a macro bomb); tidepool refuses shaders that large: write "
                               "repeated code as functions and loops rather than macros, or "
                               "split the shader"},
-                PlainFileCase{"uniform clash: glslang 12 calls the vertex side 'unknown stage'",
+                PlainFileCase{"uniform clash, at the fragment stage's declaration, in one message",
                               "#version 100\nuniform vec2 u;\nvoid main() { gl_Position = "
                               "vec4(u, 0.0, 1.0); }\n",
                               "#version 100\nprecision mediump float;\nuniform vec3 u;\nvoid "
                               "main() { gl_FragColor = vec4(u, 1.0); }\n",
-                              "a.fsh: error: Linking vertex and fragment stages: Types must "
-                              "match:"}));
+                              "a.fsh:3:14: error: uniform 'u' is vec3 here but vec2 in the vertex "
+                              "shader a.vsh; a uniform declared in both stages must match in type "
+                              "and precision, members included (GLSL ES 1.00 §4.5.3, GLSL ES 3.00 "
+                              "§4.3.5)"}));
 
 // glslang's preprocessor evaluates an `#if` one call deeper for each parenthesis and unary
 // operator: 60,000 of them crashed it on the usual 8 MiB stack ("internal compiler error: glslang

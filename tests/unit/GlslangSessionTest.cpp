@@ -142,7 +142,7 @@ TEST(GlslangSessionTest, LinkingChecksTheVaryingsBetweenTheStages) {
     EXPECT_TRUE(HasErrors(bad.diagnostics));
 }
 
-TEST(GlslangSessionTest, AParseServesAnotherLinkUntilALinkFindsAnErrorInIt) {
+TEST(GlslangSessionTest, AParseServesEveryLinkItIsGiven) {
     // (An input refers to its text, which must outlive it.)
     const std::string vertex = kColourVertex;
     const std::string matching = kMatchingFragment;
@@ -166,8 +166,12 @@ TEST(GlslangSessionTest, AParseServesAnotherLinkUntilALinkFindsAnErrorInIt) {
     EXPECT_FALSE(bad.ok);
     EXPECT_EQ(Formatted(bad.diagnostics), Formatted(fresh.diagnostics));
     EXPECT_TRUE(HasErrors(bad.diagnostics));
-    // glslang counted the mismatch in the vertex tree, which would fail every later link.
-    EXPECT_FALSE(ReusableForLink(vertex_parse));
+    // tidepool's rules found the mismatch before glslang's link, which would have counted it in
+    // the vertex tree and failed every later link of it: the parse still serves a good link.
+    ASSERT_TRUE(ReusableForLink(vertex_parse));
+    StageParse fourth = ParseStage(matching_input);
+    EXPECT_TRUE(LinkParsed({&vertex_input, &matching_input}, {&vertex_parse, &fourth}).ok);
+    // A tree glslang counted an error in serves no link.
     EXPECT_FALSE(ReusableForLink(ParseStage(Input("c.fsh", "void main() {", Stage::kFragment))));
 }
 

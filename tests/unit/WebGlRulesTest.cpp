@@ -568,7 +568,7 @@ INSTANTIATE_TEST_SUITE_P(
                           GlslTarget::kEs300, kVertex300WithStd140Block,
                           Fragment300("uniform Tide { highp vec4 level; };\n",
                                       "    colour = level;\n"),
-                          "a.fsh: error: Linking vertex and fragment stages: Layout packing "
+                          "a.fsh:5:9: error: Linking vertex and fragment stages: Layout packing "
                           "qualifier must match:; vertex stage: Block: Tide Instance: anon@0: "
                           "\"layout( column_major std140) uniform\"; fragment stage: Block: Tide "
                           "Instance: anon@0: \"layout( column_major shared) uniform\""}));
