@@ -179,6 +179,20 @@ std::string NormaliseOutPath(std::string path) {
     return normal.string();
 }
 
+bool CheckReportName(const std::string& name, const std::vector<std::string>& taken) {
+    const bool is_taken = std::find(taken.begin(), taken.end(), name) != taken.end();
+    if (name.empty() || name.find('/') != std::string::npos || name[0] == '.' || is_taken) {
+        std::string others;
+        for (const std::string& t : taken) {
+            others += (others.empty() ? " other than '" : "' and '") + t;
+        }
+        std::fprintf(stderr, "error: --name must be a plain folder name%s, not '%s'\n",
+                     others.empty() ? "" : (others + "'").c_str(), name.c_str());
+        return false;
+    }
+    return true;
+}
+
 bool CheckDefineOptions(const std::vector<std::string>& defines) {
     std::set<std::string> names;
     for (const std::string& define : defines) {

@@ -75,6 +75,11 @@ void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLi
 /// Registered as a CLI11 transform on every --out option.
 std::string NormaliseOutPath(std::string path);
 
+/// Checks a --name, the report folder made under --out: a plain folder name (no '/', not
+/// starting with '.', so never `..`) other than each of `taken`; prints why not and returns false
+/// otherwise.
+bool CheckReportName(const std::string& name, const std::vector<std::string>& taken = {});
+
 /// Checks the -D values of plain-file validation: each must be NAME or NAME=VALUE, NAME a define
 /// name config mode accepts (IsValidDefineName) and VALUE a single line; prints why not and
 /// returns false otherwise.

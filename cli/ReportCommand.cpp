@@ -50,6 +50,9 @@ int BuildAndWriteReport(const std::filesystem::path& manifest, const std::filesy
 namespace {
 
 int RunReport(const ReportCommandOptions& options) {
+    if (!CheckReportName(options.name)) {
+        return kExitUsage;
+    }
     return BuildAndWriteReport(options.manifest, options.results, options.name, options.out);
 }
 

@@ -56,12 +56,7 @@ bool ToRequest(const RunCommandOptions& options, pipeline::RunRequest* request) 
                      options.plan_resolution);
         return false;
     }
-    if (options.name.empty() || options.name.find('/') != std::string::npos ||
-        options.name == "manifest" || options.name == "render" || options.name[0] == '.') {
-        std::fprintf(stderr,
-                     "error: --name must be a plain folder name other than 'manifest' "
-                     "and 'render', not '%s'\n",
-                     options.name.c_str());
+    if (!CheckReportName(options.name, {"manifest", "render"})) {
         return false;
     }
     request->config = options.config;

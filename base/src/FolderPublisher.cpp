@@ -112,9 +112,31 @@ bool IsTidepoolOutput(const fs::path& folder) {
     return in && std::getline(in, line) && line == kOutputMarkerLine;
 }
 
+PublishError CheckFolderPath(const fs::path& folder) {
+    std::error_code ec;
+    for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
+        if (fs::exists(p, ec)) {
+            if (fs::is_directory(p, ec)) {
+                return {};
+            }
+            return {PublishFailure::kRefused,
+                    (p == folder ? "" : folder.string() + ": ") + p.string() +
+                            " is a file, not a folder; nothing was changed. Choose another --out "
+                            "folder."};
+        }
+        if (p == p.parent_path()) {
+            break;
+        }
+    }
+    return {};
+}
+
 PublishError CheckReplaceable(const fs::path& folder) {
     std::error_code ec;
     const fs::file_status status = fs::symlink_status(folder, ec);
+    if (ec == std::errc::not_a_directory) {
+        return CheckFolderPath(folder);  // a file where one of its folders belongs
+    }
     if (ec && ec != std::errc::no_such_file_or_directory) {
         return Io(folder.string() + ": cannot inspect: " + ec.message());
     }
@@ -179,8 +201,8 @@ std::unique_ptr<FolderPublisher> FolderPublisher::Begin(const fs::path& raw_targ
     if (error->Failed()) {
         return nullptr;
     }
-    std::error_code ec;
     const fs::path parent = ParentOf(target);
+    std::error_code ec;
     fs::path created;
     for (fs::path p = parent; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) {
         created = p;

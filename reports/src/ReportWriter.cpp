@@ -465,6 +465,11 @@ namespace {
 WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesystem::path& out_dir) {
     WrittenReport written;
     written.folder = out_dir / model.options.name;
+    if (const base::PublishError check = base::CheckFolderPath(out_dir); check.Failed()) {
+        written.error = check.message;
+        written.refused = true;
+        return written;
+    }
     std::error_code ec;
     std::filesystem::create_directories(out_dir, ec);
     if (ec) {

@@ -194,6 +194,31 @@ TEST_F(ReportCliTest, ReportRebuildsFromSavedFilesWithoutRendering) {
     EXPECT_NE(r.out.find("reflection_refraction"), std::string::npos) << r.out;
 }
 
+// --name is one folder under --out, and --out a folder: anything else is exit 2, nothing written.
+TEST_F(ReportCliTest, ReportRefusesANameOutsideOutAndAnOutThatIsAFile) {
+    ASSERT_EQ(run_->exit_code, 0) << run_->err;
+    TempDir dir;
+    const std::filesystem::path file = dir.Write("afile", "x");
+    const std::string inputs = "report --manifest '" + (Out() / "manifest/manifest.json").string() +
+                               "' --results '" + (Out() / "render/results.json").string() + "'";
+    const std::string out = " --out '" + (dir.Path() / "out").string() + "'";
+    for (const char* name : {"../escaped", "a/b", ".hidden"}) {
+        SCOPED_TRACE(name);
+        const CommandResult r =
+                RunTidepoolInSourceRoot(inputs + out + " --name " + std::string(name));
+        EXPECT_EQ(r.exit_code, 2) << r.err;
+        EXPECT_EQ(r.err.rfind("error: --name must be a plain folder name, not '", 0), 0U) << r.err;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "escaped"));
+    const CommandResult r = RunTidepoolInSourceRoot(inputs + " --out '" + file.string() + "'");
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "error: " + file.string() +
+                             " is a file, not a folder; nothing was changed. Choose another --out "
+                             "folder.\n");
+    EXPECT_EQ(ReadText(file), "x");
+}
+
 TEST_F(ReportCliTest, MissingImageExitsTwoNamingTheFileAndWritesNothing) {
     ASSERT_EQ(run_->exit_code, 0) << run_->err;
     TempDir copy;

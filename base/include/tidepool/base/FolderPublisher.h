@@ -33,6 +33,10 @@ bool IsTidepoolOutput(const std::filesystem::path& folder);
 /// empty folder, or carries the marker. Refusals name the folder and the fix.
 PublishError CheckReplaceable(const std::filesystem::path& folder);
 
+/// Says whether `folder` can be made: the nearest of it and its parents that exists is a folder.
+/// A file there is refused (kRefused), naming it and the fix.
+PublishError CheckFolderPath(const std::filesystem::path& folder);
+
 /// Writes the marker file into `folder`, naming `writer` (for example "tidepool render").
 std::string WriteOutputMarker(const std::filesystem::path& folder, const std::string& writer);
 
