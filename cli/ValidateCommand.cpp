@@ -160,6 +160,7 @@ int RunValidate(ValidateCommandOptions options) {
     }
     options.files.device_limits = options.matrix.device_limits;
     options.files.cache = options.matrix.cache;
+    options.files.report_file = options.matrix.report_file = options.output_file;
     if (!options.files.files.empty()) {
         const pipeline::ValidateFilesResult result = pipeline::ValidateFiles(options.files);
         const int code = PrintOutcome(result.outcome);

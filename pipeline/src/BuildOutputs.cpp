@@ -8,6 +8,9 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <string_view>
+
+#include <fmt/format.h>
 
 namespace tidepool::pipeline {
 
@@ -27,12 +30,12 @@ std::vector<std::filesystem::path> FilesRead(const VariantConfig& config) {
 
 namespace {
 
-// A path as one word of a Make rule: Make and Ninja's depfile parser both take "\ " for a space,
-// "\#" for '#' and "$$" for '$'.
+// A path as one word of a Make rule, for a path DepfileRefusal accepts: Make and Ninja's depfile
+// parser both take "\\ " for a space, "\\#" for '#', "\\:" for ':' and "$$" for '$'.
 std::string DepfileWord(const std::filesystem::path& path) {
     std::string word;
     for (const char c : path.string()) {
-        if (c == ' ' || c == '#') {
+        if (c == ' ' || c == '#' || c == ':') {
             word += '\\';
         } else if (c == '$') {
             word += '$';
@@ -55,6 +58,33 @@ bool HoldsExactly(const std::filesystem::path& path, const std::string& content)
 
 }  // namespace
 
+std::string DepfileRefusal(const std::filesystem::path& path) {
+    const std::string text = path.string();
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        // Letters, digits, bytes of UTF-8, the four DepfileWord escapes, and punctuation that
+        // both tools take as part of a name (tried with GNU Make 4.3 and Ninja 1.11).
+        if (std::isalnum(byte) || byte >= 0x80 ||
+            std::string_view(" #:$/._-+,@!~%{}()").find(c) != std::string_view::npos) {
+            continue;
+        }
+        const std::string shown = c == '\n'   ? "a newline"
+                                  : c == '\t' ? "a tab"
+                                  : c == '\r' ? "a carriage return"
+                                  : std::isprint(byte) != 0
+                                          ? fmt::format("'{}'", c)
+                                          : fmt::format("the byte 0x{:02x}", byte);
+        return fmt::format(
+                "{:?} has {} in its name, which Make or Ninja would read as "
+                "something else in a depfile",
+                text, shown);
+    }
+    if (text.back() == ')' && text.find('(') != std::string::npos) {
+        return text + " ends in a parenthesis, which Make reads as a member of an archive";
+    }
+    return {};
+}
+
 std::string DepfileText(const std::filesystem::path& target,
                         const std::vector<std::filesystem::path>& dependencies) {
     std::string text = DepfileWord(target) + ":";
@@ -64,10 +94,28 @@ std::string DepfileText(const std::filesystem::path& target,
     return text + "\n";
 }
 
+bool CheckDepfileNames(const std::filesystem::path& target,
+                       const std::vector<std::filesystem::path>& dependencies, Outcome* outcome) {
+    std::vector<std::filesystem::path> names{DepfileTarget(target)};
+    names.insert(names.end(), dependencies.begin(), dependencies.end());
+    for (const std::filesystem::path& name : names) {
+        if (const std::string why = DepfileRefusal(name); !why.empty()) {
+            outcome->Fail(Status::kUsage,
+                          fmt::format("--depfile: {}; rename it, or leave out --depfile", why));
+            return false;
+        }
+    }
+    return true;
+}
+
+std::filesystem::path DepfileTarget(const std::filesystem::path& target) {
+    return std::filesystem::absolute(target).lexically_normal();
+}
+
 bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
-                  const VariantConfig& config, Outcome* outcome, std::string* written) {
-    const std::string text =
-            DepfileText(std::filesystem::absolute(target).lexically_normal(), FilesRead(config));
+                  const std::vector<std::filesystem::path>& dependencies, Outcome* outcome,
+                  std::string* written) {
+    const std::string text = DepfileText(DepfileTarget(target), dependencies);
     if (written != nullptr) {
         *written = text;
     }

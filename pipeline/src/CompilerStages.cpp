@@ -66,8 +66,16 @@ ExpandResult Expand(const ExpandOptions& options) {
     if (options.out.empty()) {
         return result;
     }
-    // Everything goes to a private staging folder, removed by the publisher unless published.
     Outcome& outcome = result.matrix.outcome;
+    const std::filesystem::path manifest_path =
+            std::filesystem::path(options.out) / "manifest.json";
+    const std::vector<std::filesystem::path> files_read = FilesRead(config);
+    if (!options.depfile.empty() &&
+        (!CheckPlannedOutputs({{"--depfile", options.depfile}}, files_read, &outcome) ||
+         !CheckDepfileNames(manifest_path, files_read, &outcome))) {
+        return result;
+    }
+    // Everything goes to a private staging folder, removed by the publisher unless published.
     const std::unique_ptr<base::FolderPublisher> publisher =
             BeginPublishing(options.out, "tidepool expand", &outcome);
     if (!publisher ||
@@ -78,8 +86,7 @@ ExpandResult Expand(const ExpandOptions& options) {
         return result;
     }
     if (!options.depfile.empty()) {
-        WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json", config,
-                     &outcome);
+        WriteDepfile(options.depfile, manifest_path, files_read, &outcome);
     }
     return result;
 }
@@ -110,6 +117,29 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     const VariantConfig& config = *result.matrix.config;
     const std::vector<Variant>& variants = result.matrix.expansion.variants;
     // Refused before the validation's work, not after it.
+    const std::filesystem::path manifest_path =
+            std::filesystem::path(options.out) / "manifest.json";
+    std::vector<PlannedOutput> outputs;
+    if (!options.out.empty()) {
+        outputs.push_back({"--out", manifest_path});
+        if (!options.depfile.empty()) {
+            outputs.push_back({"--depfile", options.depfile});
+        }
+    }
+    if (!options.report_file.empty()) {
+        outputs.push_back({"--output-file", options.report_file});
+    }
+    // The depfile names what the narrowed configuration reads (another program's shaders do
+    // not change this one's outputs) and the --limits file.
+    std::vector<std::filesystem::path> dependencies = FilesRead(config);
+    if (!options.device_limits.empty()) {
+        dependencies.push_back(result.files_read.back());
+    }
+    if (!CheckPlannedOutputs(outputs, result.files_read, &outcome) ||
+        (!options.out.empty() && !options.depfile.empty() &&
+         !CheckDepfileNames(manifest_path, dependencies, &outcome))) {
+        return result;
+    }
     if (!options.out.empty()) {
         if (Outcome check = WriteManifest(options.out, "", true); check.Stopped()) {
             outcome.Add(check.diagnostics);
@@ -150,9 +180,8 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
             outcome.status = write.status;
             return result;
         }
-        if (!options.depfile.empty() &&
-            !WriteDepfile(options.depfile, std::filesystem::path(options.out) / "manifest.json",
-                          config, &outcome, &result.depfile_text.emplace())) {
+        if (!options.depfile.empty() && !WriteDepfile(options.depfile, manifest_path, dependencies,
+                                                      &outcome, &result.depfile_text.emplace())) {
             return result;
         }
     }
@@ -193,6 +222,15 @@ ValidateFilesResult ValidateFiles(const ValidateFilesOptions& options) {
     std::optional<DeviceLimits> limits;
     if (!LoadDeviceLimits(options.device_limits, &limits, &outcome)) {
         return result;
+    }
+    if (!options.report_file.empty()) {
+        std::vector<std::filesystem::path> inputs(options.files.begin(), options.files.end());
+        if (!options.device_limits.empty()) {
+            inputs.emplace_back(options.device_limits);
+        }
+        if (!CheckPlannedOutputs({{"--output-file", options.report_file}}, inputs, &outcome)) {
+            return result;
+        }
     }
     ShaderFileOptions file_options;
     file_options.target = options.target;

@@ -68,6 +68,112 @@ Outcome WriteManifest(const std::filesystem::path& folder, const std::string& te
                         "manifest", text, check_only);
 }
 
+namespace {
+
+// Whether `a` and `b` name one file: the same file when both exist (links included), else the
+// same path once the links of its existing part are followed.
+bool SameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
+    std::error_code ec;
+    if (std::filesystem::exists(a, ec) && std::filesystem::exists(b, ec)) {
+        return std::filesystem::equivalent(a, b, ec) && !ec;
+    }
+    const std::filesystem::path canonical_a = std::filesystem::weakly_canonical(a, ec);
+    if (ec) {
+        return false;
+    }
+    const std::filesystem::path canonical_b = std::filesystem::weakly_canonical(b, ec);
+    return !ec && canonical_a == canonical_b;
+}
+
+// Whether writing `path` creates `folder` (or uses it): `folder` is one of `path`'s folders,
+// once the links of their existing parts are followed.
+bool IsFolderOf(const std::filesystem::path& folder, const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::path outer = std::filesystem::weakly_canonical(folder, ec);
+    if (ec) {
+        return false;
+    }
+    const std::filesystem::path inner = std::filesystem::weakly_canonical(path, ec).parent_path();
+    if (ec) {
+        return false;
+    }
+    auto o = outer.begin();
+    auto i = inner.begin();
+    for (; o != outer.end() && i != inner.end() && *o == *i; ++o, ++i) {
+    }
+    return o == outer.end();
+}
+
+// Why `path` cannot be written as a file ("" when it can): it is a folder, or a file stands
+// where one of its folders belongs.
+std::string NotAFilePath(const std::filesystem::path& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) {
+        return path.string() + " is a folder; give the path of a file";
+    }
+    for (std::filesystem::path up = path.parent_path(); !up.empty() && up != up.parent_path();
+         up = up.parent_path()) {
+        if (std::filesystem::exists(up, ec)) {
+            return std::filesystem::is_directory(up, ec)
+                           ? std::string()
+                           : fmt::format("{}: {} is a file, not a folder; choose another path",
+                                         path.string(), up.string());
+        }
+    }
+    return {};
+}
+
+// Whether `path` is a device, a pipe or a socket: written as a stream, never replaced.
+bool IsStream(const std::filesystem::path& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    return !ec && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status) &&
+           !std::filesystem::is_directory(status);
+}
+
+}  // namespace
+
+bool CheckPlannedOutputs(const std::vector<PlannedOutput>& outputs,
+                         const std::vector<std::filesystem::path>& inputs, Outcome* outcome) {
+    for (std::size_t i = 0; i < outputs.size(); ++i) {
+        const PlannedOutput& output = outputs[i];
+        if (const std::string why = NotAFilePath(output.path); !why.empty()) {
+            outcome->Fail(Status::kUsage, fmt::format("{}: {}", output.flag, why));
+            return false;
+        }
+        if (IsStream(output.path)) {
+            continue;
+        }
+        for (const std::filesystem::path& input : inputs) {
+            if (SameFile(output.path, input)) {
+                outcome->Fail(Status::kUsage,
+                              fmt::format("{}: {} is a file this command reads; writing it "
+                                          "would replace it: choose another path",
+                                          output.flag, output.path.string()));
+                return false;
+            }
+        }
+        for (std::size_t j = 0; j < outputs.size(); ++j) {
+            if (j < i && SameFile(output.path, outputs[j].path)) {
+                outcome->Fail(Status::kUsage,
+                              fmt::format("{}: {} is also where {} writes; give each output "
+                                          "its own path",
+                                          output.flag, output.path.string(), outputs[j].flag));
+                return false;
+            }
+            if (j != i && IsFolderOf(output.path, outputs[j].path)) {
+                outcome->Fail(Status::kUsage,
+                              fmt::format("{}: {} is the folder {} writes {} into; give the "
+                                          "path of a file beside it",
+                                          output.flag, output.path.string(), outputs[j].flag,
+                                          outputs[j].path.filename().string()));
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 bool WriteFile(const std::filesystem::path& path, const std::string& text, Outcome* outcome,
                const std::string& prefix) {
     if (const std::string error = base::WriteFileAtomically(path, text); !error.empty()) {

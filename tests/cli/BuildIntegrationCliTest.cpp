@@ -124,6 +124,71 @@ TEST_F(DepfileCliTest, ExpandWritesADepfileToo) {
     EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "s.fsh"}));
 }
 
+// Checked before any work, so nothing is written: not the depfile, not the manifest.
+TEST_F(DepfileCliTest, OutputsThatWouldReplaceAnInputOrEachOtherAreRefused) {
+    const std::string config = "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n";
+    dir_.Write("v.yaml", config);
+    struct Case {
+        const char* args;
+        const char* error;
+    };
+    for (const Case& c :
+         {Case{"validate --config v.yaml --out o --depfile v.yaml",
+               "error: --depfile: v.yaml is a file this command reads; writing it would replace "
+               "it: choose another path\n"},
+          Case{"expand --config v.yaml --out o --depfile s.vsh",
+               "error: --depfile: s.vsh is a file this command reads; writing it would replace "
+               "it: choose another path\n"},
+          Case{"validate --config v.yaml --json --output-file s.fsh",
+               "error: --output-file: s.fsh is a file this command reads; writing it would "
+               "replace it: choose another path\n"},
+          Case{"validate s.vsh s.fsh --json --output-file s.vsh",
+               "error: --output-file: s.vsh is a file this command reads; writing it would "
+               "replace it: choose another path\n"},
+          Case{"validate --config v.yaml --out o --depfile o/manifest.json",
+               "error: --depfile: o/manifest.json is also where --out writes; give each output "
+               "its own path\n"},
+          Case{"validate --config v.yaml --out o --depfile o",
+               "error: --depfile: o is the folder --out writes manifest.json into; give the path "
+               "of a file beside it\n"},
+          Case{"validate --config v.yaml --out o --depfile s.vsh/o.d",
+               "error: --depfile: s.vsh/o.d: s.vsh is a file, not a folder; choose another "
+               "path\n"}}) {
+        SCOPED_TRACE(c.args);
+        const CommandResult r = RunTidepool(c.args, dir_.Path());
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_EQ(r.err, c.error);
+        EXPECT_EQ(ReadText(dir_.Path() / "v.yaml"), config);
+        EXPECT_EQ(ReadText(dir_.Path() / "s.vsh"), kIntegrationVertex);
+        EXPECT_EQ(ReadText(dir_.Path() / "s.fsh"), kIntegrationFragment);
+        EXPECT_FALSE(fs::exists(dir_.Path() / "o"));
+    }
+}
+
+TEST_F(DepfileCliTest, AShaderNameADepfileCannotHoldIsAUsageErrorBeforeAnyWork) {
+    dir_.Write("t\tb.vsh", kIntegrationVertex);
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: \"t\\tb.vsh\"\n    fragment: s.fsh\n");
+    const CommandResult r =
+            RunTidepool("validate --config v.yaml --out o --depfile o.d", dir_.Path());
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_EQ(r.err, "error: --depfile: \"" + (dir_.Path() / "t\\tb.vsh").string() +
+                             "\" has a tab in its name, which Make or Ninja would read as "
+                             "something else in a depfile; rename it, or leave out --depfile\n");
+    EXPECT_FALSE(fs::exists(dir_.Path() / "o"));
+    EXPECT_FALSE(fs::exists(dir_.Path() / "o.d"));
+    // Without a depfile the same configuration validates.
+    EXPECT_EQ(RunTidepool("validate --config v.yaml --out o", dir_.Path()).exit_code, 0);
+}
+
+TEST_F(DepfileCliTest, TheLimitsFileIsADependencyToo) {
+    dir_.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    dir_.Write("device.txt", "MaxDrawBuffers 1\n");
+    const CommandResult r = RunTidepool(
+            "validate --config v.yaml --limits device.txt --out o --depfile o.d", dir_.Path());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(ReadText(dir_.Path() / "o.d"), Depfile({"v.yaml", "s.vsh", "s.fsh", "device.txt"}));
+}
+
 // examples/shader_variants, copied to a clean folder and built with one CMake generator.
 class ExampleProjectTest : public ::testing::TestWithParam<const char*> {
 protected:

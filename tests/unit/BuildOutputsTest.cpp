@@ -16,9 +16,38 @@ using testing::Formatted;
 using testing::ReadText;
 using testing::SmallMatrix;
 
-TEST(BuildOutputsTest, DepfileEscapesSpacesHashesAndDollars) {
-    EXPECT_EQ(DepfileText("/o/m.json", {"/a b/c#d.yaml", "/x$y.vsh"}),
-              "/o/m.json: \\\n  /a\\ b/c\\#d.yaml \\\n  /x$$y.vsh\n");
+TEST(BuildOutputsTest, DepfileEscapesSpacesHashesColonsAndDollars) {
+    EXPECT_EQ(DepfileText("/o/m.json", {"/a b/c#d.yaml", "/x$y.vsh", "/c:d.fsh"}),
+              "/o/m.json: \\\n  /a\\ b/c\\#d.yaml \\\n  /x$$y.vsh \\\n  /c\\:d.fsh\n");
+}
+
+// Each refused name was read wrongly by GNU Make 4.3 or Ninja 1.11 however it was escaped: a
+// newline ends the rule, a tab or '\\' stays in Ninja's name, ';' starts Make's recipe, '|' its
+// order-only list, '*' and '[' are Make's wildcards, '=' makes an assignment, a quote or '&' splits
+// Ninja's name, and "a(b)" is Make's archive member.
+TEST(BuildOutputsTest, DepfileRefusesNamesMakeOrNinjaWouldMisread) {
+    for (const char* name : {"/s/n\nl.vsh", "/s/t\tb.vsh", "/s/e\\ f.vsh", "/s/a;b.vsh",
+                             "/s/a|b.vsh", "/s/a*.vsh", "/s/a[1].vsh", "/s/a=b.vsh", "/s/it's.vsh",
+                             "/s/a\"b.vsh", "/s/a&b.vsh", "/s/lib(a.vsh)"}) {
+        EXPECT_NE(DepfileRefusal(name), "") << name;
+    }
+    for (const char* name : {"/s/a b#c:d$e.vsh", "/s/wave (copy)/a.vsh", "/s/a+b,c@d!e~f%g.vsh",
+                             "/s/{x}-y_z.vsh", "/s/m\xc3\xa9r.vsh"}) {
+        EXPECT_EQ(DepfileRefusal(name), "") << name;
+    }
+    EXPECT_EQ(DepfileRefusal("/s/t\tb.vsh"),
+              "\"/s/t\\tb.vsh\" has a tab in its name, which Make or Ninja would read as "
+              "something else in a depfile");
+}
+
+TEST(BuildOutputsTest, DepfileNamesAreCheckedBeforeAnyWorkAsAUsageError) {
+    Outcome outcome;
+    EXPECT_TRUE(CheckDepfileNames("/o/manifest.json", {"/s/a b.vsh"}, &outcome));
+    EXPECT_FALSE(CheckDepfileNames("/o/manifest.json", {"/s/a.vsh", "/s/a;b.fsh"}, &outcome));
+    EXPECT_EQ(outcome.status, Status::kUsage);
+    EXPECT_EQ(Formatted(outcome.diagnostics),
+              "error: --depfile: \"/s/a;b.fsh\" has ';' in its name, which Make or Ninja would "
+              "read as something else in a depfile; rename it, or leave out --depfile\n");
 }
 
 TEST(BuildOutputsTest, FilesReadNamesTheConfigurationAndEachShaderOnce) {

@@ -46,6 +46,71 @@ TEST(OutputFilesTest, AFailedWriteIsAnEnvironmentErrorWithItsPrefix) {
             << Formatted(outcome.diagnostics);
 }
 
+// What CheckPlannedOutputs says of `outputs` against the inputs, "" when it accepts them.
+std::string PlannedOutputsError(const std::vector<PlannedOutput>& outputs,
+                                const std::vector<std::filesystem::path>& inputs) {
+    Outcome outcome;
+    const bool ok = CheckPlannedOutputs(outputs, inputs, &outcome);
+    EXPECT_EQ(ok, outcome.status == Status::kOk);
+    EXPECT_EQ(ok, outcome.diagnostics.empty());
+    return ok ? "" : Formatted(outcome.diagnostics);
+}
+
+TEST(OutputFilesTest, AnOutputThatWouldReplaceAnInputOrAnotherOutputIsRefused) {
+    const TempDir dir;
+    const std::filesystem::path config = dir.Write("v.yaml", "x");
+    const std::filesystem::path shader = dir.Write("s/a.fsh", "x");
+    std::filesystem::create_symlink(config, dir.Path() / "link.yaml");
+    const std::filesystem::path manifest = dir.Path() / "o" / "manifest.json";
+    const std::vector<std::filesystem::path> inputs{config, shader};
+    EXPECT_EQ(PlannedOutputsError({{"--out", manifest}, {"--depfile", dir.Path() / "o.d"}}, inputs),
+              "");
+    EXPECT_EQ(PlannedOutputsError({{"--depfile", config}}, inputs),
+              "error: --depfile: " + config.string() +
+                      " is a file this command reads; writing it would replace it: choose "
+                      "another path\n");
+    // The same file by another path: through a link, or with "..".
+    EXPECT_NE(PlannedOutputsError({{"--depfile", dir.Path() / "link.yaml"}}, inputs), "");
+    EXPECT_NE(PlannedOutputsError({{"--output-file", dir.Path() / "o" / ".." / "s" / "a.fsh"}},
+                                  inputs),
+              "");
+    EXPECT_EQ(PlannedOutputsError({{"--out", manifest}, {"--depfile", manifest}}, inputs),
+              "error: --depfile: " + manifest.string() +
+                      " is also where --out writes; give each output its own path\n");
+    EXPECT_EQ(PlannedOutputsError({{"--out", manifest}, {"--depfile", dir.Path() / "o"}}, inputs),
+              "error: --depfile: " + (dir.Path() / "o").string() +
+                      " is the folder --out writes manifest.json into; give the path of a file "
+                      "beside it\n");
+    // A stream is written as one, not replaced: two outputs may share /dev/null.
+    EXPECT_EQ(PlannedOutputsError({{"--depfile", "/dev/null"}, {"--output-file", "/dev/null"}},
+                                  inputs),
+              "");
+}
+
+TEST(OutputFilesTest, AnOutputThatIsAFolderOrLiesBelowAFileIsRefused) {
+    const TempDir dir;
+    const std::filesystem::path file = dir.Write("file", "x");
+    EXPECT_EQ(
+            PlannedOutputsError({{"--depfile", dir.Path()}}, {}),
+            "error: --depfile: " + dir.Path().string() + " is a folder; give the path of a file\n");
+    EXPECT_EQ(PlannedOutputsError({{"--output-file", file / "sub" / "x.json"}}, {}),
+              "error: --output-file: " + (file / "sub" / "x.json").string() + ": " + file.string() +
+                      " is a file, not a folder; choose another path\n");
+    EXPECT_EQ(PlannedOutputsError({{"--output-file", dir.Path() / "new" / "x.json"}}, {}), "");
+}
+
+TEST(OutputFilesTest, PublishingBelowAFileIsRefusedAsUsage) {
+    const TempDir dir;
+    const std::filesystem::path file = dir.Write("file", "x");
+    Outcome outcome;
+    EXPECT_EQ(BeginPublishing(file / "out", "tidepool test", &outcome), nullptr);
+    EXPECT_EQ(outcome.status, Status::kUsage);
+    EXPECT_EQ(Formatted(outcome.diagnostics),
+              "error: " + (file / "out").string() + ": " + file.string() +
+                      " is a file, not a folder; nothing was changed. Choose another --out "
+                      "folder.\n");
+}
+
 TEST(OutputFilesTest, PublishingIntoAFolderOfSomeoneElsesIsRefusedAsUsage) {
     const TempDir dir;
     dir.Write("out/precious.txt", "x");

@@ -21,16 +21,31 @@ namespace tidepool::pipeline {
 /// and fragment shader, once each, as absolute paths.
 std::vector<std::filesystem::path> FilesRead(const VariantConfig& config);
 
-/// A Make-syntax depfile (Ninja and Make both read it): `target: dep dep ...`, spaces, '#' and
-/// '$' escaped as both tools expect.
+/// Why `path` cannot be named in a depfile that both Make and Ninja read as that path ("" when
+/// it can): a character either tool splits a name at or gives a meaning to (a tab, a newline,
+/// '\\', ';', '|', '*', '=', quotes, ...), or a name Make takes for an archive member.
+std::string DepfileRefusal(const std::filesystem::path& path);
+
+/// A Make-syntax depfile (Ninja and Make both read it): `target: dep dep ...`, spaces, '#', ':'
+/// and '$' escaped as both tools expect. Every path must pass DepfileRefusal.
 std::string DepfileText(const std::filesystem::path& target,
                         const std::vector<std::filesystem::path>& dependencies);
 
-/// Writes DepfileText(target, FilesRead(config)) to `depfile` atomically (and, when `written`
-/// is given, the text there); on failure records "error: --depfile: why" (kEnvironment) in
-/// `outcome` and returns false.
+/// The depfile's target for the output `target`: its absolute, normal path.
+std::filesystem::path DepfileTarget(const std::filesystem::path& target);
+
+/// Checks, before any work, that a depfile can name `target` and every dependency; otherwise
+/// records "error: --depfile: why; rename it, or leave out --depfile" (kUsage) in `outcome` and
+/// returns false.
+bool CheckDepfileNames(const std::filesystem::path& target,
+                       const std::vector<std::filesystem::path>& dependencies, Outcome* outcome);
+
+/// Writes DepfileText(DepfileTarget(target), dependencies) to `depfile` atomically (and, when
+/// `written` is given, the text there); on failure records "error: --depfile: why"
+/// (kEnvironment) in `outcome` and returns false.
 bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::path& target,
-                  const VariantConfig& config, Outcome* outcome, std::string* written = nullptr);
+                  const std::vector<std::filesystem::path>& dependencies, Outcome* outcome,
+                  std::string* written = nullptr);
 
 /// Where a variant's driver-ready stage source lives below an output folder:
 /// `<target>/<program>/<variant id, made a safe file name>.vert|.frag`.

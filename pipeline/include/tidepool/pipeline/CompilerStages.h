@@ -53,6 +53,7 @@ struct ValidateOptions {
     bool sources = false;          // with `out`: driver-ready sources too
     std::string depfile;           // with `out`: a depfile; "" for none
     bool manifest_wanted = false;  // build the manifest even without `out` (to print it)
+    std::string report_file;       // where the caller will write the report; checked only
 };
 
 /// What `validate` found: the matrix, glslang's report, and the manifest (built when written or
@@ -87,6 +88,7 @@ struct ValidateFilesOptions {
     std::string device_limits;         // --limits FILE; "" for none
     std::optional<GlslTarget> target;  // WebGL rules on top of GLSL ES
     CacheChoice cache;
+    std::string report_file;  // where the caller will write the report; checked only
 };
 
 /// What `validate FILE...` found; the outcome is kInvalid when a file has errors.

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace tidepool::pipeline {
 
@@ -35,6 +36,20 @@ Outcome WriteOwnJson(const std::filesystem::path& folder, const std::string& fil
 /// WriteOwnJson for `folder`/manifest.json (schema stagefiles::kManifestSchemaName).
 Outcome WriteManifest(const std::filesystem::path& folder, const std::string& text,
                       bool check_only = false);
+
+/// A file a command is about to write, and the flag that named it ("--depfile").
+struct PlannedOutput {
+    std::string flag;
+    std::filesystem::path path;
+};
+
+/// Checks, before any work, the files a command will write: none may be a folder, lie below a
+/// file, be the same file as one of `inputs` (the files the command reads) or as another output,
+/// or be a folder another output is written into. Otherwise records why, naming the flag and the
+/// fix (kUsage), in `outcome` and returns false. A device or pipe (`--output-file /dev/stdout`) is
+/// written as a stream and not compared.
+bool CheckPlannedOutputs(const std::vector<PlannedOutput>& outputs,
+                         const std::vector<std::filesystem::path>& inputs, Outcome* outcome);
 
 /// Writes `text` to `path` atomically; on failure records "error: PREFIXwhy" (kEnvironment) in
 /// `outcome` and returns false.
