@@ -25,9 +25,18 @@ namespace tidepool::stagefiles {
 /// wrong type, or the first required one that is absent, is kept as the problem, and every later
 /// read does nothing, so a parser reads straight through and checks once at the end. A number
 /// may be null: JSON has no NaN, so writers write NaN as null, read back as NaN (an integer
-/// keeps its value). Never throws.
+/// keeps its value). Every number is also held to what its writers can give, or the first
+/// that is not is the problem (kBadValue): an integer is whole, fits its type and is a count,
+/// so at least 0 (but a "..._saved" difference); a duration (any field or map whose name ends
+/// in "_ms" or "_seconds", and its items) is at least 0 and at most kLongestDuration. Never
+/// throws.
 class FieldReader {
 public:
+    /// The longest duration a stage file holds, in its unit: no frame, pass or run tidepool
+    /// times takes 3,600,000 ms (an hour) or seconds (41 days). Times past it would overflow
+    /// the ratios the report works out of them.
+    static constexpr double kLongestDuration = 3.6e6;
+
     bool Ok() const { return failure_ == ReadFailure::kNone; }
     ReadFailure Failure() const { return failure_; }
     /// "'path' has the wrong type (expected T, found U)" or "'path' is missing"; "" when Ok.
@@ -134,8 +143,12 @@ private:
     // Records "wrong type" for `value` at `path` unless `ok`; returns `ok` and Ok() both.
     bool Expect(bool ok, const nlohmann::json& value, const std::string& path,
                 std::string_view expected);
-    // A number's value, or NaN for null; false (and the problem recorded) for anything else.
+    // A number's value, or NaN for null; false (and the problem recorded) for anything else,
+    // a duration out of its range included.
     bool Number(const nlohmann::json& value, const std::string& path, double* out);
+    // An integer's value into `out` (null keeps it), checked as the class comment says.
+    template <typename T>
+    void Integer(const nlohmann::json& value, const std::string& path, T* out);
 
     ReadFailure failure_ = ReadFailure::kNone;
     std::string problem_;

@@ -113,6 +113,53 @@ TEST(FieldReaderTest, AFixedSizeArrayOfAnotherLengthIsAWrongType) {
     EXPECT_EQ(r.Problem(), "'eye' has the wrong type (expected 3 items, found array)");
 }
 
+// The problem FieldReader records reading `text`'s "v" into a T ("" when none).
+template <typename T>
+std::string ProblemReading(const std::string& key, const std::string& text) {
+    FieldReader r;
+    T value{};
+    r.Field(json::parse(text), "c", key, &value);
+    EXPECT_EQ(r.Ok(), r.Failure() == ReadFailure::kNone);
+    EXPECT_TRUE(r.Ok() || r.Failure() == ReadFailure::kBadValue) << r.Problem();
+    return r.Problem();
+}
+
+TEST(FieldReaderTest, AnIntegerIsAWholeCountThatFitsItsType) {
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": 3})"), "");
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": 3.0})"), "");
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": -3})"),
+              "'c.count' is -3, which is not a count (a whole number from 0)");
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": 2.5})"),
+              "'c.count' is 2.5, which is not a count (a whole number from 0)");
+    // Past the type: reading it would be undefined behaviour, not a large count.
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": 1e30})"),
+              "'c.count' is 1e+30, which is not a count (a whole number from 0)");
+    EXPECT_EQ(ProblemReading<int>("count", R"({"count": 2147483648})"),
+              "'c.count' is 2147483648, which is not a count (a whole number from 0)");
+    EXPECT_EQ(ProblemReading<long long>("count", R"({"count": 3000000000})"), "");
+    // A difference may be negative.
+    EXPECT_EQ(ProblemReading<int>("passes_saved", R"({"passes_saved": -2})"), "");
+}
+
+TEST(FieldReaderTest, ADurationIsFromZeroToAnHour) {
+    EXPECT_EQ(ProblemReading<double>("median_ms", R"({"median_ms": 0})"), "");
+    EXPECT_EQ(ProblemReading<double>("median_ms", R"({"median_ms": 3600000})"), "");
+    EXPECT_EQ(ProblemReading<double>("median_ms", R"({"median_ms": null})"), "");
+    EXPECT_EQ(ProblemReading<double>("median_ms", R"({"median_ms": -5.0})"),
+              "'c.median_ms' is -5.0, which is not a duration: from 0 to 3600000");
+    EXPECT_EQ(ProblemReading<double>("wall_seconds", R"({"wall_seconds": 1e308})"),
+              "'c.wall_seconds' is 1e+308, which is not a duration: from 0 to 3600000");
+    // Items of a list, and values of a map, named for durations are durations too.
+    EXPECT_EQ(ProblemReading<std::vector<std::vector<double>>>("samples_ms",
+                                                               R"({"samples_ms": [[1, -1]]})"),
+              "'c.samples_ms[0][1]' is -1, which is not a duration: from 0 to 3600000");
+    EXPECT_EQ((ProblemReading<std::map<std::string, double, std::less<>>>(
+                      "pass_ms", R"({"pass_ms": {"reflection": 4e6}})")),
+              "'c.pass_ms.reflection' is 4000000.0, which is not a duration: from 0 to 3600000");
+    // Other numbers may be negative.
+    EXPECT_EQ(ProblemReading<double>("change_percent", R"({"change_percent": -30})"), "");
+}
+
 TEST(FieldReaderTest, FailKeepsOnlyTheFirstProblem) {
     FieldReader r;
     r.Fail(ReadFailure::kForeign, "first");

@@ -30,6 +30,7 @@ enum class ReadFailure {
     kForeign,       // JSON of another schema or version: not this stage's file
     kMissingField,  // of this schema, but a field the reader needs is absent
     kWrongType,     // of this schema, but a field has the wrong JSON type: a damaged stage file
+    kBadValue,      // of this schema, but a number no writer gives: a damaged stage file
 };
 
 /// A stage file as read: the value, or why not.
