@@ -901,9 +901,35 @@ int ColumnOfToken(const std::string& message, const std::vector<std::string>& so
     return at == std::string::npos ? 0 : static_cast<int>(at) + 1;
 }
 
-// Whether `source` has a `#line` directive whose line number is past 2^31 - 1, which glslang's
-// count wraps to a negative one.
-bool SetsALineCountPast32Bits(std::string_view source) {
+// Whether 1-based line `line` of `lines` is an `#extension` directive.
+bool IsExtensionDirective(const std::vector<std::string>& lines, int line) {
+    if (line <= 0 || static_cast<std::size_t>(line) > lines.size()) {
+        return false;
+    }
+    const std::string_view text = TrimView(lines[static_cast<std::size_t>(line) - 1]);
+    return !text.empty() && text.front() == '#' &&
+           TrimView(text.substr(1)).rfind("extension", 0) == 0;
+}
+
+// Mends glslang's message `d` about an `#extension` directive; false when it is to be dropped.
+// glslang reads past the end of a directive that stops early (`#extension` alone is reported on
+// the next line), and after an error in a directive it adds "extra tokens -- expected newline"
+// for tokens the line does not have.
+bool PlaceExtensionMessage(const std::vector<std::string>& lines,
+                           const std::vector<Diagnostic>& earlier, Diagnostic& d) {
+    if (!IsExtensionDirective(lines, d.line) && IsExtensionDirective(lines, d.line - 1)) {
+        --d.line;
+    }
+    return d.message.find("extra tokens -- expected newline") == std::string::npos ||
+           std::none_of(earlier.begin(), earlier.end(), [&](const Diagnostic& e) {
+               return e.line == d.line && e.file == d.file &&
+                      e.message.rfind("'#extension' : ", 0) == 0;
+           });
+}
+
+// The line numbers `source`'s `#line` directives give, as written: the word after "#line".
+std::vector<std::string_view> LineDirectiveNumbers(std::string_view source) {
+    std::vector<std::string_view> numbers;
     for (std::size_t at = 0; at < source.size();) {
         const std::size_t end = std::min(source.find('\n', at), source.size());
         std::string_view line = TrimView(source.substr(at, end - at));
@@ -916,14 +942,28 @@ bool SetsALineCountPast32Bits(std::string_view source) {
             continue;
         }
         line = TrimView(line.substr(4));
-        const std::size_t digits = std::min(line.find_first_not_of("0123456789"), line.size());
-        constexpr std::string_view kLargest = "2147483647";
-        if (digits > kLargest.size() ||
-            (digits == kLargest.size() && line.substr(0, digits) > kLargest)) {
-            return true;
-        }
+        numbers.push_back(line.substr(0, std::min(line.find_first_of(" \t"), line.size())));
     }
-    return false;
+    return numbers;
+}
+
+// Whether `source` has a `#line` directive whose line number is past 2^31 - 1, which glslang's
+// count wraps to a negative one.
+bool SetsALineCountPast32Bits(std::string_view source) {
+    const std::vector<std::string_view> numbers = LineDirectiveNumbers(source);
+    return std::any_of(numbers.begin(), numbers.end(), [](std::string_view number) {
+        const std::size_t digits = std::min(number.find_first_not_of("0123456789"), number.size());
+        constexpr std::string_view kLargest = "2147483647";
+        return digits > kLargest.size() ||
+               (digits == kLargest.size() && number.substr(0, digits) > kLargest);
+    });
+}
+
+// Whether `source` has a `#line` directive with a negative line number.
+bool SetsANegativeLineCount(std::string_view source) {
+    const std::vector<std::string_view> numbers = LineDirectiveNumbers(source);
+    return std::any_of(numbers.begin(), numbers.end(),
+                       [](std::string_view number) { return number.rfind('-', 0) == 0; });
 }
 
 // Where in `line` the first byte past ASCII outside the comments that start on it lies; npos
@@ -1040,10 +1080,16 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
                         "at an unknown line (a '#line' directive set the count past "
                         "2147483647 and glslang wrapped it to {}; use smaller line numbers): ",
                         line_part);
-            } else if (numeric && wrapped) {
+            } else if (numeric && wrapped && SetsANegativeLineCount(source)) {
                 d.message = fmt::format(
                         "at an unknown line (a '#line' directive set the count to {}; use line "
                         "numbers from 1 to 2147483647): ",
+                        line_part);
+            } else if (numeric && wrapped) {
+                d.message = fmt::format(
+                        "at an unknown line (a '#line' directive set the count so near "
+                        "2147483647 that a later line passed it, and glslang wrapped it to {}; "
+                        "use smaller line numbers): ",
                         line_part);
             }
         }
@@ -1059,6 +1105,10 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
         }
         if (!source_lines) {
             source_lines = SplitLines(source);
+        }
+        if (d.message.rfind("'#extension' : ", 0) == 0 &&
+            !PlaceExtensionMessage(*source_lines, diagnostics, d)) {
+            continue;
         }
         d.column = ColumnOfToken(d.message, *source_lines, d.line);
         PlaceNonAsciiToken(*source_lines, d);

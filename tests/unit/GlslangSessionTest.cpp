@@ -65,6 +65,45 @@ TEST(GlslangSessionTest, ANegativeLineSetByALineDirectiveIsNotSaidToHaveWrapped)
               "line numbers from 1 to 2147483647): 'zz' : undeclared identifier\n");
 }
 
+// `#line 2147483647` is a line number the user may write; a later line passes the limit.
+TEST(GlslangSessionTest, ALineWrappedByLinesAfterAHighLineDirectiveIsSaidToBeUnknown) {
+    const std::string source = "#version 100\n#line 2147483647\nvoid main() {}\noops;\n";
+    const StageParse parse = ParseStage(Input("a.fsh", source, Stage::kFragment));
+    EXPECT_FALSE(parse.ok);
+    EXPECT_EQ(Formatted(parse.diagnostics).rfind(
+                      "a.fsh: error: at an unknown line (a '#line' directive set the count so "
+                      "near 2147483647 that a later line passed it, and glslang wrapped it to "
+                      "-2147483648; use smaller line numbers): ",
+                      0),
+              0U)
+            << Formatted(parse.diagnostics);
+}
+
+// glslang added "extra tokens" after each of these, on lines that have none, and put the bare
+// directive's message on the line after it.
+TEST(GlslangSessionTest, AnExtensionDirectiveErrorIsOneMessageOnItsOwnLine) {
+    struct Case {
+        const char* directive;
+        const char* expected;
+    };
+    for (const Case& c :
+         {Case{"#extension GL_FOO_bar : require",
+               "a.fsh:2:1: error: '#extension' : extension not supported: GL_FOO_bar\n"},
+          Case{"#extension GL_OES_standard_derivatives : bogus",
+               "a.fsh:2:1: error: '#extension' : behavior not supported: bogus\n"},
+          Case{"#extension", "a.fsh:2:1: error: '#extension' : extension name not specified\n"},
+          // Tokens that are there are still reported.
+          Case{"#extension GL_OES_standard_derivatives : enable foo",
+               "a.fsh:2:1: error: '#extension' : extra tokens -- expected newline\n"}}) {
+        const std::string source = std::string("#version 100\n") + c.directive +
+                                   "\nprecision mediump float;\n"
+                                   "void main() { gl_FragColor = vec4(1.0); }\n";
+        const StageParse parse = ParseStage(Input("a.fsh", source, Stage::kFragment));
+        EXPECT_FALSE(parse.ok) << c.directive;
+        EXPECT_EQ(Formatted(parse.diagnostics), c.expected) << c.directive;
+    }
+}
+
 TEST(GlslangSessionTest, ContinuationLinesJoinTheirMessageAndUnplacedMessagesKeepLineZero) {
     const std::string log =
             "ERROR: Linking fragment stage: Types must match:\n"
