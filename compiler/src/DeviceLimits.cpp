@@ -127,7 +127,8 @@ DeviceLimitsRead ParseDeviceLimits(std::string_view text, const std::string& pat
 }
 
 DeviceLimitsRead ReadDeviceLimits(const std::string& path) {
-    const TextFileRead file = ReadTextFile(path);
+    TextFileRead file = ReadTextFile(path);
+    DropByteOrderMark(&file.text);
     if (!file.ok) {
         DeviceLimitsRead read;
         read.diagnostics.push_back(

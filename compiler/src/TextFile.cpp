@@ -61,11 +61,15 @@ TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_b
     return read;
 }
 
+void DropByteOrderMark(std::string* text) {
+    if (text->rfind("\xEF\xBB\xBF", 0) == 0) {
+        text->erase(0, 3);
+    }
+}
+
 TextFileRead ReadShaderFile(const std::filesystem::path& path) {
     TextFileRead read = ReadTextFile(path, kMaxShaderFileBytes);
-    if (read.text.rfind("\xEF\xBB\xBF", 0) == 0) {
-        read.text.erase(0, 3);
-    }
+    DropByteOrderMark(&read.text);
     return read;
 }
 

@@ -2,8 +2,10 @@
 
 #include "tidepool/base/SampleStatistics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <set>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -324,6 +326,21 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
                     "length",
                     results_path.string(), i);
             return out;
+        }
+        // A pair's time is a thread's CPU time or a wall time: never 0 nor missing. The row
+        // would read "failed" in a report that otherwise looks whole.
+        for (const auto& [name, times] : {std::pair{"baseline_ms", &c.baseline_ms},
+                                          std::pair{"candidate_ms", &c.candidate_ms}}) {
+            const auto bad = std::find_if(times->begin(), times->end(),
+                                          [](double t) { return !(t > 0 && std::isfinite(t)); });
+            if (bad != times->end()) {
+                out.error = fmt::format(
+                        "{}: 'comparisons[{}].{}[{}]' is {}, which is not a pair's time (above "
+                        "0 ms)",
+                        results_path.string(), i, name, bad - times->begin(),
+                        std::isnan(*bad) ? "null" : fmt::format("{}", *bad));
+                return out;
+            }
         }
         inputs.comparisons.push_back(std::move(c));
     }

@@ -99,6 +99,16 @@ TEST(DeviceLimitsTest, AFileThatCannotBeReadIsOneErrorNamingIt) {
     EXPECT_NE(read.diagnostics[0].message.find("cannot read the limits file"), std::string::npos);
 }
 
+// An editor's unseen byte-order mark was read as part of the first name ("unknown limit
+// '\xEF\xBB\xBFMaxDrawBuffers'; did you mean 'MaxDrawBuffers'?").
+TEST(DeviceLimitsTest, AByteOrderMarkBeforeTheFirstNameIsDropped) {
+    TempDir dir;
+    const std::string path = dir.Write("phone.conf", "\xEF\xBB\xBFMaxDrawBuffers 4\n").string();
+    const DeviceLimitsRead read = ReadDeviceLimits(path);
+    ASSERT_TRUE(read.ok) << Errors(read);
+    EXPECT_EQ(read.limits.Text(), "MaxDrawBuffers 4\n");
+}
+
 // A fragment shader with 20 uniform vectors: more than the 16 every ES 2.0 device has (GLSL ES
 // 1.00 §7.4), fewer than the 64 the device below reports.
 constexpr const char* kTwentyUniformVectors =

@@ -62,6 +62,31 @@ TEST(ReportInputsTest, ForeignSchemaIsAnErrorNamingTheFile) {
     EXPECT_EQ(loaded.error, run.results.string() + ": schema is not 'tidepool.render-results'");
 }
 
+// A pair's time of 0 or null (NaN) is no measurement: the row would read "failed" in a report
+// that exits 0 and looks whole.
+TEST(ReportInputsTest, APairTimeThatIsZeroOrMissingIsAnErrorNamingIt) {
+    TempDir dir;
+    const FakeRun run = WriteFakeRun(dir, WhitepaperConfigurations());
+    nlohmann::json results = nlohmann::json::parse(ReadText(run.results));
+    const std::string id = results["configurations"][0]["id"];
+    results["comparisons"] = nlohmann::json::array({{{"label", "row"},
+                                                     {"baseline", id},
+                                                     {"candidate", id},
+                                                     {"baseline_ms", {2.0, 2.1}},
+                                                     {"candidate_ms", {1.9, 2.0}}}});
+    dir.Write("render/results.json", results.dump());
+    EXPECT_TRUE(LoadReportInputs(run.manifest, run.results).inputs);
+    for (const nlohmann::json& bad : {nlohmann::json(0.0), nlohmann::json(nullptr)}) {
+        results["comparisons"][0]["candidate_ms"][1] = bad;
+        dir.Write("render/results.json", results.dump());
+        const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
+        EXPECT_FALSE(loaded.inputs);
+        EXPECT_EQ(loaded.error, run.results.string() + ": 'comparisons[0].candidate_ms[1]' is " +
+                                        (bad.is_null() ? "null" : "0") +
+                                        ", which is not a pair's time (above 0 ms)");
+    }
+}
+
 // Every stage file carries its version under "version"; results.json once said
 // "schema_version", and old runs still report.
 TEST(ReportInputsTest, ResultsWithTheOldVersionKeyStillLoadAndAWrongVersionIsNamed) {

@@ -24,6 +24,10 @@ TextFileRead ReadTextFile(const std::filesystem::path& path, std::uint64_t max_b
 /// can refuse it (a 50 MB file took 3.35 GB).
 inline constexpr std::uint64_t kMaxShaderFileBytes = std::uint64_t{4} << 20;
 
+/// Drops a UTF-8 byte-order mark from the start of `text`, where an editor may have written it
+/// unseen; it sits on line 1 before any newline, so line numbers stay right.
+void DropByteOrderMark(std::string* text);
+
 /// ReadTextFile for a shader, at most kMaxShaderFileBytes: a UTF-8 byte-order mark at the start is
 /// dropped, as GL drivers and glslangValidator accept it; it sits on line 1 before any newline,
 /// so line numbers stay right.
