@@ -385,6 +385,60 @@ SourceLocation LocationOf(const std::string& file, const YAML::Mark& mark) {
                           mark.column >= 0 ? mark.column + 1 : 0};
 }
 
+// The place of byte `offset` of `text`: 1-based line and column, columns counting characters
+// as FindInvalidUtf8's do (UTF-8 continuation bytes are none).
+SourceLocation LocationAt(const std::string& file, std::string_view text, std::size_t offset) {
+    const std::string_view before = text.substr(0, offset);
+    const std::size_t line_start = before.rfind('\n') + 1;  // npos + 1 is 0
+    const auto column =
+            std::count_if(before.begin() + static_cast<long>(line_start), before.end(),
+                          [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; });
+    return SourceLocation{file,
+                          1 + static_cast<int>(std::count(before.begin(), before.end(), '\n')),
+                          1 + static_cast<int>(column)};
+}
+
+// Whether a scalar may start at `i` of `text`: first on its line, or after '[', '{', ',', ':'
+// or '-' and blanks (a quote inside a plain scalar, as in "it's", starts nothing).
+bool StartsAScalar(std::string_view text, std::size_t i) {
+    while (i > 0 && (text[i - 1] == ' ' || text[i - 1] == '\t')) {
+        --i;
+    }
+    return i == 0 || std::string_view("\n[{,:-").find(text[i - 1]) != std::string_view::npos;
+}
+
+// Where the `depth`-th unclosed '[' or '{' of `text` opens, outside quoted scalars and comments;
+// none when the brackets never nest that deep (the nesting is then of indentation, or mixed).
+std::optional<std::size_t> OffsetOfFlowDepth(std::string_view text, int depth) {
+    int open = 0;
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        if ((c == '"' || c == '\'') && StartsAScalar(text, i)) {
+            // Past the quoted scalar: in double quotes a backslash escapes the next character, in
+            // single quotes '' is a quote.
+            for (++i; i < text.size(); ++i) {
+                if (c == '"' && text[i] == '\\') {
+                    ++i;
+                } else if (text[i] == c && c == '\'' && i + 1 < text.size() && text[i + 1] == c) {
+                    ++i;
+                } else if (text[i] == c) {
+                    break;
+                }
+            }
+        } else if (c == '#' &&
+                   (i == 0 || text[i - 1] == ' ' || text[i - 1] == '\t' || text[i - 1] == '\n')) {
+            i = std::min(text.find('\n', i), text.size());
+        } else if (c == '[' || c == '{') {
+            if (++open == depth) {
+                return i;
+            }
+        } else if ((c == ']' || c == '}') && open > 0) {
+            --open;
+        }
+    }
+    return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
@@ -394,15 +448,7 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
         return std::nullopt;
     }
     if (const std::size_t nul = text.find('\0'); nul != std::string_view::npos) {
-        const std::string_view before = text.substr(0, nul);
-        const std::size_t line_start = before.rfind('\n') + 1;  // npos + 1 is 0
-        // Columns count characters, as FindInvalidUtf8's do: UTF-8 continuation bytes are none.
-        const auto column = std::count_if(
-                before.begin() + static_cast<long>(line_start), before.end(),
-                [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; });
-        Error(SourceLocation{file_,
-                             1 + static_cast<int>(std::count(before.begin(), before.end(), '\n')),
-                             1 + static_cast<int>(column)},
+        Error(LocationAt(file_, text, nul),
               "a NUL byte, which YAML text may not hold: remove it (a file saved as UTF-16 has "
               "one in every other byte; save it as UTF-8)");
         return std::nullopt;
@@ -437,8 +483,10 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
         }
         return YAML::Load(owned);
     } catch (const YAML::DeepRecursion& e) {
-        // yaml-cpp's own words for it are "bad file".
-        Error(LocationOf(file_, e.mark),
+        // yaml-cpp's own words for it are "bad file"; its mark for '[' nesting is where its
+        // scanner had read to, the end of all the brackets.
+        const std::optional<std::size_t> opening = OffsetOfFlowDepth(text, e.depth());
+        Error(opening ? LocationAt(file_, text, *opening) : LocationOf(file_, e.mark),
               fmt::format("the YAML nests {} levels deep here, past what yaml-cpp reads, where a "
                           "configuration needs a few: look for an unclosed '[' or '{{', or "
                           "indentation that keeps growing",

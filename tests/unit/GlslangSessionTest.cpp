@@ -70,12 +70,13 @@ TEST(GlslangSessionTest, ALineWrappedByLinesAfterAHighLineDirectiveIsSaidToBeUnk
     const std::string source = "#version 100\n#line 2147483647\nvoid main() {}\noops;\n";
     const StageParse parse = ParseStage(Input("a.fsh", source, Stage::kFragment));
     EXPECT_FALSE(parse.ok);
-    EXPECT_EQ(Formatted(parse.diagnostics).rfind(
-                      "a.fsh: error: at an unknown line (a '#line' directive set the count so "
-                      "near 2147483647 that a later line passed it, and glslang wrapped it to "
-                      "-2147483648; use smaller line numbers): ",
-                      0),
-              0U)
+    EXPECT_EQ(
+            Formatted(parse.diagnostics)
+                    .rfind("a.fsh: error: at an unknown line (a '#line' directive set the count so "
+                           "near 2147483647 that a later line passed it, and glslang wrapped it to "
+                           "-2147483648; use smaller line numbers): ",
+                           0),
+            0U)
             << Formatted(parse.diagnostics);
 }
 
