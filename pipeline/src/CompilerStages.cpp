@@ -45,6 +45,19 @@ LoadedMatrix LoadProgram(const std::string& config, const MatrixLimits& limits,
     return loaded;
 }
 
+// `diagnostics` about a configuration's shaders, each file named as the file system finds it from
+// the working directory (a program names its shaders relative to the configuration's folder),
+// so that a terminal, an IDE or a build log opens it. The manifest and SARIF keep their own.
+std::vector<Diagnostic> SeenFromHere(const VariantConfig& config,
+                                     std::vector<Diagnostic> diagnostics) {
+    for (Diagnostic& d : diagnostics) {
+        if (!d.file.empty()) {
+            d.file = config.Resolve(d.file).lexically_normal().string();
+        }
+    }
+    return diagnostics;
+}
+
 // Appends the cache's warning, if any, to `outcome`.
 void WarnAboutCache(const base::ContentCache* cache, Outcome* outcome) {
     if (const std::optional<Diagnostic> warning = CacheWarning(cache)) {
@@ -157,9 +170,9 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     validation_options.static_costs = options.manifest_wanted || !options.out.empty();
     result.report = ValidateVariants(config, variants, validation_options);
     WarnAboutCache(cache.get(), &outcome);
-    outcome.Add(result.report.diagnostics);
+    outcome.Add(SeenFromHere(config, result.report.diagnostics));
     for (const VariantVerdict& verdict : result.report.verdicts) {
-        outcome.Add(verdict.diagnostics);
+        outcome.Add(SeenFromHere(config, verdict.diagnostics));
     }
     // Built only when printed or written: it costs as much as a validation the cache answers.
     if (options.manifest_wanted || !options.out.empty()) {
@@ -268,7 +281,7 @@ StatsResult MeasureStaticCosts(const StatsOptions& options) {
         const StageProgram* vs = programs[program->vertex_path + "|" + verdict.vertex_hash];
         const StageProgram* fs = programs[program->fragment_path + "|" + verdict.fragment_hash];
         if (!verdict.valid || vs == nullptr || fs == nullptr) {
-            outcome.Add(verdict.diagnostics);
+            outcome.Add(SeenFromHere(config, verdict.diagnostics));
             outcome.status = Status::kInvalid;
             continue;
         }

@@ -86,6 +86,27 @@ TEST_F(CliTest, ShaderErrorExitsOneWithGccStyleDiagnosticAndVariant) {
     EXPECT_EQ(r.out.find("error:"), std::string::npos) << r.out;
 }
 
+// A program names its shaders relative to the configuration's folder; a diagnostic names the
+// file as it is found from where tidepool runs, so a terminal, an IDE or a build log opens it.
+TEST_F(CliTest, ShaderDiagnosticsOfAConfigurationElsewhereNameThePathFromHere) {
+    dir_.Write("sub/v.yaml",
+               "programs:\n  p:\n    vertex: ../s.vsh\n    fragment: ../s.fsh\n"
+               "    features: [B]\n");
+    const CommandResult r = RunTidepool("validate --config sub/v.yaml", dir_.Path());
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    EXPECT_EQ(r.err.rfind("s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]\n", 0), 0U)
+            << r.err;
+    dir_.Write("sub/s.fsh", ReadText(dir_.Path() / "s.fsh"));
+    dir_.Write("sub/s.vsh", kVertex);
+    dir_.Write("sub/v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "    features: [B]\n");
+    const CommandResult nested = RunTidepool("validate --config sub/v.yaml", dir_.Path());
+    EXPECT_EQ(nested.err.rfind("sub/s.fsh:5:23: error: 'oops' : undeclared identifier [p:B]\n", 0),
+              0U)
+            << nested.err;
+}
+
 TEST_F(CliTest, ConfigurationErrorExitsTwoAndNamesFileLineColumn) {
     dir_.Write("v.yaml",
                "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n    colour: 1\n");
