@@ -318,6 +318,34 @@ TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
     }
 }
 
+// Before, a bad scene was found beside the render, minutes in, and counted as a plan that missed
+// its target (exit 1); a missing scenes folder was exit 3 after the render.
+TEST_F(ReportCliTest, RunReadsEverySceneBeforeAnyWork) {
+    TempDir dir;
+    dir.Write("v.yaml", "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    dir.Write("s.vsh", "#version 100\nattribute vec4 p;\nvoid main() { gl_Position = p; }\n");
+    dir.Write("s.fsh",
+              "#version 100\nprecision mediump float;\nvoid main() { gl_FragColor = vec4(1.0); "
+              "}\n");
+    const std::string command = "run --config '" + (dir.Path() / "v.yaml").string() + "' --out '" +
+                                (dir.Path() / "out").string() + "'";
+    CommandResult r = RunTidepoolInSourceRoot(command);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err, "error: plans: no scenes/*.yaml in " + (dir.Path() / "scenes").string() +
+                             "; add one, or run with --no-plans\n");
+    dir.Write("scenes/bad.yaml", "version: 1\nwater: {depth: 9999}\n");
+    r = RunTidepoolInSourceRoot(command);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_EQ(r.err.rfind((dir.Path() / "scenes/bad.yaml").string() +
+                                  ":2:16: error: water.depth must be between 0.5 and 200, not "
+                                  "9999",
+                          0),
+              0U)
+            << r.err;
+    EXPECT_EQ(r.out, "");
+    EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
+}
+
 TEST_F(ReportCliTest, RunRejectsBadFlagsWithExitTwo) {
     EXPECT_EQ(RunTidepoolInSourceRoot("run --size 0x0 --out /tmp/never").exit_code, 2);
     EXPECT_EQ(RunTidepoolInSourceRoot("run --name render --out /tmp/never").exit_code, 2);

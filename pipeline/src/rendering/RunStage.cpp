@@ -137,6 +137,27 @@ StageEnd StabilityInto(runner::GlContext& context, const VariantConfig& config,
     return end;
 }
 
+// Whether the configuration has scenes (scenes/*.yaml beside it) and every one of them loads;
+// otherwise tells why and how to go on without them.
+bool ScenesLoad(const VariantConfig& config, ProgressSink& progress) {
+    const std::filesystem::path folder = config.base_dir / "scenes";
+    const std::vector<std::filesystem::path> scenes = SceneFilesIn(folder);
+    if (scenes.empty()) {
+        progress.Tell({Message(Severity::kError,
+                               fmt::format("plans: no scenes/*.yaml in {}; add one, or run with "
+                                           "--no-plans",
+                                           folder.string()))});
+        return false;
+    }
+    bool all = true;
+    for (const std::filesystem::path& path : scenes) {
+        SceneResult scene = LoadSceneDescription(path);
+        progress.Tell(scene.diagnostics);
+        all = all && scene.scene.has_value();
+    }
+    return all;
+}
+
 // Every scenes/*.yaml planned into render_dir/plans.json, the candidates' images under
 // render_dir/images/.
 StageEnd PlansInto(runner::GlContext& context, const VariantConfig& config,
@@ -367,6 +388,12 @@ RunResult Run(const RunRequest& request, ProgressSink& progress) {
         check.Stopped()) {
         progress.Tell(check.diagnostics);
         outcome.status = check.status;
+        return result;
+    }
+    // Every scene is read before any work, as `plan` reads its own: a bad one found beside the
+    // render, minutes in, was counted as a plan that missed its target.
+    if (request.plans && !ScenesLoad(config, progress)) {
+        outcome.status = Status::kUsage;
         return result;
     }
     // The render folder (images, results.json, stability.json, plans.json) is staged whole and
