@@ -254,6 +254,14 @@ void ConfigParser::ParseTargets(const YAML::Node& node, VariantConfig& config) {
     for (const std::string& name : NameList(node, "targets")) {
         GlslTarget target = GlslTarget::kEs100;
         if (TargetFromName(name, &target)) {
+            if (std::find(config.targets.begin(), config.targets.end(), target) !=
+                config.targets.end()) {
+                // NameList refuses a spelling twice; two spellings of one target ("300",
+                // "300es") validated every variant twice.
+                Error(node, fmt::format("targets names the target '{}' twice, by two of its "
+                                        "spellings; list it once",
+                                        name));
+            }
             config.targets.push_back(target);
         } else {
             Error(node,
@@ -379,8 +387,15 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
 // none).
 Axis ConfigParser::ParseAxis(const YAML::Node& key, const YAML::Node& node) {
     Axis axis;
-    axis.name = key.Scalar();
+    axis.name = key.IsScalar() ? key.Scalar() : "";
     axis.where = At(key);
+    if (!IsValidDefineName(axis.name)) {
+        // Its values' defines start with it: an empty or a list key made "_A" of value a.
+        Error(key, fmt::format("an axis is named by an identifier (letters, digits and '_', not "
+                               "starting with a digit), not {}",
+                               key.IsScalar() ? fmt::format("'{}'", axis.name)
+                                              : std::string("a list or a mapping")));
+    }
     const std::string what = fmt::format("axis '{}'", axis.name);
     if (!node.IsMap()) {
         axis.values = NameList(node, what, /*repeats_checked=*/true);
@@ -529,6 +544,9 @@ Preset ConfigParser::ParsePreset(const std::string& name, const YAML::Node& key,
         Error(key, fmt::format("{} has no 'program'", what));
     } else if (ExpectScalar(node["program"], "program")) {
         preset.program = node["program"].Scalar();
+        if (preset.program.empty()) {
+            Error(node["program"], fmt::format("{} names no program: give the name of one", what));
+        }
     }
     preset.defines = NameList(node["defines"], "defines");
     preset.runtime_features = NameList(node["runtime_features"], "runtime_features");
@@ -567,9 +585,14 @@ void ConfigParser::CheckPreset(const Preset& preset, const VariantConfig& config
     }
     const ProgramConfig* program = config.FindProgram(preset.program);
     if (program == nullptr) {
-        if (!preset.program.empty()) {
-            Error(preset.where, fmt::format("preset '{}' names unknown program '{}'", preset.name,
-                                            preset.program));
+        if (!preset.program.empty()) {  // else ParsePreset said what is wrong with it
+            std::vector<std::string> names;
+            for (const ProgramConfig& any : config.programs) {
+                names.push_back(any.name);
+            }
+            Error(preset.where, fmt::format("preset '{}' names unknown program '{}'; the programs "
+                                            "are {}",
+                                            preset.name, preset.program, fmt::join(names, ", ")));
         }
         return;
     }

@@ -387,7 +387,29 @@ INSTANTIATE_TEST_SUITE_P(
                         "v.yaml:6:3: error: preset 'x' has no 'program'\n"},
                 BadInputCase{"PresetNamesUnknownProgram",
                              std::string(kProgramHead) + "presets:\n  x: { program: q }\n",
-                             "v.yaml:6:3: error: preset 'x' names unknown program 'q'\n"},
+                             "v.yaml:6:3: error: preset 'x' names unknown program 'q'; the "
+                             "programs are p\n"},
+                // Before, an empty name passed, and `render --preset x` said both "uses program
+                // ''" and "unknown preset 'x'".
+                BadInputCase{"PresetNamesAnEmptyProgram",
+                             std::string(kProgramHead) + "presets:\n  x: { program: '' }\n",
+                             "v.yaml:6:17: error: preset 'x' names no program: give the name of "
+                             "one\n"},
+                // The axis's defines start with its name: '' made "_A" of value a.
+                BadInputCase{"AxisWithAnEmptyName",
+                             std::string(kProgramHead) + "    axes:\n      '': [a, b]\n",
+                             "v.yaml:6:7: error: an axis is named by an identifier (letters, "
+                             "digits and '_', not starting with a digit), not ''\n"},
+                BadInputCase{"AxisNamedByAList",
+                             std::string(kProgramHead) + "    axes:\n      ? [x]\n      : [a, b]\n",
+                             "v.yaml:6:9: error: an axis is named by an identifier (letters, "
+                             "digits and '_', not starting with a digit), not a list or a "
+                             "mapping\n"},
+                // "300" and "300es" are one target: every variant was validated twice.
+                BadInputCase{"TargetTwiceByTwoSpellings",
+                             "targets: [100, 300, 300es]\n" + std::string(kProgramHead),
+                             "v.yaml:1:10: error: targets names the target '300es' twice, by two "
+                             "of its spellings; list it once\n"},
                 BadInputCase{
                         "PresetUsesUnknownDefine",
                         std::string(kProgramHead) +
