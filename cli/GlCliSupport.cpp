@@ -93,11 +93,16 @@ bool CheckTimingFlags(const TimingFlags& flags) {
                      flags.contended_share);
         return false;
     }
-    if (flags.coarse_frames < 1 || flags.warmup < 0 || flags.workers < 0 || flags.workers > 64 ||
+    // A frame takes tens of milliseconds: 1000 of them are most of a minute per configuration,
+    // and 2000000000 were accepted and began a render that would never end.
+    if (flags.coarse_frames < 1 || flags.coarse_frames > kMaxFramesPerStep || flags.warmup < 0 ||
+        flags.warmup > kMaxFramesPerStep || flags.workers < 0 || flags.workers > 64 ||
         flags.threads < 0 || flags.threads > 64) {
         std::fprintf(stderr,
-                     "error: --coarse-frames must be at least 1, --warmup at least 0, "
-                     "--workers and --threads between 0 and 64\n");
+                     "error: --coarse-frames must be between 1 and %d, --warmup between 0 and "
+                     "%d, --workers and --threads between 0 and 64, not %d, %d, %d and %d\n",
+                     kMaxFramesPerStep, kMaxFramesPerStep, flags.coarse_frames, flags.warmup,
+                     flags.workers, flags.threads);
         return false;
     }
     return true;

@@ -34,6 +34,9 @@ using TimingFlags = pipeline::TimingSettings;
 /// --threads to `command`, writing into `flags`.
 void AddTimingFlags(CLI::App* command, TimingFlags* flags);
 
+/// The most frames --coarse-frames or --warmup may ask for.
+inline constexpr int kMaxFramesPerStep = 1000;
+
 /// Prints why `flags` cannot be used, naming the option and its range, and returns false.
 bool CheckTimingFlags(const TimingFlags& flags);
 

@@ -49,8 +49,9 @@ int RunStability(StabilityCommandOptions options) {
         !ParseBackendOption(options.backend, &stability.backend)) {
         return kExitUsage;
     }
-    if (stability.threads < 0) {
-        std::fprintf(stderr, "error: --threads must be at least 0, not %d\n", stability.threads);
+    if (stability.threads < 0 || stability.threads > 64) {
+        std::fprintf(stderr, "error: --threads must be between 0 and 64, as for render, not %d\n",
+                     stability.threads);
         return kExitUsage;
     }
     stability.out = options.out;

@@ -14,6 +14,11 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr int kMaxCoefficients = 8;
 // Harmonic 4 (a4) needs more than 8 samples per period to be told apart from lower ones.
 constexpr int kMinIntegrationSamples = 2 * 4 + 1;
+// Upper bounds far past any use (the defaults are 13 directions and a few dozen samples): each
+// grid vertex marches every direction and integrates every sample, so 2,000,000,000 directions
+// were accepted and began a bake that would never end.
+constexpr int kMaxDirections = 360;
+constexpr int kMaxIntegrationSamples = 4096;
 // Grid positions are computed in float; 1e-3 of a spacing is far above their rounding error and
 // far below anything that would move a march sample visibly.
 constexpr float kGridTolerance = 1e-3F;
@@ -98,16 +103,17 @@ std::string CheckFourierSettings(const FourierSettings& settings) {
         return "coefficients must be 1..8 (a0, a1, b1, a2, b2, a3, b3, a4), got " +
                std::to_string(settings.coefficients);
     }
-    if (settings.directions < 3) {
-        return "directions must be at least 3 march directions, got " +
+    if (settings.directions < 3 || settings.directions > kMaxDirections) {
+        return "directions must be 3..360 march directions, got " +
                std::to_string(settings.directions);
     }
     if (!(settings.march_distance > 0.0F) || !std::isfinite(settings.march_distance)) {
         return "march_distance must be a positive finite distance, got " +
                std::to_string(settings.march_distance);
     }
-    if (settings.integration_samples < kMinIntegrationSamples) {
-        return "integration_samples must be at least 9 (more than 2 per period of harmonic 4), "
+    if (settings.integration_samples < kMinIntegrationSamples ||
+        settings.integration_samples > kMaxIntegrationSamples) {
+        return "integration_samples must be 9..4096 (more than 2 per period of harmonic 4), "
                "got " +
                std::to_string(settings.integration_samples);
     }

@@ -33,6 +33,19 @@ TEST(TimingCliTest, OutOfRangeTimingFlagsAreUsageErrorsNamingTheFlag) {
                              "--min-pairs and 100000, not 5 and 400"),
               std::string::npos)
             << pairs.err;
+    // 2000000000 warm-up frames were accepted, and `run` began a render that would never end.
+    for (const char* command :
+         {"render --warmup 2000000000", "run --coarse-frames 1001", "bench --warmup -1"}) {
+        const CommandResult frames =
+                RunTidepool(std::string(command) + " --out " + (dir.Path() / "o").string());
+        EXPECT_EQ(frames.exit_code, 2) << command;
+        EXPECT_EQ(frames.err.rfind("error: --coarse-frames must be between 1 and 1000, --warmup "
+                                   "between 0 and 1000, --workers and --threads between 0 and "
+                                   "64, not ",
+                                   0),
+                  0U)
+                << command << ": " << frames.err;
+    }
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "o"));
 }
 
