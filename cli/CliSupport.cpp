@@ -4,6 +4,7 @@
 #include "tidepool/pipeline/OutputFiles.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <memory>
 #include <set>
@@ -249,9 +250,13 @@ bool CheckDefineOptions(const std::vector<std::string>& defines) {
         const std::string_view value = equals == std::string::npos
                                                ? std::string_view()
                                                : std::string_view(define).substr(equals + 1);
+        // glslang's limit holds for identifiers and numbers, the only long tokens GLSL ES has:
+        // `1.0+1.0+...` is many short tokens, not one long one.
         std::size_t run = 0;
         for (char c : value) {
-            run = (c == ' ' || c == '\t') ? 0 : run + 1;
+            const bool word =
+                    std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '_' || c == '.';
+            run = word ? run + 1 : 0;
             if (run > kLongestName) {
                 std::fprintf(stderr,
                              "error: -D '%s': the value holds a token of more than the %zu "

@@ -609,6 +609,17 @@ TEST_F(CliTest, DefineMustBeANameOrNameEqualsOneLineValue) {
     });
 }
 
+// The longest-token check counted every run of non-blank characters, so a long expression of
+// short tokens was refused as one token.
+TEST_F(CliTest, ADefineOfManyShortTokensIsNotOneLongToken) {
+    std::string sum = "1.0";
+    for (int i = 0; i < 2000; ++i) {
+        sum += "+1.0";
+    }
+    const CommandResult r = RunTidepool("validate -D 'A=" + sum + "' s.vsh", dir_.Path());
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
 // Each of these flags used to be dropped without a word in the other mode: `validate --config
 // v.yaml s.vsh` validated s.vsh alone and exited 0, whatever v.yaml held.
 TEST_F(CliTest, AFlagOfTheOtherModeIsAUsageErrorNotIgnored) {
