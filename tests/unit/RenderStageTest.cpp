@@ -26,6 +26,16 @@ TEST(RenderStageTest, AnUnknownViewIsAUsageErrorListingTheViews) {
               "shore\n");
 }
 
+// It was rendered and timed twice.
+TEST(RenderStageTest, AViewGivenTwiceIsAUsageError) {
+    RenderSelection selection = DefaultMatrix();
+    selection.views = {"high", "grazing", "high"};
+    const PreparedRender prepared = PrepareRender(selection);
+    EXPECT_EQ(prepared.outcome.status, Status::kUsage);
+    EXPECT_EQ(Formatted(prepared.outcome.diagnostics),
+              "error: --view 'high' is given twice; give it once\n");
+}
+
 TEST(RenderStageTest, APresetThatMatchesNothingIsAUsageError) {
     RenderSelection selection = DefaultMatrix();
     selection.filters = {"nothing:*"};

@@ -21,6 +21,21 @@ std::vector<std::filesystem::path> ScenePaths(const PlanRequest& request,
     std::vector<std::filesystem::path> paths;
     if (!request.all) {
         for (const std::string& name : request.scenes) {
+            // A name, not a path: "../variants" read the configuration as a scene. Twice, the two
+            // plans would write the same images.
+            std::string why;
+            if (name.empty() || name.find('/') != std::string::npos || name[0] == '.') {
+                why = "a scene is named by its file in scenes/ without '.yaml'";
+            } else if (name.size() > 5 && name.ends_with(".yaml")) {
+                why = fmt::format("name it without '.yaml': --scene {}",
+                                  name.substr(0, name.size() - 5));
+            } else if (std::count(request.scenes.begin(), request.scenes.end(), name) > 1) {
+                why = "it is given twice; give it once";
+            }
+            if (!why.empty()) {
+                outcome->Fail(Status::kUsage, fmt::format("--scene '{}': {}", name, why));
+                return {};
+            }
             paths.push_back(scene_dir / (name + ".yaml"));
         }
         return paths;

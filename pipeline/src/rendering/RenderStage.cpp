@@ -6,6 +6,7 @@
 #include "tidepool/runner/ProceduralScene.h"
 #include "tidepool/runner/RenderConfig.h"
 
+#include <algorithm>
 #include <memory>
 #include <utility>
 
@@ -28,6 +29,11 @@ std::vector<runner::CameraView> ChooseViews(const std::vector<std::string>& name
             }
             outcome->Fail(Status::kUsage,
                           fmt::format("unknown view '{}'; the views are {}", name, known));
+            return {};
+        }
+        if (std::count(names.begin(), names.end(), name) > 1) {
+            outcome->Fail(Status::kUsage,
+                          fmt::format("--view '{}' is given twice; give it once", name));
             return {};
         }
         views.push_back(*view);
