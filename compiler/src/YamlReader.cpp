@@ -417,9 +417,10 @@ std::optional<std::size_t> OffsetOfFlowDepth(std::string_view text, int depth) {
             // Past the quoted scalar: in double quotes a backslash escapes the next character, in
             // single quotes '' is a quote.
             for (++i; i < text.size(); ++i) {
-                if (c == '"' && text[i] == '\\') {
-                    ++i;
-                } else if (text[i] == c && c == '\'' && i + 1 < text.size() && text[i + 1] == c) {
+                const bool escape =
+                        (c == '"' && text[i] == '\\') ||
+                        (c == '\'' && text[i] == c && i + 1 < text.size() && text[i + 1] == c);
+                if (escape) {
                     ++i;
                 } else if (text[i] == c) {
                     break;
