@@ -255,8 +255,10 @@ SceneResult SceneParser::Parse(std::string_view text) {
             scene.below_terrain = has("terrain");
             scene.below_objects = has("objects");
             // The renderer always has a sea floor; saying it is out of sight is only true when
-            // the fog hides it.
-            if (!scene.below_terrain && scene.water_depth < scene.fog_depth) {
+            // the fog hides it. Not after an error, which leaves a depth at its default: the
+            // message would quote a number the file does not hold.
+            if (!HasErrors(diagnostics_) && !scene.below_terrain &&
+                scene.water_depth < scene.fog_depth) {
                 Error(below, fmt::format("the sea floor at depth {} is within the fog depth {}, "
                                          "so it is visible; add terrain to below, or make "
                                          "water.depth at least water.fog_depth",

@@ -197,6 +197,11 @@ INSTANTIATE_TEST_SUITE_P(
                          "s.yaml:3:8: error: the sea floor at depth 5 is within the fog depth "
                          "30, so it is visible; add terrain to below, or make water.depth at "
                          "least water.fog_depth\n"},
+                // Only the range error: a second one quoted the default depth, 20.
+                BadScene{"a depth out of range, and no floor below",
+                         std::string(kTarget) + "water: {depth: 500, fog_depth: 80}\nbelow: []\n",
+                         "s.yaml:2:16: error: water.depth must be between 0.5 and 200, not "
+                         "500\n"},
                 BadScene{"listed twice", std::string(kTarget) + "below: [terrain, terrain]\n",
                          "s.yaml:2:18: error: 'terrain' is listed twice in below\n"},
                 BadScene{"unsupported version", std::string(kTarget) + "version: 2\n",
