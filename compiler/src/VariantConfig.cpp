@@ -300,6 +300,12 @@ ProgramConfig ConfigParser::ParseProgram(const std::string& name, const YAML::No
         }
         const std::string value = path.Scalar();
         (std::string_view(stage) == "vertex" ? program.vertex_path : program.fragment_path) = value;
+        if (value.empty()) {  // else it named the configuration's folder: "is a folder (vc/)"
+            Error(path, fmt::format("{} '{}' is empty; give the shader file's path, e.g. `{}: "
+                                    "shaders/FILE`",
+                                    what, stage, stage));
+            continue;
+        }
         std::error_code ec;
         std::filesystem::path resolved(value);
         if (!resolved.is_absolute()) {

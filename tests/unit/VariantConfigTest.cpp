@@ -391,6 +391,10 @@ INSTANTIATE_TEST_SUITE_P(
                              "programs are p\n"},
                 // Before, an empty name passed, and `render --preset x` said both "uses program
                 // ''" and "unknown preset 'x'".
+                BadInputCase{"EmptyShaderPath",
+                             "programs:\n  p:\n    vertex: ''\n    fragment: s.fsh\n",
+                             "v.yaml:3:13: error: program 'p' 'vertex' is empty; give the shader "
+                             "file's path, e.g. `vertex: shaders/FILE`\n"},
                 BadInputCase{"PresetNamesAnEmptyProgram",
                              std::string(kProgramHead) + "presets:\n  x: { program: '' }\n",
                              "v.yaml:6:17: error: preset 'x' names no program: give the name of "
