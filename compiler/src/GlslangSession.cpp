@@ -1091,6 +1091,14 @@ std::vector<Diagnostic> ParseGlslangLog(const std::string& log, const std::strin
                         "2147483647 that a later line passed it, and glslang wrapped it to {}; "
                         "use smaller line numbers): ",
                         line_part);
+            } else if (string_part == "-1" && second_colon != std::string_view::npos) {
+                // Source string -1 is glslang's preamble, which holds the defines: a define's
+                // value glslang cannot read, found where the file uses it ("-1:1: '' : bad
+                // digit in hexadecimal literal" for -D X=0x).
+                d.message =
+                        "in a define's value (defines are given to glslang ahead of the "
+                        "file; check each -D NAME=VALUE): ";
+                rest = TrimView(rest.substr(second_colon + 1));
             }
         }
         d.message += std::string(rest);

@@ -56,6 +56,15 @@ TEST(GlslangSessionTest, ALineWrappedNegativeByAHugeLineDirectiveIsSaidToBeUnkno
               "undeclared identifier\n");
 }
 
+// glslang's source string -1 is its preamble, where the defines are: it used to come out as
+// "a.fsh: error: -1:1: '' : bad digit ...", blaming the file at a line it does not have.
+TEST(GlslangSessionTest, AnErrorInADefinesValueIsSaidToBeThere) {
+    EXPECT_EQ(Formatted(ParseGlslangLog("ERROR: -1:1: '' : bad digit in hexadecimal literal\n",
+                                        "a.fsh", "#version 100\n")),
+              "a.fsh: error: in a define's value (defines are given to glslang ahead of the file; "
+              "check each -D NAME=VALUE): '' : bad digit in hexadecimal literal\n");
+}
+
 // A negative count a `#line` wrote itself was said to have wrapped past 2147483647.
 TEST(GlslangSessionTest, ANegativeLineSetByALineDirectiveIsNotSaidToHaveWrapped) {
     const std::string source = "#version 100\n#line -5\nvoid main() { zz; }\n";
