@@ -31,7 +31,7 @@ std::vector<std::filesystem::path> FilesRead(const VariantConfig& config) {
 namespace {
 
 // A path as one word of a Make rule, for a path DepfileRefusal accepts: Make and Ninja's depfile
-// parser both take "\\ " for a space, "\\#" for '#', "\\:" for ':' and "$$" for '$'.
+// parser both take "\ " for a space, "\#" for '#', "\:" for ':' and "$$" for '$'.
 std::string DepfileWord(const std::filesystem::path& path) {
     std::string word;
     for (const char c : path.string()) {
@@ -79,7 +79,7 @@ std::string DepfileRefusal(const std::filesystem::path& path) {
                 "something else in a depfile",
                 text, shown);
     }
-    if (text.back() == ')' && text.find('(') != std::string::npos) {
+    if (!text.empty() && text.back() == ')' && text.find('(') != std::string::npos) {
         return text + " ends in a parenthesis, which Make reads as a member of an archive";
     }
     return {};
