@@ -488,6 +488,16 @@ void ConfigParser::ParseRule(const YAML::Node& node, ProgramConfig& program) {
     for (const std::string& name : rule.others) {
         check(name);
     }
+    if (!rule.subject.empty() &&
+        std::find(rule.others.begin(), rule.others.end(), rule.subject) != rule.others.end()) {
+        // `{if: A, excludes: [A]}` pruned every variant with A without a word.
+        Error(node, fmt::format("a rule names '{}' both in `if` and in `{}`, so it {}; name "
+                                "other defines there",
+                                rule.subject, has_requires ? "requires" : "excludes",
+                                has_requires ? "does nothing"
+                                             : "prunes every variant with it, as if it were "
+                                               "not a feature"));
+    }
     program.rules.push_back(std::move(rule));
 }
 

@@ -391,6 +391,13 @@ INSTANTIATE_TEST_SUITE_P(
                              "programs are p\n"},
                 // Before, an empty name passed, and `render --preset x` said both "uses program
                 // ''" and "unknown preset 'x'".
+                BadInputCase{
+                        "RuleExcludingItsOwnSubject",
+                        std::string(kProgramHead) +
+                                "    features: [A, B]\n    rules: [{ if: A, excludes: [B, A] }]\n",
+                        "v.yaml:6:13: error: a rule names 'A' both in `if` and in "
+                        "`excludes`, so it prunes every variant with it, as if it were not a "
+                        "feature; name other defines there\n"},
                 BadInputCase{"EmptyShaderPath",
                              "programs:\n  p:\n    vertex: ''\n    fragment: s.fsh\n",
                              "v.yaml:3:13: error: program 'p' 'vertex' is empty; give the shader "
