@@ -203,8 +203,14 @@ SceneResult SceneParser::Parse(std::string_view text) {
             }
         }
         if (const YAML::Node description = root["description"]) {
-            if (description.IsScalar()) {
-                scene.description = description.Scalar();
+            // A block scalar (`description: |`) is a scalar too: of one line, it ends in a line
+            // break; of more, it would break the report's tables.
+            std::string written = description.IsScalar() ? description.Scalar() : std::string();
+            while (!written.empty() && written.back() == '\n') {
+                written.pop_back();
+            }
+            if (description.IsScalar() && written.find('\n') == std::string::npos) {
+                scene.description = written;
             } else {
                 Error(description, "description must be a single line of text");
             }

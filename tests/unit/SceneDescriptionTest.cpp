@@ -19,6 +19,13 @@ std::string Errors(const std::string& yaml) {
     return out;
 }
 
+TEST(SceneDescriptionTest, ADescriptionWrittenAsABlockOfOneLineIsThatLine) {
+    const SceneResult result = ParseSceneDescription(
+            std::string(kTarget) + "description: |\n  a calm sea\n", "scenes/calm.yaml");
+    ASSERT_TRUE(result.scene) << Errors(std::string(kTarget) + "description: |\n  a calm sea\n");
+    EXPECT_EQ(result.scene->description, "a calm sea");
+}
+
 TEST(SceneDescriptionTest, FullDescriptionParsesEveryField) {
     const SceneResult result = ParseSceneDescription(
             "version: 1\n"
@@ -197,6 +204,10 @@ INSTANTIATE_TEST_SUITE_P(
                          "s.yaml:3:8: error: the sea floor at depth 5 is within the fog depth "
                          "30, so it is visible; add terrain to below, or make water.depth at "
                          "least water.fog_depth\n"},
+                // A block scalar of two lines was accepted, and would break the report's tables.
+                BadScene{"a description of two lines",
+                         std::string(kTarget) + "description: |\n  calm\n  sea\n",
+                         "s.yaml:2:14: error: description must be a single line of text\n"},
                 // Only the range error: a second one quoted the default depth, 20.
                 BadScene{"a depth out of range, and no floor below",
                          std::string(kTarget) + "water: {depth: 500, fog_depth: 80}\nbelow: []\n",
