@@ -112,23 +112,27 @@ bool IsTidepoolOutput(const fs::path& folder) {
     return in && std::getline(in, line) && line == kOutputMarkerLine;
 }
 
-PublishError CheckFolderPath(const fs::path& folder) {
+std::optional<fs::path> FileInPlaceOfFolder(const fs::path& folder) {
     std::error_code ec;
     for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
         if (fs::exists(p, ec)) {
-            if (fs::is_directory(p, ec)) {
-                return {};
-            }
-            return {PublishFailure::kRefused,
-                    (p == folder ? "" : folder.string() + ": ") + p.string() +
-                            " is a file, not a folder; nothing was changed. Choose another --out "
-                            "folder."};
+            return fs::is_directory(p, ec) ? std::nullopt : std::optional<fs::path>(p);
         }
         if (p == p.parent_path()) {
             break;
         }
     }
-    return {};
+    return std::nullopt;
+}
+
+PublishError CheckFolderPath(const fs::path& folder) {
+    const std::optional<fs::path> file = FileInPlaceOfFolder(folder);
+    if (!file) {
+        return {};
+    }
+    return {PublishFailure::kRefused,
+            (*file == folder ? "" : folder.string() + ": ") + file->string() +
+                    " is a file, not a folder; nothing was changed. Choose another --out folder."};
 }
 
 PublishError CheckReplaceable(const fs::path& folder) {

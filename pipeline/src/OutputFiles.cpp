@@ -4,6 +4,7 @@
 #include "tidepool/base/AtomicFile.h"
 
 #include <fstream>
+#include <optional>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -111,14 +112,10 @@ std::string NotAFilePath(const std::filesystem::path& path) {
     if (std::filesystem::is_directory(path, ec)) {
         return path.string() + " is a folder; give the path of a file";
     }
-    for (std::filesystem::path up = path.parent_path(); !up.empty() && up != up.parent_path();
-         up = up.parent_path()) {
-        if (std::filesystem::exists(up, ec)) {
-            return std::filesystem::is_directory(up, ec)
-                           ? std::string()
-                           : fmt::format("{}: {} is a file, not a folder; choose another path",
-                                         path.string(), up.string());
-        }
+    if (const std::optional<std::filesystem::path> file =
+                base::FileInPlaceOfFolder(path.parent_path())) {
+        return fmt::format("{}: {} is a file, not a folder; choose another path", path.string(),
+                           file->string());
     }
     return {};
 }

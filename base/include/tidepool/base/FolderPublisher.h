@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace tidepool::base {
@@ -33,8 +34,12 @@ bool IsTidepoolOutput(const std::filesystem::path& folder);
 /// empty folder, or carries the marker. Refusals name the folder and the fix.
 PublishError CheckReplaceable(const std::filesystem::path& folder);
 
-/// Says whether `folder` can be made: the nearest of it and its parents that exists is a folder.
-/// A file there is refused (kRefused), naming it and the fix.
+/// The file that stands where `folder` or one of its parents belongs: the nearest of them that
+/// exists, when it is not a folder. None when `folder` can be made.
+std::optional<std::filesystem::path> FileInPlaceOfFolder(const std::filesystem::path& folder);
+
+/// Says whether `folder` can be made (FileInPlaceOfFolder); a file in its way is refused
+/// (kRefused), naming it and the fix.
 PublishError CheckFolderPath(const std::filesystem::path& folder);
 
 /// Writes the marker file into `folder`, naming `writer` (for example "tidepool render").
