@@ -5,7 +5,10 @@
 #include "tidepool/TextFile.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <string>
+#include <system_error>
 
 #include "YamlReader.h"
 #include <fmt/format.h>
@@ -44,6 +47,15 @@ constexpr Range kPsnr{10.0, 99.0};
 constexpr Range kShare{0.0, 1.0};
 constexpr Range kFrameBudget{0.001, 10000.0};
 
+// Whether `text` is a decimal number too large for a double (1e999), which yaml-cpp does not
+// decode: a number, out of range, not "not a number".
+bool BeyondDouble(const std::string& text) {
+    double value = 0;
+    const char* end = text.data() + text.size();
+    const auto [stop, error] = std::from_chars(text.data(), end, value);
+    return stop == end && error == std::errc::result_out_of_range;
+}
+
 // Collects diagnostics while walking the YAML tree; every check reports and carries on.
 class SceneParser : public YamlReader {
 public:
@@ -56,12 +68,17 @@ private:
     template <typename T>
     void ReadNumber(const YAML::Node& node, std::string_view what, Range range, T* value) {
         double number = 0;
-        if (!node.IsScalar() || !YAML::convert<double>::decode(node, number) ||
-            !std::isfinite(number)) {
+        if (node.IsNull()) {
+            Error(node, fmt::format("{} has no value; give it a number from {} to {}", what,
+                                    range.low, range.high));
+            return;
+        }
+        const bool decoded = node.IsScalar() && YAML::convert<double>::decode(node, number);
+        if (!decoded && !(node.IsScalar() && BeyondDouble(node.Scalar()))) {
             Error(node, fmt::format("{} must be a number", what));
             return;
         }
-        if (number < range.low || number > range.high) {
+        if (!decoded || !std::isfinite(number) || number < range.low || number > range.high) {
             Error(node, fmt::format("{} must be between {} and {}, not {}", what, range.low,
                                     range.high, node.Scalar()));
             return;

@@ -473,6 +473,7 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
                     return std::nullopt;
                 }
             }
+            NoteEmptyValues(root);
             return root;
         }
         std::istringstream events(owned);
@@ -482,7 +483,9 @@ std::optional<YAML::Node> YamlReader::Load(std::string_view text) {
         if (checker.Failed() || !OnlyOneDocument(parser)) {
             return std::nullopt;
         }
-        return YAML::Load(owned);
+        YAML::Node root = YAML::Load(owned);
+        NoteEmptyValues(root);
+        return root;
     } catch (const YAML::DeepRecursion& e) {
         // yaml-cpp's own words for it are "bad file"; its mark for '[' nesting is where its
         // scanner had read to, the end of all the brackets.
@@ -512,7 +515,38 @@ bool YamlReader::OnlyOneDocument(YAML::Parser& parser) {
     return false;
 }
 
+void YamlReader::NoteEmptyValues(const YAML::Node& root) {
+    // The checkers before bounded the nodes this walks, aliases expanded, and refused cycles.
+    std::vector<YAML::Node> open{root};
+    while (!open.empty()) {
+        const YAML::Node node = open.back();
+        open.pop_back();
+        if (node.IsMap()) {
+            for (const auto& pair : node) {
+                if (pair.second.IsNull()) {
+                    empty_values_.emplace(pair.second.Mark().pos,
+                                          std::make_pair(pair.second, pair.first.Mark()));
+                } else {
+                    open.push_back(pair.second);
+                }
+            }
+        } else if (node.IsSequence()) {
+            for (const YAML::Node& item : node) {
+                open.push_back(item);
+            }
+        }
+    }
+}
+
 SourceLocation YamlReader::At(const YAML::Node& node) const {
+    if (node.IsNull()) {
+        const auto [first, last] = empty_values_.equal_range(node.Mark().pos);
+        for (auto it = first; it != last; ++it) {
+            if (it->second.first.is(node)) {
+                return LocationOf(file_, it->second.second);
+            }
+        }
+    }
     return LocationOf(file_, node.Mark());
 }
 
@@ -528,7 +562,9 @@ bool YamlReader::ExpectMap(const YAML::Node& node, std::string_view what) {
     if (node.IsMap()) {
         return true;
     }
-    Error(node, fmt::format("{} must be a mapping of keys to values", what));
+    Error(node, node.IsNull()
+                        ? fmt::format("{} has no value; give it a mapping of keys to values", what)
+                        : fmt::format("{} must be a mapping of keys to values", what));
     return false;
 }
 
@@ -536,7 +572,9 @@ bool YamlReader::ExpectScalar(const YAML::Node& node, std::string_view what) {
     if (node.IsScalar()) {
         return true;
     }
-    Error(node, fmt::format("{} must be a single value, not a list or mapping", what));
+    Error(node, node.IsNull()
+                        ? fmt::format("{} has no value; write one after its ':'", what)
+                        : fmt::format("{} must be a single value, not a list or mapping", what));
     return false;
 }
 

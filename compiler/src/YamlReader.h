@@ -10,9 +10,11 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 namespace tidepool {
@@ -56,8 +58,15 @@ private:
     /// False, with an error at its first node, when the document after the one `parser` has
     /// just handled is not empty.
     bool OnlyOneDocument(YAML::Parser& parser);
+    /// Notes every mapping value of `root` that is null with its key's mark, for At.
+    void NoteEmptyValues(const YAML::Node& root);
 
     std::string file_;
+    // Null mapping values by the offset of their own mark, with the marks of their keys. Why:
+    // yaml-cpp marks a value left empty (`vertex:` and nothing after it) where the next token
+    // starts, often a line below under another key or past the end of the file; an error about
+    // the value belongs on its key's line.
+    std::multimap<int, std::pair<YAML::Node, YAML::Mark>> empty_values_;
 };
 
 /// The first byte of `text` that is not part of valid UTF-8 (overlong forms and surrogates

@@ -173,6 +173,14 @@ INSTANTIATE_TEST_SUITE_P(
                          "s.yaml:2:16: error: water.waves must be between 0 and 2, not 3\n"},
                 BadScene{"not a number", std::string(kTarget) + "camera:\n  height: high\n",
                          "s.yaml:3:11: error: camera.height must be a number\n"},
+                BadScene{"number left empty before another key",
+                         std::string(kTarget) + "camera:\n  height:\n  distance: 40\n",
+                         "s.yaml:3:3: error: camera.height has no value; give it a number from "
+                         "0.6 to 1000\n"},
+                BadScene{"number too large for a double",
+                         std::string(kTarget) + "water: {depth: 1e999}\n",
+                         "s.yaml:2:16: error: water.depth must be between 0.5 and 200, not "
+                         "1e999\n"},
                 BadScene{"eye under the water", std::string(kTarget) + "camera: {height: 0.2}\n",
                          "s.yaml:2:18: error: camera.height must be between 0.6 and 1000, not "
                          "0.2\n"},

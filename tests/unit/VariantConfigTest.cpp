@@ -366,6 +366,19 @@ INSTANTIATE_TEST_SUITE_P(
                              "programs:\n  p:\n    vertex: [s.vsh]\n    fragment: s.fsh\n",
                              "v.yaml:3:13: error: program 'p' 'vertex' must be a single value, "
                              "not a list or mapping\n"},
+                // yaml-cpp marks an empty value where the next token starts (here line 4, or
+                // past the end of the file); the error belongs on the key's line.
+                BadInputCase{"ShaderPathLeftEmptyBeforeAnotherKey",
+                             "programs:\n  p:\n    vertex:\n    fragment: s.fsh\n",
+                             "v.yaml:3:5: error: program 'p' 'vertex' has no value; write one "
+                             "after its ':'\n"},
+                BadInputCase{"ShaderPathLeftEmptyAtTheEndOfTheFile",
+                             "programs:\n  p:\n    vertex: s.vsh\n    fragment:",
+                             "v.yaml:4:5: error: program 'p' 'fragment' has no value; write one "
+                             "after its ':'\n"},
+                BadInputCase{"ProgramsLeftEmpty", "programs:\n",
+                             "v.yaml:1:1: error: programs has no value; give it a mapping of keys "
+                             "to values\n"},
                 BadInputCase{"FeaturesAreNotAList", std::string(kProgramHead) + "    features: A\n",
                              "v.yaml:5:15: error: features must be a list of define names\n"},
                 BadInputCase{
