@@ -33,6 +33,35 @@ bool IsKey(std::string_view key) {
            });
 }
 
+// What a file in the cache's folder is to Trim, from its name in shard folder `shard`.
+enum class CacheFile {
+    kEntry,  // a key's entry: its name is the key, filed under the key's first two digits
+    kTemp,   // an entry's temp file, as WriteFileAtomically names it: ".<key>.tmp.XXXXXX"
+    kOther,  // anything else, which Trim neither counts nor deletes
+};
+
+CacheFile KindOf(std::string_view shard, std::string_view name) {
+    if (IsKey(name) && name.substr(0, 2) == shard) {
+        return CacheFile::kEntry;
+    }
+    constexpr std::string_view kTempInfix = ".tmp.";
+    constexpr std::size_t kUniqueLength = 6;  // mkstemp's XXXXXX
+    if (name.size() > 1 + kTempInfix.size() + kUniqueLength && name[0] == '.') {
+        const std::string_view key =
+                name.substr(1, name.size() - 1 - kTempInfix.size() - kUniqueLength);
+        if (name.substr(1 + key.size(), kTempInfix.size()) == kTempInfix && IsKey(key) &&
+            key.substr(0, 2) == shard) {
+            return CacheFile::kTemp;
+        }
+    }
+    return CacheFile::kOther;
+}
+
+// Whether `name` is a shard folder's: the first two digits of the keys filed in it.
+bool IsShard(std::string_view name) {
+    return name.size() == 2 && IsKey("000000" + std::string(name));
+}
+
 // Reads the whole of `fd`; false on a read error or past `limit` bytes.
 bool ReadAll(int fd, std::uint64_t limit, std::string* text) {
     char buffer[16384];
@@ -173,23 +202,37 @@ void ContentCache::Trim() {
     };
     std::vector<File> files;
     std::uint64_t total = 0;
-    std::error_code ec;
     const std::time_t now = std::time(nullptr);
-    for (std::filesystem::recursive_directory_iterator it(folder_ / "v1", ec), end;
-         !ec && it != end; it.increment(ec)) {
-        struct stat info {};
-        if (::lstat(it->path().c_str(), &info) != 0 || !S_ISREG(info.st_mode)) {
+    // Only the cache's own files count, and only they are deleted: the folder may be one the
+    // user also keeps other files in (`--cache .`), and a file not named as an entry is theirs.
+    // Shard folders are read where they are, never through a link.
+    std::error_code ec;
+    for (std::filesystem::directory_iterator shard(folder_ / "v1", ec), end; !ec && shard != end;
+         shard.increment(ec)) {
+        const std::string shard_name = shard->path().filename().string();
+        struct stat shard_info {};
+        if (!IsShard(shard_name) || ::lstat(shard->path().c_str(), &shard_info) != 0 ||
+            !S_ISDIR(shard_info.st_mode)) {
             continue;
         }
-        const bool temp = it->path().filename().string().rfind('.', 0) == 0;
-        if (temp && now - info.st_mtime > kStaleTempSeconds) {
-            ::unlink(it->path().c_str());  // left by a writer that died
-            continue;
-        }
-        const auto size = static_cast<std::uint64_t>(info.st_size);
-        total += size;
-        if (!temp) {
-            files.push_back({it->path(), info.st_mtime, size});
+        std::error_code shard_ec;
+        for (std::filesystem::directory_iterator it(shard->path(), shard_ec), last;
+             !shard_ec && it != last; it.increment(shard_ec)) {
+            const CacheFile kind = KindOf(shard_name, it->path().filename().string());
+            struct stat info {};
+            if (kind == CacheFile::kOther || ::lstat(it->path().c_str(), &info) != 0 ||
+                !S_ISREG(info.st_mode)) {
+                continue;
+            }
+            if (kind == CacheFile::kTemp && now - info.st_mtime > kStaleTempSeconds) {
+                ::unlink(it->path().c_str());  // left by a writer that died
+                continue;
+            }
+            const auto size = static_cast<std::uint64_t>(info.st_size);
+            total += size;
+            if (kind == CacheFile::kEntry) {
+                files.push_back({it->path(), info.st_mtime, size});
+            }
         }
     }
     if (total <= max_bytes_) {

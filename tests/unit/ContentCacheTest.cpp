@@ -192,6 +192,48 @@ TEST(ContentCacheTest, TrimEvictsLeastRecentlyUsedEntriesUntilUnderTheBound) {
     EXPECT_EQ(cache.Stats().evicted, 7U);
 }
 
+TEST(ContentCacheTest, TrimCountsAndDeletesOnlyTheCachesOwnFiles) {
+    TempDir dir;
+    const std::string payload(1000, 'p');
+    ContentCache cache(dir.Path(), 2500);
+    StoreAged(cache, 3, payload);
+    const auto long_ago = std::filesystem::file_time_type::clock::now() - std::chrono::hours(48);
+    const std::string key = EntryKey("0");
+    const std::filesystem::path shard = cache.EntryPath(key).parent_path();
+    // The user's files in the folder, old and large: neither counted nor deleted.
+    const std::vector<std::filesystem::path> theirs = {
+            dir.Path() / "v1" / "api" / "handler.py", dir.Path() / "v1" / "assets" / "big.bin",
+            shard / "notes.txt", shard / ".hidden", shard / ("." + key + ".tmp.x")};
+    for (const std::filesystem::path& path : theirs) {
+        std::filesystem::create_directories(path.parent_path());
+        WriteBytes(path, std::string(path.filename() == "big.bin" ? 100000 : 10, 'u'));
+        std::filesystem::last_write_time(path, long_ago);
+    }
+    // An entry's temp file left by a writer that died an hour ago or more: the cache's own.
+    const std::filesystem::path stale = shard / ("." + key + ".tmp.AbC123");
+    WriteBytes(stale, "half an entry");
+    std::filesystem::last_write_time(stale, long_ago);
+    // A shard reached through a link is not the cache's: what it links to is left alone.
+    const std::filesystem::path elsewhere = dir.Path() / "elsewhere";
+    std::filesystem::create_directories(elsewhere);
+    WriteBytes(elsewhere / EntryKey("x"), payload + payload + payload);
+    std::filesystem::last_write_time(elsewhere / EntryKey("x"), long_ago);
+    std::filesystem::create_directory_symlink(elsewhere,
+                                              dir.Path() / "v1" / EntryKey("x").substr(0, 2));
+
+    cache.Trim();
+    for (const std::filesystem::path& path : theirs) {
+        EXPECT_TRUE(std::filesystem::exists(path)) << path;
+    }
+    EXPECT_TRUE(std::filesystem::exists(elsewhere / EntryKey("x")));
+    EXPECT_FALSE(std::filesystem::exists(stale));
+    // Three entries of about 1.1 kB over a 2.5 kB bound, trimmed to 3/4 of it: the two oldest
+    // go, as they would without the rest.
+    EXPECT_EQ(cache.Stats().evicted, 2U);
+    EXPECT_FALSE(std::filesystem::exists(cache.EntryPath(EntryKey("1"))));
+    EXPECT_TRUE(std::filesystem::exists(cache.EntryPath(EntryKey("2"))));
+}
+
 TEST(ContentCacheTest, HitRefreshesAnOldEntrySoTrimKeepsIt) {
     TempDir dir;
     const std::string payload(1000, 'p');
