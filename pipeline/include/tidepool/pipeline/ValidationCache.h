@@ -17,7 +17,8 @@ struct CacheChoice {
 };
 
 /// The validation cache `choice` asks for: its folder, else $XDG_CACHE_HOME/tidepool (when
-/// absolute), else $HOME/.cache/tidepool; none when off or when no folder can be named.
+/// absolute), else $HOME/.cache/tidepool (when absolute), else .cache/tidepool in the home folder
+/// the password database gives the user; none when off or when no folder can be named.
 std::unique_ptr<base::ContentCache> OpenValidationCache(const CacheChoice& choice);
 
 /// "warning: validation cache DIR: ..." when `cache` could not be written or trimmed
