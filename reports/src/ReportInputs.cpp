@@ -3,6 +3,7 @@
 #include "tidepool/base/SampleStatistics.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <set>
 #include <utility>
@@ -80,6 +81,17 @@ bool LoadSibling(const std::filesystem::path& path,
     return result.failure != stagefiles::ReadFailure::kWrongType;
 }
 
+// Views name the report's image files (images/<preset>-<view>.png): a name that is a path
+// would write outside the report's folder.
+constexpr const char* kViewNameRule =
+        "must be a plain name (letters, digits, '_' and '-'), as render writes them";
+
+bool IsViewName(const std::string& name) {
+    return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char ch) {
+        return std::isalnum(static_cast<unsigned char>(ch)) || ch == '_' || ch == '-';
+    });
+}
+
 // One entry of results.json `configurations` as the report uses it; returns "" or the problem.
 std::string ParseConfiguration(const stagefiles::ResultsConfiguration& entry,
                                const std::filesystem::path& folder, MeasuredConfiguration* out) {
@@ -105,7 +117,16 @@ std::string ParseConfiguration(const stagefiles::ResultsConfiguration& entry,
         c.driver_messages.push_back(diagnostic.text.value_or(diagnostic.message));
     }
     c.glslang_valid = entry.glslang_valid;
+    std::set<std::string> views;
     for (const stagefiles::ResultsViewResult& v : entry.views) {
+        if (!IsViewName(v.view)) {
+            return fmt::format("configuration '{}': view name '{}' {}", c.id, v.view,
+                               kViewNameRule);
+        }
+        if (!views.insert(v.view).second) {
+            return fmt::format("configuration '{}': view '{}' appears more than once", c.id,
+                               v.view);
+        }
         ViewImage image{v.view, {}, v.pass_names, v.draw_calls, std::nullopt};
         if (!v.image.empty()) {
             // Images are read and embedded in the page: only files inside the results
@@ -288,10 +309,22 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     }
     const std::filesystem::path folder = results_path.parent_path();
     std::set<std::string> ids;
+    std::set<std::string> variants;
+    for (const stagefiles::ManifestVariant& variant : inputs.manifest.variants) {
+        variants.insert(variant.id);
+    }
     for (const stagefiles::ResultsConfiguration& entry : results.value->configurations) {
         MeasuredConfiguration c;
         if (std::string problem = ParseConfiguration(entry, folder, &c); !problem.empty()) {
             out.error = fmt::format("{}: {}", results_path.string(), problem);
+            return out;
+        }
+        if (variants.count(c.variant) == 0) {
+            out.error = fmt::format(
+                    "{}: configuration '{}' renders variant '{}', which {} does not list: the "
+                    "results come from the run of another configuration; give the manifest that "
+                    "run validated",
+                    results_path.string(), c.id, c.variant, manifest_path.string());
             return out;
         }
         if (!ids.insert(c.id).second) {
@@ -308,7 +341,17 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     inputs.width = settings.width;
     inputs.height = settings.height;
     for (const stagefiles::ResultsView& v : settings.views) {
+        if (!IsViewName(v.name)) {
+            out.error = fmt::format("{}: settings.views: view name '{}' {}", results_path.string(),
+                                    v.name, kViewNameRule);
+            return out;
+        }
         inputs.view_names.push_back(v.name);
+    }
+    if (!inputs.timing_view.empty() && !IsViewName(inputs.timing_view)) {
+        out.error = fmt::format("{}: settings.timing_view '{}' {}", results_path.string(),
+                                inputs.timing_view, kViewNameRule);
+        return out;
     }
     if (inputs.view_names.empty() && !inputs.configurations.empty()) {
         for (const ViewImage& v : inputs.configurations.front().views) {
@@ -320,6 +363,15 @@ ReportInputsResult LoadReportInputs(const std::filesystem::path& manifest_path,
     }
     for (std::size_t i = 0; i < results.value->comparisons.size(); ++i) {
         MeasuredComparison c = ParseComparison(results.value->comparisons[i]);
+        for (const auto& [side, id] :
+             {std::pair{"baseline", &c.baseline}, std::pair{"candidate", &c.candidate}}) {
+            if (ids.count(*id) == 0) {
+                out.error = fmt::format(
+                        "{}: comparisons[{}].{} '{}' is not the id of one of 'configurations'",
+                        results_path.string(), i, side, *id);
+                return out;
+            }
+        }
         if (c.baseline_ms.size() != c.candidate_ms.size()) {
             out.error = fmt::format(
                     "{}: comparisons[{}]: baseline_ms and candidate_ms differ in "

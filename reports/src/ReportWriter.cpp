@@ -113,16 +113,21 @@ RgbaImage Downscale(const RgbaImage& image, int factor) {
     return out;
 }
 
-std::string PanelStem(const ImagePanel& panel) {
-    std::string stem = panel.configuration != nullptr && !panel.configuration->presets.empty()
-                               ? panel.configuration->presets.front()
-                               : std::string("configuration");
-    for (char& c : stem) {
+// `name` as part of a file name in images/: anything but letters, digits, '_' and '-' becomes
+// '_', so no name from the inputs can climb out of the report's folder.
+std::string FileNamePart(std::string name) {
+    for (char& c : name) {
         if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-') {
             c = '_';
         }
     }
-    return stem;
+    return name;
+}
+
+std::string PanelStem(const ImagePanel& panel) {
+    return FileNamePart(panel.configuration != nullptr && !panel.configuration->presets.empty()
+                                ? panel.configuration->presets.front()
+                                : std::string("configuration"));
 }
 
 }  // namespace
@@ -518,15 +523,16 @@ WrittenReport WriteReportUnchecked(const ReportModel& model, const std::filesyst
             continue;
         }
         const bool technique = i >= ReflectionPanelOffset(model);
-        const std::string stem = (technique ? "reflection-" : "") + PanelStem(p) + "-" + p.view;
+        const std::string view = FileNamePart(p.view);
+        const std::string stem = (technique ? "reflection-" : "") + PanelStem(p) + "-" + view;
         files[i].image = "images/" + stem + ".png";
         files[i].heat = "images/" + stem + "-diff.png";
         const std::string key = p.reference_preset + "/" + p.view;
         if (reference_files.count(key) == 0) {
-            reference_files[key] =
-                    p.reference_preset == kReferencePreset
-                            ? "images/reference-" + p.view + ".png"
-                            : "images/planar-" + p.reference_preset + "-" + p.view + ".png";
+            reference_files[key] = p.reference_preset == kReferencePreset
+                                           ? "images/reference-" + view + ".png"
+                                           : "images/planar-" + FileNamePart(p.reference_preset) +
+                                                     "-" + view + ".png";
             if (std::string e =
                         base::WritePngAtomically(staging / reference_files[key], p.reference);
                 !e.empty()) {

@@ -157,6 +157,32 @@ TEST(ReportInputsTest, InputsCorruptInMeaningAreErrorsNamingTheFileAndField) {
                  j["configurations"][0]["views"][0]["image"] = "images/../../secret.png";
              },
              "'image' must be a path inside the results folder, not 'images/../../secret.png'"},
+            // View names name the report's image files: a path would write outside its folder.
+            {"view name a path", false,
+             [](nlohmann::json& j) { j["configurations"][0]["views"][0]["view"] = "../../x"; },
+             "view name '../../x' must be a plain name"},
+            {"view twice in one configuration", false,
+             [](nlohmann::json& j) {
+                 j["configurations"][0]["views"].push_back(j["configurations"][0]["views"][0]);
+             },
+             "appears more than once"},
+            {"timing view a path", false,
+             [](nlohmann::json& j) { j["settings"]["timing_view"] = "../x"; },
+             "settings.timing_view '../x' must be a plain name"},
+            // Results of another configuration's run, or a comparison of nothing measured.
+            {"variant the manifest does not list", false,
+             [](nlohmann::json& j) { j["configurations"][0]["variant"] = "water:NOPE"; },
+             "renders variant 'water:NOPE', which"},
+            {"comparison of an unknown configuration", false,
+             [](nlohmann::json& j) {
+                 j["comparisons"] =
+                         nlohmann::json::array({{{"label", "row"},
+                                                 {"baseline", j["configurations"][0]["id"]},
+                                                 {"candidate", "water:NOPE"},
+                                                 {"baseline_ms", {2.0, 2.1}},
+                                                 {"candidate_ms", {1.9, 2.0}}}});
+             },
+             "comparisons[0].candidate 'water:NOPE' is not the id of one of 'configurations'"},
             // Wrongly typed fields (issue 15 class 3): an error naming the field, not an abort.
             {"uniform_bools a string", false,
              [](nlohmann::json& j) { j["configurations"][0]["uniform_bools"] = "yes"; },
