@@ -83,9 +83,15 @@ ExpandResult Expand(const ExpandOptions& options) {
     const std::filesystem::path manifest_path =
             std::filesystem::path(options.out) / "manifest.json";
     const std::vector<std::filesystem::path> files_read = FilesRead(config);
-    if (!options.depfile.empty() &&
-        (!CheckPlannedOutputs({{"--depfile", options.depfile}}, files_read, &outcome) ||
-         !CheckDepfileNames(manifest_path, files_read, &outcome))) {
+    // The manifest is planned with the depfile, so that a depfile on the manifest or on the
+    // --out folder is refused before any work, as validate refuses it (it replaced the manifest
+    // it had just written and exited 0).
+    std::vector<PlannedOutput> outputs{{"--out", manifest_path}};
+    if (!options.depfile.empty()) {
+        outputs.push_back({"--depfile", options.depfile});
+    }
+    if (!CheckPlannedOutputs(outputs, files_read, &outcome) ||
+        (!options.depfile.empty() && !CheckDepfileNames(manifest_path, files_read, &outcome))) {
         return result;
     }
     // Everything goes to a private staging folder, removed by the publisher unless published.

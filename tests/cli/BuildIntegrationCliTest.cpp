@@ -151,6 +151,12 @@ TEST_F(DepfileCliTest, OutputsThatWouldReplaceAnInputOrEachOtherAreRefused) {
           Case{"validate --config v.yaml --out o --depfile o",
                "error: --depfile: o is the folder --out writes manifest.json into; give the path "
                "of a file beside it\n"},
+          Case{"expand --config v.yaml --out o --depfile o/manifest.json",
+               "error: --depfile: o/manifest.json is also where --out writes; give each output "
+               "its own path\n"},
+          Case{"expand --config v.yaml --out o --depfile o",
+               "error: --depfile: o is the folder --out writes manifest.json into; give the path "
+               "of a file beside it\n"},
           Case{"validate --config v.yaml --out o --depfile s.vsh/o.d",
                "error: --depfile: s.vsh/o.d: s.vsh is a file, not a folder; choose another "
                "path\n"}}) {
