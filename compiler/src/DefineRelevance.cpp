@@ -170,6 +170,8 @@ std::set<std::string> MentionedIdentifiers(const std::string& text) {
         for (std::string& token : Tokens(line.text)) {
             if (IsIdentifierStart(token[0])) {
                 names.insert(std::move(token));
+            } else if (token == kPastesTokens) {
+                names.insert(kPastesTokens);
             }
         }
     }
@@ -219,7 +221,9 @@ DefineRelevance::DefineRelevance(const std::string& text) {
                 item.names.push_back(Id(tokens[t]));
             }
         }
-        if (tokens[0] == "##") {
+        // Pasting makes names the text never spells (`CAT(ENABLE_,FOG)`): anywhere on a line,
+        // not only at its start (`## endif`), the walk cannot tell which defines matter.
+        if (std::find(tokens.begin(), tokens.end(), kPastesTokens) != tokens.end()) {
             followed_ = false;
             return;
         }

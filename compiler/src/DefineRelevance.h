@@ -14,11 +14,16 @@
 namespace tidepool {
 
 /// Every identifier-like token of `text` outside its comments, read as glslang's preprocessor
-/// reads comments, strings and lines (comments too when a `\` may join lines). GLSL ES has no
-/// token pasting (glslang rejects `##` for ES) and the preprocessor drops comments before it
-/// expands anything, so a define can only change the preprocessed text if its name is spelled
-/// out here; the shaders' header comments name every define they understand. Never fails.
+/// reads comments, strings and lines (comments too when a `\` may join lines), and
+/// kPastesTokens when the text holds `##`. The preprocessor drops comments before it expands
+/// anything, so without token pasting a define can only change the preprocessed text if its
+/// name is spelled out here; the shaders' header comments name every define they understand.
+/// With `##` any define may: glslang refuses it for ES, and pastes all the same
+/// (`CAT(ENABLE_,FOG)` reads ENABLE_FOG, whose definition changes the messages). Never fails.
 std::set<std::string> MentionedIdentifiers(const std::string& text);
+
+/// In MentionedIdentifiers' answer when the text pastes tokens, so that every define counts.
+inline constexpr const char* kPastesTokens = "##";
 
 /// Whether glslang takes `define` (NAME or NAME=VALUE, as DefinePreamble writes it) in its
 /// preamble without a word, so that it can change a text only where the text spells NAME: NAME a
@@ -39,10 +44,10 @@ struct LineSpan {
 class DefineRelevance {
 public:
     /// Reads `text` (a shader file as written). Never fails: a text the walk does not follow (a
-    /// `\` line continuation, a lone carriage return, a NUL, a form feed or vertical tab, an
-    /// unbalanced or misordered #if, #if nested deeper than kMaxNesting, a directive that a block
-    /// comment spanning lines precedes or carries on, a line starting with `##` or `# #`) makes
-    /// Relevant answer nullopt for every define list.
+    /// `##` anywhere outside comments, a `\` line continuation, a lone carriage return, a NUL, a
+    /// form feed or vertical tab, an unbalanced or misordered #if, #if nested deeper than
+    /// kMaxNesting, a directive that a block comment spanning lines precedes or carries on, a line
+    /// starting with `##` or `# #`) makes Relevant answer nullopt for every define list.
     explicit DefineRelevance(const std::string& text);
 
     /// A digest of what decides glslang's preprocessed text of the file (and the preprocessor's

@@ -552,8 +552,10 @@ std::string StageGroupKey(const std::string& file, Stage stage, const std::strin
     std::string key = fmt::format("{}|{}|{}|{}|", file, StageName(stage), target,
                                   limits != nullptr ? limits->Text() : "");
     for (const std::string& define : defines) {
-        // One glslang may refuse in the preamble counts wherever the file's text is.
-        if (mentioned.count(define.substr(0, define.find('='))) != 0 || !IsPlainDefine(define)) {
+        // One glslang may refuse in the preamble counts wherever the file's text is; every one
+        // counts in a text that pastes tokens.
+        if (mentioned.count(define.substr(0, define.find('='))) != 0 || !IsPlainDefine(define) ||
+            mentioned.count(kPastesTokens) != 0) {
             key += define + ",";
         }
     }

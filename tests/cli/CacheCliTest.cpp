@@ -143,6 +143,32 @@ TEST_F(CacheCliTest, PlainFilesWithAWarmCacheGiveTheSameDiagnosticsAndExitCodeAs
     EXPECT_FALSE(std::filesystem::exists(dir_.Path() / "xdg2" / "tidepool"));
 }
 
+// glslang refuses `##` in ES and pastes all the same, so a define the text never spells changes
+// its messages: a cached result keyed without it was another define's (found by review).
+TEST_F(CacheCliTest, ATextThatPastesTokensKeysEveryDefine) {
+    dir_.Write("paste.fsh",
+               "#version 100\nprecision mediump float;\n#define CAT(a, b) a##b\n"
+               "void main() { float x = CAT(VAL, UE); gl_FragColor = vec4(x); }\n");
+    dir_.Write("pv.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: paste.fsh\n"
+               "    axes:\n      VALUE: [one, two]\n");
+    const std::string cache = Quoted(dir_.Path() / "cache");
+    for (const char* args : {"validate paste.fsh -D VALUE=1.0", "validate paste.fsh -D VALUE=1",
+                             "validate paste.fsh -D VALUE=1.0", "validate --config pv.yaml"}) {
+        SCOPED_TRACE(args);
+        const CommandResult fresh = RunTidepool(std::string(args) + " --no-cache", dir_.Path());
+        const CommandResult cached =
+                RunTidepool(std::string(args) + " --cache " + cache, dir_.Path());
+        EXPECT_EQ(cached.exit_code, fresh.exit_code);
+        EXPECT_EQ(cached.err, fresh.err);
+        EXPECT_EQ(cached.out, fresh.out);
+    }
+    // Each value of the axis is its own stage program: the message names each variant's own.
+    const CommandResult config = RunTidepool("validate --config pv.yaml --no-cache", dir_.Path());
+    EXPECT_NE(config.err.find("[p:VALUE_ONE]"), std::string::npos) << config.err;
+    EXPECT_NE(config.err.find("[p:VALUE_TWO]"), std::string::npos) << config.err;
+}
+
 // How many entries of `folder` are whole-run records (RunRecordCache.h).
 std::size_t RunRecordCount(const std::filesystem::path& folder) {
     std::size_t count = 0;

@@ -123,6 +123,12 @@ TEST(DefineRelevanceTest, TextsAndDefinesBeyondTheWalkGetNoAnswer) {
             {"#version 100\n#ifdef NEVER\n##endif\n#endif\n",
              {},
              "a second `#`, which glslang reads as the directive's own in skipped text"},
+            {"#version 100\n#define CAT(a, b) a##b\nfloat x = CAT(ENABLE_, FOG);\n",
+             {},
+             "token pasting, which makes a name the text never spells"},
+            {"#version 100\nfloat x = CAT(ENABLE_, FOG);\n#define CAT(a, b) a ## b\n",
+             {},
+             "token pasting after the use, spaced"},
             {plain, {std::string(1025, 'A')}, "a name longer than glslang's tokens"},
             {plain, {"A=/*"}, "a value glslang's preamble refuses"},
             {std::string("#version 100\n#ifdef A\n#endif\n\0\n#ifdef B\n", 32), {}, "a NUL"},
@@ -148,6 +154,12 @@ TEST(DefineRelevanceTest, APlainDefineIsANameGlslangTakesWithAtMostANumber) {
     }
     EXPECT_TRUE(IsPlainDefine(std::string(1024, 'A')));
     EXPECT_FALSE(IsPlainDefine(std::string(1025, 'A')));
+}
+
+TEST(DefineRelevanceTest, ATextThatPastesTokensMentionsEveryDefine) {
+    EXPECT_EQ(MentionedIdentifiers("#define CAT(a, b) a##b\nfloat x = CAT(VAL, UE);\n"),
+              (std::set<std::string>{"##", "CAT", "UE", "VAL", "a", "b", "define", "float", "x"}));
+    EXPECT_EQ(MentionedIdentifiers("// a##b\nfloat x;\n").count(kPastesTokens), 0U);
 }
 
 TEST(DefineRelevanceTest, EachTextWhereADefineChangesGlslangsOutputGetsTwoAnswers) {
