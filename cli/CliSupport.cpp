@@ -103,9 +103,24 @@ int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code) {
     return exit_code;
 }
 
+std::string ForTerminal(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char c : text) {
+        const auto byte = static_cast<unsigned char>(c);
+        if ((byte < 0x20 && c != '\n' && c != '\t') || byte == 0x7f) {
+            out += fmt::format("\\x{:02x}", byte);
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics) {
     for (const Diagnostic& d : diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
+        const std::string line = ForTerminal(FormatDiagnostic(d)) + "\n";
+        std::fwrite(line.data(), 1, line.size(), stderr);
     }
 }
 

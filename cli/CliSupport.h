@@ -41,7 +41,12 @@ int PrintOutcome(const pipeline::Outcome& outcome);
 /// else what the command stored.
 int ParseAndRun(CLI::App& app, int argc, char** argv, const int& exit_code);
 
-/// Prints each diagnostic in GCC form on stderr, one per line.
+/// `text` with every control character but newline and tab (a NUL, an escape sequence, a
+/// carriage return) written as \xNN, so a name from an input file shows whole and cannot drive
+/// the terminal.
+std::string ForTerminal(std::string_view text);
+
+/// Prints each diagnostic in GCC form on stderr, one per line, through ForTerminal.
 void PrintDiagnostics(const std::vector<Diagnostic>& diagnostics);
 
 /// The largest render target side the commands accept.

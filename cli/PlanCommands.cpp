@@ -28,9 +28,7 @@ struct PlanCommandOptions {
 
 void PrintPlan(const lab::ScenePlan& plan) {
     std::printf("scene %s: %s\n", plan.scene.name.c_str(), plan.scene.description.c_str());
-    for (const Diagnostic& d : plan.diagnostics) {
-        std::fprintf(stderr, "%s\n", FormatDiagnostic(d).c_str());
-    }
+    PrintDiagnostics(plan.diagnostics);
     if (plan.chosen < 0) {
         return;
     }

@@ -97,7 +97,7 @@ int RunMatrix(const ValidateCommandOptions& options) {
     const pipeline::Outcome& outcome = result.matrix.outcome;
     pipeline::RunRecord record;
     for (const Diagnostic& d : outcome.diagnostics) {
-        record.err += FormatDiagnostic(d) + "\n";
+        record.err += ForTerminal(FormatDiagnostic(d)) + "\n";
     }
     record.exit_code = pipeline::ExitCode(outcome.status);
     if (!outcome.Stopped()) {

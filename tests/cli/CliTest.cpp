@@ -118,6 +118,20 @@ TEST_F(CliTest, ConfigurationErrorExitsTwoAndNamesFileLineColumn) {
     EXPECT_EQ(r.out, "");
 }
 
+// A name holding a NUL cut the message short, and an escape sequence drove the terminal.
+TEST_F(CliTest, ControlCharactersInAMessageAreShownAsEscapes) {
+    dir_.Write("v.yaml",
+               "programs:\n  \"p\\0x\\e[31m\":\n    vertex: s.vsh\n    fragment: s.fsh\n");
+    for (const char* command : {"validate", "expand"}) {
+        const CommandResult r = RunTidepool(std::string(command) + " --config v.yaml", dir_.Path());
+        EXPECT_EQ(r.exit_code, 2) << command;
+        EXPECT_EQ(r.err,
+                  "v.yaml:2:3: error: program name 'p\\x00x\\x1b[31m' must be an identifier "
+                  "(letters, digits, _)\n")
+                << command;
+    }
+}
+
 TEST_F(CliTest, MissingConfigurationExitsTwo) {
     const CommandResult r = RunTidepool("expand --config nowhere.yaml", dir_.Path());
     EXPECT_EQ(r.exit_code, 2);
