@@ -7,9 +7,24 @@
 namespace tidepool::report {
 
 std::string HtmlEscaped(std::string_view text) {
+    constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
     std::string out;
     out.reserve(text.size());
-    for (char c : text) {
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        // XML 1.0 allows no C0 control but tab, newline and carriage return, nor U+FFFE and
+        // U+FFFF (EF BF BE, EF BF BF), even as references: one makes an SVG chart unreadable.
+        const auto byte = static_cast<unsigned char>(c);
+        if (byte < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+            out += kReplacement;
+            continue;
+        }
+        if (byte == 0xEF && text.substr(i + 1, 1) == "\xBF" && i + 2 < text.size() &&
+            (text[i + 2] == '\xBE' || text[i + 2] == '\xBF')) {
+            out += kReplacement;
+            i += 2;
+            continue;
+        }
         switch (c) {
             case '&':
                 out += "&amp;";

@@ -10,7 +10,9 @@
 
 namespace tidepool::report {
 
-/// `text` with &, <, > and " escaped for HTML text and attribute values.
+/// `text` with &, <, > and " escaped for HTML text and attribute values (and SVG's XML), and
+/// each character XML 1.0 does not allow (C0 controls but tab, newline and carriage return;
+/// U+FFFE, U+FFFF) replaced by U+FFFD.
 std::string HtmlEscaped(std::string_view text);
 
 /// `value` with `digits` decimals and `unit`; "inf"/"-inf" when infinite, "–" when NaN.

@@ -14,6 +14,20 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kTextNan = std::numeric_limits<double>::quiet_NaN();
 
+// A NUL or an escape in a name made the SVG charts fail to parse as XML.
+TEST(ReportTextTest, HtmlEscapedReplacesWhatXmlDoesNotAllow) {
+    EXPECT_EQ(HtmlEscaped(std::string("a\0b\x01"
+                                      "c\x1b"
+                                      "[31m\td\ne\rf",
+                                      16)),
+              "a\xEF\xBF\xBD"
+              "b\xEF\xBF\xBD"
+              "c\xEF\xBF\xBD[31m\td\ne\rf");
+    EXPECT_EQ(HtmlEscaped("x\xEF\xBF\xBEy\xEF\xBF\xBFz\xEF\xBF\xBD"),
+              "x\xEF\xBF\xBDy\xEF\xBF\xBDz\xEF\xBF\xBD");
+    EXPECT_EQ(HtmlEscaped("\xEF\xBF"), "\xEF\xBF");  // cut short: left as it is
+}
+
 TEST(ReportTextTest, HtmlEscapedEscapesTheFourMarkupCharactersOnly) {
     EXPECT_EQ(HtmlEscaped("a & b < c > d \"e\" 'f'"), "a &amp; b &lt; c &gt; d &quot;e&quot; 'f'");
     EXPECT_EQ(HtmlEscaped(""), "");
