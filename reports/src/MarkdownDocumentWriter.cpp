@@ -2,24 +2,75 @@
 // GitHub tables, images and charts linked to the files beside report.md.
 #include "tidepool/report/ReportDocument.h"
 
+#include <algorithm>
+#include <cctype>
+#include <string>
 #include <string_view>
 
 namespace tidepool::report::doc {
 namespace {
 
-// A table cell: pipes would end the cell, newlines the row.
-std::string MarkdownCell(std::string_view text) {
+constexpr std::string_view kReplacement = "\xEF\xBF\xBD";  // U+FFFD
+
+// Text from the inputs (names, messages) as Markdown text that stays as written where it can
+// ("a < b" is left alone) but cannot make structure: a line break would start a block (a
+// heading, a list), `<` before a letter, `/`, `!` or `?` would open raw HTML or an autolink,
+// and `](` a link or an image; a control character would drive a terminal showing the file.
+std::string MarkdownText(std::string_view text) {
     std::string out;
-    for (char c : text) {
-        if (c == '|') {
-            out += "\\|";
-        } else if (c == '\n') {
+    out.reserve(text.size());
+    for (std::size_t i = 0; i < text.size(); ++i) {
+        const char c = text[i];
+        const char next = i + 1 < text.size() ? text[i + 1] : '\0';
+        if (c == '\n' || c == '\r') {
             out += ' ';
+        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+            out += kReplacement;
+        } else if (c == '<' && (std::isalpha(static_cast<unsigned char>(next)) != 0 ||
+                                next == '/' || next == '!' || next == '?')) {
+            out += "&lt;";
+        } else if (c == ']' && next == '(') {
+            out += "]\\";
         } else {
             out += c;
         }
     }
     return out;
+}
+
+// A table cell: MarkdownText, and a pipe would end the cell. A backslash is escaped too, or one
+// before a pipe would escape the pipe's own backslash and end the cell after all.
+std::string MarkdownCell(std::string_view text) {
+    std::string out;
+    for (char c : MarkdownText(text)) {
+        if (c == '|' || c == '\\') {
+            out += '\\';
+        }
+        out += c;
+    }
+    return out;
+}
+
+// A code span holding `text` as it is: fenced by one backtick more than its longest run of them,
+// padded where it starts or ends with one; lines joined, control characters replaced.
+std::string CodeSpan(std::string_view text) {
+    std::string content;
+    std::size_t run = 0;
+    std::size_t longest = 0;
+    for (const char c : text) {
+        run = c == '`' ? run + 1 : 0;
+        longest = std::max(longest, run);
+        if (c == '\n' || c == '\r') {
+            content += ' ';
+        } else if (static_cast<unsigned char>(c) < 0x20 && c != '\t') {
+            content += kReplacement;
+        } else {
+            content += c;
+        }
+    }
+    const std::string fence(longest + 1, '`');
+    const bool pad = !content.empty() && (content.front() == '`' || content.back() == '`');
+    return fence + (pad ? " " : "") + content + (pad ? " " : "") + fence;
 }
 
 std::string Row(const std::vector<std::string>& cells) {
@@ -43,13 +94,13 @@ std::string SpansToMarkdown(const std::vector<Span>& spans) {
     for (const Span& span : spans) {
         switch (span.kind) {
             case Span::Kind::kText:
-                out += span.text;
+                out += MarkdownText(span.text);
                 break;
             case Span::Kind::kStrong:
-                out += "**" + span.text + "**";
+                out += "**" + MarkdownText(span.text) + "**";
                 break;
             case Span::Kind::kCode:
-                out += "`" + span.text + "`";
+                out += CodeSpan(span.text);
                 break;
         }
     }
@@ -61,12 +112,13 @@ std::string ToMarkdown(const Paragraph& paragraph) {
 }
 
 std::string ToMarkdown(const Heading& heading) {
-    return "### " + heading.text + "\n\n";
+    return "### " + MarkdownText(heading.text) + "\n\n";
 }
 
 std::string ToMarkdown(const Table& table) {
-    std::string out =
-            table.folded_under.empty() ? std::string() : "### " + table.folded_under + "\n\n";
+    std::string out = table.folded_under.empty()
+                              ? std::string()
+                              : "### " + MarkdownText(table.folded_under) + "\n\n";
     out += Row(table.header) + Rule(table.header.size());
     for (const std::vector<std::string>& row : table.rows) {
         out += Row(row);
@@ -75,16 +127,17 @@ std::string ToMarkdown(const Table& table) {
 }
 
 std::string ToMarkdown(const Figure& figure) {
-    return "![" + figure.alt + "](" + figure.file + ")\n\n";
+    return "![" + MarkdownText(figure.alt) + "](" + figure.file + ")\n\n";
 }
 
 // Heading, the label and its figures on one line, then the images as one table row.
 std::string ToMarkdown(const ImagePanel& panel) {
-    std::string out = "### " + panel.title + " — " + panel.subtitle + "\n\n`" + panel.label + "`";
+    std::string out = "### " + MarkdownText(panel.title) + " — " + MarkdownText(panel.subtitle) +
+                      "\n\n" + CodeSpan(panel.label);
     if (!panel.warning.empty()) {
-        return out + ": **" + panel.warning + "**\n\n";
+        return out + ": **" + MarkdownText(panel.warning) + "**\n\n";
     }
-    out += " — " + panel.summary + "\n\n";
+    out += " — " + MarkdownText(panel.summary) + "\n\n";
     std::vector<std::string> captions;
     std::string images = "|";
     for (const PanelImage& image : panel.images) {
@@ -97,7 +150,7 @@ std::string ToMarkdown(const ImagePanel& panel) {
 }  // namespace
 
 std::string MarkdownSection(const Section& section) {
-    std::string out = "## " + section.title + "\n\n";
+    std::string out = "## " + MarkdownText(section.title) + "\n\n";
     for (const Block& block : section.blocks) {
         out += std::visit([](const auto& node) { return ToMarkdown(node); }, block);
     }
@@ -105,7 +158,7 @@ std::string MarkdownSection(const Section& section) {
 }
 
 std::string MarkdownPage(const Document& document) {
-    std::string out = "# " + document.title + "\n\n" + ToMarkdown(document.byline);
+    std::string out = "# " + MarkdownText(document.title) + "\n\n" + ToMarkdown(document.byline);
     for (const Block& block : document.lead) {
         out += std::visit([](const auto& node) { return ToMarkdown(node); }, block);
     }

@@ -34,6 +34,19 @@ TEST(MarkdownDocumentWriterTest, TextAndHeadingsAreNotEscaped) {
     EXPECT_EQ(MarkdownSection(section), "## 1. Title\n\n### a < b\n\nx & \"y\"\n\n");
 }
 
+// Names and messages from the inputs cannot make structure (found by a hostile-input review:
+// an id holding a newline and `# H [l](javascript:x)` became a heading with a link).
+TEST(MarkdownDocumentWriterTest, TextFromTheInputsCannotMakeStructure) {
+    const Paragraph p{ParagraphStyle::kBody,
+                      {{Span::Kind::kText, "a\n# H [l](javascript:x) <script>x</script>\r\x1b!"},
+                       {Span::Kind::kCode, "c`d\n"}}};
+    EXPECT_EQ(MarkdownSection(MarkdownSection({p, Heading{"h\n- item", ""}})),
+              "## 1. Title\n\na # H [l]\\(javascript:x) &lt;script>x&lt;/script> \xEF\xBF\xBD!"
+              "``c`d ``\n\n### h - item\n\n");
+    const Section table = MarkdownSection({Table{{"a\\|b"}, {{"`x`"}}, {}, ""}});
+    EXPECT_EQ(MarkdownSection(table), "## 1. Title\n\n| a\\\\\\|b |\n|---|\n| `x` |\n\n");
+}
+
 TEST(MarkdownDocumentWriterTest, InlineSpansRenderAsStrongAndCode) {
     const Paragraph p{ParagraphStyle::kNote,
                       {{Span::Kind::kText, "run "},
@@ -78,7 +91,7 @@ TEST(MarkdownDocumentWriterTest, PageHasTitleBylineAndLeadInOrder) {
     document.lead = {Paragraph{ParagraphStyle::kLead, {{Span::Kind::kText, "in short"}}}};
     document.sections = {MarkdownSection({}), Section{"2. Second", "second", "", {}}};
     EXPECT_EQ(MarkdownPage(document),
-              "# report: a<b\n\nmade today\n\nin short\n\n## 1. Title\n\n## 2. Second\n\n");
+              "# report: a&lt;b\n\nmade today\n\nin short\n\n## 1. Title\n\n## 2. Second\n\n");
 }
 
 }  // namespace
