@@ -103,9 +103,11 @@ DeviceLimitsRead ParseDeviceLimits(std::string_view text, const std::string& pat
         const auto [end_of_number, status] =
                 std::from_chars(digits.data(), digits.data() + digits.size(), value);
         if (status != std::errc() || end_of_number != digits.data() + digits.size()) {
+            // Only the Min... limits may be negative (below); the range says so.
+            const bool signed_limit = name.rfind("Min", 0) == 0;
             error(words[1], fmt::format("the value of '{}' must be a whole number from {} to {}, "
                                         "not '{}'",
-                                        name, std::numeric_limits<int>::min(),
+                                        name, signed_limit ? std::numeric_limits<int>::min() : 0,
                                         std::numeric_limits<int>::max(), digits));
             continue;
         }

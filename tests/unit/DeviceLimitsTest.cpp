@@ -75,7 +75,10 @@ INSTANTIATE_TEST_SUITE_P(
                               "`glslangValidator -c` prints them all)\n"},
                 BadLimitsCase{"NotAWholeNumber", "MaxDrawBuffers 4.5\n",
                               "phone.conf:1:16: error: the value of 'MaxDrawBuffers' must be a "
-                              "whole number from -2147483648 to 2147483647, not '4.5'\n"},
+                              "whole number from 0 to 2147483647, not '4.5'\n"},
+                BadLimitsCase{"MinLimitNotAWholeNumber", "MinProgramTexelOffset 1e99\n",
+                              "phone.conf:1:23: error: the value of 'MinProgramTexelOffset' must "
+                              "be a whole number from -2147483648 to 2147483647, not '1e99'\n"},
                 BadLimitsCase{"Twice", "MaxDrawBuffers 4\nMaxDrawBuffers 8\n",
                               "phone.conf:2:1: error: limit 'MaxDrawBuffers' is given twice; "
                               "keep one line\n"},
