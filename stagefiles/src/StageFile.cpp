@@ -2,6 +2,7 @@
 
 #include "tidepool/base/FileKind.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -16,6 +17,42 @@ std::string JsonText(const nlohmann::json& json, int indent) {
 }  // namespace tidepool
 
 namespace tidepool::stagefiles {
+namespace {
+
+// Where and why `bytes` (not JSON) stop being JSON, as "PATH:LINE:COLUMN: not valid JSON: WHY",
+// from the parser's own account of it (parsed again with exceptions, only on this path).
+std::string JsonSyntaxError(const std::filesystem::path& path, const std::string& bytes) {
+    std::size_t offset = bytes.size();
+    std::string why = "corrupt or truncated";
+    try {
+        const nlohmann::json parsed = nlohmann::json::parse(bytes);  // throws, as it failed
+        static_cast<void>(parsed);
+    } catch (const nlohmann::json::parse_error& e) {
+        offset = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, bytes.size());
+        // e.what(): "[json.exception.parse_error.101] parse error at line 1, column 9: WHY"
+        const std::string what = e.what();
+        const std::size_t column = what.find("column ");
+        const std::size_t colon = column == std::string::npos ? column : what.find(": ", column);
+        if (colon != std::string::npos) {
+            why = what.substr(colon + 2);
+        }
+    } catch (const nlohmann::json::exception&) {
+        // Another failure of the same bytes: the plain words stand.
+    }
+    // The offending byte's line and column, 1-based, as the other diagnostics count them.
+    std::size_t line = 1;
+    std::size_t line_start = 0;
+    for (std::size_t i = 0; i < offset; ++i) {
+        if (bytes[i] == '\n') {
+            ++line;
+            line_start = i + 1;
+        }
+    }
+    const std::size_t column = offset - line_start + 1;
+    return fmt::format("{}:{}:{}: not valid JSON: {}", path.string(), line, column, why);
+}
+
+}  // namespace
 
 std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, std::string* error) {
     if (const std::string why = base::WhyNotARegularFile(path); !why.empty()) {
@@ -29,9 +66,10 @@ std::optional<nlohmann::json> ReadJsonFile(const std::filesystem::path& path, st
         *error = fmt::format("{}: cannot read", path.string());
         return std::nullopt;
     }
-    nlohmann::json json = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+    const std::string bytes = text.str();
+    nlohmann::json json = nlohmann::json::parse(bytes, nullptr, /*allow_exceptions=*/false);
     if (json.is_discarded()) {
-        *error = fmt::format("{}: not valid JSON (corrupt or truncated)", path.string());
+        *error = JsonSyntaxError(path, bytes);
         return std::nullopt;
     }
     return json;

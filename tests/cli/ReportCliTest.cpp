@@ -302,7 +302,8 @@ TEST_F(ReportCliTest, CorruptManifestOrMissingResultsExitTwoNamingTheFile) {
                                     (dir.Path() / "results.json").string() + "' --out '" +
                                     (dir.Path() / "out").string() + "'");
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(manifest.string() + ": not valid JSON"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(manifest.string() + ":1:18: not valid JSON: "), std::string::npos)
+            << r.err;
     EXPECT_EQ(r.out, "");
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
 

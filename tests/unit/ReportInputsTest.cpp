@@ -40,8 +40,8 @@ TEST(ReportInputsTest, CorruptManifestIsAnErrorNamingTheFile) {
     dir.Write("manifest/manifest.json", "{\"schema\": \"tidepool.manifest\", \"vers");
     const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
     EXPECT_FALSE(loaded.inputs);
-    EXPECT_EQ(loaded.error.rfind(run.manifest.string() + ": not valid JSON", 0), 0u)
-            << loaded.error;
+    EXPECT_EQ(loaded.error.rfind(run.manifest.string() + ":1:", 0), 0u) << loaded.error;
+    EXPECT_NE(loaded.error.find(": not valid JSON: "), std::string::npos) << loaded.error;
 }
 
 TEST(ReportInputsTest, MissingResultsFileIsAnErrorNamingTheFile) {

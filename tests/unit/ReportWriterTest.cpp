@@ -248,7 +248,7 @@ TEST(ReportWriterTest, CorruptOrForeignPlansAreAnErrorNamingTheFileInTheReport) 
         const ReportInputsResult loaded = LoadReportInputs(run.manifest, run.results);
         ASSERT_TRUE(loaded.inputs) << loaded.error;  // the rest of the report is still built
         EXPECT_FALSE(loaded.inputs->plans);
-        EXPECT_EQ(loaded.inputs->plans_error.rfind(plans.string() + ": ", 0), 0u)
+        EXPECT_EQ(loaded.inputs->plans_error.rfind(plans.string() + ":", 0), 0u)
                 << loaded.inputs->plans_error;
         const ReportModel model = BuildOrFail(*loaded.inputs);
         const WrittenReport written = WriteReport(model, dir.Path() / "out");

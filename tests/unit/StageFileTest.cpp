@@ -30,7 +30,13 @@ TEST(StageFileTest, ReadJsonFileNamesAMissingOrCorruptFile) {
     EXPECT_EQ(error, (dir.Path() / "none.json").string() + ": no such file");
     const std::filesystem::path corrupt = dir.Write("c.json", "{\"schema\": \"tid");
     EXPECT_FALSE(ReadJsonFile(corrupt, &error));
-    EXPECT_EQ(error, corrupt.string() + ": not valid JSON (corrupt or truncated)");
+    EXPECT_EQ(error, corrupt.string() +
+                             ":1:16: not valid JSON: syntax error while parsing value - invalid "
+                             "string: missing closing quote; last read: '\"tid'");
+    // The line and column of the byte where the text stops being JSON.
+    EXPECT_FALSE(ReadJsonFile(dir.Write("l.json", "{\"a\": 1,\n  \"b\": ]}"), &error));
+    EXPECT_EQ(error.substr(0, error.find(": not valid JSON")),
+              (dir.Path() / "l.json").string() + ":2:8");
     const std::filesystem::path good = dir.Write("g.json", "{\"a\": [1]}");
     const std::optional<json> read = ReadJsonFile(good, &error);
     ASSERT_TRUE(read);
