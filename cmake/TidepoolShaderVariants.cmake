@@ -17,6 +17,10 @@
 # TARGET is a custom target that builds every step (part of ALL); its properties
 # TIDEPOOL_OUTPUT_DIR and TIDEPOOL_MANIFESTS give OUTPUT_DIR and the manifests' paths.
 #
+# CONFIG's folder and OUTPUT_DIR may not hold `$`, `:`, `;`, `#` or a newline (refused when CMake
+# configures: CMake's depfile handling and its lists break them), and two targets may not share
+# an OUTPUT_DIR.
+#
 # The tidepool binary: TIDEPOOL_EXECUTABLE (set by find_package(tidepool)), else `tidepool`
 # on the PATH. Relative CONFIG is taken from the current source folder, relative OUTPUT_DIR from
 # the current binary folder. Needs CMake 3.20 (DEPFILE for Ninja and Makefile generators).
@@ -41,6 +45,25 @@ function(tidepool_add_shader_variants)
   endif()
   get_filename_component(config "${arg_CONFIG}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_SOURCE_DIR}")
   get_filename_component(out "${arg_OUTPUT_DIR}" ABSOLUTE BASE_DIR "${CMAKE_CURRENT_BINARY_DIR}")
+  # tidepool's depfile escapes `$` and `:`, but CMake's own depfile transform (3.25) drops the
+  # `$$` and turns `\:` into `/:`, so Ninja reran every step on every build and Make stopped on
+  # `:`; CMake splits a path at `;` and refuses `#` in an OUTPUT. Refused here, by name.
+  get_filename_component(config_dir "${config}" DIRECTORY)
+  foreach(path IN ITEMS "${config_dir}" "${out}")
+    if(path MATCHES "[$:;#\n]")
+      message(FATAL_ERROR "tidepool_add_shader_variants: the path '${path}' holds one of $ : ; # "
+                          "or a newline, which CMake's depfile handling or its lists break: "
+                          "move CONFIG (with its shaders) or OUTPUT_DIR to a path without them")
+    endif()
+  endforeach()
+  # Two steps writing one manifest would be two rules for one file, which CMake refuses in its
+  # own words; say which target has the folder.
+  get_property(owner GLOBAL PROPERTY "TIDEPOOL_OUTPUT_DIR_OWNER:${out}")
+  if(owner)
+    message(FATAL_ERROR "tidepool_add_shader_variants: OUTPUT_DIR '${out}' is already the output "
+                        "folder of target '${owner}'; give each target its own OUTPUT_DIR")
+  endif()
+  set_property(GLOBAL PROPERTY "TIDEPOOL_OUTPUT_DIR_OWNER:${out}" "${arg_TARGET}")
 
   set(programs ${arg_PROGRAMS})
   if(NOT programs)

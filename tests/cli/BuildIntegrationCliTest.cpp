@@ -4,6 +4,7 @@
 // nothing, and touching one shader reruns only the step of the program that reads it.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <chrono>
 #include <filesystem>
 #include <string>
@@ -321,6 +322,52 @@ TEST_P(ExampleProjectTest, AnInvalidVariantFailsTheBuildAtTheShaderLine) {
 // `cmake --install` into a prefix, which is then moved (the package finds its binary relative to
 // itself): find_package(tidepool) through CMAKE_PREFIX_PATH alone builds the example project
 // with the installed binary, and the installed front end finds the installed tidepool-gl.
+// CMake's depfile transform drops tidepool's `$$` and turns `\:` into `/:` (Ninja then reran
+// every step on every build; Make stopped), and CMake splits paths at `;`: the module refuses
+// such paths, and a second target on one OUTPUT_DIR, when CMake configures, in its own words.
+TEST(ShaderVariantsModuleTest, PathsCMakeBreaksAndASharedOutputDirAreRefusedAtConfigure) {
+    struct Case {
+        const char* calls;
+        const char* error;
+    };
+    for (const Case& c :
+         {Case{"tidepool_add_shader_variants(TARGET a CONFIG variants.yaml PROGRAMS tint "
+               "OUTPUT_DIR \"o$x\")",
+               "holds one of $ : ; # or a newline"},
+          Case{"tidepool_add_shader_variants(TARGET a CONFIG variants.yaml PROGRAMS tint "
+               "OUTPUT_DIR o:x)",
+               "holds one of $ : ; # or a newline"},
+          Case{"tidepool_add_shader_variants(TARGET a CONFIG variants.yaml PROGRAMS tint "
+               "OUTPUT_DIR o)\ntidepool_add_shader_variants(TARGET b CONFIG variants.yaml "
+               "PROGRAMS tint OUTPUT_DIR o)",
+               "is already the output folder of target 'a'; give each target its own "
+               "OUTPUT_DIR"}}) {
+        SCOPED_TRACE(c.calls);
+        TempDir dir;
+        fs::copy(fs::path(TIDEPOOL_SOURCE_ROOT) / "examples/shader_variants", dir.Path() / "src",
+                 fs::copy_options::recursive);
+        dir.Write("src/CMakeLists.txt",
+                  std::string("cmake_minimum_required(VERSION 3.20)\nproject(p NONE)\n"
+                              "find_package(tidepool REQUIRED CONFIG)\n") +
+                          c.calls + "\n");
+        const CommandResult configure =
+                RunShell("'" CMAKE_COMMAND "' -S '" + (dir.Path() / "src").string() + "' -B '" +
+                         (dir.Path() / "build").string() +
+                         "' -G Ninja -Dtidepool_DIR='" TIDEPOOL_BUILD_DIR "' 2>&1");
+        EXPECT_NE(configure.exit_code, 0) << configure.out;
+        // CMake wraps a message's lines; read it as one line.
+        std::string words;
+        for (const char ch : configure.out) {
+            if (!std::isspace(static_cast<unsigned char>(ch))) {
+                words += ch;
+            } else if (!words.empty() && words.back() != ' ') {
+                words += ' ';
+            }
+        }
+        EXPECT_TRUE(Contains(words, c.error)) << configure.out;
+    }
+}
+
 TEST(InstalledPackageTest, AMovedInstallPrefixBuildsTheExampleProject) {
     const TempDir dir;
     const fs::path staged = dir.Path() / "staged";
