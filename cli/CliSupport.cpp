@@ -197,6 +197,13 @@ std::string NormaliseOutPath(std::string path) {
 
 bool CheckReportName(const std::string& name, const std::vector<std::string>& taken) {
     const bool is_taken = std::find(taken.begin(), taken.end(), name) != taken.end();
+    // A name past 255 bytes failed with "File name too long" (exit 3) after the whole report.
+    constexpr std::size_t kLongestName = 255;
+    if (name.size() > kLongestName) {
+        std::fprintf(stderr, "error: --name must be a folder name of at most %zu bytes, not %zu\n",
+                     kLongestName, name.size());
+        return false;
+    }
     if (name.empty() || name.find('/') != std::string::npos || name[0] == '.' || is_taken) {
         std::string others;
         for (const std::string& t : taken) {

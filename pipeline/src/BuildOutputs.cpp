@@ -131,6 +131,33 @@ std::filesystem::path VariantSourcePath(GlslTarget target, const Variant& varian
            (name + (stage == Stage::kVertex ? ".vert" : ".frag"));
 }
 
+bool CheckVariantFileNames(const VariantConfig& config, const std::vector<Variant>& variants,
+                           Outcome* outcome) {
+    for (GlslTarget target : config.targets) {
+        for (const Variant& variant : variants) {
+            for (const std::filesystem::path& part :
+                 VariantSourcePath(target, variant, Stage::kFragment)) {
+                const std::size_t length = part.native().size();
+                if (length <= kLongestFileName) {
+                    continue;
+                }
+                const ProgramConfig* program = config.FindProgram(variant.program);
+                const SourceLocation where = program != nullptr ? program->where : SourceLocation{};
+                outcome->diagnostics.push_back(MakeError(
+                        where.file.empty() ? config.path : where.file, where.line, where.column,
+                        fmt::format("variant '{}' would be written to a file name of {} bytes "
+                                    "('{}...'), past the {} a file system takes: shorten the "
+                                    "program's name or its feature and axis names",
+                                    variant.Id(), length, part.native().substr(0, 40),
+                                    kLongestFileName)));
+                outcome->status = Status::kUsage;
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
 bool WriteVariantSources(const VariantConfig& config, const std::vector<Variant>& variants,
                          const std::filesystem::path& folder, Outcome* outcome) {
     std::map<std::string, std::string> sources;  // path → text, read once

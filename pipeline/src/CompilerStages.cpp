@@ -91,7 +91,8 @@ ExpandResult Expand(const ExpandOptions& options) {
         outputs.push_back({"--depfile", options.depfile});
     }
     if (!CheckPlannedOutputs(outputs, files_read, &outcome) ||
-        (!options.depfile.empty() && !CheckDepfileNames(manifest_path, files_read, &outcome))) {
+        (!options.depfile.empty() && !CheckDepfileNames(manifest_path, files_read, &outcome)) ||
+        !CheckVariantFileNames(config, expansion.variants, &outcome)) {
         return result;
     }
     // Everything goes to a private staging folder, removed by the publisher unless published.
@@ -156,7 +157,9 @@ ValidateResult ValidateMatrix(const ValidateOptions& options) {
     }
     if (!CheckPlannedOutputs(outputs, result.files_read, &outcome) ||
         (!options.out.empty() && !options.depfile.empty() &&
-         !CheckDepfileNames(manifest_path, dependencies, &outcome))) {
+         !CheckDepfileNames(manifest_path, dependencies, &outcome)) ||
+        (!options.out.empty() && options.sources &&
+         !CheckVariantFileNames(config, variants, &outcome))) {
         return result;
     }
     if (!options.out.empty()) {

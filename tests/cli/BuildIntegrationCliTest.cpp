@@ -172,6 +172,27 @@ TEST_F(DepfileCliTest, OutputsThatWouldReplaceAnInputOrEachOtherAreRefused) {
     }
 }
 
+// The write failed with "File name too long" (exit 3) after the work, naming a staging folder.
+TEST_F(DepfileCliTest, AVariantFileNameTooLongForTheFileSystemIsAUsageErrorBeforeAnyWork) {
+    const std::string feature(130, 'F');
+    dir_.Write("v.yaml",
+               "programs:\n  p:\n    vertex: s.vsh\n    fragment: s.fsh\n"
+               "    features: [A" +
+                       feature + ", B" + feature + "]\n");
+    for (const char* args :
+         {"expand --config v.yaml --out o", "validate --config v.yaml --out o --sources"}) {
+        SCOPED_TRACE(args);
+        const CommandResult r = RunTidepool(args, dir_.Path());
+        EXPECT_EQ(r.exit_code, 2);
+        EXPECT_EQ(r.err.rfind("v.yaml:2:3: error: variant 'p:A" + feature + ",B" + feature +
+                                      "' would be written to a file name of 270 bytes",
+                              0),
+                  0U)
+                << r.err;
+        EXPECT_FALSE(fs::exists(dir_.Path() / "o"));
+    }
+}
+
 TEST_F(DepfileCliTest, AShaderNameADepfileCannotHoldIsAUsageErrorBeforeAnyWork) {
     dir_.Write("t\tb.vsh", kIntegrationVertex);
     dir_.Write("v.yaml", "programs:\n  p:\n    vertex: \"t\\tb.vsh\"\n    fragment: s.fsh\n");

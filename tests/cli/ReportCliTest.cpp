@@ -209,6 +209,10 @@ TEST_F(ReportCliTest, ReportRefusesANameOutsideOutAndAnOutThatIsAFile) {
         EXPECT_EQ(r.exit_code, 2) << r.err;
         EXPECT_EQ(r.err.rfind("error: --name must be a plain folder name, not '", 0), 0U) << r.err;
     }
+    const CommandResult long_name =
+            RunTidepoolInSourceRoot(inputs + out + " --name " + std::string(256, 'n'));
+    EXPECT_EQ(long_name.exit_code, 2) << long_name.err;
+    EXPECT_EQ(long_name.err, "error: --name must be a folder name of at most 255 bytes, not 256\n");
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "out"));
     EXPECT_FALSE(std::filesystem::exists(dir.Path() / "escaped"));
     const CommandResult r = RunTidepoolInSourceRoot(inputs + " --out '" + file.string() + "'");

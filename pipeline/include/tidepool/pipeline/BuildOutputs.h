@@ -51,6 +51,15 @@ bool WriteDepfile(const std::filesystem::path& depfile, const std::filesystem::p
 /// `<target>/<program>/<variant id, made a safe file name>.vert|.frag`.
 std::filesystem::path VariantSourcePath(GlslTarget target, const Variant& variant, Stage stage);
 
+/// The longest file name (one path component) Linux file systems take, in bytes.
+inline constexpr std::size_t kLongestFileName = 255;
+
+/// False, with an error in `outcome` (Status::kUsage) at the program of the first one, when a
+/// variant's source file (VariantSourcePath) would have a name longer than kLongestFileName: the
+/// write would fail with "File name too long" after the work, naming a staging folder.
+bool CheckVariantFileNames(const VariantConfig& config, const std::vector<Variant>& variants,
+                           Outcome* outcome);
+
 /// Writes every variant's driver-ready vertex and fragment source for every target of `config`
 /// below `folder` (at VariantSourcePath), each atomically and only when its content changed, so
 /// that whatever depends on an unchanged variant is not rebuilt. On failure records why in
