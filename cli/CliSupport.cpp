@@ -178,6 +178,24 @@ void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits) {
                                   kVariantCeiling, kLargeVariantCeiling));
 }
 
+void AddJobsOption(CLI::App* command, int* jobs) {
+    // Read as the other counts are (ParseCountOption's rules): CLI11's own conversion took
+    // `0x2` for 2, and said "1e2 not in range 1 to 256".
+    constexpr std::uint64_t kMostJobs = 256;
+    command->add_option_function<std::string>(
+            "-j,--jobs",
+            [jobs](const std::string& text) {
+                std::uint64_t value = 0;
+                if (!pipeline::ParseWholeNumber(text, 1, kMostJobs, &value)) {
+                    throw CLI::ValidationError(
+                            "error: " +
+                            pipeline::WholeNumberError("--jobs", text, 1, kMostJobs, ""));
+                }
+                *jobs = static_cast<int>(value);
+            },
+            fmt::format("worker processes, 1..{} (default: cores)", kMostJobs));
+}
+
 void AddMatrixFlags(CLI::App* command, std::string* config, bool* json, MatrixLimits* limits) {
     command->add_option("--config", *config, "variant matrix file")->capture_default_str();
     command->add_flag("--json", *json, "print JSON instead of text");

@@ -69,6 +69,9 @@ bool ParseCountOption(std::string_view flag, const std::string& text, std::uint6
 
 using MatrixLimits = pipeline::MatrixLimits;
 
+/// Adds -j/--jobs (worker processes, a whole number from 1 to 256) to `command`, into `jobs`.
+void AddJobsOption(CLI::App* command, int* jobs);
+
 /// Adds --max-variants and --allow-large-matrix to `command`, writing into `limits`.
 void AddMatrixLimitOptions(CLI::App* command, MatrixLimits* limits);
 

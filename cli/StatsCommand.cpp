@@ -58,8 +58,7 @@ void RegisterStatsCommand(CLI::App& app, int& exit_code) {
             "Static cost of every variant from glslang's tree: ops, texture samples, "
             "pow/normalize calls, branches, shortest and longest fragment path");
     AddMatrixFlags(stats, &options->stats.config, &options->json, &options->stats.limits);
-    stats->add_option("-j,--jobs", options->stats.jobs, "worker processes, 1..256 (default: cores)")
-            ->check(CLI::Range(1, 256));
+    AddJobsOption(stats, &options->stats.jobs);
     stats->callback([options, &exit_code] { exit_code = RunStats(*options); });
 }
 

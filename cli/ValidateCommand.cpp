@@ -195,8 +195,7 @@ void RegisterValidateCommand(CLI::App& app, int& exit_code) {
     validate->add_option("-D,--define", options->files.defines,
                          "define for plain files: NAME or NAME=VALUE")
             ->allow_extra_args(false);
-    validate->add_option("-j,--jobs", matrix.jobs, "worker processes, 1..256 (default: cores)")
-            ->check(CLI::Range(1, 256));
+    AddJobsOption(validate, &matrix.jobs);
     CLI::Option* out =
             validate->add_option("--out", matrix.out, "folder to write manifest.json into")
                     ->transform(NormaliseOutPath);

@@ -191,13 +191,19 @@ TEST_F(CliTest, MaxVariantsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
 // worker for every item of a large matrix.
 TEST_F(CliTest, JobsOutOfRangeIsAUsageErrorNamingTheFlagAndRange) {
     WriteConfig("");
-    for (const char* value : {"0", "-1", "257", "999999", "abc"}) {
-        const CommandResult r = RunTidepool(
-                std::string("validate --no-cache --config v.yaml -j ") + value, dir_.Path());
-        EXPECT_EQ(r.exit_code, 2) << value << r.err;
-        EXPECT_EQ(r.err.rfind(std::string("--jobs: Value ") + value + " not in range 1 to 256", 0),
-                  0U)
-                << value << r.err;
+    // 1e2 was "not in range 1 to 256" and 0x2 was taken for 2, unlike every other count.
+    for (const char* value : {"0", "-1", "257", "999999", "abc", "1e2", "0x2", "2.0"}) {
+        for (const char* command : {"validate --no-cache", "stats"}) {
+            const CommandResult r =
+                    RunTidepool(std::string(command) + " --config v.yaml -j " + value, dir_.Path());
+            EXPECT_EQ(r.exit_code, 2) << value << r.err;
+            EXPECT_EQ(r.err.rfind(std::string("error: --jobs must be a whole number from 1 to "
+                                              "256, not '") +
+                                          value + "'",
+                                  0),
+                      0U)
+                    << value << r.err;
+        }
     }
     EXPECT_EQ(RunTidepool("validate --no-cache --config v.yaml -j 256", dir_.Path()).exit_code, 0);
 }
