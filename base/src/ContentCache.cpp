@@ -59,7 +59,9 @@ CacheFile KindOf(std::string_view shard, std::string_view name) {
 
 // Whether `name` is a shard folder's: the first two digits of the keys filed in it.
 bool IsShard(std::string_view name) {
-    return name.size() == 2 && IsKey("000000" + std::string(name));
+    return name.size() == 2 && std::all_of(name.begin(), name.end(), [](char c) {
+               return (c >= '0' && c <= '9') || (c >= 'a' && c <= 'f');
+           });
 }
 
 // Reads the whole of `fd`; false on a read error or past `limit` bytes.

@@ -135,6 +135,7 @@ bool CheckVariantFileNames(const VariantConfig& config, const std::vector<Varian
                            Outcome* outcome) {
     for (GlslTarget target : config.targets) {
         for (const Variant& variant : variants) {
+            // The vertex file's name (.vert) is as long as the fragment file's (.frag).
             for (const std::filesystem::path& part :
                  VariantSourcePath(target, variant, Stage::kFragment)) {
                 const std::size_t length = part.native().size();

@@ -84,7 +84,8 @@ bool LoadSibling(const std::filesystem::path& path,
 // Views name the report's image files (images/<preset>-<view>.png): a name that is a path
 // would write outside the report's folder.
 constexpr const char* kViewNameRule =
-        "must be a plain name (letters, digits, '_' and '-'), as render writes them";
+        "must be a plain name of at most 64 characters (letters, digits, '_' and '-'), as render "
+        "writes them";
 
 bool IsViewName(const std::string& name) {
     return !name.empty() && name.size() <= 64 && std::all_of(name.begin(), name.end(), [](char ch) {

@@ -39,16 +39,18 @@ std::string JsonSyntaxError(const std::filesystem::path& path, const std::string
     } catch (const nlohmann::json::exception&) {
         // Another failure of the same bytes: the plain words stand.
     }
-    // The offending byte's line and column, 1-based, as the other diagnostics count them.
+    // The offending byte's line and column, 1-based, the column in characters (UTF-8
+    // continuation bytes are none), as the YAML diagnostics count them.
     std::size_t line = 1;
-    std::size_t line_start = 0;
+    std::size_t column = 1;
     for (std::size_t i = 0; i < offset; ++i) {
         if (bytes[i] == '\n') {
             ++line;
-            line_start = i + 1;
+            column = 1;
+        } else if ((static_cast<unsigned char>(bytes[i]) & 0xC0) != 0x80) {
+            ++column;
         }
     }
-    const std::size_t column = offset - line_start + 1;
     return fmt::format("{}:{}:{}: not valid JSON: {}", path.string(), line, column, why);
 }
 
